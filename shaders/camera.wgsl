@@ -1,0 +1,105 @@
+// Pass 2: the camera view. `fs_final` shades with Blinn-Phong and every light's shadow;
+// `fs_analysis` writes floats for one light (visibility and PCSS intermediates) plus the
+// surface position and normal, which the CPU twin, the probe and the ground truth read.
+
+@group(0) @binding(0) var<uniform> frame: FrameGpu;
+@group(1) @binding(0) var<uniform> lights: array<LightGpu, MAX_LIGHTS>;
+@group(2) @binding(0) var<uniform> object: ObjectGpu;
+@group(2) @binding(1) var diffuse_texture: texture_2d<f32>;
+@group(2) @binding(2) var diffuse_sampler: sampler;
+
+struct VertexOut {
+    @builtin(position) clip_position: vec4<f32>,
+    @location(0) world_position: vec3<f32>,
+    @location(1) world_normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+}
+
+@vertex
+fn vs_camera(
+    @location(0) position: vec3<f32>,
+    @location(1) normal: vec3<f32>,
+    @location(2) uv: vec2<f32>,
+) -> VertexOut {
+    var out: VertexOut;
+    let world = object.world_from_object * vec4<f32>(position, 1.0);
+    out.world_position = world.xyz;
+    out.world_normal = (object.normal_from_object * vec4<f32>(normal, 0.0)).xyz;
+    out.uv = uv;
+    out.clip_position = frame.clip_from_world * world;
+    return out;
+}
+
+// The normal used for shading and bias: unit length, towards the viewer on back faces
+// (planes are single-sided meshes seen from both sides).
+fn shading_normal(in: VertexOut, front_facing: bool) -> vec3<f32> {
+    let n = normalize(in.world_normal);
+    return select(-n, n, front_facing);
+}
+
+fn noise_seed_at(frag: vec4<f32>) -> u32 {
+    return pixel_seed(vec2<u32>(frag.xy), params.noise_seed, params.rotate_per_pixel == 1u);
+}
+
+fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
+    let lo = c * 12.92;
+    let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
+    return select(hi, lo, c <= vec3<f32>(0.0031308));
+}
+
+// Spot lights light only inside their square frustum (soft 5% edge).
+fn spot_falloff(light: LightGpu, world_pos: vec3<f32>) -> f32 {
+    if light.orthographic == 1u {
+        return 1.0;
+    }
+    let s = project_to_light(light, world_pos);
+    let edge = min(min(s.x, 1.0 - s.x), min(s.y, 1.0 - s.y));
+    return smoothstep(0.0, 0.05, edge) * select(0.0, 1.0, s.z > 0.0 && s.z < 1.0);
+}
+
+@fragment
+fn fs_final(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    let n = shading_normal(in, front_facing);
+    var albedo = object.base_color.rgb;
+    if object.base_color.w > 0.5 {
+        albedo = albedo * textureSample(diffuse_texture, diffuse_sampler, in.uv).rgb;
+    }
+    let v = normalize(frame.camera_position.xyz - in.world_position);
+    let seed = noise_seed_at(in.clip_position);
+    var color = frame.ambient.rgb * albedo;
+    for (var i = 0u; i < frame.light_count; i++) {
+        let light = lights[i];
+        let l = light_dir_to(light, in.world_position);
+        let n_dot_l = max(dot(n, l), 0.0);
+        let h = normalize(l + v);
+        let specular = 0.25 * pow(max(dot(n, h), 0.0), 48.0) * select(0.0, 1.0, n_dot_l > 0.0);
+        let coord = light_space_lookup(light, in.world_position, n);
+        let shadow = shadow_visibility(light, coord, seed).visibility;
+        let radiance = light.color.rgb * spot_falloff(light, in.world_position);
+        color += shadow * radiance * (albedo * n_dot_l + vec3<f32>(specular));
+    }
+    return vec4<f32>(linear_to_srgb(clamp(color, vec3<f32>(0.0), vec3<f32>(1.0))), 1.0);
+}
+
+struct AnalysisOut {
+    // visibility, blocker-search radius (texels), penumbra width (texels on the receiver), blockers found
+    @location(0) shadow: vec4<f32>,
+    // world position; w = 1 where a surface was hit (cleared to 0)
+    @location(1) position: vec4<f32>,
+    // shading normal; w = object index
+    @location(2) normal: vec4<f32>,
+}
+
+@fragment
+fn fs_analysis(in: VertexOut, @builtin(front_facing) front_facing: bool) -> AnalysisOut {
+    var out: AnalysisOut;
+    let n = shading_normal(in, front_facing);
+    let light = lights[frame.selected_light];
+    let coord = light_space_lookup(light, in.world_position, n);
+    let result = shadow_visibility(light, coord, noise_seed_at(in.clip_position));
+    let penumbra_texels = result.penumbra.width_world / texel_world_at(light, coord.depth_linear);
+    out.shadow = vec4<f32>(result.visibility, result.search.radius_texels, penumbra_texels, f32(result.search.found));
+    out.position = vec4<f32>(in.world_position, 1.0);
+    out.normal = vec4<f32>(n, f32(object.object_index));
+    return out;
+}

@@ -1,0 +1,101 @@
+// Shared structs, constants and noise. Composed in front of the other shader files.
+// Keep the structs in sync with src/render/gpu_types.rs (sizes are asserted there).
+
+const PI: f32 = 3.14159265358979;
+const TAU: f32 = 6.28318530717959;
+const GOLDEN_ANGLE: f32 = 2.39996322972865; // radians, pi * (3 - sqrt 5)
+const MAX_LIGHTS: u32 = 4u;
+
+// Bias modes, kernels and techniques: same numbering as src/shadow/mod.rs.
+const BIAS_NONE: u32 = 0u;
+const BIAS_CONSTANT: u32 = 1u;
+const BIAS_SLOPE: u32 = 2u;
+const BIAS_ADAPTIVE: u32 = 3u;
+const KERNEL_POISSON: u32 = 0u;
+const KERNEL_UNIFORM: u32 = 1u;
+const KERNEL_VOGEL: u32 = 2u;
+const KERNEL_GRID: u32 = 3u;
+const KERNEL_HARDWARE: u32 = 4u;
+const TECHNIQUE_HARD: u32 = 0u;
+const TECHNIQUE_PCF: u32 = 1u;
+const TECHNIQUE_PCSS: u32 = 2u;
+const SIZE_MODEL_WIDTH: u32 = 0u;
+const SIZE_MODEL_ANGULAR: u32 = 1u;
+
+struct FrameGpu {
+    clip_from_world: mat4x4<f32>,
+    camera_position: vec4<f32>,   // xyz world
+    ambient: vec4<f32>,           // rgb linear
+    light_count: u32,
+    selected_light: u32,          // which light the analysis outputs describe
+    _pad0: u32,
+    _pad1: u32,
+}
+
+struct LightGpu {
+    clip_from_world: mat4x4<f32>,
+    position: vec4<f32>,          // xyz world, at the frame's time
+    direction: vec4<f32>,         // xyz unit, from the light towards its target
+    color: vec4<f32>,             // rgb linear times intensity
+    near: f32,                    // world units
+    far: f32,
+    frustum_width_world: f32,     // W: ortho width, or width at the near plane
+    tan_half_fov: f32,            // perspective only; 0 for orthographic
+    orthographic: u32,
+    size_model: u32,              // SIZE_MODEL_*
+    light_width_world: f32,       // width model: area-light diameter
+    tan_half_angle: f32,          // angular model: tan(angular_diameter / 2)
+    map_size_texels: f32,
+    layer: u32,                   // shadow-map array layer
+    atlas_scale: f32,             // map_size / array texture size
+    _pad: u32,
+}
+
+struct ShadowParamsGpu {
+    technique: u32,
+    bias_mode: u32,
+    kernel: u32,
+    samples: u32,                 // effective filter taps
+    bias: f32,                    // NDC depth
+    slope_bias: f32,              // NDC depth
+    adaptive_c: f32,              // dimensionless
+    normal_offset_texels: f32,
+    radius_texels: f32,
+    rotate_per_pixel: u32,
+    noise_seed: u32,
+    blocker_samples: u32,
+    min_filter_radius_texels: f32,
+    clamp_outside: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+struct ObjectGpu {
+    world_from_object: mat4x4<f32>,
+    normal_from_object: mat4x4<f32>, // inverse transpose of world_from_object
+    base_color: vec4<f32>,           // rgb linear; w = 1 when the diffuse texture is used
+    object_index: u32,
+    _pad0: u32,
+    _pad1: u32,
+    _pad2: u32,
+}
+
+// PCG hash (Jarzynski & Olano 2020): exact integer maths, so the CPU twin gets the same bits.
+fn pcg_hash(v: u32) -> u32 {
+    let state = v * 747796405u + 2891336453u;
+    let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+    return (word >> 22u) ^ word;
+}
+
+// Top 24 bits as a float in [0, 1).
+fn unit_float(h: u32) -> f32 {
+    return f32(h >> 8u) * (1.0 / 16777216.0);
+}
+
+// Seed of the noise at one pixel: fixed per pixel, or one value for the whole image.
+fn pixel_seed(pixel: vec2<u32>, noise_seed: u32, rotate_per_pixel: bool) -> u32 {
+    if rotate_per_pixel {
+        return pcg_hash(pixel.x ^ pcg_hash(pixel.y ^ pcg_hash(noise_seed)));
+    }
+    return pcg_hash(noise_seed);
+}

@@ -1,0 +1,312 @@
+// Shadow sampling: what to sample (light-space lookup, bias) and how to filter it
+// (hard, PCF with five kernels, PCSS in three steps).
+// The CPU twin in src/shadow/ has the same functions with the same names; fix a formula in both.
+//
+// Units: `depth_ndc` is what the map stores (0..1); `depth_linear` is world units from the light
+// along its axis; `_uv` is shadow-map uv (0..1 over the light's map); `_texels` is map texels.
+
+@group(1) @binding(1) var<uniform> params: ShadowParamsGpu;
+@group(1) @binding(2) var shadow_maps: texture_depth_2d_array;
+@group(1) @binding(3) var shadow_compare_sampler: sampler_comparison;
+
+// GAMES202's sample spiral winds this many times.
+const NUM_RINGS: f32 = 10.0;
+
+// ---------------------------------------------------------------- what to sample
+
+struct ShadowCoord {
+    uv: vec2<f32>,          // wgpu: uv = ndc.xy * (0.5, -0.5) + 0.5
+    depth_ndc: f32,         // receiver depth as the map would store it
+    depth_linear: f32,      // receiver distance from the light, world units
+    n_dot_l: f32,
+}
+
+fn depth_linear_from_ndc(light: LightGpu, z: f32) -> f32 {
+    if light.orthographic == 1u {
+        return light.near + z * (light.far - light.near);
+    }
+    return light.near * light.far / (light.far - z * (light.far - light.near));
+}
+
+// dz/dd at distance d: turns a world-unit bias into NDC depth units.
+fn ndc_per_world(light: LightGpu, depth_linear: f32) -> f32 {
+    if light.orthographic == 1u {
+        return 1.0 / (light.far - light.near);
+    }
+    return light.far * light.near / (depth_linear * depth_linear * (light.far - light.near));
+}
+
+// One texel's footprint on a surface facing the light at distance d, world units.
+fn texel_world_at(light: LightGpu, depth_linear: f32) -> f32 {
+    if light.orthographic == 1u {
+        return light.frustum_width_world / light.map_size_texels;
+    }
+    return 2.0 * depth_linear * light.tan_half_fov / light.map_size_texels;
+}
+
+fn light_dir_to(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
+    if light.orthographic == 1u {
+        return -light.direction.xyz;
+    }
+    return normalize(light.position.xyz - world_pos);
+}
+
+fn project_to_light(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
+    let clip = light.clip_from_world * vec4<f32>(world_pos, 1.0);
+    let ndc = clip.xyz / clip.w;
+    return vec3<f32>(ndc.xy * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5), ndc.z);
+}
+
+// Light-space lookup of a surface point, with the normal offset applied
+// (three.js normalBias; Bevy uses 1.8 texels): move along the normal by k texels in world units.
+fn light_space_lookup(light: LightGpu, world_pos: vec3<f32>, normal: vec3<f32>) -> ShadowCoord {
+    var out: ShadowCoord;
+    out.n_dot_l = dot(normal, light_dir_to(light, world_pos));
+    var p = world_pos;
+    if params.normal_offset_texels > 0.0 {
+        let d = depth_linear_from_ndc(light, project_to_light(light, world_pos).z);
+        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(light, d));
+    }
+    let s = project_to_light(light, p);
+    out.uv = s.xy;
+    out.depth_ndc = s.z;
+    out.depth_linear = depth_linear_from_ndc(light, s.z);
+    return out;
+}
+
+// Depth bias in NDC units (REFERENCES "Bias"). `filter_radius_texels` grows the adaptive bias.
+fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: f32) -> f32 {
+    switch params.bias_mode {
+        case BIAS_CONSTANT: {
+            return params.bias;
+        }
+        case BIAS_SLOPE: {
+            // LearnOpenGL: max(0.05 * (1 - N.L), 0.005)
+            return max(params.slope_bias * (1.0 - coord.n_dot_l), params.bias);
+        }
+        case BIAS_ADAPTIVE: {
+            // Seed 000: A = (1 + ceil(R)) * W / (2 * map_size) is half a texel in world units,
+            // grown with the filter; B = 1 - N.L; bias = c * max(A, A * B). As published,
+            // max(A, A*B) is A (B <= 1): texel-aware, not slope-aware.
+            let a = (1.0 + ceil(filter_radius_texels)) * 0.5 * texel_world_at(light, coord.depth_linear);
+            let b = 1.0 - coord.n_dot_l;
+            let bias_world = params.adaptive_c * max(a, a * b);
+            return bias_world * ndc_per_world(light, coord.depth_linear);
+        }
+        default: {
+            return 0.0;
+        }
+    }
+}
+
+fn outside_map(uv: vec2<f32>) -> bool {
+    return any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0));
+}
+
+// Stored depth at a uv, point-sampled. Without clamping the lookup wraps, the classic bug.
+fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
+    var lookup = uv;
+    if params.clamp_outside == 0u {
+        lookup = fract(uv);
+    }
+    let size = i32(light.map_size_texels);
+    let texel = clamp(vec2<i32>(floor(lookup * light.map_size_texels)), vec2<i32>(0), vec2<i32>(size - 1));
+    return textureLoad(shadow_maps, texel, i32(light.layer), 0);
+}
+
+// 1 = lit, 0 = shadowed, for one tap. Outside the light frustum counts as lit when clamped.
+fn depth_test(light: LightGpu, uv: vec2<f32>, receiver_ndc: f32, bias_ndc: f32) -> f32 {
+    if params.clamp_outside == 1u && (outside_map(uv) || receiver_ndc > 1.0 || receiver_ndc < 0.0) {
+        return 1.0;
+    }
+    if params.kernel == KERNEL_HARDWARE && params.technique != TECHNIQUE_HARD {
+        var lookup = uv;
+        if params.clamp_outside == 0u {
+            lookup = fract(uv);
+        }
+        // Bilinear 2x2 comparison in the sampler (LessEqual: lit where reference <= stored).
+        return textureSampleCompareLevel(shadow_maps, shadow_compare_sampler, lookup * light.atlas_scale,
+                                         i32(light.layer), receiver_ndc - bias_ndc);
+    }
+    return select(0.0, 1.0, receiver_ndc - bias_ndc <= stored_depth_ndc(light, uv));
+}
+
+// ---------------------------------------------------------------- sample patterns
+
+fn grid_side(n: u32) -> u32 {
+    return max(1u, u32(floor(sqrt(f32(n)))));
+}
+
+fn rotate2(p: vec2<f32>, angle: f32) -> vec2<f32> {
+    let c = cos(angle);
+    let s = sin(angle);
+    return vec2<f32>(c * p.x - s * p.y, s * p.x + c * p.y);
+}
+
+// Tap i of n in the unit disk. `seed` is the pixel's noise seed; `rotation` = TAU * unit_float(seed).
+fn kernel_offset(kernel: u32, i: u32, n: u32, seed: u32) -> vec2<f32> {
+    let rotation = TAU * unit_float(seed);
+    switch kernel {
+        case KERNEL_POISSON: {
+            // GAMES202 poissonDiskSamples: a spiral, radius ((i+1)/n)^0.75, NUM_RINGS turns.
+            let angle = rotation + f32(i) * TAU * NUM_RINGS / f32(n);
+            let r = pow(f32(i + 1u) / f32(n), 0.75);
+            return vec2<f32>(cos(angle), sin(angle)) * r;
+        }
+        case KERNEL_UNIFORM: {
+            // GAMES202 uniformDiskSamples: (cos 2 pi x, sin 2 pi x) * sqrt(y), uniform over area.
+            let h = pcg_hash(seed ^ pcg_hash(i + 1u));
+            let x = unit_float(h);
+            let y = unit_float(pcg_hash(h));
+            return vec2<f32>(cos(TAU * x), sin(TAU * x)) * sqrt(y);
+        }
+        case KERNEL_GRID: {
+            // LearnOpenGL's 3x3 is side = 3, radius 1 texel: offsets -1, 0, 1.
+            let side = grid_side(n);
+            if side == 1u {
+                return vec2<f32>(0.0);
+            }
+            let g = vec2<f32>(f32(i % side), f32(i / side));
+            return rotate2(g / f32(side - 1u) * 2.0 - vec2<f32>(1.0), rotation);
+        }
+        default: {
+            // Vogel disk: golden-angle spiral, radius sqrt((i + 0.5) / n).
+            let angle = f32(i) * GOLDEN_ANGLE + rotation;
+            return vec2<f32>(cos(angle), sin(angle)) * sqrt((f32(i) + 0.5) / f32(n));
+        }
+    }
+}
+
+fn filter_taps(kernel: u32, samples: u32) -> u32 {
+    if kernel == KERNEL_GRID {
+        let side = grid_side(samples);
+        return side * side;
+    }
+    return samples;
+}
+
+// ---------------------------------------------------------------- how to filter
+
+// Hard shadow: one depth comparison.
+fn visibility_hard(light: LightGpu, coord: ShadowCoord) -> f32 {
+    let bias = receiver_bias_ndc(light, coord, 0.0);
+    if params.clamp_outside == 1u && (outside_map(coord.uv) || coord.depth_ndc > 1.0 || coord.depth_ndc < 0.0) {
+        return 1.0;
+    }
+    return select(0.0, 1.0, coord.depth_ndc - bias <= stored_depth_ndc(light, coord.uv));
+}
+
+// PCF: V = (1/N) sum_i [d_receiver - bias <= map(uv + r * s_i)], r in uv = radius_texels / map_size.
+fn visibility_pcf(light: LightGpu, coord: ShadowCoord, radius_texels: f32, seed: u32) -> f32 {
+    let n = filter_taps(params.kernel, params.samples);
+    let radius_uv = radius_texels / light.map_size_texels;
+    let bias = receiver_bias_ndc(light, coord, radius_texels);
+    var lit = 0.0;
+    for (var i = 0u; i < n; i++) {
+        let uv = coord.uv + kernel_offset(params.kernel, i, n, seed) * radius_uv;
+        lit += depth_test(light, uv, coord.depth_ndc, bias);
+    }
+    return lit / f32(n);
+}
+
+struct BlockerSearch {
+    radius_texels: f32,       // search radius on the map
+    found: u32,               // taps closer to the light than the receiver
+    avg_depth_linear: f32,    // d_blocker, world units (0 when none found)
+}
+
+// PCSS step 1: blocker search. The region is the cone from the receiver to the light's area,
+// cut at the near plane (NVIDIA: w_search = w_light * (d_r - near) / d_r, in uv / W_near).
+fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSearch {
+    var out: BlockerSearch;
+    let d_r = coord.depth_linear;
+    var radius_world = 0.0;
+    if light.size_model == SIZE_MODEL_ANGULAR {
+        radius_world = (d_r - light.near) * light.tan_half_angle;
+    } else {
+        radius_world = 0.5 * light.light_width_world * (d_r - light.near) / d_r;
+    }
+    let radius_uv = max(radius_world, 0.0) / light.frustum_width_world;
+    out.radius_texels = radius_uv * light.map_size_texels;
+    let kernel = select(params.kernel, KERNEL_VOGEL, params.kernel == KERNEL_HARDWARE);
+    let n = filter_taps(kernel, params.blocker_samples);
+    let bias = receiver_bias_ndc(light, coord, 0.0);
+    var sum = 0.0;
+    for (var i = 0u; i < n; i++) {
+        let uv = coord.uv + kernel_offset(kernel, i, n, seed) * radius_uv;
+        if params.clamp_outside == 1u && outside_map(uv) {
+            continue;
+        }
+        let z = stored_depth_ndc(light, uv);
+        if z < coord.depth_ndc - bias {
+            out.found += 1u;
+            sum += depth_linear_from_ndc(light, z);
+        }
+    }
+    if out.found > 0u {
+        out.avg_depth_linear = sum / f32(out.found);
+    }
+    return out;
+}
+
+struct Penumbra {
+    width_world: f32,            // on the receiver
+    filter_radius_texels: f32,   // half the width, mapped to the shadow map
+}
+
+// PCSS step 2: penumbra by similar triangles (Fernando 2005).
+// Width model: w_p = w_light * (d_r - d_b) / d_b. Angular model: w_p = (d_r - d_b) * 2 tan(theta/2).
+// The filter radius is half the penumbra width, mapped to the map: orthographic / W,
+// perspective projected to the near plane first (* near / d_r) and then / W_near.
+fn estimate_penumbra(light: LightGpu, coord: ShadowCoord, d_blocker: f32) -> Penumbra {
+    var out: Penumbra;
+    let d_r = coord.depth_linear;
+    let gap = max(d_r - d_blocker, 0.0);
+    if light.size_model == SIZE_MODEL_ANGULAR {
+        out.width_world = gap * 2.0 * light.tan_half_angle;
+    } else {
+        out.width_world = light.light_width_world * gap / max(d_blocker, 1e-6);
+    }
+    var radius_uv = 0.5 * out.width_world / light.frustum_width_world;
+    if light.orthographic == 0u {
+        radius_uv = radius_uv * light.near / d_r;
+    }
+    out.filter_radius_texels = max(radius_uv * light.map_size_texels, params.min_filter_radius_texels);
+    return out;
+}
+
+struct PcssResult {
+    visibility: f32,
+    search: BlockerSearch,
+    penumbra: Penumbra,
+}
+
+// PCSS step 3: filter with the estimated radius. No blockers: fully lit (saves the filter).
+fn visibility_pcss(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult {
+    var out: PcssResult;
+    out.search = search_blockers(light, coord, seed);
+    if out.search.found == 0u {
+        out.visibility = 1.0;
+        return out;
+    }
+    out.penumbra = estimate_penumbra(light, coord, out.search.avg_depth_linear);
+    out.visibility = visibility_pcf(light, coord, out.penumbra.filter_radius_texels, seed);
+    return out;
+}
+
+// The selected technique, with PCSS's intermediate values for the debug views.
+fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult {
+    var out: PcssResult;
+    switch params.technique {
+        case TECHNIQUE_PCF: {
+            out.visibility = visibility_pcf(light, coord, params.radius_texels, seed);
+        }
+        case TECHNIQUE_PCSS: {
+            out = visibility_pcss(light, coord, seed);
+        }
+        default: {
+            out.visibility = visibility_hard(light, coord);
+        }
+    }
+    return out;
+}

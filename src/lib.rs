@@ -1,0 +1,11 @@
+//! shadowlab: learn real-time shadows — shadow mapping, bias, PCF and PCSS — with a CPU twin
+//! of every shader function and a ground truth to compare against.
+
+pub mod cli;
+pub mod export;
+pub mod probe;
+pub mod reference;
+pub mod render;
+pub mod scene;
+pub mod shadow;
+pub mod views;

@@ -1,0 +1,164 @@
+//! The pixel probe: everything about the surface under one camera pixel, per light — from the
+//! GPU's analysis pass, the CPU twin (every intermediate value and tap) and the ground truth.
+
+use crate::render::{FrameRequest, RenderError, Renderer};
+use crate::scene::{Scene, Technique};
+use crate::shadow::{TapKind, Twin, kernels};
+use glam::Vec3;
+use serde::Serialize;
+
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct TapReport {
+    /// "blocker-search" or "filter".
+    pub kind: &'static str,
+    pub uv: [f32; 2],
+    /// Blocker search: 1 = blocker. Filter: lit fraction of the tap.
+    pub value: f32,
+}
+
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct LightProbe {
+    pub light: usize,
+    pub shadow_map_uv: [f32; 2],
+    pub shadow_map_texel: [i32; 2],
+    pub inside_light_frustum: bool,
+    pub n_dot_l: f32,
+    pub receiver_depth_ndc: f32,
+    pub receiver_depth_linear: f32,
+    pub stored_depth_ndc: f32,
+    pub stored_depth_linear: f32,
+    pub bias_ndc: f32,
+    pub blocker_search_radius_uv: f32,
+    pub blocker_search_radius_texels: f32,
+    pub blockers_found: u32,
+    pub blocker_samples: u32,
+    /// d_blocker, world units; None where no blocker was found (or the technique has no search).
+    pub avg_blocker_depth_linear: Option<f32>,
+    pub penumbra_width_world: f32,
+    pub filter_radius_uv: f32,
+    pub filter_radius_texels: f32,
+    pub filter_samples: u32,
+    pub visibility_gpu: f32,
+    pub visibility_twin: f32,
+    pub visibility_reference: Option<f32>,
+    pub taps: Vec<TapReport>,
+}
+
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct ProbeReport {
+    pub pixel: [u32; 2],
+    pub size: [u32; 2],
+    pub time_s: f32,
+    pub technique: Technique,
+    pub hit: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub object: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub world_position: Option<[f32; 3]>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub normal: Option<[f32; 3]>,
+    pub lights: Vec<LightProbe>,
+}
+
+/// Probe `pixel` of the frame described by `request` (which is rendered here, once per light).
+pub fn probe(
+    renderer: &mut Renderer,
+    scene: &Scene,
+    request: &FrameRequest,
+    pixel: (u32, u32),
+    with_reference: bool,
+) -> Result<ProbeReport, RenderError> {
+    let (w, h) = request.size;
+    if pixel.0 >= w || pixel.1 >= h {
+        return Err(RenderError::Usage(format!("pixel {},{} is outside the {w}x{h} image", pixel.0, pixel.1)));
+    }
+    let mut report = ProbeReport {
+        pixel: [pixel.0, pixel.1],
+        size: [w, h],
+        time_s: request.time_s,
+        technique: scene.shadow.technique,
+        hit: false,
+        object: None,
+        world_position: None,
+        normal: None,
+        lights: Vec::new(),
+    };
+    for light_index in 0..scene.lights.len().max(1) {
+        let frame = FrameRequest { selected_light: light_index, final_color: false, analysis: true, ..*request };
+        renderer.render(scene, &frame)?;
+        let analysis = renderer.read_analysis()?;
+        let i = analysis.index(pixel.0, pixel.1);
+        if !analysis.hit(i) {
+            return Ok(report);
+        }
+        let position = Vec3::from_slice(&analysis.position[i][..3]);
+        let normal = Vec3::from_slice(&analysis.normal[i][..3]);
+        report.hit = true;
+        report.world_position = Some(position.to_array());
+        report.normal = Some(normal.to_array());
+        report.object = scene.objects.get(analysis.normal[i][3] as usize).map(|o| o.name.clone());
+        if scene.lights.is_empty() {
+            break;
+        }
+        let map = renderer.read_shadow_map(light_index)?;
+        let light_gpu = renderer.frame_lights[light_index];
+        let params = renderer.frame_params;
+        let mut twin = Twin::new(&light_gpu, &params, &map);
+        twin.trace = Some(Vec::new());
+        let (coord, result) = twin.analysis_at(pixel, position, normal);
+        let filter_radius_texels = match scene.shadow.technique {
+            Technique::Hard => 0.0,
+            Technique::Pcf => scene.shadow.radius_texels,
+            Technique::Pcss if result.search.found > 0 => result.penumbra.filter_radius_texels,
+            Technique::Pcss => 0.0,
+        };
+        let map_size = light_gpu.map_size_texels;
+        let stored = twin.stored_depth_ndc(coord.uv);
+        let taps = twin.trace.take().unwrap_or_default();
+        let reference = if with_reference {
+            Some(renderer.render_reference(scene, light_index)?[i])
+        } else {
+            None
+        };
+        let inside = (0.0..=1.0).contains(&coord.uv.x) && (0.0..=1.0).contains(&coord.uv.y) && (0.0..=1.0).contains(&coord.depth_ndc);
+        report.lights.push(LightProbe {
+            light: light_index,
+            shadow_map_uv: coord.uv.to_array(),
+            shadow_map_texel: [(coord.uv.x * map_size).floor() as i32, (coord.uv.y * map_size).floor() as i32],
+            inside_light_frustum: inside,
+            n_dot_l: coord.n_dot_l,
+            receiver_depth_ndc: coord.depth_ndc,
+            receiver_depth_linear: coord.depth_linear,
+            stored_depth_ndc: stored,
+            stored_depth_linear: crate::shadow::depth_linear_from_ndc(&light_gpu, stored),
+            bias_ndc: twin.receiver_bias_ndc(&coord, filter_radius_texels),
+            blocker_search_radius_uv: result.search.radius_texels / map_size,
+            blocker_search_radius_texels: result.search.radius_texels,
+            blockers_found: result.search.found,
+            blocker_samples: kernels::filter_taps(scene.shadow.pcf_kernel, scene.shadow.blocker_samples),
+            avg_blocker_depth_linear: (result.search.found > 0).then_some(result.search.avg_depth_linear),
+            penumbra_width_world: result.penumbra.width_world,
+            filter_radius_uv: filter_radius_texels / map_size,
+            filter_radius_texels,
+            filter_samples: match scene.shadow.technique {
+                Technique::Hard => 1,
+                _ => scene.shadow.effective_samples(),
+            },
+            visibility_gpu: analysis.shadow[i][0],
+            visibility_twin: result.visibility,
+            visibility_reference: reference,
+            taps: taps
+                .iter()
+                .map(|t| TapReport {
+                    kind: match t.kind {
+                        TapKind::BlockerSearch => "blocker-search",
+                        TapKind::Filter => "filter",
+                    },
+                    uv: t.uv.to_array(),
+                    value: t.value,
+                })
+                .collect(),
+        });
+    }
+    Ok(report)
+}

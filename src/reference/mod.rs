@@ -1,0 +1,84 @@
+//! Ground truth for soft shadows: the average of many hard shadows from sample points over the
+//! light's area (width model: point lights on a disk of diameter `width`, perspective maps) or
+//! from directions over its angular disk (angular model: orthographic maps).
+//! REFERENCES "Ground truth for soft shadows"; published comparisons use 1024 hard shadows.
+
+use crate::render::LightGpu;
+use crate::scene::{BiasMode, Light, LightKind, LightSize, ShadowSettings, Technique};
+use glam::{Mat4, Vec2, Vec3};
+
+const GOLDEN_ANGLE: f32 = 2.399_963_2;
+
+/// Point `k` of `n` on the unit disk, spread evenly over its area (Vogel spiral).
+pub fn disk_point(k: usize, n: usize) -> Vec2 {
+    let r = ((k as f32 + 0.5) / n as f32).sqrt();
+    let a = k as f32 * GOLDEN_ANGLE;
+    Vec2::new(a.cos(), a.sin()) * r
+}
+
+/// The light's own axis at time `t`: forward, and two unit vectors spanning its area.
+fn light_basis(light: &Light, t_s: f32) -> (Vec3, Vec3, Vec3) {
+    let forward = light.direction_at(t_s);
+    let up = crate::scene::safe_up_for(forward, light.up);
+    let right = forward.cross(up).normalize();
+    (forward, right, right.cross(forward))
+}
+
+/// The hard-shadow lights whose average is the ground truth, as the GPU reads them
+/// (layer 0 of a map of the light's own size). A light of size 0 gives itself.
+pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightGpu> {
+    let size = light.shadow_map_size;
+    let (forward, right, up) = light_basis(light, t_s);
+    let position = light.position_at(t_s);
+    let distance = (light.target - position).length().max(1e-3);
+    match light.size {
+        LightSize::Width { width_world } if width_world > 0.0 && count > 1 => {
+            // A directional light's area is modelled by point lights too: perspective maps
+            // covering its ortho extent at the target's distance.
+            let as_spot = match light.kind {
+                LightKind::Spot { .. } => *light,
+                LightKind::Directional { extent_world } => Light {
+                    kind: LightKind::Spot { fov_deg: (2.0 * (extent_world / distance).atan()).to_degrees().min(150.0) },
+                    near: light.near.max(distance * 0.05),
+                    ..*light
+                },
+            };
+            (0..count)
+                .map(|k| {
+                    let p = disk_point(k, count) * (0.5 * width_world);
+                    let eye = position + right * p.x + up * p.y;
+                    let clip = as_spot.clip_from_view() * Mat4::look_to_rh(eye, forward, up);
+                    LightGpu::with_transform(&as_spot, clip, eye, forward, 0, size)
+                })
+                .collect()
+        }
+        LightSize::AngularDiameter { angular_diameter_deg } if angular_diameter_deg > 0.0 && count > 1 => {
+            let tan_half = (0.5 * angular_diameter_deg.to_radians()).tan();
+            (0..count)
+                .map(|k| {
+                    let p = disk_point(k, count) * tan_half;
+                    let direction = (forward + right * p.x + up * p.y).normalize();
+                    let eye = light.target - direction * distance;
+                    let sample_up = crate::scene::safe_up_for(direction, up);
+                    let clip = light.clip_from_view() * Mat4::look_to_rh(eye, direction, sample_up);
+                    LightGpu::with_transform(light, clip, eye, direction, 0, size)
+                })
+                .collect()
+        }
+        _ => vec![LightGpu::new(light, t_s, 0, size)],
+    }
+}
+
+/// Settings the ground truth's hard shadows use: the user's bias is replaced by a robust one
+/// (half a texel plus a one-texel normal offset), so acne or peter panning in the technique
+/// shows up as error instead of being copied into the reference.
+pub fn reference_settings(user: &ShadowSettings) -> ShadowSettings {
+    ShadowSettings {
+        technique: Technique::Hard,
+        bias_mode: BiasMode::Adaptive,
+        adaptive_c: 1.0,
+        normal_offset_texels: 1.0,
+        clamp_outside: true,
+        ..*user
+    }
+}

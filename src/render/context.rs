@@ -1,0 +1,50 @@
+//! Adapter and device for headless use (CLI, tests). The app gets its device from eframe.
+
+use super::RenderError;
+
+pub struct GpuContext {
+    pub device: wgpu::Device,
+    pub queue: wgpu::Queue,
+    pub adapter_info: wgpu::AdapterInfo,
+}
+
+/// Features used when the adapter has them (timestamps make the benchmark show per-pass times).
+pub fn optional_features() -> wgpu::Features {
+    wgpu::Features::TIMESTAMP_QUERY
+}
+
+impl GpuContext {
+    /// The first adapter on the backends named by `WGPU_BACKEND` (default: Vulkan, then GL).
+    pub fn new_headless() -> Result<Self, RenderError> {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN | wgpu::Backends::GL);
+        let instance = wgpu::Instance::new(desc);
+        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        }))
+        .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        let adapter_info = adapter.get_info();
+        let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+            label: Some("shadowlab"),
+            required_features: adapter.features() & optional_features(),
+            required_limits: adapter.limits(),
+            experimental_features: wgpu::ExperimentalFeatures::disabled(),
+            memory_hints: wgpu::MemoryHints::Performance,
+            trace: wgpu::Trace::Off,
+        }))
+        .map_err(|e| RenderError::Device(e.to_string()))?;
+        Ok(Self { device, queue, adapter_info })
+    }
+
+    /// "llvmpipe (LLVM 15.0.6, 256 bits) via Vulkan (Cpu)".
+    pub fn describe(&self) -> String {
+        describe_adapter(&self.adapter_info)
+    }
+}
+
+pub fn describe_adapter(info: &wgpu::AdapterInfo) -> String {
+    format!("{} via {:?} ({:?})", info.name, info.backend, info.device_type)
+}

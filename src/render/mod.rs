@@ -1,0 +1,442 @@
+//! The renderer: offscreen, into textures it owns. It knows nothing of windows, egui or files;
+//! the app shows its textures, the CLI and the tests read them back.
+
+mod context;
+pub mod gpu_types;
+mod pipelines;
+pub mod readback;
+mod reference_pass;
+mod scene_gpu;
+pub mod shaders;
+mod targets;
+mod timing;
+
+pub use context::{GpuContext, describe_adapter, optional_features};
+pub use gpu_types::{LightGpu, ShadowParamsGpu};
+pub use pipelines::COLOR_FORMAT;
+pub use timing::PassTimes;
+
+use crate::scene::{MAX_LIGHTS, Scene};
+use gpu_types::{DYNAMIC_STRIDE, FrameGpu, ShadowViewGpu};
+use pipelines::{Layouts, Pipelines, ShadowPipelineKey};
+use scene_gpu::SceneGpu;
+use targets::{ShadowMaps, ViewTargets};
+
+#[derive(Debug, thiserror::Error)]
+pub enum RenderError {
+    #[error("no GPU adapter found ({0}); install a Vulkan or OpenGL driver, e.g. `apt-get install mesa-vulkan-drivers` for a software one")]
+    NoAdapter(String),
+    #[error("could not open the GPU device: {0}")]
+    Device(String),
+    #[error("{0}")]
+    Limits(String),
+    #[error("reading back from the GPU failed: {0}")]
+    Readback(String),
+    #[error("{0}")]
+    Usage(String),
+}
+
+/// What to render for one frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameRequest {
+    pub time_s: f32,
+    /// Camera view size, pixels.
+    pub size: (u32, u32),
+    /// The light the analysis outputs (visibility, PCSS terms) describe.
+    pub selected_light: usize,
+    pub final_color: bool,
+    pub analysis: bool,
+    /// Record GPU timestamps (where the adapter supports them).
+    pub timestamps: bool,
+}
+
+impl Default for FrameRequest {
+    fn default() -> Self {
+        Self { time_s: 0.0, size: (960, 540), selected_light: 0, final_color: true, analysis: true, timestamps: false }
+    }
+}
+
+/// The analysis pass read back: per pixel, row-major, top row first.
+#[derive(Clone, Debug)]
+pub struct Analysis {
+    pub width: u32,
+    pub height: u32,
+    /// visibility, blocker-search radius (texels), penumbra width (texels), blockers found.
+    pub shadow: Vec<[f32; 4]>,
+    /// World position; w = 1 where a surface was hit.
+    pub position: Vec<[f32; 4]>,
+    /// Shading normal; w = object index.
+    pub normal: Vec<[f32; 4]>,
+}
+
+impl Analysis {
+    pub fn index(&self, x: u32, y: u32) -> usize {
+        (y * self.width + x) as usize
+    }
+    pub fn hit(&self, i: usize) -> bool {
+        self.position[i][3] > 0.5
+    }
+}
+
+/// One light's shadow map read back: NDC depth per texel, row-major, top row first (uv.y = 0).
+#[derive(Clone, Debug)]
+pub struct DepthImage {
+    pub size: u32,
+    pub depth_ndc: Vec<f32>,
+}
+
+pub struct Renderer {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    layouts: Layouts,
+    pipelines: Pipelines,
+    frame_buffer: wgpu::Buffer,
+    lights_buffer: wgpu::Buffer,
+    params_buffer: wgpu::Buffer,
+    shadow_view_buffer: wgpu::Buffer,
+    frame_bind_group: wgpu::BindGroup,
+    shadow_view_bind_group: wgpu::BindGroup,
+    compare_sampler: wgpu::Sampler,
+    shadow_maps: Option<ShadowMaps>,
+    lights_bind_group: Option<wgpu::BindGroup>,
+    scene_gpu: Option<SceneGpu>,
+    targets: Option<ViewTargets>,
+    timer: Option<timing::Timer>,
+    /// The lights and parameters of the last frame, exactly as the GPU saw them (the CPU twin uses these).
+    pub frame_lights: Vec<LightGpu>,
+    pub frame_params: ShadowParamsGpu,
+    pub last_request: Option<FrameRequest>,
+}
+
+fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
+    device.create_buffer(&wgpu::BufferDescriptor {
+        label: Some(label),
+        size,
+        usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+        mapped_at_creation: false,
+    })
+}
+
+fn compare_sampler(device: &wgpu::Device) -> wgpu::Sampler {
+    device.create_sampler(&wgpu::SamplerDescriptor {
+        label: Some("shadow compare"),
+        mag_filter: wgpu::FilterMode::Linear,
+        min_filter: wgpu::FilterMode::Linear,
+        compare: Some(wgpu::CompareFunction::LessEqual),
+        ..Default::default()
+    })
+}
+
+impl Renderer {
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+        let layouts = Layouts::new(device);
+        let pipelines = Pipelines::new(device, &layouts);
+        let frame_buffer = uniform_buffer(device, "frame", std::mem::size_of::<FrameGpu>() as u64);
+        let lights_buffer = uniform_buffer(device, "lights", (std::mem::size_of::<LightGpu>() * MAX_LIGHTS) as u64);
+        let params_buffer = uniform_buffer(device, "shadow params", std::mem::size_of::<ShadowParamsGpu>() as u64);
+        let shadow_view_buffer = uniform_buffer(device, "shadow views", DYNAMIC_STRIDE * MAX_LIGHTS as u64);
+        let frame_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("frame"),
+            layout: &layouts.frame,
+            entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() }],
+        });
+        let shadow_view_bind_group = shadow_view_group(device, &layouts, &shadow_view_buffer);
+        let timer = device.features().contains(wgpu::Features::TIMESTAMP_QUERY).then(|| timing::Timer::new(device, queue));
+        Self {
+            device: device.clone(),
+            queue: queue.clone(),
+            compare_sampler: compare_sampler(device),
+            layouts,
+            pipelines,
+            frame_buffer,
+            lights_buffer,
+            params_buffer,
+            shadow_view_buffer,
+            frame_bind_group,
+            shadow_view_bind_group,
+            shadow_maps: None,
+            lights_bind_group: None,
+            scene_gpu: None,
+            targets: None,
+            timer,
+            frame_lights: Vec::new(),
+            frame_params: ShadowParamsGpu::new(&Default::default()),
+            last_request: None,
+        }
+    }
+
+    pub fn device(&self) -> &wgpu::Device {
+        &self.device
+    }
+
+    pub fn has_timestamps(&self) -> bool {
+        self.timer.is_some()
+    }
+
+    /// Check a scene against this device's limits before rendering it.
+    pub fn check_scene(&self, scene: &Scene) -> Result<(), RenderError> {
+        let limits = self.device.limits();
+        for (i, light) in scene.lights.iter().enumerate() {
+            if light.shadow_map_size > limits.max_texture_dimension_2d {
+                return Err(RenderError::Limits(format!(
+                    "light {i}: shadow_map_size {} exceeds this device's limit of {} texels",
+                    light.shadow_map_size, limits.max_texture_dimension_2d
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Render one frame into the renderer's own targets.
+    pub fn render(&mut self, scene: &Scene, request: &FrameRequest) -> Result<(), RenderError> {
+        self.check_scene(scene)?;
+        let (width, height) = request.size;
+        let max_dim = self.device.limits().max_texture_dimension_2d;
+        if width == 0 || height == 0 || width > max_dim || height > max_dim {
+            return Err(RenderError::Usage(format!("image size {width}x{height} must be 1..={max_dim} on each side")));
+        }
+        if !scene.lights.is_empty() && request.selected_light >= scene.lights.len() {
+            return Err(RenderError::Usage(format!(
+                "light {} does not exist (the scene has {})",
+                request.selected_light,
+                scene.lights.len()
+            )));
+        }
+        self.prepare(scene, request);
+        let Some(scene_gpu) = self.scene_gpu.as_ref() else { return Ok(()) };
+        let (Some(maps), Some(targets), Some(lights_group)) = (&self.shadow_maps, &self.targets, &self.lights_bind_group) else {
+            return Ok(());
+        };
+        let key = ShadowPipelineKey {
+            depth_bias_constant: scene.shadow.depth_bias_constant,
+            depth_bias_slope_bits: scene.shadow.depth_bias_slope.to_bits(),
+            cull_front_faces: scene.shadow.cull_front_faces,
+        };
+        let shadow_pipeline = self.pipelines.shadow(&self.device, key).clone();
+        let timer = self.timer.as_ref().filter(|_| request.timestamps);
+        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
+
+        // Pass 1 per light: clear to far (1.0) and render depth. Re-rendered every frame, since
+        // lights orbit and objects spin.
+        let light_count = scene.lights.len().max(1);
+        for layer in 0..light_count {
+            let first = layer == 0;
+            let last = layer + 1 == light_count;
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("shadow pass"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &maps.layer_views[layer],
+                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: timer.and_then(|t| t.span_writes(0, first, last)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            if layer < scene.lights.len() {
+                let size = scene.lights[layer].shadow_map_size as f32;
+                pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
+                pass.set_pipeline(&shadow_pipeline);
+                pass.set_bind_group(0, &self.shadow_view_bind_group, &[(layer as u64 * DYNAMIC_STRIDE) as u32]);
+                scene_gpu.draw(&mut pass, 1);
+            }
+        }
+
+        // Pass 2: the camera view, and the float analysis targets for the selected light.
+        let depth_clear = || {
+            Some(wgpu::RenderPassDepthStencilAttachment {
+                view: &targets.depth_view,
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                stencil_ops: None,
+            })
+        };
+        let passes = [(request.final_color, true), (request.analysis, false)];
+        let last_camera = passes.iter().rposition(|p| p.0);
+        for (index, (wanted, is_final)) in passes.into_iter().enumerate() {
+            if !wanted {
+                continue;
+            }
+            let first = passes.iter().position(|p| p.0) == Some(index);
+            let color_attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = if is_final {
+                vec![Some(wgpu::RenderPassColorAttachment {
+                    view: &targets.color_view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(BACKGROUND), store: wgpu::StoreOp::Store },
+                })]
+            } else {
+                targets
+                    .analysis_views
+                    .iter()
+                    .map(|view| {
+                        Some(wgpu::RenderPassColorAttachment {
+                            view,
+                            depth_slice: None,
+                            resolve_target: None,
+                            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+                        })
+                    })
+                    .collect()
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(if is_final { "camera pass" } else { "analysis pass" }),
+                color_attachments: &color_attachments,
+                depth_stencil_attachment: depth_clear(),
+                timestamp_writes: timer.and_then(|t| t.span_writes(1, first, Some(index) == last_camera)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(if is_final { &self.pipelines.camera_final } else { &self.pipelines.camera_analysis });
+            pass.set_bind_group(0, &self.frame_bind_group, &[]);
+            pass.set_bind_group(1, lights_group, &[]);
+            scene_gpu.draw(&mut pass, 2);
+        }
+        if let Some(t) = timer {
+            t.resolve(&mut encoder);
+        }
+        self.queue.submit([encoder.finish()]);
+        self.last_request = Some(*request);
+        Ok(())
+    }
+
+    /// GPU time of the shadow passes and the camera passes of the last frame rendered with
+    /// `timestamps: true` (None where the adapter has no timestamp queries).
+    pub fn last_pass_times(&self) -> Result<Option<PassTimes>, RenderError> {
+        match &self.timer {
+            Some(t) => t.read(&self.device, &self.queue).map(Some),
+            None => Ok(None),
+        }
+    }
+
+    /// Wait until the GPU has finished everything submitted.
+    pub fn wait_idle(&self) -> Result<(), RenderError> {
+        self.device
+            .poll(wgpu::PollType::wait_indefinitely())
+            .map(|_| ())
+            .map_err(|e| RenderError::Readback(e.to_string()))
+    }
+
+    fn prepare(&mut self, scene: &Scene, request: &FrameRequest) {
+        let device = &self.device;
+        if !self.scene_gpu.as_ref().is_some_and(|s| s.matches(scene)) {
+            self.scene_gpu = Some(SceneGpu::new(device, &self.queue, &self.layouts, scene));
+        }
+        let atlas_size = scene.lights.iter().map(|l| l.shadow_map_size).max().unwrap_or(256);
+        let layers = scene.lights.len().max(1) as u32;
+        if !self.shadow_maps.as_ref().is_some_and(|m| m.atlas_size == atlas_size && m.layers == layers) {
+            let maps = ShadowMaps::new(device, atlas_size, layers);
+            self.lights_bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("lights"),
+                layout: &self.layouts.lights,
+                entries: &[
+                    wgpu::BindGroupEntry { binding: 0, resource: self.lights_buffer.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 1, resource: self.params_buffer.as_entire_binding() },
+                    wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&maps.array_view) },
+                    wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.compare_sampler) },
+                ],
+            }));
+            self.shadow_maps = Some(maps);
+        }
+        if !self.targets.as_ref().is_some_and(|t| t.size == request.size) {
+            self.targets = Some(ViewTargets::new(device, request.size));
+        }
+        let t = request.time_s;
+        self.frame_lights = scene
+            .lights
+            .iter()
+            .enumerate()
+            .map(|(i, l)| LightGpu::new(l, t, i as u32, atlas_size))
+            .collect();
+        let mut lights = [bytemuck::Zeroable::zeroed(); MAX_LIGHTS];
+        lights[..self.frame_lights.len()].copy_from_slice(&self.frame_lights);
+        self.queue.write_buffer(&self.lights_buffer, 0, bytemuck::cast_slice(&lights));
+        for (i, light) in self.frame_lights.iter().enumerate() {
+            let view = ShadowViewGpu { clip_from_world: light.clip_from_world };
+            self.queue.write_buffer(&self.shadow_view_buffer, i as u64 * DYNAMIC_STRIDE, bytemuck::bytes_of(&view));
+        }
+        self.frame_params = ShadowParamsGpu::new(&scene.shadow);
+        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.frame_params));
+        let aspect = request.size.0 as f32 / request.size.1 as f32;
+        let frame = FrameGpu {
+            clip_from_world: scene.camera.clip_from_world(aspect).to_cols_array_2d(),
+            camera_position: scene.camera.position.extend(1.0).to_array(),
+            ambient: scene.ambient.extend(1.0).to_array(),
+            light_count: scene.lights.len() as u32,
+            selected_light: request.selected_light.min(MAX_LIGHTS - 1) as u32,
+            _pad: [0; 2],
+        };
+        self.queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
+        if let Some(scene_gpu) = &self.scene_gpu {
+            scene_gpu.update(&self.queue, scene, t);
+        }
+    }
+
+    /// The camera view's colour texture (Rgba8Unorm holding sRGB-encoded bytes).
+    pub fn color_texture(&self) -> Option<&wgpu::Texture> {
+        self.targets.as_ref().map(|t| &t.color)
+    }
+
+    fn targets(&self) -> Result<&ViewTargets, RenderError> {
+        self.targets.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))
+    }
+
+    /// The camera view as sRGB RGBA8.
+    pub fn read_color(&self) -> Result<image::RgbaImage, RenderError> {
+        let targets = self.targets()?;
+        let (w, h) = targets.size;
+        let bytes = readback::read_texture(&self.device, &self.queue, &targets.color, 0, targets.size, 4, wgpu::TextureAspect::All)?;
+        image::RgbaImage::from_raw(w, h, bytes).ok_or_else(|| RenderError::Readback("colour buffer has the wrong size".into()))
+    }
+
+    pub fn read_analysis(&self) -> Result<Analysis, RenderError> {
+        let targets = self.targets()?;
+        let (width, height) = targets.size;
+        let mut planes = Vec::with_capacity(targets.analysis.len());
+        for texture in &targets.analysis {
+            let bytes = readback::read_texture(&self.device, &self.queue, texture, 0, targets.size, 16, wgpu::TextureAspect::All)?;
+            let floats = readback::f32s_from_bytes(&bytes);
+            planes.push(floats.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect::<Vec<_>>());
+        }
+        let normal = planes.pop().unwrap_or_default();
+        let position = planes.pop().unwrap_or_default();
+        let shadow = planes.pop().unwrap_or_default();
+        Ok(Analysis { width, height, shadow, position, normal })
+    }
+
+    /// The shadow map of light `index` as rendered in the last frame.
+    pub fn read_shadow_map(&self, index: usize) -> Result<DepthImage, RenderError> {
+        let maps = self.shadow_maps.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
+        let light = self
+            .frame_lights
+            .get(index)
+            .ok_or_else(|| RenderError::Usage(format!("light {index} does not exist (the scene has {})", self.frame_lights.len())))?;
+        let atlas = maps.atlas_size;
+        let bytes = readback::read_texture(&self.device, &self.queue, &maps.texture, index as u32, (atlas, atlas), 4, wgpu::TextureAspect::DepthOnly)?;
+        let all = readback::f32s_from_bytes(&bytes);
+        let size = light.map_size_texels as u32;
+        let mut depth_ndc = Vec::with_capacity((size * size) as usize);
+        for row in all.chunks_exact(atlas as usize).take(size as usize) {
+            depth_ndc.extend_from_slice(&row[..size as usize]);
+        }
+        Ok(DepthImage { size, depth_ndc })
+    }
+}
+
+/// Background of the camera view, already sRGB-encoded (the target stores sRGB bytes).
+const BACKGROUND: wgpu::Color = wgpu::Color { r: 0.16, g: 0.17, b: 0.20, a: 1.0 };
+
+fn shadow_view_group(device: &wgpu::Device, layouts: &Layouts, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
+    device.create_bind_group(&wgpu::BindGroupDescriptor {
+        label: Some("shadow view"),
+        layout: &layouts.shadow_view,
+        entries: &[wgpu::BindGroupEntry {
+            binding: 0,
+            resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer,
+                offset: 0,
+                size: std::num::NonZeroU64::new(std::mem::size_of::<ShadowViewGpu>() as u64),
+            }),
+        }],
+    })
+}

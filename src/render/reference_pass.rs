@@ -1,0 +1,158 @@
+//! Ground truth on the GPU: for each light sample, render a hard shadow map and add the hard
+//! visibility of every camera pixel (from the analysis pass's positions and normals).
+
+use super::gpu_types::{DYNAMIC_STRIDE, LightGpu, ReferenceInfoGpu, ShadowParamsGpu, ShadowViewGpu};
+use super::pipelines::ShadowPipelineKey;
+use super::targets::ShadowMaps;
+use super::{RenderError, Renderer, readback, shadow_view_group};
+use crate::reference;
+use crate::scene::Scene;
+
+/// Samples recorded per command buffer (keeps a submission's size bounded).
+const BATCH: usize = 32;
+
+impl Renderer {
+    /// Ground-truth visibility of light `light_index` at every pixel of the last frame (which
+    /// must have rendered the analysis targets), averaged over `scene.shadow.reference_samples`
+    /// hard shadows from points (width model) or directions (angular model) over the light.
+    /// Pixels with no surface get 1.
+    pub fn render_reference(&mut self, scene: &Scene, light_index: usize) -> Result<Vec<f32>, RenderError> {
+        let request = self
+            .last_request
+            .filter(|r| r.analysis)
+            .ok_or_else(|| RenderError::Usage("render the analysis pass before the reference".into()))?;
+        let light = scene
+            .lights
+            .get(light_index)
+            .ok_or_else(|| RenderError::Usage(format!("light {light_index} does not exist (the scene has {})", scene.lights.len())))?;
+        let samples: Vec<LightGpu> = reference::sample_lights(light, request.time_s, scene.shadow.reference_samples as usize);
+        let device = self.device.clone();
+        let (width, height) = request.size;
+        let pixels = u64::from(width) * u64::from(height);
+
+        let maps = ShadowMaps::new(&device, light.shadow_map_size, 1);
+        let dynamic_buffer = |label: &str| {
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: DYNAMIC_STRIDE * samples.len() as u64,
+                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            })
+        };
+        let light_buffer = dynamic_buffer("reference lights");
+        let view_buffer = dynamic_buffer("reference views");
+        for (i, sample) in samples.iter().enumerate() {
+            let offset = i as u64 * DYNAMIC_STRIDE;
+            self.queue.write_buffer(&light_buffer, offset, bytemuck::bytes_of(sample));
+            let view = ShadowViewGpu { clip_from_world: sample.clip_from_world };
+            self.queue.write_buffer(&view_buffer, offset, bytemuck::bytes_of(&view));
+        }
+        let accumulated = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("reference sum"),
+            size: pixels * 4,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            mapped_at_creation: false,
+        });
+        let info = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("reference info"),
+            size: std::mem::size_of::<ReferenceInfoGpu>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let info_gpu = ReferenceInfoGpu { width, height, weight: 1.0 / samples.len() as f32, _pad: 0 };
+        self.queue.write_buffer(&info, 0, bytemuck::bytes_of(&info_gpu));
+        let params = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("reference params"),
+            size: std::mem::size_of::<ShadowParamsGpu>() as u64,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
+        let params_gpu = ShadowParamsGpu::new(&reference::reference_settings(&scene.shadow));
+        self.queue.write_buffer(&params, 0, bytemuck::bytes_of(&params_gpu));
+        let targets = self.targets()?;
+        let io_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("reference io"),
+            layout: &self.layouts.reference_io,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&targets.analysis_views[1]) },
+                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&targets.analysis_views[2]) },
+                wgpu::BindGroupEntry { binding: 2, resource: accumulated.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 3, resource: info.as_entire_binding() },
+            ],
+        });
+        let light_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("reference light"),
+            layout: &self.layouts.reference_light,
+            entries: &[
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                        buffer: &light_buffer,
+                        offset: 0,
+                        size: std::num::NonZeroU64::new(std::mem::size_of::<LightGpu>() as u64),
+                    }),
+                },
+                wgpu::BindGroupEntry { binding: 1, resource: params.as_entire_binding() },
+                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&maps.array_view) },
+                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.compare_sampler) },
+            ],
+        });
+        let view_group = shadow_view_group(&device, &self.layouts, &view_buffer);
+        let key = ShadowPipelineKey {
+            depth_bias_constant: scene.shadow.depth_bias_constant,
+            depth_bias_slope_bits: scene.shadow.depth_bias_slope.to_bits(),
+            cull_front_faces: scene.shadow.cull_front_faces,
+        };
+        let shadow_pipeline = self.pipelines.shadow(&device, key).clone();
+        let scene_gpu = self.scene_gpu.as_ref().ok_or_else(|| RenderError::Usage("no scene uploaded".into()))?;
+
+        let mut encoder = device.create_command_encoder(&Default::default());
+        encoder.clear_buffer(&accumulated, 0, None);
+        for (i, _) in samples.iter().enumerate() {
+            let offset = (i as u64 * DYNAMIC_STRIDE) as u32;
+            {
+                let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                    label: Some("reference shadow pass"),
+                    color_attachments: &[],
+                    depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                        view: &maps.layer_views[0],
+                        depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                        stencil_ops: None,
+                    }),
+                    timestamp_writes: None,
+                    occlusion_query_set: None,
+                    multiview_mask: None,
+                });
+                pass.set_pipeline(&shadow_pipeline);
+                pass.set_bind_group(0, &view_group, &[offset]);
+                scene_gpu.draw(&mut pass, 1);
+            }
+            {
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("reference accumulate"), timestamp_writes: None });
+                pass.set_pipeline(&self.pipelines.reference);
+                pass.set_bind_group(0, &io_group, &[]);
+                pass.set_bind_group(1, &light_group, &[offset]);
+                pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
+            }
+            if (i + 1) % BATCH == 0 {
+                self.queue.submit([encoder.finish()]);
+                encoder = device.create_command_encoder(&Default::default());
+            }
+        }
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("reference readback"),
+            size: pixels * 4,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        encoder.copy_buffer_to_buffer(&accumulated, 0, &readback, 0, pixels * 4);
+        self.queue.submit([encoder.finish()]);
+        let sums = readback::f32s_from_bytes(&readback::read_buffer(&device, &readback, pixels * 4)?);
+        let analysis_hit = self.read_analysis()?;
+        Ok(sums
+            .iter()
+            .enumerate()
+            .map(|(i, &v)| if analysis_hit.hit(i) { v.clamp(0.0, 1.0) } else { 1.0 })
+            .collect())
+    }
+}

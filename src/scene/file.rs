@@ -1,0 +1,472 @@
+//! Scene files (TOML). Paths inside a scene are relative to the file.
+//!
+//! `--set key=value` overrides are applied to the parsed TOML table before the strict
+//! (`deny_unknown_fields`) deserialisation, so an unknown key or a wrong type is reported
+//! with the key's name. Bare keys mean `[shadow]` keys (`technique=pcss`); others are paths:
+//! `camera.fov_deg=40`, `light.0.width=4`, `object.1.spin_deg_per_s=[0,90,0]`.
+
+use super::light::{Light, LightKind, LightSize};
+use super::mesh::{self, Mesh, MeshError};
+use super::settings::ShadowSettings;
+use super::{Camera, MAX_LIGHTS, Object, Projection, Scene};
+use glam::Vec3;
+use serde::Deserialize;
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    #[error("{path}: cannot read: {reason}")]
+    Io { path: String, reason: String },
+    #[error("{path}:{line}: {message}")]
+    Parse { path: String, line: usize, message: String },
+    #[error("{path}: {message}")]
+    Invalid { path: String, message: String },
+    #[error("--set {key}: {message}")]
+    Override { key: String, message: String },
+    #[error(transparent)]
+    Mesh(#[from] MeshError),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct SceneFile {
+    camera: CameraFile,
+    #[serde(default, rename = "object")]
+    objects: Vec<ObjectFile>,
+    #[serde(default, rename = "light")]
+    lights: Vec<LightFile>,
+    #[serde(default)]
+    shadow: ShadowSettings,
+    #[serde(default = "default_ambient")]
+    ambient: [f32; 3],
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq)]
+#[serde(rename_all = "lowercase")]
+enum ProjectionName {
+    Perspective,
+    Orthographic,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CameraFile {
+    #[serde(default = "default_projection")]
+    projection: ProjectionName,
+    position: [f32; 3],
+    #[serde(default)]
+    target: [f32; 3],
+    #[serde(default = "default_up")]
+    up: [f32; 3],
+    fov_deg: Option<f32>,
+    height: Option<f32>,
+    #[serde(default = "default_camera_near")]
+    near: f32,
+    #[serde(default = "default_camera_far")]
+    far: f32,
+}
+
+#[derive(Deserialize)]
+#[serde(untagged)]
+enum ScaleFile {
+    Uniform(f32),
+    PerAxis([f32; 3]),
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct ObjectFile {
+    name: Option<String>,
+    mesh: String,
+    #[serde(default = "default_color")]
+    color: [f32; 3],
+    #[serde(default)]
+    translate: [f32; 3],
+    #[serde(default)]
+    rotate_deg: [f32; 3],
+    scale: Option<ScaleFile>,
+    #[serde(default)]
+    spin_deg_per_s: [f32; 3],
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq)]
+#[serde(rename_all = "lowercase")]
+enum LightKindName {
+    Directional,
+    Spot,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LightFile {
+    kind: LightKindName,
+    position: [f32; 3],
+    #[serde(default)]
+    target: [f32; 3],
+    #[serde(default = "default_up")]
+    up: [f32; 3],
+    #[serde(default = "default_light_color")]
+    color: [f32; 3],
+    #[serde(default = "default_intensity")]
+    intensity: f32,
+    #[serde(default = "default_map_size")]
+    shadow_map_size: u32,
+    extent: Option<f32>,
+    fov_deg: Option<f32>,
+    near: Option<f32>,
+    #[serde(default = "default_light_far")]
+    far: f32,
+    width: Option<f32>,
+    angular_diameter_deg: Option<f32>,
+    #[serde(default)]
+    orbit_deg_per_s: f32,
+}
+
+fn default_ambient() -> [f32; 3] {
+    [0.08, 0.08, 0.1]
+}
+fn default_projection() -> ProjectionName {
+    ProjectionName::Perspective
+}
+fn default_up() -> [f32; 3] {
+    [0.0, 1.0, 0.0]
+}
+fn default_camera_near() -> f32 {
+    0.1
+}
+fn default_camera_far() -> f32 {
+    1000.0
+}
+fn default_color() -> [f32; 3] {
+    [0.8, 0.8, 0.8]
+}
+fn default_light_color() -> [f32; 3] {
+    [1.0, 1.0, 1.0]
+}
+fn default_intensity() -> f32 {
+    1.0
+}
+fn default_map_size() -> u32 {
+    2048
+}
+fn default_light_far() -> f32 {
+    500.0
+}
+
+/// Read a scene file and apply `--set` overrides (in order).
+pub fn load_scene(path: &Path, overrides: &[(String, String)]) -> Result<Scene, SceneError> {
+    let label = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
+        path: label.clone(),
+        reason: e.to_string(),
+    })?;
+    let base_dir = path.parent().unwrap_or(Path::new("."));
+    let mut scene = parse_scene_str(&text, base_dir, &label, overrides)?;
+    scene.path = Some(path.to_path_buf());
+    Ok(scene)
+}
+
+/// Parse scene text. `label` names the source in errors; mesh paths resolve against `base_dir`.
+pub fn parse_scene_str(
+    text: &str,
+    base_dir: &Path,
+    label: &str,
+    overrides: &[(String, String)],
+) -> Result<Scene, SceneError> {
+    let parse_error = |e: toml::de::Error| SceneError::Parse {
+        path: label.to_string(),
+        line: e.span().map_or(1, |s| line_of(text, s.start)),
+        message: e.message().trim().to_string(),
+    };
+    let mut table: toml::Table = toml::from_str(text).map_err(parse_error)?;
+    // The file alone must be valid, so its errors point at its lines, not at an override.
+    let file: SceneFile = toml::from_str(text).map_err(parse_error)?;
+    // Meshes load once even though each override is validated with a full build.
+    let mut meshes = HashMap::new();
+    build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_path(label))?;
+
+    for (key, value) in overrides {
+        apply_override(&mut table, key, value)?;
+        let file = SceneFile::deserialize(toml::Value::Table(table.clone())).map_err(|e| {
+            SceneError::Override {
+                key: key.clone(),
+                message: e.message().trim().to_string(),
+            }
+        })?;
+        build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_override(key))?;
+    }
+    let file = SceneFile::deserialize(toml::Value::Table(table)).map_err(|e| SceneError::Invalid {
+        path: label.to_string(),
+        message: e.message().to_string(),
+    })?;
+    build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_path(label))
+}
+
+/// Set one key in the scene table; `value` is TOML (`4`, `[0,1,0]`, `true`) or a bare word.
+pub fn apply_override(table: &mut toml::Table, key: &str, value: &str) -> Result<(), SceneError> {
+    let err = |message: String| SceneError::Override { key: key.to_string(), message };
+    let parsed: toml::Value = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
+        Ok(mut t) => t.remove("v").unwrap_or(toml::Value::String(value.to_string())),
+        Err(_) => toml::Value::String(value.to_string()),
+    };
+    let parts: Vec<&str> = key.split('.').collect();
+    if parts.iter().any(|p| p.is_empty()) {
+        return Err(err("malformed key".into()));
+    }
+    let (section, rest): (&str, &[&str]) = match parts[0] {
+        "camera" | "shadow" | "light" | "object" | "ambient" => (parts[0], &parts[1..]),
+        _ => ("shadow", &parts[..]),
+    };
+    let slot: &mut toml::Value = match section {
+        "ambient" if rest.is_empty() => {
+            table.insert("ambient".into(), parsed);
+            return Ok(());
+        }
+        "camera" | "shadow" if rest.len() == 1 => {
+            let entry = table
+                .entry(section.to_string())
+                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            entry
+                .as_table_mut()
+                .ok_or_else(|| err(format!("[{section}] is not a table")))?
+                .insert(rest[0].to_string(), parsed);
+            return Ok(());
+        }
+        "light" | "object" if rest.len() == 2 => {
+            let index: usize = rest[0]
+                .parse()
+                .map_err(|_| err(format!("`{}` is not a {section} index", rest[0])))?;
+            let list = table
+                .get_mut(section)
+                .and_then(|v| v.as_array_mut())
+                .ok_or_else(|| err(format!("the scene has no [[{section}]]")))?;
+            let count = list.len();
+            list.get_mut(index)
+                .ok_or_else(|| err(format!("no {section} {index} (the scene has {count})")))?
+        }
+        _ => return Err(err("unknown key (use a [shadow] key, camera.KEY, light.N.KEY or object.N.KEY)".into())),
+    };
+    slot.as_table_mut()
+        .ok_or_else(|| err(format!("{section} {} is not a table", rest[0])))?
+        .insert(rest[1].to_string(), parsed);
+    Ok(())
+}
+
+/// Apply `[shadow]` overrides to settings on their own (lessons, the app).
+pub fn apply_shadow_overrides(
+    settings: &ShadowSettings,
+    overrides: &[(String, String)],
+) -> Result<ShadowSettings, SceneError> {
+    let mut table = toml::Table::new();
+    let shadow = toml::Table::try_from(settings).map_err(|e| SceneError::Invalid {
+        path: "[shadow]".into(),
+        message: e.to_string(),
+    })?;
+    table.insert("shadow".into(), toml::Value::Table(shadow));
+    let mut out = *settings;
+    for (key, value) in overrides {
+        apply_override(&mut table, key, value)?;
+        let shadow = table.get("shadow").cloned().unwrap_or(toml::Value::Table(Default::default()));
+        out = ShadowSettings::deserialize(shadow).map_err(|e| SceneError::Override {
+            key: key.clone(),
+            message: e.message().trim().to_string(),
+        })?;
+        out.validate().map_err(|message| SceneError::Override { key: key.clone(), message })?;
+    }
+    Ok(out)
+}
+
+fn line_of(text: &str, byte: usize) -> usize {
+    text.as_bytes()[..byte.min(text.len())].iter().filter(|&&b| b == b'\n').count() + 1
+}
+
+/// A problem found while building, before we know whether the file or an override caused it.
+enum BuildError {
+    Invalid(String),
+    Mesh(MeshError),
+}
+
+impl BuildError {
+    fn with_path(self, label: &str) -> SceneError {
+        match self {
+            BuildError::Invalid(message) => SceneError::Invalid { path: label.into(), message },
+            BuildError::Mesh(e) => SceneError::Mesh(e),
+        }
+    }
+    fn with_override(self, key: &str) -> SceneError {
+        match self {
+            BuildError::Invalid(message) => SceneError::Override { key: key.into(), message },
+            BuildError::Mesh(e) => SceneError::Mesh(e),
+        }
+    }
+}
+
+fn vec3(name: &str, v: [f32; 3]) -> Result<Vec3, BuildError> {
+    if v.iter().all(|c| c.is_finite()) {
+        Ok(Vec3::from(v))
+    } else {
+        Err(BuildError::Invalid(format!("`{name}` must be finite numbers, got {v:?}")))
+    }
+}
+
+fn ranged(name: &str, v: f32, lo: f32, hi: f32) -> Result<f32, BuildError> {
+    if v.is_finite() && v >= lo && v <= hi {
+        Ok(v)
+    } else {
+        Err(BuildError::Invalid(format!("`{name}` = {v} is out of range {lo}..={hi}")))
+    }
+}
+
+fn build_scene(
+    file: SceneFile,
+    base_dir: &Path,
+    cache: &mut HashMap<PathBuf, Arc<Mesh>>,
+) -> Result<Scene, BuildError> {
+    let c = &file.camera;
+    let projection = match c.projection {
+        ProjectionName::Perspective => Projection::Perspective {
+            fov_deg: ranged("camera.fov_deg", c.fov_deg.unwrap_or(45.0), 1.0, 170.0)?,
+        },
+        ProjectionName::Orthographic => Projection::Orthographic {
+            height_world: ranged("camera.height", c.height.unwrap_or(10.0), 1e-4, 1e6)?,
+        },
+    };
+    let near = ranged("camera.near", c.near, 1e-5, 1e6)?;
+    let camera = Camera {
+        projection,
+        position: vec3("camera.position", c.position)?,
+        target: vec3("camera.target", c.target)?,
+        up: vec3("camera.up", c.up)?,
+        near,
+        far: ranged("camera.far", c.far, near * 1.0001, 1e7)?,
+    };
+    if (camera.target - camera.position).length() < 1e-6 {
+        return Err(BuildError::Invalid("camera.position and camera.target coincide".into()));
+    }
+
+    let mut objects = Vec::with_capacity(file.objects.len());
+    for (i, o) in file.objects.into_iter().enumerate() {
+        let key = format!("object.{i}");
+        let mesh = resolve_mesh(&o.mesh, base_dir, cache)?;
+        let scale = match o.scale {
+            None => Vec3::ONE,
+            Some(ScaleFile::Uniform(s)) => Vec3::splat(s),
+            Some(ScaleFile::PerAxis(s)) => Vec3::from(s),
+        };
+        if !scale.is_finite() || scale.abs().min_element() < 1e-6 {
+            return Err(BuildError::Invalid(format!("`{key}.scale` must be finite and non-zero, got {scale}")));
+        }
+        let color = vec3(&format!("{key}.color"), o.color)?;
+        objects.push(Object {
+            name: o.name.unwrap_or_else(|| mesh.name.clone()),
+            mesh,
+            color: color.clamp(Vec3::ZERO, Vec3::ONE),
+            translate: vec3(&format!("{key}.translate"), o.translate)?,
+            rotate_deg: vec3(&format!("{key}.rotate_deg"), o.rotate_deg)?,
+            scale,
+            spin_deg_per_s: vec3(&format!("{key}.spin_deg_per_s"), o.spin_deg_per_s)?,
+        });
+    }
+
+    if file.lights.len() > MAX_LIGHTS {
+        return Err(BuildError::Invalid(format!(
+            "{} lights; shadowlab supports at most {MAX_LIGHTS}",
+            file.lights.len()
+        )));
+    }
+    let mut lights = Vec::with_capacity(file.lights.len());
+    for (i, l) in file.lights.into_iter().enumerate() {
+        lights.push(build_light(i, l)?);
+    }
+    file.shadow.validate().map_err(BuildError::Invalid)?;
+    Ok(Scene {
+        path: None,
+        camera,
+        objects,
+        lights,
+        shadow: file.shadow,
+        ambient: vec3("ambient", file.ambient)?,
+    })
+}
+
+fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
+    let key = |k: &str| format!("light.{i}.{k}");
+    let kind = match l.kind {
+        LightKindName::Directional => {
+            if l.fov_deg.is_some() {
+                return Err(BuildError::Invalid(format!("`{}` is for spot lights; directional lights use `extent`", key("fov_deg"))));
+            }
+            let extent = l.extent.ok_or_else(|| BuildError::Invalid(format!("`{}` is required for a directional light", key("extent"))))?;
+            LightKind::Directional { extent_world: ranged(&key("extent"), extent, 1e-3, 1e6)? }
+        }
+        LightKindName::Spot => {
+            if l.extent.is_some() {
+                return Err(BuildError::Invalid(format!("`{}` is for directional lights; spot lights use `fov_deg`", key("extent"))));
+            }
+            let fov = l.fov_deg.ok_or_else(|| BuildError::Invalid(format!("`{}` is required for a spot light", key("fov_deg"))))?;
+            LightKind::Spot { fov_deg: ranged(&key("fov_deg"), fov, 1.0, 160.0)? }
+        }
+    };
+    let size = match (l.width, l.angular_diameter_deg) {
+        (Some(_), Some(_)) => {
+            return Err(BuildError::Invalid(format!("light {i}: give `width` or `angular_diameter_deg`, not both")));
+        }
+        (None, Some(a)) => {
+            if l.kind == LightKindName::Spot {
+                return Err(BuildError::Invalid(format!("`{}` is for directional lights only; spot lights use `width`", key("angular_diameter_deg"))));
+            }
+            LightSize::AngularDiameter { angular_diameter_deg: ranged(&key("angular_diameter_deg"), a, 0.0, 30.0)? }
+        }
+        (w, None) => LightSize::Width { width_world: ranged(&key("width"), w.unwrap_or(0.0), 0.0, 1e4)? },
+    };
+    let default_near = if l.kind == LightKindName::Spot { 1.0 } else { 0.01 };
+    let near = ranged(&key("near"), l.near.unwrap_or(default_near), 1e-4, 1e6)?;
+    let far = ranged(&key("far"), l.far, near * 1.001, 1e7)?;
+    if !(256..=8192).contains(&l.shadow_map_size) {
+        return Err(BuildError::Invalid(format!("`{}` = {} is out of range 256..=8192", key("shadow_map_size"), l.shadow_map_size)));
+    }
+    let position = vec3(&key("position"), l.position)?;
+    let target = vec3(&key("target"), l.target)?;
+    if (target - position).length() < 1e-6 {
+        return Err(BuildError::Invalid(format!("light {i}: position and target coincide")));
+    }
+    let color = vec3(&key("color"), l.color)?;
+    if color.min_element() < 0.0 {
+        return Err(BuildError::Invalid(format!("`{}` must not be negative", key("color"))));
+    }
+    Ok(Light {
+        kind,
+        position,
+        target,
+        up: vec3(&key("up"), l.up)?,
+        color,
+        intensity: ranged(&key("intensity"), l.intensity, 0.0, 1e4)?,
+        shadow_map_size: l.shadow_map_size,
+        near,
+        far,
+        size,
+        orbit_deg_per_s: ranged(&key("orbit_deg_per_s"), l.orbit_deg_per_s, -3600.0, 3600.0)?,
+    })
+}
+
+fn resolve_mesh(name: &str, base_dir: &Path, cache: &mut HashMap<PathBuf, Arc<Mesh>>) -> Result<Arc<Mesh>, BuildError> {
+    if let Some(mesh) = mesh::primitive(name) {
+        let key = PathBuf::from(format!("<primitive {name}>"));
+        return Ok(cache.entry(key).or_insert_with(|| Arc::new(mesh)).clone());
+    }
+    if !name.to_ascii_lowercase().ends_with(".obj") {
+        return Err(BuildError::Invalid(format!(
+            "unknown mesh `{name}` (expected one of {} or a path to an .obj file)",
+            mesh::PRIMITIVES.join(", ")
+        )));
+    }
+    let path = base_dir.join(name);
+    if let Some(mesh) = cache.get(&path) {
+        return Ok(mesh.clone());
+    }
+    let mesh = Arc::new(mesh::load_obj(&path).map_err(BuildError::Mesh)?);
+    cache.insert(path, mesh.clone());
+    Ok(mesh)
+}

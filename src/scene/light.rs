@@ -1,0 +1,143 @@
+//! Shadow-casting lights and the geometry of their shadow maps.
+//!
+//! Depth conventions (wgpu, depth range 0..1), see ../shared REFERENCES "Notation":
+//! - `d` / `depth_linear`: distance from the light along its axis, world units.
+//! - `z` / `depth_ndc`: what the shadow map stores. Orthographic: `z = (d - near) / (far - near)`.
+//!   Perspective: `z = far * (d - near) / (d * (far - near))`, so `d = near*far / (far - z*(far - near))`.
+
+use glam::{Mat4, Quat, Vec3};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightKind {
+    /// Orthographic shadow map; `extent_world` is the half-width of the ortho frustum.
+    Directional { extent_world: f32 },
+    /// Perspective shadow map with a square frustum of `fov_deg`.
+    Spot { fov_deg: f32 },
+}
+
+/// The size model used by PCSS and the ground truth. Keep the two apart: their units differ.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LightSize {
+    /// Area light of this diameter at the light's position, world units (GAMES202, NVIDIA PCSS).
+    Width { width_world: f32 },
+    /// Directional light subtending this full angle (the sun: about 0.53 degrees).
+    AngularDiameter { angular_diameter_deg: f32 },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Light {
+    pub kind: LightKind,
+    pub position: Vec3,
+    pub target: Vec3,
+    pub up: Vec3,
+    /// Linear RGB.
+    pub color: Vec3,
+    pub intensity: f32,
+    pub shadow_map_size: u32,
+    pub near: f32,
+    pub far: f32,
+    pub size: LightSize,
+    /// Orbit speed about the axis through `target` along `up`, degrees per second.
+    pub orbit_deg_per_s: f32,
+}
+
+impl Light {
+    pub fn is_orthographic(&self) -> bool {
+        matches!(self.kind, LightKind::Directional { .. })
+    }
+
+    /// The light's position at time `t`, after orbiting.
+    pub fn position_at(&self, t_s: f32) -> Vec3 {
+        let angle = (self.orbit_deg_per_s * t_s).to_radians();
+        if angle == 0.0 {
+            return self.position;
+        }
+        let axis = self.up.normalize_or(Vec3::Y);
+        self.target + Quat::from_axis_angle(axis, angle) * (self.position - self.target)
+    }
+
+    /// Unit direction the light travels in (from the light towards its target) at time `t`.
+    pub fn direction_at(&self, t_s: f32) -> Vec3 {
+        (self.target - self.position_at(t_s)).normalize_or(Vec3::NEG_Y)
+    }
+
+    pub fn view_from_world(&self, t_s: f32) -> Mat4 {
+        let eye = self.position_at(t_s);
+        let forward = (self.target - eye).normalize_or(Vec3::NEG_Y);
+        Mat4::look_to_rh(eye, forward, safe_up(forward, self.up))
+    }
+
+    pub fn clip_from_view(&self) -> Mat4 {
+        match self.kind {
+            LightKind::Directional { extent_world: e } => {
+                Mat4::orthographic_rh(-e, e, -e, e, self.near, self.far)
+            }
+            LightKind::Spot { fov_deg } => {
+                Mat4::perspective_rh(fov_deg.to_radians(), 1.0, self.near, self.far)
+            }
+        }
+    }
+
+    pub fn clip_from_world(&self, t_s: f32) -> Mat4 {
+        self.clip_from_view() * self.view_from_world(t_s)
+    }
+
+    /// `W`: width of the shadow frustum where the map is measured, world units
+    /// (orthographic: the ortho width; perspective: at the near plane).
+    pub fn frustum_width_world(&self) -> f32 {
+        match self.kind {
+            LightKind::Directional { extent_world } => 2.0 * extent_world,
+            LightKind::Spot { fov_deg } => 2.0 * self.near * (0.5 * fov_deg.to_radians()).tan(),
+        }
+    }
+
+    /// Size of one shadow-map texel on a surface facing the light at distance `d`, world units.
+    pub fn texel_world_at(&self, depth_linear: f32) -> f32 {
+        match self.kind {
+            LightKind::Directional { extent_world } => 2.0 * extent_world / self.shadow_map_size as f32,
+            LightKind::Spot { fov_deg } => {
+                2.0 * depth_linear * (0.5 * fov_deg.to_radians()).tan() / self.shadow_map_size as f32
+            }
+        }
+    }
+
+    pub fn depth_linear_from_ndc(&self, z: f32) -> f32 {
+        let (n, f) = (self.near, self.far);
+        if self.is_orthographic() {
+            n + z * (f - n)
+        } else {
+            n * f / (f - z * (f - n))
+        }
+    }
+
+    pub fn depth_ndc_from_linear(&self, d: f32) -> f32 {
+        let (n, f) = (self.near, self.far);
+        if self.is_orthographic() {
+            (d - n) / (f - n)
+        } else {
+            f * (d - n) / (d * (f - n))
+        }
+    }
+
+    /// dz/dd at distance `d`: converts a world-unit depth bias into NDC depth units.
+    pub fn ndc_per_world_at(&self, depth_linear: f32) -> f32 {
+        let (n, f) = (self.near, self.far);
+        if self.is_orthographic() {
+            1.0 / (f - n)
+        } else {
+            f * n / (depth_linear * depth_linear * (f - n))
+        }
+    }
+}
+
+/// An up vector that is not parallel to `forward` (look_at needs one).
+pub fn safe_up(forward: Vec3, up: Vec3) -> Vec3 {
+    let up = up.normalize_or(Vec3::Y);
+    if forward.cross(up).length_squared() > 1e-6 {
+        up
+    } else if forward.cross(Vec3::Z).length_squared() > 1e-6 {
+        Vec3::Z
+    } else {
+        Vec3::X
+    }
+}

@@ -1,0 +1,80 @@
+//! The scene: camera, objects, lights, and the shadow technique with its parameters.
+//!
+//! Scenes are TOML files (see `file.rs`); everything here is plain data plus the
+//! transforms the renderer and the CPU twin both need. Time `t` is in seconds.
+
+mod camera;
+mod file;
+mod light;
+pub mod mesh;
+mod settings;
+
+pub use camera::{Camera, Projection};
+pub use file::{SceneError, load_scene, parse_scene_str};
+pub use light::{Light, LightKind, LightSize, safe_up as safe_up_for};
+pub use mesh::{Material, Mesh, MeshError, MeshPart, TextureImage, Vertex};
+pub use settings::{BiasMode, Kernel, ShadowSettings, Technique, effective_samples};
+
+use glam::{Mat4, Quat, Vec3};
+use std::path::PathBuf;
+use std::sync::Arc;
+
+/// Most lights a scene may have (one shadow-map layer each; keep in sync with shaders/common.wgsl).
+pub const MAX_LIGHTS: usize = 4;
+
+#[derive(Clone, Debug)]
+pub struct Object {
+    pub name: String,
+    pub mesh: Arc<Mesh>,
+    /// Linear RGB used where the mesh part has no material.
+    pub color: Vec3,
+    pub translate: Vec3,
+    pub rotate_deg: Vec3,
+    pub scale: Vec3,
+    /// Angular speed about each axis, degrees per second.
+    pub spin_deg_per_s: Vec3,
+}
+
+impl Object {
+    /// Model matrix at time `t`: scale, then rotate (XYZ Euler, degrees, plus spin), then translate.
+    pub fn world_from_object(&self, t_s: f32) -> Mat4 {
+        let r = (self.rotate_deg + self.spin_deg_per_s * t_s) * (std::f32::consts::PI / 180.0);
+        let rotation = Quat::from_euler(glam::EulerRot::XYZ, r.x, r.y, r.z);
+        Mat4::from_scale_rotation_translation(self.scale, rotation, self.translate)
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// The file the scene came from (None for scenes built in code).
+    pub path: Option<PathBuf>,
+    pub camera: Camera,
+    pub objects: Vec<Object>,
+    pub lights: Vec<Light>,
+    pub shadow: ShadowSettings,
+    /// Ambient light, linear RGB.
+    pub ambient: Vec3,
+}
+
+impl Scene {
+    /// World-space bounds of every object at time `t` (min, max).
+    pub fn bounds(&self, t_s: f32) -> (Vec3, Vec3) {
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        for object in &self.objects {
+            let world_from_object = object.world_from_object(t_s);
+            let (a, b) = object.mesh.bounds();
+            for i in 0..8 {
+                let corner = Vec3::new(
+                    if i & 1 == 0 { a.x } else { b.x },
+                    if i & 2 == 0 { a.y } else { b.y },
+                    if i & 4 == 0 { a.z } else { b.z },
+                );
+                let p = world_from_object.transform_point3(corner);
+                lo = lo.min(p);
+                hi = hi.max(p);
+            }
+        }
+        (lo, hi)
+    }
+}

@@ -1,0 +1,185 @@
+//! The `[shadow]` table: which technique and its parameters.
+//! Defaults follow the GAMES202 framework and REFERENCES.md where those give one.
+
+use serde::{Deserialize, Serialize};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Technique {
+    Hard,
+    Pcf,
+    Pcss,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum BiasMode {
+    None,
+    Constant,
+    Slope,
+    Adaptive,
+}
+
+/// Sample pattern in the unit disk for PCF and the blocker search.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Kernel {
+    /// The GAMES202 "poissonDiskSamples" spiral (not a true Poisson disk).
+    Poisson,
+    /// GAMES202 "uniformDiskSamples": random points, uniform over the disk's area.
+    Uniform,
+    /// Golden-angle (Vogel) spiral.
+    Vogel,
+    /// Regular n x n grid (n = floor(sqrt(samples))).
+    Grid,
+    /// Vogel positions, each a bilinear 2x2 hardware comparison (`textureSampleCompare`).
+    Hardware,
+}
+
+macro_rules! enum_names {
+    ($t:ty, $($v:ident => $s:literal),*) => {
+        impl $t {
+            pub const ALL: &'static [$t] = &[$(<$t>::$v),*];
+            pub fn name(self) -> &'static str { match self { $(<$t>::$v => $s),* } }
+            pub fn from_name(name: &str) -> Option<Self> {
+                match name { $($s => Some(<$t>::$v),)* _ => None }
+            }
+        }
+        impl std::fmt::Display for $t {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result { f.write_str(self.name()) }
+        }
+    };
+}
+enum_names!(Technique, Hard => "hard", Pcf => "pcf", Pcss => "pcss");
+enum_names!(BiasMode, None => "none", Constant => "constant", Slope => "slope", Adaptive => "adaptive");
+enum_names!(Kernel, Poisson => "poisson", Uniform => "uniform", Vogel => "vogel", Grid => "grid", Hardware => "hardware");
+
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct ShadowSettings {
+    pub technique: Technique,
+    pub bias_mode: BiasMode,
+    /// Constant bias, NDC depth units (GAMES202 EPS is 1e-3). In adaptive mode: the factor `c`.
+    pub bias: f32,
+    /// Slope-scaled mode: `bias = max(slope_bias * (1 - N.L), bias)`, NDC depth units.
+    pub slope_bias: f32,
+    /// Adaptive mode: `bias_world = adaptive_c * max(A, A * (1 - N.L))`, A = half a texel
+    /// (grown with the filter radius), world units; dimensionless.
+    pub adaptive_c: f32,
+    /// Lookup point moved along the surface normal by this many texels (in world units).
+    pub normal_offset_texels: f32,
+    /// Hardware depth bias in the shadow pass, in units of the depth format's resolution.
+    pub depth_bias_constant: i32,
+    /// Hardware slope-scaled depth bias in the shadow pass.
+    pub depth_bias_slope: f32,
+    /// Render back faces only into the shadow map.
+    pub cull_front_faces: bool,
+    pub pcf_kernel: Kernel,
+    /// PCF filter taps (PCSS step 3 too), 1..=128.
+    pub samples: u32,
+    /// PCF filter radius, shadow-map texels.
+    pub radius_texels: f32,
+    /// Rotate the pattern per pixel (trades banding for noise).
+    pub rotate_per_pixel: bool,
+    pub noise_seed: u32,
+    /// PCSS blocker-search taps, 1..=128.
+    pub blocker_samples: u32,
+    /// PCSS never filters with a smaller radius than this, texels.
+    pub min_filter_radius_texels: f32,
+    /// True: points outside the light frustum are lit. False shows the classic bug (wrapped
+    /// lookups and a dark band past the far plane).
+    pub clamp_outside: bool,
+    /// Hard shadows averaged for the ground truth, 1..=1024.
+    pub reference_samples: u32,
+}
+
+impl Default for ShadowSettings {
+    fn default() -> Self {
+        Self {
+            technique: Technique::Pcss,
+            bias_mode: BiasMode::Constant,
+            bias: 0.001,
+            slope_bias: 0.005,
+            adaptive_c: 1.5,
+            normal_offset_texels: 0.0,
+            depth_bias_constant: 0,
+            depth_bias_slope: 0.0,
+            cull_front_faces: false,
+            pcf_kernel: Kernel::Poisson,
+            samples: 32,
+            radius_texels: 3.0,
+            rotate_per_pixel: true,
+            noise_seed: 1,
+            blocker_samples: 32,
+            min_filter_radius_texels: 0.0,
+            clamp_outside: true,
+            reference_samples: 256,
+        }
+    }
+}
+
+impl ShadowSettings {
+    /// Taps the filter really takes (the grid uses a square number).
+    pub fn effective_samples(&self) -> u32 {
+        effective_samples(self.pcf_kernel, self.samples)
+    }
+
+    /// Check ranges; the error names the key.
+    pub fn validate(&self) -> Result<(), String> {
+        let finite = [
+            ("bias", self.bias),
+            ("slope_bias", self.slope_bias),
+            ("adaptive_c", self.adaptive_c),
+            ("normal_offset_texels", self.normal_offset_texels),
+            ("depth_bias_slope", self.depth_bias_slope),
+            ("radius_texels", self.radius_texels),
+            ("min_filter_radius_texels", self.min_filter_radius_texels),
+        ];
+        for (key, v) in finite {
+            if !v.is_finite() {
+                return Err(format!("`{key}` must be a finite number, got {v}"));
+            }
+        }
+        let ranged = [
+            ("bias", self.bias, 0.0, 1.0),
+            ("slope_bias", self.slope_bias, 0.0, 1.0),
+            ("adaptive_c", self.adaptive_c, 0.0, 100.0),
+            ("normal_offset_texels", self.normal_offset_texels, 0.0, 64.0),
+            ("depth_bias_slope", self.depth_bias_slope, -16.0, 16.0),
+            ("radius_texels", self.radius_texels, 0.0, 256.0),
+            ("min_filter_radius_texels", self.min_filter_radius_texels, 0.0, 256.0),
+        ];
+        for (key, v, lo, hi) in ranged {
+            if !(lo..=hi).contains(&v) {
+                return Err(format!("`{key}` = {v} is out of range {lo}..={hi}"));
+            }
+        }
+        let counts = [
+            ("samples", self.samples, 1, 128),
+            ("blocker_samples", self.blocker_samples, 1, 128),
+            ("reference_samples", self.reference_samples, 1, 1024),
+        ];
+        for (key, v, lo, hi) in counts {
+            if !(lo..=hi).contains(&v) {
+                return Err(format!("`{key}` = {v} is out of range {lo}..={hi}"));
+            }
+        }
+        if !(-100_000..=100_000).contains(&self.depth_bias_constant) {
+            return Err(format!(
+                "`depth_bias_constant` = {} is out of range -100000..=100000",
+                self.depth_bias_constant
+            ));
+        }
+        Ok(())
+    }
+}
+
+pub fn effective_samples(kernel: Kernel, samples: u32) -> u32 {
+    match kernel {
+        Kernel::Grid => {
+            let side = (samples as f32).sqrt().floor().max(1.0) as u32;
+            side * side
+        }
+        _ => samples,
+    }
+}

@@ -1,0 +1,77 @@
+//! Sample patterns and noise: the twin of the "sample patterns" part of
+//! shaders/shadow_sampling.wgsl and the hash in shaders/common.wgsl (same names, same bits).
+
+use crate::scene::Kernel;
+use glam::Vec2;
+
+pub const TAU: f32 = std::f32::consts::TAU;
+pub const GOLDEN_ANGLE: f32 = 2.399_963_2;
+pub const NUM_RINGS: f32 = 10.0;
+
+/// PCG hash (Jarzynski & Olano 2020), wrapping u32 maths exactly as in WGSL.
+pub fn pcg_hash(v: u32) -> u32 {
+    let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+    let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
+    (word >> 22) ^ word
+}
+
+pub fn unit_float(h: u32) -> f32 {
+    (h >> 8) as f32 * (1.0 / 16_777_216.0)
+}
+
+pub fn pixel_seed(pixel: (u32, u32), noise_seed: u32, rotate_per_pixel: bool) -> u32 {
+    if rotate_per_pixel {
+        pcg_hash(pixel.0 ^ pcg_hash(pixel.1 ^ pcg_hash(noise_seed)))
+    } else {
+        pcg_hash(noise_seed)
+    }
+}
+
+pub fn grid_side(n: u32) -> u32 {
+    ((n as f32).sqrt().floor() as u32).max(1)
+}
+
+pub fn filter_taps(kernel: Kernel, samples: u32) -> u32 {
+    crate::scene::effective_samples(kernel, samples)
+}
+
+fn rotate2(p: Vec2, angle: f32) -> Vec2 {
+    let (s, c) = angle.sin_cos();
+    Vec2::new(c * p.x - s * p.y, s * p.x + c * p.y)
+}
+
+/// Tap `i` of `n` in the unit disk for a pixel with noise `seed`.
+pub fn kernel_offset(kernel: Kernel, i: u32, n: u32, seed: u32) -> Vec2 {
+    let rotation = TAU * unit_float(seed);
+    match kernel {
+        Kernel::Poisson => {
+            let angle = rotation + i as f32 * TAU * NUM_RINGS / n as f32;
+            let r = ((i + 1) as f32 / n as f32).powf(0.75);
+            Vec2::new(angle.cos(), angle.sin()) * r
+        }
+        Kernel::Uniform => {
+            let h = pcg_hash(seed ^ pcg_hash(i + 1));
+            let x = unit_float(h);
+            let y = unit_float(pcg_hash(h));
+            Vec2::new((TAU * x).cos(), (TAU * x).sin()) * y.sqrt()
+        }
+        Kernel::Grid => {
+            let side = grid_side(n);
+            if side == 1 {
+                return Vec2::ZERO;
+            }
+            let g = Vec2::new((i % side) as f32, (i / side) as f32);
+            rotate2(g / (side - 1) as f32 * 2.0 - Vec2::ONE, rotation)
+        }
+        Kernel::Vogel | Kernel::Hardware => {
+            let angle = i as f32 * GOLDEN_ANGLE + rotation;
+            Vec2::new(angle.cos(), angle.sin()) * ((i as f32 + 0.5) / n as f32).sqrt()
+        }
+    }
+}
+
+/// The whole pattern, as the sample-pattern plot and the diagrams draw it.
+pub fn kernel_points(kernel: Kernel, samples: u32, seed: u32) -> Vec<Vec2> {
+    let n = filter_taps(kernel, samples);
+    (0..n).map(|i| kernel_offset(kernel, i, n, seed)).collect()
+}

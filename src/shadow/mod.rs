@@ -1,0 +1,334 @@
+//! The CPU twin of shaders/shadow_sampling.wgsl: the same functions with the same names and
+//! units, run on a read-back shadow map. It powers the pixel probe and the tests that hold the
+//! GPU to the maths. A formula is fixed in both places or in neither.
+
+pub mod kernels;
+
+use crate::render::{DepthImage, LightGpu, ShadowParamsGpu};
+use crate::scene::Kernel;
+use glam::{Vec2, Vec3, Vec4};
+use kernels::{filter_taps, kernel_offset};
+
+pub const BIAS_CONSTANT: u32 = 1;
+pub const BIAS_SLOPE: u32 = 2;
+pub const BIAS_ADAPTIVE: u32 = 3;
+pub const TECHNIQUE_HARD: u32 = 0;
+pub const TECHNIQUE_PCF: u32 = 1;
+pub const TECHNIQUE_PCSS: u32 = 2;
+pub const SIZE_MODEL_ANGULAR: u32 = 1;
+
+pub fn kernel_from_id(id: u32) -> Kernel {
+    match id {
+        0 => Kernel::Poisson,
+        1 => Kernel::Uniform,
+        2 => Kernel::Vogel,
+        3 => Kernel::Grid,
+        _ => Kernel::Hardware,
+    }
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ShadowCoord {
+    pub uv: Vec2,
+    pub depth_ndc: f32,
+    pub depth_linear: f32,
+    pub n_dot_l: f32,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct BlockerSearch {
+    pub radius_texels: f32,
+    pub found: u32,
+    pub avg_depth_linear: f32,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Penumbra {
+    pub width_world: f32,
+    pub filter_radius_texels: f32,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PcssResult {
+    pub visibility: f32,
+    pub search: BlockerSearch,
+    pub penumbra: Penumbra,
+}
+
+/// Which loop a traced tap came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TapKind {
+    BlockerSearch,
+    Filter,
+}
+
+/// One shadow-map lookup, for the probe's picture of the samples.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Tap {
+    pub kind: TapKind,
+    pub uv: Vec2,
+    /// Blocker search: 1 = a blocker. Filter: the lit fraction of the tap (0 or 1, bilinear for hardware).
+    pub value: f32,
+}
+
+/// One light's shadow map and parameters, as the GPU had them.
+pub struct Twin<'a> {
+    pub light: &'a LightGpu,
+    pub params: &'a ShadowParamsGpu,
+    pub map: &'a DepthImage,
+    /// When Some, every lookup is recorded.
+    pub trace: Option<Vec<Tap>>,
+}
+
+fn orthographic(light: &LightGpu) -> bool {
+    light.orthographic == 1
+}
+
+pub fn depth_linear_from_ndc(light: &LightGpu, z: f32) -> f32 {
+    if orthographic(light) {
+        return light.near + z * (light.far - light.near);
+    }
+    light.near * light.far / (light.far - z * (light.far - light.near))
+}
+
+pub fn ndc_per_world(light: &LightGpu, depth_linear: f32) -> f32 {
+    if orthographic(light) {
+        return 1.0 / (light.far - light.near);
+    }
+    light.far * light.near / (depth_linear * depth_linear * (light.far - light.near))
+}
+
+pub fn texel_world_at(light: &LightGpu, depth_linear: f32) -> f32 {
+    if orthographic(light) {
+        return light.frustum_width_world / light.map_size_texels;
+    }
+    2.0 * depth_linear * light.tan_half_fov / light.map_size_texels
+}
+
+pub fn light_dir_to(light: &LightGpu, world_pos: Vec3) -> Vec3 {
+    if orthographic(light) {
+        return -Vec4::from(light.direction).truncate();
+    }
+    (Vec4::from(light.position).truncate() - world_pos).normalize()
+}
+
+pub fn project_to_light(light: &LightGpu, world_pos: Vec3) -> Vec3 {
+    let clip = glam::Mat4::from_cols_array_2d(&light.clip_from_world) * world_pos.extend(1.0);
+    let ndc = clip.truncate() / clip.w;
+    Vec3::new(ndc.x * 0.5 + 0.5, ndc.y * -0.5 + 0.5, ndc.z)
+}
+
+fn outside_map(uv: Vec2) -> bool {
+    uv.x < 0.0 || uv.y < 0.0 || uv.x > 1.0 || uv.y > 1.0
+}
+
+/// WGSL `fract`: x - floor(x) (Rust's `f32::fract` truncates towards zero instead).
+fn wgsl_fract(v: Vec2) -> Vec2 {
+    v - v.floor()
+}
+
+impl<'a> Twin<'a> {
+    pub fn new(light: &'a LightGpu, params: &'a ShadowParamsGpu, map: &'a DepthImage) -> Self {
+        Self { light, params, map, trace: None }
+    }
+
+    fn record(&mut self, kind: TapKind, uv: Vec2, value: f32) {
+        if let Some(trace) = &mut self.trace {
+            trace.push(Tap { kind, uv, value });
+        }
+    }
+
+    pub fn light_space_lookup(&self, world_pos: Vec3, normal: Vec3) -> ShadowCoord {
+        let light = self.light;
+        let mut out = ShadowCoord { n_dot_l: normal.dot(light_dir_to(light, world_pos)), ..Default::default() };
+        let mut p = world_pos;
+        if self.params.normal_offset_texels > 0.0 {
+            let d = depth_linear_from_ndc(light, project_to_light(light, world_pos).z);
+            p = world_pos + normal * (self.params.normal_offset_texels * texel_world_at(light, d));
+        }
+        let s = project_to_light(light, p);
+        out.uv = Vec2::new(s.x, s.y);
+        out.depth_ndc = s.z;
+        out.depth_linear = depth_linear_from_ndc(light, s.z);
+        out
+    }
+
+    pub fn receiver_bias_ndc(&self, coord: &ShadowCoord, filter_radius_texels: f32) -> f32 {
+        let p = self.params;
+        match p.bias_mode {
+            BIAS_CONSTANT => p.bias,
+            BIAS_SLOPE => (p.slope_bias * (1.0 - coord.n_dot_l)).max(p.bias),
+            BIAS_ADAPTIVE => {
+                let a = (1.0 + filter_radius_texels.ceil()) * 0.5 * texel_world_at(self.light, coord.depth_linear);
+                let b = 1.0 - coord.n_dot_l;
+                let bias_world = p.adaptive_c * a.max(a * b);
+                bias_world * ndc_per_world(self.light, coord.depth_linear)
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// Texel (x, y) of the light's map; texels of the array layer beyond the light's map size
+    /// hold the clear value 1.
+    fn texel(&self, x: i32, y: i32) -> f32 {
+        let size = self.map.size as i32;
+        if x < 0 || y < 0 || x >= size || y >= size {
+            return 1.0;
+        }
+        self.map.depth_ndc[(y * size + x) as usize]
+    }
+
+    pub fn stored_depth_ndc(&self, uv: Vec2) -> f32 {
+        let lookup = if self.params.clamp_outside == 0 { wgsl_fract(uv) } else { uv };
+        let size = self.light.map_size_texels as i32;
+        let t = (lookup * self.light.map_size_texels).floor();
+        self.texel((t.x as i32).clamp(0, size - 1), (t.y as i32).clamp(0, size - 1))
+    }
+
+    /// The comparison sampler's bilinear 2x2 test (clamp to edge over the whole array layer).
+    fn hardware_compare(&self, uv: Vec2, reference: f32) -> f32 {
+        let atlas = (self.light.map_size_texels / self.light.atlas_scale).round();
+        let p = uv * self.light.atlas_scale * atlas - Vec2::splat(0.5);
+        let i0 = p.floor();
+        let f = p - i0;
+        let max = atlas as i32 - 1;
+        let test = |dx: i32, dy: i32| {
+            let x = (i0.x as i32 + dx).clamp(0, max);
+            let y = (i0.y as i32 + dy).clamp(0, max);
+            if reference <= self.texel(x, y) { 1.0 } else { 0.0 }
+        };
+        let top = test(0, 0) * (1.0 - f.x) + test(1, 0) * f.x;
+        let bottom = test(0, 1) * (1.0 - f.x) + test(1, 1) * f.x;
+        top * (1.0 - f.y) + bottom * f.y
+    }
+
+    pub fn depth_test(&self, uv: Vec2, receiver_ndc: f32, bias_ndc: f32) -> f32 {
+        let p = self.params;
+        if p.clamp_outside == 1 && (outside_map(uv) || !(0.0..=1.0).contains(&receiver_ndc)) {
+            return 1.0;
+        }
+        if kernel_from_id(p.kernel) == Kernel::Hardware && p.technique != TECHNIQUE_HARD {
+            let lookup = if p.clamp_outside == 0 { wgsl_fract(uv) } else { uv };
+            return self.hardware_compare(lookup, receiver_ndc - bias_ndc);
+        }
+        if receiver_ndc - bias_ndc <= self.stored_depth_ndc(uv) { 1.0 } else { 0.0 }
+    }
+
+    pub fn visibility_hard(&mut self, coord: &ShadowCoord) -> f32 {
+        let bias = self.receiver_bias_ndc(coord, 0.0);
+        let p = self.params;
+        let v = if p.clamp_outside == 1
+            && (outside_map(coord.uv) || !(0.0..=1.0).contains(&coord.depth_ndc))
+        {
+            1.0
+        } else if coord.depth_ndc - bias <= self.stored_depth_ndc(coord.uv) {
+            1.0
+        } else {
+            0.0
+        };
+        self.record(TapKind::Filter, coord.uv, v);
+        v
+    }
+
+    pub fn visibility_pcf(&mut self, coord: &ShadowCoord, radius_texels: f32, seed: u32) -> f32 {
+        let kernel = kernel_from_id(self.params.kernel);
+        let n = filter_taps(kernel, self.params.samples);
+        let radius_uv = radius_texels / self.light.map_size_texels;
+        let bias = self.receiver_bias_ndc(coord, radius_texels);
+        let mut lit = 0.0;
+        for i in 0..n {
+            let uv = coord.uv + kernel_offset(kernel, i, n, seed) * radius_uv;
+            let v = self.depth_test(uv, coord.depth_ndc, bias);
+            self.record(TapKind::Filter, uv, v);
+            lit += v;
+        }
+        lit / n as f32
+    }
+
+    pub fn search_blockers(&mut self, coord: &ShadowCoord, seed: u32) -> BlockerSearch {
+        let light = self.light;
+        let mut out = BlockerSearch::default();
+        let d_r = coord.depth_linear;
+        let radius_world = if light.size_model == SIZE_MODEL_ANGULAR {
+            (d_r - light.near) * light.tan_half_angle
+        } else {
+            0.5 * light.light_width_world * (d_r - light.near) / d_r
+        };
+        let radius_uv = radius_world.max(0.0) / light.frustum_width_world;
+        out.radius_texels = radius_uv * light.map_size_texels;
+        let mut kernel = kernel_from_id(self.params.kernel);
+        if kernel == Kernel::Hardware {
+            kernel = Kernel::Vogel;
+        }
+        let n = filter_taps(kernel, self.params.blocker_samples);
+        let bias = self.receiver_bias_ndc(coord, 0.0);
+        let mut sum = 0.0;
+        for i in 0..n {
+            let uv = coord.uv + kernel_offset(kernel, i, n, seed) * radius_uv;
+            if self.params.clamp_outside == 1 && outside_map(uv) {
+                self.record(TapKind::BlockerSearch, uv, 0.0);
+                continue;
+            }
+            let z = self.stored_depth_ndc(uv);
+            let blocker = z < coord.depth_ndc - bias;
+            self.record(TapKind::BlockerSearch, uv, if blocker { 1.0 } else { 0.0 });
+            if blocker {
+                out.found += 1;
+                sum += depth_linear_from_ndc(light, z);
+            }
+        }
+        if out.found > 0 {
+            out.avg_depth_linear = sum / out.found as f32;
+        }
+        out
+    }
+
+    pub fn estimate_penumbra(&self, coord: &ShadowCoord, d_blocker: f32) -> Penumbra {
+        let light = self.light;
+        let d_r = coord.depth_linear;
+        let gap = (d_r - d_blocker).max(0.0);
+        let width_world = if light.size_model == SIZE_MODEL_ANGULAR {
+            gap * 2.0 * light.tan_half_angle
+        } else {
+            light.light_width_world * gap / d_blocker.max(1e-6)
+        };
+        let mut radius_uv = 0.5 * width_world / light.frustum_width_world;
+        if !orthographic(light) {
+            radius_uv = radius_uv * light.near / d_r;
+        }
+        Penumbra {
+            width_world,
+            filter_radius_texels: (radius_uv * light.map_size_texels).max(self.params.min_filter_radius_texels),
+        }
+    }
+
+    pub fn visibility_pcss(&mut self, coord: &ShadowCoord, seed: u32) -> PcssResult {
+        let mut out = PcssResult { search: self.search_blockers(coord, seed), ..Default::default() };
+        if out.search.found == 0 {
+            out.visibility = 1.0;
+            return out;
+        }
+        out.penumbra = self.estimate_penumbra(coord, out.search.avg_depth_linear);
+        out.visibility = self.visibility_pcf(coord, out.penumbra.filter_radius_texels, seed);
+        out
+    }
+
+    pub fn shadow_visibility(&mut self, coord: &ShadowCoord, seed: u32) -> PcssResult {
+        match self.params.technique {
+            TECHNIQUE_PCF => PcssResult {
+                visibility: self.visibility_pcf(coord, self.params.radius_texels, seed),
+                ..Default::default()
+            },
+            TECHNIQUE_PCSS => self.visibility_pcss(coord, seed),
+            _ => PcssResult { visibility: self.visibility_hard(coord), ..Default::default() },
+        }
+    }
+
+    /// What the analysis pass writes for a pixel: the twin of `fs_analysis`.
+    pub fn analysis_at(&mut self, pixel: (u32, u32), world_pos: Vec3, normal: Vec3) -> (ShadowCoord, PcssResult) {
+        let seed = kernels::pixel_seed(pixel, self.params.noise_seed, self.params.rotate_per_pixel == 1);
+        let coord = self.light_space_lookup(world_pos, normal);
+        let result = self.shadow_visibility(&coord, seed);
+        (coord, result)
+    }
+}

@@ -1,0 +1,158 @@
+//! Debug views as images: the camera view, the shadow term, the shadow map, PCSS heatmaps,
+//! the ground truth and the error against it. Heatmaps come with the value range they map.
+
+use crate::render::{Analysis, DepthImage, LightGpu};
+use crate::shadow::depth_linear_from_ndc;
+use image::{Rgba, RgbaImage};
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum View {
+    Final,
+    Visibility,
+    ShadowMap,
+    BlockerRadius,
+    Penumbra,
+    Blockers,
+    Reference,
+    Error,
+}
+
+impl View {
+    pub const ALL: [View; 8] = [
+        View::Final,
+        View::Visibility,
+        View::ShadowMap,
+        View::BlockerRadius,
+        View::Penumbra,
+        View::Blockers,
+        View::Reference,
+        View::Error,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            View::Final => "final",
+            View::Visibility => "visibility",
+            View::ShadowMap => "shadow-map",
+            View::BlockerRadius => "blocker-radius",
+            View::Penumbra => "penumbra",
+            View::Blockers => "blockers",
+            View::Reference => "reference",
+            View::Error => "error",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<View> {
+        View::ALL.into_iter().find(|v| v.name() == name)
+    }
+
+    pub fn needs_reference(self) -> bool {
+        matches!(self, View::Reference | View::Error)
+    }
+}
+
+/// A heatmap's legend: the values at the two ends of the colour ramp and their unit.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Legend {
+    pub label: &'static str,
+    pub min: f32,
+    pub max: f32,
+    pub unit: &'static str,
+}
+
+impl std::fmt::Display for Legend {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {:.4} .. {:.4} {} (dark blue .. yellow)", self.label, self.min, self.max, self.unit)
+    }
+}
+
+/// Background of pixels with no surface in the float views.
+const NO_SURFACE: Rgba<u8> = Rgba([40, 43, 51, 255]);
+
+/// A perceptual ramp (dark blue, teal, green, yellow), t in 0..1.
+pub fn heat_color(t: f32) -> Rgba<u8> {
+    const STOPS: [[f32; 3]; 5] = [
+        [0.267, 0.005, 0.329],
+        [0.230, 0.322, 0.546],
+        [0.128, 0.567, 0.551],
+        [0.369, 0.789, 0.383],
+        [0.993, 0.906, 0.144],
+    ];
+    let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
+    let x = t * (STOPS.len() - 1) as f32;
+    let i = (x.floor() as usize).min(STOPS.len() - 2);
+    let f = x - i as f32;
+    let c: Vec<u8> = (0..3).map(|k| ((STOPS[i][k] * (1.0 - f) + STOPS[i + 1][k] * f) * 255.0).round() as u8).collect();
+    Rgba([c[0], c[1], c[2], 255])
+}
+
+pub fn gray(v: f32) -> Rgba<u8> {
+    let g = (v.clamp(0.0, 1.0) * 255.0).round() as u8;
+    Rgba([g, g, g, 255])
+}
+
+/// Greyscale image of a per-pixel value in 0..1 (white = 1), surfaces only.
+pub fn gray_image(analysis: &Analysis, value: impl Fn(usize) -> f32) -> RgbaImage {
+    RgbaImage::from_fn(analysis.width, analysis.height, |x, y| {
+        let i = analysis.index(x, y);
+        if analysis.hit(i) { gray(value(i)) } else { NO_SURFACE }
+    })
+}
+
+/// Heatmap of a per-pixel value over the surfaces, scaled to its own range (from 0).
+pub fn heat_image(analysis: &Analysis, label: &'static str, unit: &'static str, value: impl Fn(usize) -> f32) -> (RgbaImage, Legend) {
+    let max = (0..analysis.shadow.len())
+        .filter(|&i| analysis.hit(i))
+        .map(&value)
+        .filter(|v| v.is_finite())
+        .fold(0.0f32, f32::max);
+    let legend = Legend { label, min: 0.0, max, unit };
+    let scale = if max > 0.0 { 1.0 / max } else { 0.0 };
+    let image = RgbaImage::from_fn(analysis.width, analysis.height, |x, y| {
+        let i = analysis.index(x, y);
+        if analysis.hit(i) { heat_color(value(i) * scale) } else { NO_SURFACE }
+    });
+    (image, legend)
+}
+
+/// The shadow map as linear depth (near = dark, far = light), stretched over the range of
+/// depths actually stored (texels still at the clear value are shown in the no-surface colour).
+pub fn shadow_map_image(map: &DepthImage, light: &LightGpu) -> (RgbaImage, Legend) {
+    let linear: Vec<Option<f32>> = map
+        .depth_ndc
+        .iter()
+        .map(|&z| (z < 1.0).then(|| depth_linear_from_ndc(light, z)))
+        .collect();
+    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+    for d in linear.iter().flatten() {
+        lo = lo.min(*d);
+        hi = hi.max(*d);
+    }
+    if !lo.is_finite() {
+        (lo, hi) = (light.near, light.far);
+    }
+    let span = (hi - lo).max(1e-6);
+    let image = RgbaImage::from_fn(map.size, map.size, |x, y| match linear[(y * map.size + x) as usize] {
+        Some(d) => heat_color((d - lo) / span),
+        None => Rgba([250, 250, 250, 255]),
+    });
+    (image, Legend { label: "light-space depth", min: lo, max: hi, unit: "world units from the light (white: nothing stored)" })
+}
+
+/// |technique - reference| over the surfaces, and its mean.
+pub fn error_image(analysis: &Analysis, reference: &[f32]) -> (RgbaImage, Legend, f32) {
+    let mut sum = 0.0f64;
+    let mut count = 0usize;
+    for i in 0..analysis.shadow.len() {
+        if analysis.hit(i) {
+            sum += f64::from((analysis.shadow[i][0] - reference[i]).abs());
+            count += 1;
+        }
+    }
+    let mae = if count > 0 { (sum / count as f64) as f32 } else { 0.0 };
+    let image = RgbaImage::from_fn(analysis.width, analysis.height, |x, y| {
+        let i = analysis.index(x, y);
+        if analysis.hit(i) { heat_color((analysis.shadow[i][0] - reference[i]).abs()) } else { NO_SURFACE }
+    });
+    (image, Legend { label: "|visibility - reference|", min: 0.0, max: 1.0, unit: "" }, mae)
+}
