@@ -70,7 +70,10 @@ pub fn probe(
 ) -> Result<ProbeReport, RenderError> {
     let (w, h) = request.size;
     if pixel.0 >= w || pixel.1 >= h {
-        return Err(RenderError::Usage(format!("pixel {},{} is outside the {w}x{h} image", pixel.0, pixel.1)));
+        return Err(RenderError::Usage(format!(
+            "pixel {},{} is outside the {w}x{h} image",
+            pixel.0, pixel.1
+        )));
     }
     let mut report = ProbeReport {
         pixel: [pixel.0, pixel.1],
@@ -84,7 +87,8 @@ pub fn probe(
         lights: Vec::new(),
     };
     for light_index in 0..scene.lights.len().max(1) {
-        let frame = FrameRequest { selected_light: light_index, final_color: false, analysis: true, ..*request };
+        let frame =
+            FrameRequest { selected_light: light_index, final_color: false, analysis: true, ..*request };
         renderer.render(scene, &frame)?;
         let analysis = renderer.read_analysis()?;
         let i = analysis.index(pixel.0, pixel.1);
@@ -115,16 +119,18 @@ pub fn probe(
         let map_size = light_gpu.map_size_texels;
         let stored = twin.stored_depth_ndc(coord.uv);
         let taps = twin.trace.take().unwrap_or_default();
-        let reference = if with_reference {
-            Some(renderer.render_reference(scene, light_index)?[i])
-        } else {
-            None
-        };
-        let inside = (0.0..=1.0).contains(&coord.uv.x) && (0.0..=1.0).contains(&coord.uv.y) && (0.0..=1.0).contains(&coord.depth_ndc);
+        let reference =
+            if with_reference { Some(renderer.render_reference(scene, light_index)?[i]) } else { None };
+        let inside = (0.0..=1.0).contains(&coord.uv.x)
+            && (0.0..=1.0).contains(&coord.uv.y)
+            && (0.0..=1.0).contains(&coord.depth_ndc);
         report.lights.push(LightProbe {
             light: light_index,
             shadow_map_uv: coord.uv.to_array(),
-            shadow_map_texel: [(coord.uv.x * map_size).floor() as i32, (coord.uv.y * map_size).floor() as i32],
+            shadow_map_texel: [
+                (coord.uv.x * map_size).floor() as i32,
+                (coord.uv.y * map_size).floor() as i32,
+            ],
             inside_light_frustum: inside,
             n_dot_l: coord.n_dot_l,
             receiver_depth_ndc: coord.depth_ndc,

@@ -46,8 +46,17 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
     let adapter = ctx.describe();
     if !args.json {
         println!("adapter: {adapter}");
-        println!("scene: {}  size: {}x{}  frames: {}", args.scene.display(), args.size.0, args.size.1, args.frames);
-        println!("{:<12} {:>12} {:>10} {:>12} {:>12}", "technique", "median ms", "min ms", "shadow ms", "camera ms");
+        println!(
+            "scene: {}  size: {}x{}  frames: {}",
+            args.scene.display(),
+            args.size.0,
+            args.size.1,
+            args.frames
+        );
+        println!(
+            "{:<12} {:>12} {:>10} {:>12} {:>12}",
+            "technique", "median ms", "min ms", "shadow ms", "camera ms"
+        );
     }
     let mut rows = Vec::new();
     for (label, technique, samples, blocker_samples) in CASES {
@@ -55,7 +64,13 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
         scene.shadow.technique = technique;
         scene.shadow.samples = samples;
         scene.shadow.blocker_samples = blocker_samples;
-        let request = FrameRequest { size: args.size, final_color: true, analysis: false, timestamps: true, ..Default::default() };
+        let request = FrameRequest {
+            size: args.size,
+            final_color: true,
+            analysis: false,
+            timestamps: true,
+            ..Default::default()
+        };
         for _ in 0..2 {
             renderer.render(&scene, &request)?;
             renderer.wait_idle()?;
@@ -92,8 +107,15 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
         rows.push(row);
     }
     if args.json {
-        let report = BenchReport { adapter, scene: args.scene.display().to_string(), size: [args.size.0, args.size.1], frames: args.frames, rows };
-        let json = serde_json::to_string_pretty(&report).map_err(|e| CliError { code: 1, message: e.to_string() })?;
+        let report = BenchReport {
+            adapter,
+            scene: args.scene.display().to_string(),
+            size: [args.size.0, args.size.1],
+            frames: args.frames,
+            rows,
+        };
+        let json = serde_json::to_string_pretty(&report)
+            .map_err(|e| CliError { code: 1, message: e.to_string() })?;
         println!("{json}");
     } else if !renderer.has_timestamps() {
         println!("(this adapter has no timestamp queries: per-pass times are not available)");

@@ -11,7 +11,11 @@ use clap::{Args, Parser, Subcommand};
 use std::path::{Path, PathBuf};
 
 #[derive(Parser, Debug)]
-#[command(name = "shadowlab", version, about = "Learn real-time shadows: shadow maps, bias, PCF, PCSS. With no command, opens the app.")]
+#[command(
+    name = "shadowlab",
+    version,
+    about = "Learn real-time shadows: shadow maps, bias, PCF, PCSS. With no command, opens the app."
+)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -201,7 +205,11 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
         )));
     }
     if scene.lights.is_empty() && args.view != View::Final {
-        return Err(CliError::input(format!("{}: the scene has no lights, so no `{}` view", args.frame.scene.display(), args.view.name())));
+        return Err(CliError::input(format!(
+            "{}: the scene has no lights, so no `{}` view",
+            args.frame.scene.display(),
+            args.view.name()
+        )));
     }
     let (_ctx, mut renderer) = gpu()?;
     let request = FrameRequest {
@@ -222,7 +230,10 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
         }
         View::Visibility => {
             let a = renderer.read_analysis()?;
-            (views::gray_image(&a, |i| a.shadow[i][0]), Some("visibility: black = shadowed, white = lit".into()))
+            (
+                views::gray_image(&a, |i| a.shadow[i][0]),
+                Some("visibility: black = shadowed, white = lit".into()),
+            )
         }
         View::BlockerRadius | View::Penumbra | View::Blockers => {
             let a = renderer.read_analysis()?;
@@ -247,7 +258,14 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
         }
     };
     export::write_png(&args.out, &image)?;
-    println!("wrote {} ({}x{}, view {}, light {})", args.out.display(), image.width(), image.height(), args.view.name(), args.light);
+    println!(
+        "wrote {} ({}x{}, view {}, light {})",
+        args.out.display(),
+        image.width(),
+        image.height(),
+        args.view.name(),
+        args.light
+    );
     if let Some(summary) = summary {
         println!("{summary}");
     }
@@ -259,7 +277,8 @@ fn probe(args: ProbeArgs) -> Result<(), CliError> {
     let (_ctx, mut renderer) = gpu()?;
     let request = FrameRequest { time_s: args.frame.time, size: args.frame.size, ..Default::default() };
     let report = crate::probe::probe(&mut renderer, &scene, &request, args.pixel, !args.no_reference)?;
-    let json = serde_json::to_string_pretty(&report).map_err(|e| CliError { code: 1, message: e.to_string() })?;
+    let json =
+        serde_json::to_string_pretty(&report).map_err(|e| CliError { code: 1, message: e.to_string() })?;
     println!("{json}");
     Ok(())
 }

@@ -36,7 +36,10 @@ pub fn encode_png(image: &image::RgbaImage, path_for_errors: &Path) -> Result<Ve
     let mut bytes = Vec::new();
     image::DynamicImage::ImageRgba8(image.clone())
         .write_to(&mut std::io::Cursor::new(&mut bytes), image::ImageFormat::Png)
-        .map_err(|e| ExportError::Encode { path: path_for_errors.display().to_string(), reason: e.to_string() })?;
+        .map_err(|e| ExportError::Encode {
+            path: path_for_errors.display().to_string(),
+            reason: e.to_string(),
+        })?;
     Ok(bytes)
 }
 

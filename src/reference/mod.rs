@@ -38,7 +38,9 @@ pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightGpu> {
             let as_spot = match light.kind {
                 LightKind::Spot { .. } => *light,
                 LightKind::Directional { extent_world } => Light {
-                    kind: LightKind::Spot { fov_deg: (2.0 * (extent_world / distance).atan()).to_degrees().min(150.0) },
+                    kind: LightKind::Spot {
+                        fov_deg: (2.0 * (extent_world / distance).atan()).to_degrees().min(150.0),
+                    },
                     near: light.near.max(distance * 0.05),
                     ..*light
                 },

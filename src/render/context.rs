@@ -14,18 +14,32 @@ pub fn optional_features() -> wgpu::Features {
 }
 
 impl GpuContext {
-    /// The first adapter on the backends named by `WGPU_BACKEND` (default: Vulkan, then GL).
+    /// An adapter on the backends named by `WGPU_BACKEND` (`vulkan`, `gl`, ...); by default
+    /// Vulkan, and OpenGL only where Vulkan has none (GL probing prints noise on headless machines).
     pub fn new_headless() -> Result<Self, RenderError> {
-        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-        desc.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN | wgpu::Backends::GL);
-        let instance = wgpu::Instance::new(desc);
-        let adapter = pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-            power_preference: wgpu::PowerPreference::HighPerformance,
-            force_fallback_adapter: false,
-            compatible_surface: None,
-            apply_limit_buckets: false,
-        }))
-        .map_err(|e| RenderError::NoAdapter(e.to_string()))?;
+        let attempts = match wgpu::Backends::from_env() {
+            Some(backends) => vec![backends],
+            None => vec![wgpu::Backends::VULKAN, wgpu::Backends::GL],
+        };
+        let mut failure = String::new();
+        for backends in attempts {
+            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+            desc.backends = backends;
+            let instance = wgpu::Instance::new(desc);
+            match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+                power_preference: wgpu::PowerPreference::HighPerformance,
+                force_fallback_adapter: false,
+                compatible_surface: None,
+                apply_limit_buckets: false,
+            })) {
+                Ok(adapter) => return Self::from_adapter(&adapter),
+                Err(e) => failure = format!("{backends:?}: {e}"),
+            }
+        }
+        Err(RenderError::NoAdapter(failure))
+    }
+
+    fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, RenderError> {
         let adapter_info = adapter.get_info();
         let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
             label: Some("shadowlab"),

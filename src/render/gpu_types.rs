@@ -135,11 +135,25 @@ pub fn kernel_id(k: Kernel) -> u32 {
 impl LightGpu {
     /// The light at time `t`, in shadow-map `layer` of an array texture `atlas_size` texels wide.
     pub fn new(light: &Light, t_s: f32, layer: u32, atlas_size: u32) -> Self {
-        Self::with_transform(light, light.clip_from_world(t_s), light.position_at(t_s), light.direction_at(t_s), layer, atlas_size)
+        Self::with_transform(
+            light,
+            light.clip_from_world(t_s),
+            light.position_at(t_s),
+            light.direction_at(t_s),
+            layer,
+            atlas_size,
+        )
     }
 
     /// The light with an explicit transform (the ground truth moves it over its area).
-    pub fn with_transform(light: &Light, clip_from_world: Mat4, position: Vec3, direction: Vec3, layer: u32, atlas_size: u32) -> Self {
+    pub fn with_transform(
+        light: &Light,
+        clip_from_world: Mat4,
+        position: Vec3,
+        direction: Vec3,
+        layer: u32,
+        atlas_size: u32,
+    ) -> Self {
         let (size_model, light_width_world, tan_half_angle) = match light.size {
             LightSize::Width { width_world } => (0, width_world, 0.0),
             LightSize::AngularDiameter { angular_diameter_deg } => {

@@ -24,7 +24,9 @@ use targets::{ShadowMaps, ViewTargets};
 
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
-    #[error("no GPU adapter found ({0}); install a Vulkan or OpenGL driver, e.g. `apt-get install mesa-vulkan-drivers` for a software one")]
+    #[error(
+        "no GPU adapter found ({0}); install a Vulkan or OpenGL driver, e.g. `apt-get install mesa-vulkan-drivers` for a software one"
+    )]
     NoAdapter(String),
     #[error("could not open the GPU device: {0}")]
     Device(String),
@@ -52,7 +54,14 @@ pub struct FrameRequest {
 
 impl Default for FrameRequest {
     fn default() -> Self {
-        Self { time_s: 0.0, size: (960, 540), selected_light: 0, final_color: true, analysis: true, timestamps: false }
+        Self {
+            time_s: 0.0,
+            size: (960, 540),
+            selected_light: 0,
+            final_color: true,
+            analysis: true,
+            timestamps: false,
+        }
     }
 }
 
@@ -132,8 +141,10 @@ impl Renderer {
         let layouts = Layouts::new(device);
         let pipelines = Pipelines::new(device, &layouts);
         let frame_buffer = uniform_buffer(device, "frame", std::mem::size_of::<FrameGpu>() as u64);
-        let lights_buffer = uniform_buffer(device, "lights", (std::mem::size_of::<LightGpu>() * MAX_LIGHTS) as u64);
-        let params_buffer = uniform_buffer(device, "shadow params", std::mem::size_of::<ShadowParamsGpu>() as u64);
+        let lights_buffer =
+            uniform_buffer(device, "lights", (std::mem::size_of::<LightGpu>() * MAX_LIGHTS) as u64);
+        let params_buffer =
+            uniform_buffer(device, "shadow params", std::mem::size_of::<ShadowParamsGpu>() as u64);
         let shadow_view_buffer = uniform_buffer(device, "shadow views", DYNAMIC_STRIDE * MAX_LIGHTS as u64);
         let frame_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("frame"),
@@ -141,7 +152,10 @@ impl Renderer {
             entries: &[wgpu::BindGroupEntry { binding: 0, resource: frame_buffer.as_entire_binding() }],
         });
         let shadow_view_bind_group = shadow_view_group(device, &layouts, &shadow_view_buffer);
-        let timer = device.features().contains(wgpu::Features::TIMESTAMP_QUERY).then(|| timing::Timer::new(device, queue));
+        let timer = device
+            .features()
+            .contains(wgpu::Features::TIMESTAMP_QUERY)
+            .then(|| timing::Timer::new(device, queue));
         Self {
             device: device.clone(),
             queue: queue.clone(),
@@ -187,13 +201,38 @@ impl Renderer {
         Ok(())
     }
 
+    /// Run `work`, turning wgpu validation and out-of-memory errors into a `RenderError`
+    /// (wgpu's default handler would panic).
+    pub(crate) fn guarded<T>(
+        &mut self,
+        work: impl FnOnce(&mut Self) -> Result<T, RenderError>,
+    ) -> Result<T, RenderError> {
+        let memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let result = work(self);
+        let validation_error = pollster::block_on(validation.pop());
+        let memory_error = pollster::block_on(memory.pop());
+        match (validation_error.or(memory_error), result) {
+            (Some(e), _) => Err(RenderError::Device(
+                e.to_string().lines().next().unwrap_or("GPU error").to_string() + " " + &first_cause(&e),
+            )),
+            (None, result) => result,
+        }
+    }
+
     /// Render one frame into the renderer's own targets.
     pub fn render(&mut self, scene: &Scene, request: &FrameRequest) -> Result<(), RenderError> {
+        self.guarded(|r| r.render_unguarded(scene, request))
+    }
+
+    fn render_unguarded(&mut self, scene: &Scene, request: &FrameRequest) -> Result<(), RenderError> {
         self.check_scene(scene)?;
         let (width, height) = request.size;
         let max_dim = self.device.limits().max_texture_dimension_2d;
         if width == 0 || height == 0 || width > max_dim || height > max_dim {
-            return Err(RenderError::Usage(format!("image size {width}x{height} must be 1..={max_dim} on each side")));
+            return Err(RenderError::Usage(format!(
+                "image size {width}x{height} must be 1..={max_dim} on each side"
+            )));
         }
         if !scene.lights.is_empty() && request.selected_light >= scene.lights.len() {
             return Err(RenderError::Usage(format!(
@@ -204,7 +243,9 @@ impl Renderer {
         }
         self.prepare(scene, request);
         let Some(scene_gpu) = self.scene_gpu.as_ref() else { return Ok(()) };
-        let (Some(maps), Some(targets), Some(lights_group)) = (&self.shadow_maps, &self.targets, &self.lights_bind_group) else {
+        let (Some(maps), Some(targets), Some(lights_group)) =
+            (&self.shadow_maps, &self.targets, &self.lights_bind_group)
+        else {
             return Ok(());
         };
         let key = ShadowPipelineKey {
@@ -214,7 +255,8 @@ impl Renderer {
         };
         let shadow_pipeline = self.pipelines.shadow(&self.device, key).clone();
         let timer = self.timer.as_ref().filter(|_| request.timestamps);
-        let mut encoder = self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
+        let mut encoder =
+            self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
 
         // Pass 1 per light: clear to far (1.0) and render depth. Re-rendered every frame, since
         // lights orbit and objects spin.
@@ -227,7 +269,10 @@ impl Renderer {
                 color_attachments: &[],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &maps.layer_views[layer],
-                    depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
                     stencil_ops: None,
                 }),
                 timestamp_writes: timer.and_then(|t| t.span_writes(0, first, last)),
@@ -238,7 +283,11 @@ impl Renderer {
                 let size = scene.lights[layer].shadow_map_size as f32;
                 pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
                 pass.set_pipeline(&shadow_pipeline);
-                pass.set_bind_group(0, &self.shadow_view_bind_group, &[(layer as u64 * DYNAMIC_STRIDE) as u32]);
+                pass.set_bind_group(
+                    0,
+                    &self.shadow_view_bind_group,
+                    &[(layer as u64 * DYNAMIC_STRIDE) as u32],
+                );
                 scene_gpu.draw(&mut pass, 1);
             }
         }
@@ -247,7 +296,10 @@ impl Renderer {
         let depth_clear = || {
             Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth_view,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard }),
+                depth_ops: Some(wgpu::Operations {
+                    load: wgpu::LoadOp::Clear(1.0),
+                    store: wgpu::StoreOp::Discard,
+                }),
                 stencil_ops: None,
             })
         };
@@ -263,7 +315,10 @@ impl Renderer {
                     view: &targets.color_view,
                     depth_slice: None,
                     resolve_target: None,
-                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(BACKGROUND), store: wgpu::StoreOp::Store },
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(BACKGROUND),
+                        store: wgpu::StoreOp::Store,
+                    },
                 })]
             } else {
                 targets
@@ -274,7 +329,10 @@ impl Renderer {
                             view,
                             depth_slice: None,
                             resolve_target: None,
-                            ops: wgpu::Operations { load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT), store: wgpu::StoreOp::Store },
+                            ops: wgpu::Operations {
+                                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                                store: wgpu::StoreOp::Store,
+                            },
                         })
                     })
                     .collect()
@@ -287,7 +345,11 @@ impl Renderer {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(if is_final { &self.pipelines.camera_final } else { &self.pipelines.camera_analysis });
+            pass.set_pipeline(if is_final {
+                &self.pipelines.camera_final
+            } else {
+                &self.pipelines.camera_analysis
+            });
             pass.set_bind_group(0, &self.frame_bind_group, &[]);
             pass.set_bind_group(1, lights_group, &[]);
             scene_gpu.draw(&mut pass, 2);
@@ -332,28 +394,34 @@ impl Renderer {
                 entries: &[
                     wgpu::BindGroupEntry { binding: 0, resource: self.lights_buffer.as_entire_binding() },
                     wgpu::BindGroupEntry { binding: 1, resource: self.params_buffer.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&maps.array_view) },
-                    wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.compare_sampler) },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: wgpu::BindingResource::TextureView(&maps.array_view),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 3,
+                        resource: wgpu::BindingResource::Sampler(&self.compare_sampler),
+                    },
                 ],
             }));
             self.shadow_maps = Some(maps);
         }
-        if !self.targets.as_ref().is_some_and(|t| t.size == request.size) {
+        if self.targets.as_ref().is_none_or(|t| t.size != request.size) {
             self.targets = Some(ViewTargets::new(device, request.size));
         }
         let t = request.time_s;
-        self.frame_lights = scene
-            .lights
-            .iter()
-            .enumerate()
-            .map(|(i, l)| LightGpu::new(l, t, i as u32, atlas_size))
-            .collect();
+        self.frame_lights =
+            scene.lights.iter().enumerate().map(|(i, l)| LightGpu::new(l, t, i as u32, atlas_size)).collect();
         let mut lights = [bytemuck::Zeroable::zeroed(); MAX_LIGHTS];
         lights[..self.frame_lights.len()].copy_from_slice(&self.frame_lights);
         self.queue.write_buffer(&self.lights_buffer, 0, bytemuck::cast_slice(&lights));
         for (i, light) in self.frame_lights.iter().enumerate() {
             let view = ShadowViewGpu { clip_from_world: light.clip_from_world };
-            self.queue.write_buffer(&self.shadow_view_buffer, i as u64 * DYNAMIC_STRIDE, bytemuck::bytes_of(&view));
+            self.queue.write_buffer(
+                &self.shadow_view_buffer,
+                i as u64 * DYNAMIC_STRIDE,
+                bytemuck::bytes_of(&view),
+            );
         }
         self.frame_params = ShadowParamsGpu::new(&scene.shadow);
         self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.frame_params));
@@ -385,8 +453,17 @@ impl Renderer {
     pub fn read_color(&self) -> Result<image::RgbaImage, RenderError> {
         let targets = self.targets()?;
         let (w, h) = targets.size;
-        let bytes = readback::read_texture(&self.device, &self.queue, &targets.color, 0, targets.size, 4, wgpu::TextureAspect::All)?;
-        image::RgbaImage::from_raw(w, h, bytes).ok_or_else(|| RenderError::Readback("colour buffer has the wrong size".into()))
+        let bytes = readback::read_texture(
+            &self.device,
+            &self.queue,
+            &targets.color,
+            0,
+            targets.size,
+            4,
+            wgpu::TextureAspect::All,
+        )?;
+        image::RgbaImage::from_raw(w, h, bytes)
+            .ok_or_else(|| RenderError::Readback("colour buffer has the wrong size".into()))
     }
 
     pub fn read_analysis(&self) -> Result<Analysis, RenderError> {
@@ -394,7 +471,15 @@ impl Renderer {
         let (width, height) = targets.size;
         let mut planes = Vec::with_capacity(targets.analysis.len());
         for texture in &targets.analysis {
-            let bytes = readback::read_texture(&self.device, &self.queue, texture, 0, targets.size, 16, wgpu::TextureAspect::All)?;
+            let bytes = readback::read_texture(
+                &self.device,
+                &self.queue,
+                texture,
+                0,
+                targets.size,
+                16,
+                wgpu::TextureAspect::All,
+            )?;
             let floats = readback::f32s_from_bytes(&bytes);
             planes.push(floats.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect::<Vec<_>>());
         }
@@ -406,13 +491,24 @@ impl Renderer {
 
     /// The shadow map of light `index` as rendered in the last frame.
     pub fn read_shadow_map(&self, index: usize) -> Result<DepthImage, RenderError> {
-        let maps = self.shadow_maps.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
-        let light = self
-            .frame_lights
-            .get(index)
-            .ok_or_else(|| RenderError::Usage(format!("light {index} does not exist (the scene has {})", self.frame_lights.len())))?;
+        let maps =
+            self.shadow_maps.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
+        let light = self.frame_lights.get(index).ok_or_else(|| {
+            RenderError::Usage(format!(
+                "light {index} does not exist (the scene has {})",
+                self.frame_lights.len()
+            ))
+        })?;
         let atlas = maps.atlas_size;
-        let bytes = readback::read_texture(&self.device, &self.queue, &maps.texture, index as u32, (atlas, atlas), 4, wgpu::TextureAspect::DepthOnly)?;
+        let bytes = readback::read_texture(
+            &self.device,
+            &self.queue,
+            &maps.texture,
+            index as u32,
+            (atlas, atlas),
+            4,
+            wgpu::TextureAspect::DepthOnly,
+        )?;
         let all = readback::f32s_from_bytes(&bytes);
         let size = light.map_size_texels as u32;
         let mut depth_ndc = Vec::with_capacity((size * size) as usize);
@@ -421,6 +517,17 @@ impl Renderer {
         }
         Ok(DepthImage { size, depth_ndc })
     }
+}
+
+/// The innermost cause of a wgpu error, on one line.
+fn first_cause(e: &wgpu::Error) -> String {
+    let mut source: Option<&dyn std::error::Error> = std::error::Error::source(e);
+    let mut last = String::new();
+    while let Some(s) = source {
+        last = s.to_string();
+        source = s.source();
+    }
+    last.replace('\n', " ")
 }
 
 /// Background of the camera view, already sRGB-encoded (the target stores sRGB bytes).

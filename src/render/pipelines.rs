@@ -33,7 +33,12 @@ fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages, dynamic: bool) ->
     }
 }
 
-fn texture_entry(binding: u32, visibility: wgpu::ShaderStages, sample_type: wgpu::TextureSampleType, dim: wgpu::TextureViewDimension) -> wgpu::BindGroupLayoutEntry {
+fn texture_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    sample_type: wgpu::TextureSampleType,
+    dim: wgpu::TextureViewDimension,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry {
         binding,
         visibility,
@@ -42,7 +47,11 @@ fn texture_entry(binding: u32, visibility: wgpu::ShaderStages, sample_type: wgpu
     }
 }
 
-fn sampler_entry(binding: u32, visibility: wgpu::ShaderStages, ty: wgpu::SamplerBindingType) -> wgpu::BindGroupLayoutEntry {
+fn sampler_entry(
+    binding: u32,
+    visibility: wgpu::ShaderStages,
+    ty: wgpu::SamplerBindingType,
+) -> wgpu::BindGroupLayoutEntry {
     wgpu::BindGroupLayoutEntry { binding, visibility, ty: wgpu::BindingType::Sampler(ty), count: None }
 }
 
@@ -85,8 +94,18 @@ impl Layouts {
             reference_io: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("reference io"),
                 entries: &[
-                    texture_entry(0, wgpu::ShaderStages::COMPUTE, float(false), wgpu::TextureViewDimension::D2),
-                    texture_entry(1, wgpu::ShaderStages::COMPUTE, float(false), wgpu::TextureViewDimension::D2),
+                    texture_entry(
+                        0,
+                        wgpu::ShaderStages::COMPUTE,
+                        float(false),
+                        wgpu::TextureViewDimension::D2,
+                    ),
+                    texture_entry(
+                        1,
+                        wgpu::ShaderStages::COMPUTE,
+                        float(false),
+                        wgpu::TextureViewDimension::D2,
+                    ),
                     wgpu::BindGroupLayoutEntry {
                         binding: 2,
                         visibility: wgpu::ShaderStages::COMPUTE,
@@ -123,7 +142,8 @@ pub struct Pipelines {
 }
 
 fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
-    const ATTRIBUTES: [wgpu::VertexAttribute; 3] = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
+    const ATTRIBUTES: [wgpu::VertexAttribute; 3] =
+        wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
     wgpu::VertexBufferLayout {
         array_stride: std::mem::size_of::<Vertex>() as u64,
         step_mode: wgpu::VertexStepMode::Vertex,
@@ -206,7 +226,14 @@ impl Pipelines {
             compilation_options: Default::default(),
             cache: None,
         });
-        Self { shadow_module, shadow_layout, shadow: HashMap::new(), camera_final, camera_analysis, reference }
+        Self {
+            shadow_module,
+            shadow_layout,
+            shadow: HashMap::new(),
+            camera_final,
+            camera_analysis,
+            reference,
+        }
     }
 
     /// The shadow-pass pipeline for these settings, built on first use.

@@ -21,7 +21,8 @@ pub fn read_texture(
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
-    let mut encoder = device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
+    let mut encoder =
+        device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("readback") });
     encoder.copy_texture_to_buffer(
         wgpu::TexelCopyTextureInfo {
             texture,
@@ -31,7 +32,11 @@ pub fn read_texture(
         },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
-            layout: wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(padded), rows_per_image: Some(height) },
+            layout: wgpu::TexelCopyBufferLayout {
+                offset: 0,
+                bytes_per_row: Some(padded),
+                rows_per_image: Some(height),
+            },
         },
         wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
     );
@@ -52,24 +57,16 @@ pub fn read_buffer(device: &wgpu::Device, buffer: &wgpu::Buffer, len: u64) -> Re
     slice.map_async(wgpu::MapMode::Read, move |result| {
         let _ = sender.send(result);
     });
-    device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| RenderError::Readback(e.to_string()))?;
+    device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| RenderError::Readback(e.to_string()))?;
     receiver
         .recv()
         .map_err(|e| RenderError::Readback(e.to_string()))?
         .map_err(|e| RenderError::Readback(e.to_string()))?;
-    let bytes = slice
-        .get_mapped_range()
-        .map_err(|e| RenderError::Readback(e.to_string()))?
-        .to_vec();
+    let bytes = slice.get_mapped_range().map_err(|e| RenderError::Readback(e.to_string()))?.to_vec();
     buffer.unmap();
     Ok(bytes)
 }
 
 pub fn f32s_from_bytes(bytes: &[u8]) -> Vec<f32> {
-    bytes
-        .chunks_exact(4)
-        .map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
-        .collect()
+    bytes.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
 }

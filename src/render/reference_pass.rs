@@ -17,15 +17,26 @@ impl Renderer {
     /// hard shadows from points (width model) or directions (angular model) over the light.
     /// Pixels with no surface get 1.
     pub fn render_reference(&mut self, scene: &Scene, light_index: usize) -> Result<Vec<f32>, RenderError> {
+        self.guarded(|r| r.render_reference_unguarded(scene, light_index))
+    }
+
+    fn render_reference_unguarded(
+        &mut self,
+        scene: &Scene,
+        light_index: usize,
+    ) -> Result<Vec<f32>, RenderError> {
         let request = self
             .last_request
             .filter(|r| r.analysis)
             .ok_or_else(|| RenderError::Usage("render the analysis pass before the reference".into()))?;
-        let light = scene
-            .lights
-            .get(light_index)
-            .ok_or_else(|| RenderError::Usage(format!("light {light_index} does not exist (the scene has {})", scene.lights.len())))?;
-        let samples: Vec<LightGpu> = reference::sample_lights(light, request.time_s, scene.shadow.reference_samples as usize);
+        let light = scene.lights.get(light_index).ok_or_else(|| {
+            RenderError::Usage(format!(
+                "light {light_index} does not exist (the scene has {})",
+                scene.lights.len()
+            ))
+        })?;
+        let samples: Vec<LightGpu> =
+            reference::sample_lights(light, request.time_s, scene.shadow.reference_samples as usize);
         let device = self.device.clone();
         let (width, height) = request.size;
         let pixels = u64::from(width) * u64::from(height);
@@ -50,7 +61,7 @@ impl Renderer {
         let accumulated = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("reference sum"),
             size: pixels * 4,
-            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+            usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC | wgpu::BufferUsages::COPY_DST,
             mapped_at_creation: false,
         });
         let info = device.create_buffer(&wgpu::BufferDescriptor {
@@ -74,8 +85,14 @@ impl Renderer {
             label: Some("reference io"),
             layout: &self.layouts.reference_io,
             entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: wgpu::BindingResource::TextureView(&targets.analysis_views[1]) },
-                wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&targets.analysis_views[2]) },
+                wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&targets.analysis_views[1]),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 1,
+                    resource: wgpu::BindingResource::TextureView(&targets.analysis_views[2]),
+                },
                 wgpu::BindGroupEntry { binding: 2, resource: accumulated.as_entire_binding() },
                 wgpu::BindGroupEntry { binding: 3, resource: info.as_entire_binding() },
             ],
@@ -93,8 +110,14 @@ impl Renderer {
                     }),
                 },
                 wgpu::BindGroupEntry { binding: 1, resource: params.as_entire_binding() },
-                wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::TextureView(&maps.array_view) },
-                wgpu::BindGroupEntry { binding: 3, resource: wgpu::BindingResource::Sampler(&self.compare_sampler) },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&maps.array_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(&self.compare_sampler),
+                },
             ],
         });
         let view_group = shadow_view_group(&device, &self.layouts, &view_buffer);
@@ -104,7 +127,8 @@ impl Renderer {
             cull_front_faces: scene.shadow.cull_front_faces,
         };
         let shadow_pipeline = self.pipelines.shadow(&device, key).clone();
-        let scene_gpu = self.scene_gpu.as_ref().ok_or_else(|| RenderError::Usage("no scene uploaded".into()))?;
+        let scene_gpu =
+            self.scene_gpu.as_ref().ok_or_else(|| RenderError::Usage("no scene uploaded".into()))?;
 
         let mut encoder = device.create_command_encoder(&Default::default());
         encoder.clear_buffer(&accumulated, 0, None);
@@ -116,7 +140,10 @@ impl Renderer {
                     color_attachments: &[],
                     depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                         view: &maps.layer_views[0],
-                        depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Store }),
+                        depth_ops: Some(wgpu::Operations {
+                            load: wgpu::LoadOp::Clear(1.0),
+                            store: wgpu::StoreOp::Store,
+                        }),
                         stencil_ops: None,
                     }),
                     timestamp_writes: None,
@@ -128,7 +155,10 @@ impl Renderer {
                 scene_gpu.draw(&mut pass, 1);
             }
             {
-                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor { label: Some("reference accumulate"), timestamp_writes: None });
+                let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+                    label: Some("reference accumulate"),
+                    timestamp_writes: None,
+                });
                 pass.set_pipeline(&self.pipelines.reference);
                 pass.set_bind_group(0, &io_group, &[]);
                 pass.set_bind_group(1, &light_group, &[offset]);

@@ -56,7 +56,11 @@ fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, image: &TextureIma
     }
     let texture = device.create_texture(&wgpu::TextureDescriptor {
         label: Some("diffuse"),
-        size: wgpu::Extent3d { width: image.width.max(1), height: image.height.max(1), depth_or_array_layers: 1 },
+        size: wgpu::Extent3d {
+            width: image.width.max(1),
+            height: image.height.max(1),
+            depth_or_array_layers: 1,
+        },
         mip_level_count: levels.len() as u32,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
@@ -66,7 +70,12 @@ fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, image: &TextureIma
     });
     for (mip, (data, (lw, lh))) in levels.iter().zip(sizes).enumerate() {
         queue.write_texture(
-            wgpu::TexelCopyTextureInfo { texture: &texture, mip_level: mip as u32, origin: wgpu::Origin3d::ZERO, aspect: wgpu::TextureAspect::All },
+            wgpu::TexelCopyTextureInfo {
+                texture: &texture,
+                mip_level: mip as u32,
+                origin: wgpu::Origin3d::ZERO,
+                aspect: wgpu::TextureAspect::All,
+            },
             data,
             wgpu::TexelCopyBufferLayout { offset: 0, bytes_per_row: Some(4 * lw), rows_per_image: Some(lh) },
             wgpu::Extent3d { width: lw, height: lh, depth_or_array_layers: 1 },
@@ -91,12 +100,11 @@ impl SceneGpu {
             anisotropy_clamp: 8,
             ..Default::default()
         });
-        let white = upload_texture(device, queue, &TextureImage {
-            path: "<white>".into(),
-            width: 1,
-            height: 1,
-            rgba8: vec![255; 4],
-        });
+        let white = upload_texture(
+            device,
+            queue,
+            &TextureImage { path: "<white>".into(), width: 1, height: 1, rgba8: vec![255; 4] },
+        );
         let mut mesh_index: HashMap<usize, usize> = HashMap::new();
         let mut texture_views: HashMap<usize, wgpu::TextureView> = HashMap::new();
         let mut meshes = Vec::new();
@@ -140,8 +148,14 @@ impl SceneGpu {
                     layout: &layouts.object,
                     entries: &[
                         wgpu::BindGroupEntry { binding: 0, resource: uniform.as_entire_binding() },
-                        wgpu::BindGroupEntry { binding: 1, resource: wgpu::BindingResource::TextureView(&view) },
-                        wgpu::BindGroupEntry { binding: 2, resource: wgpu::BindingResource::Sampler(&sampler) },
+                        wgpu::BindGroupEntry {
+                            binding: 1,
+                            resource: wgpu::BindingResource::TextureView(&view),
+                        },
+                        wgpu::BindGroupEntry {
+                            binding: 2,
+                            resource: wgpu::BindingResource::Sampler(&sampler),
+                        },
                     ],
                 });
                 draws.push(DrawItem {

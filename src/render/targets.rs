@@ -3,7 +3,14 @@
 
 use super::pipelines::{ANALYSIS_FORMAT, ANALYSIS_TARGETS, COLOR_FORMAT, DEPTH_FORMAT};
 
-fn texture(device: &wgpu::Device, label: &str, size: (u32, u32), layers: u32, format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
+fn texture(
+    device: &wgpu::Device,
+    label: &str,
+    size: (u32, u32),
+    layers: u32,
+    format: wgpu::TextureFormat,
+    usage: wgpu::TextureUsages,
+) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
         size: wgpu::Extent3d { width: size.0, height: size.1, depth_or_array_layers: layers },
@@ -28,9 +35,12 @@ pub struct ViewTargets {
 
 impl ViewTargets {
     pub fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
-        let rw = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC | wgpu::TextureUsages::TEXTURE_BINDING;
+        let rw = wgpu::TextureUsages::RENDER_ATTACHMENT
+            | wgpu::TextureUsages::COPY_SRC
+            | wgpu::TextureUsages::TEXTURE_BINDING;
         let color = texture(device, "camera color", size, 1, COLOR_FORMAT, rw);
-        let depth = texture(device, "camera depth", size, 1, DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        let depth =
+            texture(device, "camera depth", size, 1, DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT);
         let analysis: Vec<_> = (0..ANALYSIS_TARGETS)
             .map(|_| texture(device, "camera analysis", size, 1, ANALYSIS_FORMAT, rw))
             .collect();
@@ -62,7 +72,9 @@ impl ShadowMaps {
             (atlas_size, atlas_size),
             layers,
             DEPTH_FORMAT,
-            wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
+            wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
         );
         let array_view = texture.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D2Array),

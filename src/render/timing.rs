@@ -24,7 +24,12 @@ const BYTES: u64 = QUERY_COUNT as u64 * 8;
 impl Timer {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
         let buffer = |label, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor { label: Some(label), size: BYTES, usage, mapped_at_creation: false })
+            device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some(label),
+                size: BYTES,
+                usage,
+                mapped_at_creation: false,
+            })
         };
         Self {
             queries: device.create_query_set(&wgpu::QuerySetDescriptor {
@@ -33,13 +38,21 @@ impl Timer {
                 count: QUERY_COUNT,
             }),
             resolve: buffer("timestamps", wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC),
-            readback: buffer("timestamps readback", wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ),
+            readback: buffer(
+                "timestamps readback",
+                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            ),
             period_ns: queue.get_timestamp_period(),
         }
     }
 
     /// Timestamp writes for a pass inside span `span`: the first pass writes the begin, the last the end.
-    pub fn span_writes(&self, span: u32, first: bool, last: bool) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
+    pub fn span_writes(
+        &self,
+        span: u32,
+        first: bool,
+        last: bool,
+    ) -> Option<wgpu::RenderPassTimestampWrites<'_>> {
         (first || last).then_some(wgpu::RenderPassTimestampWrites {
             query_set: &self.queries,
             beginning_of_pass_write_index: first.then_some(2 * span),

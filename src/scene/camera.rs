@@ -4,9 +4,13 @@ use glam::{Mat4, Vec3};
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Projection {
-    Perspective { fov_deg: f32 },
+    Perspective {
+        fov_deg: f32,
+    },
     /// `height_world`: world units covered by the view's height.
-    Orthographic { height_world: f32 },
+    Orthographic {
+        height_world: f32,
+    },
 }
 
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -158,10 +158,8 @@ fn default_light_far() -> f32 {
 /// Read a scene file and apply `--set` overrides (in order).
 pub fn load_scene(path: &Path, overrides: &[(String, String)]) -> Result<Scene, SceneError> {
     let label = path.display().to_string();
-    let text = std::fs::read_to_string(path).map_err(|e| SceneError::Io {
-        path: label.clone(),
-        reason: e.to_string(),
-    })?;
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| SceneError::Io { path: label.clone(), reason: e.to_string() })?;
     let base_dir = path.parent().unwrap_or(Path::new("."));
     let mut scene = parse_scene_str(&text, base_dir, &label, overrides)?;
     scene.path = Some(path.to_path_buf());
@@ -190,17 +188,12 @@ pub fn parse_scene_str(
     for (key, value) in overrides {
         apply_override(&mut table, key, value)?;
         let file = SceneFile::deserialize(toml::Value::Table(table.clone())).map_err(|e| {
-            SceneError::Override {
-                key: key.clone(),
-                message: e.message().trim().to_string(),
-            }
+            SceneError::Override { key: key.clone(), message: e.message().trim().to_string() }
         })?;
         build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_override(key))?;
     }
-    let file = SceneFile::deserialize(toml::Value::Table(table)).map_err(|e| SceneError::Invalid {
-        path: label.to_string(),
-        message: e.message().to_string(),
-    })?;
+    let file = SceneFile::deserialize(toml::Value::Table(table))
+        .map_err(|e| SceneError::Invalid { path: label.to_string(), message: e.message().to_string() })?;
     build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_path(label))
 }
 
@@ -225,9 +218,8 @@ pub fn apply_override(table: &mut toml::Table, key: &str, value: &str) -> Result
             return Ok(());
         }
         "camera" | "shadow" if rest.len() == 1 => {
-            let entry = table
-                .entry(section.to_string())
-                .or_insert_with(|| toml::Value::Table(toml::Table::new()));
+            let entry =
+                table.entry(section.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
             entry
                 .as_table_mut()
                 .ok_or_else(|| err(format!("[{section}] is not a table")))?
@@ -235,47 +227,25 @@ pub fn apply_override(table: &mut toml::Table, key: &str, value: &str) -> Result
             return Ok(());
         }
         "light" | "object" if rest.len() == 2 => {
-            let index: usize = rest[0]
-                .parse()
-                .map_err(|_| err(format!("`{}` is not a {section} index", rest[0])))?;
+            let index: usize =
+                rest[0].parse().map_err(|_| err(format!("`{}` is not a {section} index", rest[0])))?;
             let list = table
                 .get_mut(section)
                 .and_then(|v| v.as_array_mut())
                 .ok_or_else(|| err(format!("the scene has no [[{section}]]")))?;
             let count = list.len();
-            list.get_mut(index)
-                .ok_or_else(|| err(format!("no {section} {index} (the scene has {count})")))?
+            list.get_mut(index).ok_or_else(|| err(format!("no {section} {index} (the scene has {count})")))?
         }
-        _ => return Err(err("unknown key (use a [shadow] key, camera.KEY, light.N.KEY or object.N.KEY)".into())),
+        _ => {
+            return Err(err(
+                "unknown key (use a [shadow] key, camera.KEY, light.N.KEY or object.N.KEY)".into()
+            ));
+        }
     };
     slot.as_table_mut()
         .ok_or_else(|| err(format!("{section} {} is not a table", rest[0])))?
         .insert(rest[1].to_string(), parsed);
     Ok(())
-}
-
-/// Apply `[shadow]` overrides to settings on their own (lessons, the app).
-pub fn apply_shadow_overrides(
-    settings: &ShadowSettings,
-    overrides: &[(String, String)],
-) -> Result<ShadowSettings, SceneError> {
-    let mut table = toml::Table::new();
-    let shadow = toml::Table::try_from(settings).map_err(|e| SceneError::Invalid {
-        path: "[shadow]".into(),
-        message: e.to_string(),
-    })?;
-    table.insert("shadow".into(), toml::Value::Table(shadow));
-    let mut out = *settings;
-    for (key, value) in overrides {
-        apply_override(&mut table, key, value)?;
-        let shadow = table.get("shadow").cloned().unwrap_or(toml::Value::Table(Default::default()));
-        out = ShadowSettings::deserialize(shadow).map_err(|e| SceneError::Override {
-            key: key.clone(),
-            message: e.message().trim().to_string(),
-        })?;
-        out.validate().map_err(|message| SceneError::Override { key: key.clone(), message })?;
-    }
-    Ok(out)
 }
 
 fn line_of(text: &str, byte: usize) -> usize {
@@ -356,7 +326,9 @@ fn build_scene(
             Some(ScaleFile::PerAxis(s)) => Vec3::from(s),
         };
         if !scale.is_finite() || scale.abs().min_element() < 1e-6 {
-            return Err(BuildError::Invalid(format!("`{key}.scale` must be finite and non-zero, got {scale}")));
+            return Err(BuildError::Invalid(format!(
+                "`{key}.scale` must be finite and non-zero, got {scale}"
+            )));
         }
         let color = vec3(&format!("{key}.color"), o.color)?;
         objects.push(Object {
@@ -396,28 +368,45 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
     let kind = match l.kind {
         LightKindName::Directional => {
             if l.fov_deg.is_some() {
-                return Err(BuildError::Invalid(format!("`{}` is for spot lights; directional lights use `extent`", key("fov_deg"))));
+                return Err(BuildError::Invalid(format!(
+                    "`{}` is for spot lights; directional lights use `extent`",
+                    key("fov_deg")
+                )));
             }
-            let extent = l.extent.ok_or_else(|| BuildError::Invalid(format!("`{}` is required for a directional light", key("extent"))))?;
+            let extent = l.extent.ok_or_else(|| {
+                BuildError::Invalid(format!("`{}` is required for a directional light", key("extent")))
+            })?;
             LightKind::Directional { extent_world: ranged(&key("extent"), extent, 1e-3, 1e6)? }
         }
         LightKindName::Spot => {
             if l.extent.is_some() {
-                return Err(BuildError::Invalid(format!("`{}` is for directional lights; spot lights use `fov_deg`", key("extent"))));
+                return Err(BuildError::Invalid(format!(
+                    "`{}` is for directional lights; spot lights use `fov_deg`",
+                    key("extent")
+                )));
             }
-            let fov = l.fov_deg.ok_or_else(|| BuildError::Invalid(format!("`{}` is required for a spot light", key("fov_deg"))))?;
+            let fov = l.fov_deg.ok_or_else(|| {
+                BuildError::Invalid(format!("`{}` is required for a spot light", key("fov_deg")))
+            })?;
             LightKind::Spot { fov_deg: ranged(&key("fov_deg"), fov, 1.0, 160.0)? }
         }
     };
     let size = match (l.width, l.angular_diameter_deg) {
         (Some(_), Some(_)) => {
-            return Err(BuildError::Invalid(format!("light {i}: give `width` or `angular_diameter_deg`, not both")));
+            return Err(BuildError::Invalid(format!(
+                "light {i}: give `width` or `angular_diameter_deg`, not both"
+            )));
         }
         (None, Some(a)) => {
             if l.kind == LightKindName::Spot {
-                return Err(BuildError::Invalid(format!("`{}` is for directional lights only; spot lights use `width`", key("angular_diameter_deg"))));
+                return Err(BuildError::Invalid(format!(
+                    "`{}` is for directional lights only; spot lights use `width`",
+                    key("angular_diameter_deg")
+                )));
             }
-            LightSize::AngularDiameter { angular_diameter_deg: ranged(&key("angular_diameter_deg"), a, 0.0, 30.0)? }
+            LightSize::AngularDiameter {
+                angular_diameter_deg: ranged(&key("angular_diameter_deg"), a, 0.0, 30.0)?,
+            }
         }
         (w, None) => LightSize::Width { width_world: ranged(&key("width"), w.unwrap_or(0.0), 0.0, 1e4)? },
     };
@@ -425,7 +414,11 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
     let near = ranged(&key("near"), l.near.unwrap_or(default_near), 1e-4, 1e6)?;
     let far = ranged(&key("far"), l.far, near * 1.001, 1e7)?;
     if !(256..=8192).contains(&l.shadow_map_size) {
-        return Err(BuildError::Invalid(format!("`{}` = {} is out of range 256..=8192", key("shadow_map_size"), l.shadow_map_size)));
+        return Err(BuildError::Invalid(format!(
+            "`{}` = {} is out of range 256..=8192",
+            key("shadow_map_size"),
+            l.shadow_map_size
+        )));
     }
     let position = vec3(&key("position"), l.position)?;
     let target = vec3(&key("target"), l.target)?;
@@ -451,7 +444,11 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
     })
 }
 
-fn resolve_mesh(name: &str, base_dir: &Path, cache: &mut HashMap<PathBuf, Arc<Mesh>>) -> Result<Arc<Mesh>, BuildError> {
+fn resolve_mesh(
+    name: &str,
+    base_dir: &Path,
+    cache: &mut HashMap<PathBuf, Arc<Mesh>>,
+) -> Result<Arc<Mesh>, BuildError> {
     if let Some(mesh) = mesh::primitive(name) {
         let key = PathBuf::from(format!("<primitive {name}>"));
         return Ok(cache.entry(key).or_insert_with(|| Arc::new(mesh)).clone());

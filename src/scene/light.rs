@@ -103,30 +103,18 @@ impl Light {
 
     pub fn depth_linear_from_ndc(&self, z: f32) -> f32 {
         let (n, f) = (self.near, self.far);
-        if self.is_orthographic() {
-            n + z * (f - n)
-        } else {
-            n * f / (f - z * (f - n))
-        }
+        if self.is_orthographic() { n + z * (f - n) } else { n * f / (f - z * (f - n)) }
     }
 
     pub fn depth_ndc_from_linear(&self, d: f32) -> f32 {
         let (n, f) = (self.near, self.far);
-        if self.is_orthographic() {
-            (d - n) / (f - n)
-        } else {
-            f * (d - n) / (d * (f - n))
-        }
+        if self.is_orthographic() { (d - n) / (f - n) } else { f * (d - n) / (d * (f - n)) }
     }
 
     /// dz/dd at distance `d`: converts a world-unit depth bias into NDC depth units.
     pub fn ndc_per_world_at(&self, depth_linear: f32) -> f32 {
         let (n, f) = (self.near, self.far);
-        if self.is_orthographic() {
-            1.0 / (f - n)
-        } else {
-            f * n / (depth_linear * depth_linear * (f - n))
-        }
+        if self.is_orthographic() { 1.0 / (f - n) } else { f * n / (depth_linear * depth_linear * (f - n)) }
     }
 }
 

@@ -83,19 +83,10 @@ pub enum MeshError {
     Invalid { path: PathBuf, reason: String },
     /// `path` is the MTL file naming the texture.
     #[error("{}: texture `{name}` not found (looked for {})", path.display(), resolved.display())]
-    TextureNotFound {
-        path: PathBuf,
-        name: String,
-        resolved: PathBuf,
-    },
+    TextureNotFound { path: PathBuf, name: String, resolved: PathBuf },
     /// `path` is the MTL file naming the texture.
     #[error("{}: cannot load texture `{name}` ({}): {reason}", path.display(), resolved.display())]
-    Texture {
-        path: PathBuf,
-        name: String,
-        resolved: PathBuf,
-        reason: String,
-    },
+    Texture { path: PathBuf, name: String, resolved: PathBuf, reason: String },
     #[error("{}: contains no triangles", path.display())]
     NoTriangles { path: PathBuf },
 }
@@ -187,11 +178,7 @@ pub fn primitive(name: &str) -> Option<Mesh> {
 }
 
 fn vertex(p: DVec3, n: DVec3, u: f64, v: f64) -> Vertex {
-    Vertex {
-        position: p.as_vec3().into(),
-        normal: n.normalize().as_vec3().into(),
-        uv: [u as f32, v as f32],
-    }
+    Vertex { position: p.as_vec3().into(), normal: n.normalize().as_vec3().into(), uv: [u as f32, v as f32] }
 }
 
 #[derive(Default)]
@@ -204,9 +191,7 @@ impl Builder {
     /// A unit square centred on `centre`, facing `n`, with `up` towards v = 0.
     fn face(&mut self, centre: DVec3, n: DVec3, up: DVec3) {
         let right = up.cross(n);
-        self.grid(1, 1, |u, v| {
-            vertex(centre + right * (u - 0.5) - up * (v - 0.5), n, u, v)
-        });
+        self.grid(1, 1, |u, v| vertex(centre + right * (u - 0.5) - up * (v - 0.5), n, u, v));
     }
 
     /// A `(nu + 1) x (nv + 1)` vertex grid from `f(u, v)`, u and v in 0..=1.
@@ -287,30 +272,18 @@ pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
     }
 
     let mut textures = HashMap::new();
-    let owners = (libraries.into_inner().into_iter())
-        .flat_map(|(lib, count)| std::iter::repeat_n(lib, count));
+    let owners =
+        (libraries.into_inner().into_iter()).flat_map(|(lib, count)| std::iter::repeat_n(lib, count));
     let materials = (tobj_materials.unwrap_or_default().into_iter().zip(owners))
         .map(|(m, lib)| convert_material(m, &lib, &mut textures))
         .collect::<Result<Vec<_>, _>>()?;
-    let name = path
-        .file_stem()
-        .unwrap_or_default()
-        .to_string_lossy()
-        .into_owned();
-    let mut mesh = Mesh {
-        name,
-        vertices: Vec::new(),
-        indices: Vec::new(),
-        parts: Vec::new(),
-        materials,
-    };
+    let name = path.file_stem().unwrap_or_default().to_string_lossy().into_owned();
+    let mut mesh = Mesh { name, vertices: Vec::new(), indices: Vec::new(), parts: Vec::new(), materials };
     for model in models.into_iter().filter(|m| !m.mesh.indices.is_empty()) {
         append_model(&mut mesh, model).map_err(|reason| invalid(path, reason))?;
     }
     if mesh.indices.is_empty() {
-        return Err(MeshError::NoTriangles {
-            path: path.to_owned(),
-        });
+        return Err(MeshError::NoTriangles { path: path.to_owned() });
     }
     Ok(mesh)
 }
@@ -345,43 +318,30 @@ fn append_model(mesh: &mut Mesh, model: tobj::Model) -> Result<(), String> {
         if !position.is_finite() {
             return Err(format!("object `{name}` has a non-finite vertex position"));
         }
-        let normal = normals.map_or(Vec3::ZERO, |n| {
-            Vec3::from_slice(&n[i * 3..i * 3 + 3]).normalize_or_zero()
-        });
+        let normal =
+            normals.map_or(Vec3::ZERO, |n| Vec3::from_slice(&n[i * 3..i * 3 + 3]).normalize_or_zero());
         needs_normals |= normal == Vec3::ZERO;
         let uv = uvs
             .map(|t| [t[i * 2], 1.0 - t[i * 2 + 1]])
             .filter(|uv| uv.iter().all(|x| x.is_finite()))
             .unwrap_or_default();
         let (position, normal) = (position.into(), normal.into());
-        mesh.vertices.push(Vertex {
-            position,
-            normal,
-            uv,
-        });
+        mesh.vertices.push(Vertex { position, normal, uv });
     }
     if needs_normals {
         smooth_normals(&mut mesh.vertices[first..], &m.indices);
     }
     mesh.indices.extend(m.indices.iter().map(|&i| base + i));
     let material = m.material_id.filter(|&i| i < mesh.materials.len());
-    mesh.parts.push(MeshPart {
-        name,
-        index_start,
-        index_count,
-        material,
-    });
+    mesh.parts.push(MeshPart { name, index_start, index_count, material });
     Ok(())
 }
 
 /// Reads a text file; bytes that are not UTF-8 are replaced, not rejected.
 fn read_text(path: &Path) -> Result<String, MeshError> {
-    let bytes = std::fs::read(path).map_err(|e| MeshError::Read {
-        path: path.to_owned(),
-        reason: e.to_string(),
-    })?;
-    Ok(String::from_utf8(bytes)
-        .unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()))
+    let bytes =
+        std::fs::read(path).map_err(|e| MeshError::Read { path: path.to_owned(), reason: e.to_string() })?;
+    Ok(String::from_utf8(bytes).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()))
 }
 
 /// Runs a tobj parser, turning its error or a panic on malformed input into a
@@ -426,11 +386,7 @@ fn convert_material(
         Some(spec) => Some(load_texture(mtl_path, spec, textures)?),
         None => None,
     };
-    Ok(Material {
-        name: m.name,
-        diffuse,
-        diffuse_texture,
-    })
+    Ok(Material { name: m.name, diffuse, diffuse_texture })
 }
 
 fn load_texture(
@@ -447,11 +403,7 @@ fn load_texture(
     }
     let (path, name) = (mtl_path.to_owned(), name.to_owned());
     if !resolved.exists() {
-        return Err(MeshError::TextureNotFound {
-            path,
-            name,
-            resolved,
-        });
+        return Err(MeshError::TextureNotFound { path, name, resolved });
     }
     let decoded = image::ImageReader::open(&resolved)
         .and_then(|reader| reader.with_guessed_format())
@@ -461,12 +413,7 @@ fn load_texture(
         Ok(image) => image.into_rgba8(),
         Err(reason) => {
             let reason = reason.replace('\n', " ");
-            return Err(MeshError::Texture {
-                path,
-                name,
-                resolved,
-                reason,
-            });
+            return Err(MeshError::Texture { path, name, resolved, reason });
         }
     };
     let texture = Arc::new(TextureImage {
@@ -482,8 +429,7 @@ fn load_texture(
 /// The file name in a `map_Kd` value, after any options such as `-s 1 1 1`.
 fn texture_file_name(spec: &str) -> &str {
     fn split(s: &str) -> (&str, &str) {
-        s.split_once(char::is_whitespace)
-            .map_or((s, ""), |(word, rest)| (word, rest.trim_start()))
+        s.split_once(char::is_whitespace).map_or((s, ""), |(word, rest)| (word, rest.trim_start()))
     }
     let mut rest = spec.trim();
     while rest.starts_with('-') {

@@ -1,9 +1,7 @@
 use super::*;
 
 fn fixture(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/data/obj")
-        .join(name)
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/obj").join(name)
 }
 
 fn load(name: &str) -> Mesh {
@@ -31,21 +29,13 @@ fn temp_files(tag: &str, files: &[(&str, &str)]) -> PathBuf {
 fn assert_unit_normals(mesh: &Mesh) {
     for v in &mesh.vertices {
         let len = Vec3::from(v.normal).length();
-        assert!(
-            (len - 1.0).abs() < 1e-5,
-            "{}: normal length {len}",
-            mesh.name
-        );
+        assert!((len - 1.0).abs() < 1e-5, "{}: normal length {len}", mesh.name);
     }
 }
 
 fn assert_valid(mesh: &Mesh) {
     assert_eq!(mesh.indices.len() % 3, 0);
-    assert!(
-        mesh.indices
-            .iter()
-            .all(|&i| (i as usize) < mesh.vertices.len())
-    );
+    assert!(mesh.indices.iter().all(|&i| (i as usize) < mesh.vertices.len()));
     let covered: u32 = mesh.parts.iter().map(|p| p.index_count).sum();
     assert_eq!(covered as usize, mesh.indices.len(), "{}", mesh.name);
 }
@@ -131,11 +121,7 @@ fn primitive_bounds_and_uvs() {
         assert!(lo.abs_diff_eq(-half, 1e-5), "{name}: min {lo}");
         assert!(hi.abs_diff_eq(half, 1e-5), "{name}: max {hi}");
         for v in &mesh.vertices {
-            assert!(
-                v.uv.iter().all(|t| (0.0..=1.0).contains(t)),
-                "{name}: uv {:?}",
-                v.uv
-            );
+            assert!(v.uv.iter().all(|t| (0.0..=1.0).contains(t)), "{name}: uv {:?}", v.uv);
         }
     }
     let empty = Mesh {
@@ -180,10 +166,7 @@ fn multi_material_parts_colours_and_texture() {
     assert_eq!(names, ["red_quad", "blue_triangle"]);
     let material = |part: usize| &mesh.materials[mesh.parts[part].material.expect("material")];
     let (red, blue) = (material(0), material(1));
-    assert_eq!(
-        (red.name.as_str(), blue.name.as_str()),
-        ("red_textured", "blue_plain")
-    );
+    assert_eq!((red.name.as_str(), blue.name.as_str()), ("red_textured", "blue_plain"));
     assert!(red.diffuse.abs_diff_eq(Vec3::new(0.8, 0.1, 0.1), 1e-6));
     assert!(blue.diffuse.abs_diff_eq(Vec3::new(0.1, 0.2, 0.8), 1e-6));
     assert!(blue.diffuse_texture.is_none());
@@ -191,12 +174,7 @@ fn multi_material_parts_colours_and_texture() {
     assert!(texture.path.is_absolute() && texture.path.ends_with("tex_2x2.png"));
     assert_eq!((texture.width, texture.height), (2, 2));
     let pixels: Vec<&[u8]> = texture.rgba8.chunks_exact(4).collect();
-    let expected: [&[u8]; 4] = [
-        &[255, 0, 0, 255],
-        &[0, 255, 0, 255],
-        &[0, 0, 255, 255],
-        &[255; 4],
-    ];
+    let expected: [&[u8]; 4] = [&[255, 0, 0, 255], &[0, 255, 0, 255], &[0, 0, 255, 255], &[255; 4]];
     assert_eq!(pixels, expected);
     // OBJ v points up; stored uvs have their origin at the top-left.
     let first = &mesh.vertices[mesh.indices[0] as usize];
@@ -219,10 +197,7 @@ fn malformed_and_empty_files_are_errors() {
     assert!(message.contains("malformed.obj"), "{message}");
     assert!(message.contains("out of bounds"), "{message}");
     let message = load_err("empty.obj");
-    assert!(
-        message.contains("empty.obj: contains no triangles"),
-        "{message}"
-    );
+    assert!(message.contains("empty.obj: contains no triangles"), "{message}");
     let message = load_err("no_such_file.obj");
     assert!(message.contains("no_such_file.obj"), "{message}");
 }
@@ -232,23 +207,11 @@ fn blender_export_keeps_utf8_names() {
     let mesh = load("blender_export.obj");
     assert_valid(&mesh);
     assert_unit_normals(&mesh);
-    assert!(
-        mesh.parts.iter().any(|p| p.name.contains("Würfel_立方体")),
-        "{:?}",
-        mesh.parts
-    );
-    assert!(
-        mesh.materials.iter().any(|m| m.name == "材质_Matériel"),
-        "{:?}",
-        mesh.materials
-    );
+    assert!(mesh.parts.iter().any(|p| p.name.contains("Würfel_立方体")), "{:?}", mesh.parts);
+    assert!(mesh.materials.iter().any(|m| m.name == "材质_Matériel"), "{:?}", mesh.materials);
     assert!(mesh.parts.iter().all(|p| p.material.is_some()));
     assert_eq!(mesh.triangle_count(), 12);
-    assert!(
-        mesh.materials[0]
-            .diffuse
-            .abs_diff_eq(Vec3::splat(0.8), 1e-6)
-    );
+    assert!(mesh.materials[0].diffuse.abs_diff_eq(Vec3::splat(0.8), 1e-6));
     assert_eq!(mesh.bounds(), (Vec3::splat(-1.0), Vec3::splat(1.0)));
     // The file's counter-clockwise winding is kept: it agrees with its normals.
     for tri in mesh.indices.chunks_exact(3) {
@@ -266,19 +229,11 @@ fn missing_or_broken_material_library_is_an_error() {
     // `Kd` with one value makes tobj panic; it must come back as an error.
     let dir = temp_files(
         "mtl",
-        &[
-            ("missing.obj", &missing),
-            ("broken.obj", &broken),
-            ("broken.mtl", "newmtl a\nKd 0.5\n"),
-        ],
+        &[("missing.obj", &missing), ("broken.obj", &broken), ("broken.mtl", "newmtl a\nKd 0.5\n")],
     );
-    let message = load_obj(&dir.join("missing.obj"))
-        .expect_err("missing mtl")
-        .to_string();
+    let message = load_obj(&dir.join("missing.obj")).expect_err("missing mtl").to_string();
     assert!(message.contains("nope.mtl"), "{message}");
-    let message = load_obj(&dir.join("broken.obj"))
-        .expect_err("broken mtl")
-        .to_string();
+    let message = load_obj(&dir.join("broken.obj")).expect_err("broken mtl").to_string();
     assert!(message.contains("broken.mtl"), "{message}");
     let _ = std::fs::remove_dir_all(dir);
 }
@@ -292,40 +247,20 @@ fn attributes_are_validated_and_converted() {
             ("ok.obj", obj),
             ("nan.obj", "v nan 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
             ("lines.obj", "v 0 0 0\nv 1 0 0\nl 1 2\n"),
-            (
-                "textured.mtl",
-                "newmtl t\nmap_Kd -s 1 1 1 -clamp on sub dir\\t.png\n",
-            ),
-            (
-                "textured.obj",
-                "mtllib textured.mtl\nusemtl t\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
-            ),
+            ("textured.mtl", "newmtl t\nmap_Kd -s 1 1 1 -clamp on sub dir\\t.png\n"),
+            ("textured.obj", "mtllib textured.mtl\nusemtl t\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
         ],
     );
     let mesh = load_obj(&dir.join("ok.obj")).expect("ok.obj loads");
     assert_eq!(mesh.name, "ok");
-    assert!(
-        mesh.vertices
-            .iter()
-            .all(|v| v.uv == [0.25, 0.25] && v.normal == [0.0, 1.0, 0.0])
-    );
+    assert!(mesh.vertices.iter().all(|v| v.uv == [0.25, 0.25] && v.normal == [0.0, 1.0, 0.0]));
     assert_eq!(mesh.parts[0].material, None);
     let message = load_obj(&dir.join("nan.obj")).expect_err("nan").to_string();
-    assert!(
-        message.contains("nan.obj") && message.contains("non-finite"),
-        "{message}"
-    );
-    let message = load_obj(&dir.join("lines.obj"))
-        .expect_err("lines only")
-        .to_string();
+    assert!(message.contains("nan.obj") && message.contains("non-finite"), "{message}");
+    let message = load_obj(&dir.join("lines.obj")).expect_err("lines only").to_string();
     assert!(message.contains("contains no triangles"), "{message}");
-    let message = load_obj(&dir.join("textured.obj"))
-        .expect_err("no texture")
-        .to_string();
-    assert!(
-        message.contains("texture `sub dir\\t.png` not found"),
-        "{message}"
-    );
+    let message = load_obj(&dir.join("textured.obj")).expect_err("no texture").to_string();
+    assert!(message.contains("texture `sub dir\\t.png` not found"), "{message}");
     assert!(message.contains("sub dir/t.png"), "{message}");
     let _ = std::fs::remove_dir_all(dir);
 }

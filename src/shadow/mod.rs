@@ -140,7 +140,8 @@ impl<'a> Twin<'a> {
 
     pub fn light_space_lookup(&self, world_pos: Vec3, normal: Vec3) -> ShadowCoord {
         let light = self.light;
-        let mut out = ShadowCoord { n_dot_l: normal.dot(light_dir_to(light, world_pos)), ..Default::default() };
+        let mut out =
+            ShadowCoord { n_dot_l: normal.dot(light_dir_to(light, world_pos)), ..Default::default() };
         let mut p = world_pos;
         if self.params.normal_offset_texels > 0.0 {
             let d = depth_linear_from_ndc(light, project_to_light(light, world_pos).z);
@@ -159,7 +160,9 @@ impl<'a> Twin<'a> {
             BIAS_CONSTANT => p.bias,
             BIAS_SLOPE => (p.slope_bias * (1.0 - coord.n_dot_l)).max(p.bias),
             BIAS_ADAPTIVE => {
-                let a = (1.0 + filter_radius_texels.ceil()) * 0.5 * texel_world_at(self.light, coord.depth_linear);
+                let a = (1.0 + filter_radius_texels.ceil())
+                    * 0.5
+                    * texel_world_at(self.light, coord.depth_linear);
                 let b = 1.0 - coord.n_dot_l;
                 let bias_world = p.adaptive_c * a.max(a * b);
                 bias_world * ndc_per_world(self.light, coord.depth_linear)
@@ -217,15 +220,10 @@ impl<'a> Twin<'a> {
     pub fn visibility_hard(&mut self, coord: &ShadowCoord) -> f32 {
         let bias = self.receiver_bias_ndc(coord, 0.0);
         let p = self.params;
-        let v = if p.clamp_outside == 1
-            && (outside_map(coord.uv) || !(0.0..=1.0).contains(&coord.depth_ndc))
-        {
-            1.0
-        } else if coord.depth_ndc - bias <= self.stored_depth_ndc(coord.uv) {
-            1.0
-        } else {
-            0.0
-        };
+        let outside =
+            p.clamp_outside == 1 && (outside_map(coord.uv) || !(0.0..=1.0).contains(&coord.depth_ndc));
+        let lit = outside || coord.depth_ndc - bias <= self.stored_depth_ndc(coord.uv);
+        let v = if lit { 1.0 } else { 0.0 };
         self.record(TapKind::Filter, coord.uv, v);
         v
     }
@@ -298,7 +296,8 @@ impl<'a> Twin<'a> {
         }
         Penumbra {
             width_world,
-            filter_radius_texels: (radius_uv * light.map_size_texels).max(self.params.min_filter_radius_texels),
+            filter_radius_texels: (radius_uv * light.map_size_texels)
+                .max(self.params.min_filter_radius_texels),
         }
     }
 
@@ -325,7 +324,12 @@ impl<'a> Twin<'a> {
     }
 
     /// What the analysis pass writes for a pixel: the twin of `fs_analysis`.
-    pub fn analysis_at(&mut self, pixel: (u32, u32), world_pos: Vec3, normal: Vec3) -> (ShadowCoord, PcssResult) {
+    pub fn analysis_at(
+        &mut self,
+        pixel: (u32, u32),
+        world_pos: Vec3,
+        normal: Vec3,
+    ) -> (ShadowCoord, PcssResult) {
         let seed = kernels::pixel_seed(pixel, self.params.noise_seed, self.params.rotate_per_pixel == 1);
         let coord = self.light_space_lookup(world_pos, normal);
         let result = self.shadow_visibility(&coord, seed);

@@ -82,7 +82,8 @@ pub fn heat_color(t: f32) -> Rgba<u8> {
     let x = t * (STOPS.len() - 1) as f32;
     let i = (x.floor() as usize).min(STOPS.len() - 2);
     let f = x - i as f32;
-    let c: Vec<u8> = (0..3).map(|k| ((STOPS[i][k] * (1.0 - f) + STOPS[i + 1][k] * f) * 255.0).round() as u8).collect();
+    let c: Vec<u8> =
+        (0..3).map(|k| ((STOPS[i][k] * (1.0 - f) + STOPS[i + 1][k] * f) * 255.0).round() as u8).collect();
     Rgba([c[0], c[1], c[2], 255])
 }
 
@@ -100,7 +101,12 @@ pub fn gray_image(analysis: &Analysis, value: impl Fn(usize) -> f32) -> RgbaImag
 }
 
 /// Heatmap of a per-pixel value over the surfaces, scaled to its own range (from 0).
-pub fn heat_image(analysis: &Analysis, label: &'static str, unit: &'static str, value: impl Fn(usize) -> f32) -> (RgbaImage, Legend) {
+pub fn heat_image(
+    analysis: &Analysis,
+    label: &'static str,
+    unit: &'static str,
+    value: impl Fn(usize) -> f32,
+) -> (RgbaImage, Legend) {
     let max = (0..analysis.shadow.len())
         .filter(|&i| analysis.hit(i))
         .map(&value)
@@ -118,11 +124,8 @@ pub fn heat_image(analysis: &Analysis, label: &'static str, unit: &'static str, 
 /// The shadow map as linear depth (near = dark, far = light), stretched over the range of
 /// depths actually stored (texels still at the clear value are shown in the no-surface colour).
 pub fn shadow_map_image(map: &DepthImage, light: &LightGpu) -> (RgbaImage, Legend) {
-    let linear: Vec<Option<f32>> = map
-        .depth_ndc
-        .iter()
-        .map(|&z| (z < 1.0).then(|| depth_linear_from_ndc(light, z)))
-        .collect();
+    let linear: Vec<Option<f32>> =
+        map.depth_ndc.iter().map(|&z| (z < 1.0).then(|| depth_linear_from_ndc(light, z))).collect();
     let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
     for d in linear.iter().flatten() {
         lo = lo.min(*d);
@@ -136,16 +139,24 @@ pub fn shadow_map_image(map: &DepthImage, light: &LightGpu) -> (RgbaImage, Legen
         Some(d) => heat_color((d - lo) / span),
         None => Rgba([250, 250, 250, 255]),
     });
-    (image, Legend { label: "light-space depth", min: lo, max: hi, unit: "world units from the light (white: nothing stored)" })
+    (
+        image,
+        Legend {
+            label: "light-space depth",
+            min: lo,
+            max: hi,
+            unit: "world units from the light (white: nothing stored)",
+        },
+    )
 }
 
 /// |technique - reference| over the surfaces, and its mean.
 pub fn error_image(analysis: &Analysis, reference: &[f32]) -> (RgbaImage, Legend, f32) {
     let mut sum = 0.0f64;
     let mut count = 0usize;
-    for i in 0..analysis.shadow.len() {
+    for (i, (shadow, truth)) in analysis.shadow.iter().zip(reference).enumerate() {
         if analysis.hit(i) {
-            sum += f64::from((analysis.shadow[i][0] - reference[i]).abs());
+            sum += f64::from((shadow[0] - truth).abs());
             count += 1;
         }
     }

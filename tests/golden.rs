@@ -1,0 +1,96 @@
+//! Golden images per technique, compared with a tolerance. On failure `*-actual.png` and
+//! `*-diff.png` are written next to the reference; `UPDATE_SNAPSHOTS=1` rewrites the references.
+
+mod common;
+
+use image::{Rgba, RgbaImage};
+use shadowlab::render::FrameRequest;
+
+/// A pixel "differs" past this many levels in any channel (0..255).
+const PIXEL_THRESHOLD: u8 = 24;
+/// At most this fraction of pixels may differ (noise patterns, rasteriser rounding).
+const MAX_DIFFERING_FRACTION: f64 = 0.005;
+
+fn check(name: &str, scene: &str, overrides: &[(&str, &str)]) {
+    render_and_compare(name, common::scene(scene, overrides), 0.0);
+}
+
+fn check_at(name: &str, scene: &str, time_s: f32) {
+    render_and_compare(name, common::scene(scene, &[]), time_s);
+}
+
+fn render_and_compare(name: &str, scene: shadowlab::scene::Scene, time_s: f32) {
+    let (_ctx, mut renderer) = common::gpu();
+    let request =
+        FrameRequest { time_s, size: (320, 180), final_color: true, analysis: false, ..Default::default() };
+    renderer.render(&scene, &request).expect("render");
+    let actual = renderer.read_color().expect("read back");
+    let golden = common::repo_path(&format!("tests/golden/{name}.png"));
+    if std::env::var("UPDATE_SNAPSHOTS").is_ok_and(|v| v == "1") {
+        actual.save(&golden).expect("write golden");
+        return;
+    }
+    let expected = image::open(&golden)
+        .unwrap_or_else(|e| panic!("{}: {e} (run with UPDATE_SNAPSHOTS=1 to create it)", golden.display()))
+        .to_rgba8();
+    assert_eq!(expected.dimensions(), actual.dimensions(), "{name}: size changed");
+    let mut differing = 0usize;
+    let diff = RgbaImage::from_fn(actual.width(), actual.height(), |x, y| {
+        let (a, e) = (actual.get_pixel(x, y), expected.get_pixel(x, y));
+        let d = (0..3).map(|c| a[c].abs_diff(e[c])).max().unwrap_or(0);
+        if d > PIXEL_THRESHOLD {
+            differing += 1;
+            Rgba([255, 0, 255, 255])
+        } else {
+            let g = e[1] / 3;
+            Rgba([g, g, g, 255])
+        }
+    });
+    let fraction = differing as f64 / (actual.width() * actual.height()) as f64;
+    if fraction > MAX_DIFFERING_FRACTION {
+        let stem = golden.with_extension("");
+        actual.save(format!("{}-actual.png", stem.display())).expect("write actual");
+        diff.save(format!("{}-diff.png", stem.display())).expect("write diff");
+        panic!(
+            "{name}: {:.2}% of pixels differ (limit {:.2}%); see {}-diff.png",
+            fraction * 100.0,
+            MAX_DIFFERING_FRACTION * 100.0,
+            stem.display()
+        );
+    }
+}
+
+#[test]
+fn games202_hard() {
+    check("games202_hard", "games202", &[("technique", "hard")]);
+}
+
+#[test]
+fn games202_pcf() {
+    check("games202_pcf", "games202", &[("technique", "pcf"), ("radius_texels", "4")]);
+}
+
+#[test]
+fn games202_pcss() {
+    check("games202_pcss", "games202", &[("technique", "pcss")]);
+}
+
+#[test]
+fn acne_without_bias() {
+    check("acne_none", "acne", &[]);
+}
+
+#[test]
+fn acne_with_slope_bias() {
+    check("acne_slope", "acne", &[("bias_mode", "slope"), ("bias", "0.0005"), ("slope_bias", "0.004")]);
+}
+
+#[test]
+fn contact_pcss() {
+    check("contact_pcss", "contact", &[]);
+}
+
+#[test]
+fn multi_light_at_two_seconds() {
+    check_at("multi_light_t2", "multi_light", 2.0);
+}

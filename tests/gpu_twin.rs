@@ -1,0 +1,162 @@
+//! The GPU and the CPU twin agree: for every technique and kernel, at many pixels, the
+//! visibility from the analysis pass equals the twin's on the read-back shadow map.
+
+mod common;
+
+use glam::Vec3;
+use shadowlab::shadow::Twin;
+
+struct Agreement {
+    compared: usize,
+    within: usize,
+    max_diff: f32,
+    /// Pixels with visibility < 0.5, and strictly between 0 and 1 (the test must see shadows).
+    shadowed: usize,
+    partial: usize,
+}
+
+fn compare(scene_name: &str, overrides: &[(&str, &str)], tolerance: f32) -> Agreement {
+    let (_ctx, mut renderer) = common::gpu();
+    let scene = common::scene(scene_name, overrides);
+    let request = common::analysis_request((240, 136), 0);
+    renderer.render(&scene, &request).expect("render");
+    let analysis = renderer.read_analysis().expect("analysis");
+    let map = renderer.read_shadow_map(0).expect("shadow map");
+    let light = renderer.frame_lights[0];
+    let params = renderer.frame_params;
+    let mut twin = Twin::new(&light, &params, &map);
+    let mut out = Agreement { compared: 0, within: 0, max_diff: 0.0, shadowed: 0, partial: 0 };
+    // Every 3rd pixel in both directions: ~3600 pixels, edges included.
+    for y in (0..analysis.height).step_by(3) {
+        for x in (0..analysis.width).step_by(3) {
+            let i = analysis.index(x, y);
+            if !analysis.hit(i) {
+                continue;
+            }
+            let position = Vec3::from_slice(&analysis.position[i][..3]);
+            let normal = Vec3::from_slice(&analysis.normal[i][..3]);
+            let (_, result) = twin.analysis_at((x, y), position, normal);
+            let gpu = analysis.shadow[i][0];
+            let diff = (result.visibility - gpu).abs();
+            out.shadowed += usize::from(gpu < 0.5);
+            out.partial += usize::from(gpu > 0.01 && gpu < 0.99);
+            out.compared += 1;
+            out.max_diff = out.max_diff.max(diff);
+            if diff <= tolerance {
+                out.within += 1;
+            }
+            if scene.shadow.technique == shadowlab::scene::Technique::Pcss {
+                assert!(
+                    (result.search.radius_texels - analysis.shadow[i][1]).abs()
+                        < 1e-2 * result.search.radius_texels.max(1.0)
+                );
+            }
+        }
+    }
+    out
+}
+
+/// At least 99.5% of pixels agree within `tolerance`; the rest may differ by one tap
+/// (a depth comparison that lands exactly on a stored value, decided by the last bit).
+fn assert_agrees(name: &str, overrides: &[(&str, &str)], tolerance: f32) {
+    let a = compare("games202", overrides, tolerance);
+    let fraction = a.within as f64 / a.compared as f64;
+    eprintln!(
+        "{name}: {}/{} pixels within {tolerance}, max diff {:.4}; {} shadowed, {} partial",
+        a.within, a.compared, a.max_diff, a.shadowed, a.partial
+    );
+    assert!(a.compared > 2000, "{name}: too few surface pixels ({})", a.compared);
+    assert!(
+        a.shadowed * 50 > a.compared,
+        "{name}: under 2% of pixels are in shadow: the test would prove little"
+    );
+    let soft = overrides.iter().any(|(k, v)| *k == "technique" && *v != "hard");
+    if soft {
+        assert!(a.partial * 200 > a.compared, "{name}: under 0.5% of pixels are in a penumbra");
+    }
+    assert!(
+        fraction >= 0.995,
+        "{name}: only {:.2}% of pixels agree (max diff {})",
+        fraction * 100.0,
+        a.max_diff
+    );
+}
+
+#[test]
+fn hard_shadow_matches_twin() {
+    assert_agrees("hard", &[("technique", "hard")], 1e-3);
+}
+
+#[test]
+fn pcf_matches_twin_for_every_software_kernel() {
+    for kernel in ["poisson", "uniform", "vogel", "grid"] {
+        assert_agrees(
+            &format!("pcf {kernel}"),
+            &[("technique", "pcf"), ("pcf_kernel", kernel), ("radius_texels", "4")],
+            1e-3,
+        );
+    }
+}
+
+#[test]
+fn pcf_hardware_kernel_matches_twin_within_filter_precision() {
+    // The comparison sampler's bilinear weights have 8 bits of sub-texel precision on most
+    // hardware (lavapipe too), so the twin's exact weights may differ by ~1/256 per tap.
+    assert_agrees(
+        "pcf hardware",
+        &[("technique", "pcf"), ("pcf_kernel", "hardware"), ("radius_texels", "4")],
+        1.0 / 64.0,
+    );
+}
+
+#[test]
+fn pcss_matches_twin() {
+    for kernel in ["poisson", "vogel"] {
+        assert_agrees(&format!("pcss {kernel}"), &[("technique", "pcss"), ("pcf_kernel", kernel)], 1e-3);
+    }
+}
+
+#[test]
+fn bias_modes_and_normal_offset_match_twin() {
+    for mode in ["none", "constant", "slope", "adaptive"] {
+        assert_agrees(
+            &format!("bias {mode}"),
+            &[("technique", "pcf"), ("bias_mode", mode), ("normal_offset_texels", "1.5")],
+            1e-3,
+        );
+    }
+}
+
+#[test]
+fn unclamped_lookups_match_twin() {
+    assert_agrees(
+        "clamp_outside=false",
+        &[("technique", "hard"), ("clamp_outside", "false"), ("light.0.extent", "15")],
+        1e-3,
+    );
+}
+
+#[test]
+fn twin_disagrees_when_its_parameters_differ() {
+    // A negative control: the comparison must notice a wrong radius.
+    let (_ctx, mut renderer) = common::gpu();
+    let scene = common::scene("games202", &[("technique", "pcf"), ("radius_texels", "6")]);
+    renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
+    let analysis = renderer.read_analysis().expect("analysis");
+    let map = renderer.read_shadow_map(0).expect("shadow map");
+    let light = renderer.frame_lights[0];
+    let mut params = renderer.frame_params;
+    params.radius_texels = 2.0;
+    let mut twin = Twin::new(&light, &params, &map);
+    let mut differing = 0;
+    for i in 0..analysis.shadow.len() {
+        if analysis.hit(i) {
+            let (x, y) = (i as u32 % analysis.width, i as u32 / analysis.width);
+            let p = Vec3::from_slice(&analysis.position[i][..3]);
+            let n = Vec3::from_slice(&analysis.normal[i][..3]);
+            let (_, r) = twin.analysis_at((x, y), p, n);
+            differing += usize::from((r.visibility - analysis.shadow[i][0]).abs() > 1e-3);
+        }
+    }
+    assert!(differing > 100, "a radius change went unnoticed ({differing} pixels differ)");
+}

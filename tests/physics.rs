@@ -1,0 +1,188 @@
+//! Physics checks: the soft-shadow techniques against the similar-triangle formula, their
+//! limits against the hard shadow, and the ground truth's convergence.
+
+mod common;
+
+use shadowlab::render::{Analysis, FrameRequest, Renderer};
+use shadowlab::scene::Scene;
+
+fn visibility(renderer: &mut Renderer, scene: &Scene, size: (u32, u32)) -> Analysis {
+    renderer.render(scene, &common::analysis_request(size, 0)).expect("render");
+    renderer.read_analysis().expect("analysis")
+}
+
+fn max_visibility_difference(a: &Analysis, b: &Analysis) -> f32 {
+    a.shadow.iter().zip(&b.shadow).map(|(x, y)| (x[0] - y[0]).abs()).fold(0.0, f32::max)
+}
+
+#[test]
+fn pcss_with_light_size_zero_equals_the_hard_shadow() {
+    let (_ctx, mut renderer) = common::gpu();
+    let hard = visibility(
+        &mut renderer,
+        &common::scene("games202", &[("technique", "hard"), ("light.0.width", "0")]),
+        (320, 180),
+    );
+    let pcss = visibility(
+        &mut renderer,
+        &common::scene("games202", &[("technique", "pcss"), ("light.0.width", "0")]),
+        (320, 180),
+    );
+    assert!(hard.shadow.iter().any(|s| s[0] < 0.5), "the hard shadow has no shadow in it");
+    assert_eq!(max_visibility_difference(&hard, &pcss), 0.0);
+}
+
+#[test]
+fn pcf_with_radius_zero_equals_the_hard_shadow() {
+    let (_ctx, mut renderer) = common::gpu();
+    let hard = visibility(&mut renderer, &common::scene("games202", &[("technique", "hard")]), (320, 180));
+    for kernel in ["poisson", "uniform", "vogel", "grid"] {
+        let pcf = visibility(
+            &mut renderer,
+            &common::scene(
+                "games202",
+                &[("technique", "pcf"), ("radius_texels", "0"), ("pcf_kernel", kernel)],
+            ),
+            (320, 180),
+        );
+        assert_eq!(max_visibility_difference(&hard, &pcf), 0.0, "kernel {kernel}");
+    }
+}
+
+fn mean_abs(a: &[f32], b: &[f32]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| f64::from((x - y).abs())).sum::<f64>() / a.len() as f64
+}
+
+#[test]
+fn the_reference_converges_as_samples_grow() {
+    let (_ctx, mut renderer) = common::gpu();
+    let reference = |renderer: &mut Renderer, samples: &str| {
+        let scene =
+            common::scene("contact", &[("reference_samples", samples), ("light.0.shadow_map_size", "1024")]);
+        renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
+        renderer.render_reference(&scene, 0).expect("reference")
+    };
+    let truth = reference(&mut renderer, "1024");
+    let errors: Vec<f64> =
+        ["4", "16", "64", "256"].iter().map(|n| mean_abs(&reference(&mut renderer, n), &truth)).collect();
+    eprintln!("mean |reference_N - reference_1024| for N = 4, 16, 64, 256: {errors:?}");
+    for pair in errors.windows(2) {
+        assert!(pair[1] < pair[0], "error did not fall: {errors:?}");
+    }
+    assert!(errors[3] < 0.25 * errors[0], "256 samples should be far closer than 4: {errors:?}");
+}
+
+/// Fraction of a unit disk's area with x below `u` (-1..1): the profile of a straight shadow
+/// edge under a disk light, and under a disk filter.
+fn disk_fraction(u: f64) -> f64 {
+    let u = u.clamp(-1.0, 1.0);
+    (u * (1.0 - u * u).sqrt() + u.asin() + std::f64::consts::FRAC_PI_2) / std::f64::consts::PI
+}
+
+/// Where the disk profile crosses `level`, in units of the disk's radius.
+fn disk_crossing(level: f64) -> f64 {
+    let (mut lo, mut hi) = (-1.0, 1.0);
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if disk_fraction(mid) < level { lo = mid } else { hi = mid }
+    }
+    lo
+}
+
+/// Full penumbra width (world units) across a shadow edge parallel to x near `(x, z_edge)`,
+/// seen from straight above: the 10%..90% width of the visibility profile along z, averaged
+/// over columns, scaled to the full width of a disk's profile.
+fn measured_penumbra(renderer: &mut Renderer, mut scene: Scene, x: f32, z_edge: f32, reference: bool) -> f32 {
+    scene.camera = shadowlab::scene::Camera {
+        projection: shadowlab::scene::Projection::Orthographic { height_world: 2.0 },
+        position: glam::Vec3::new(x, 60.0, z_edge),
+        target: glam::Vec3::new(x, 0.0, z_edge),
+        up: glam::Vec3::new(0.0, 0.0, -1.0),
+        near: 1.0,
+        far: 100.0,
+    };
+    let size = (96, 400);
+    renderer
+        .render(&scene, &FrameRequest { size, final_color: false, analysis: true, ..Default::default() })
+        .expect("render");
+    let analysis = renderer.read_analysis().expect("analysis");
+    let values: Vec<f32> = if reference {
+        renderer.render_reference(&scene, 0).expect("reference")
+    } else {
+        analysis.shadow.iter().map(|s| s[0]).collect()
+    };
+    // Rows run along +z (image up is -z). Average each row over the middle columns.
+    let profile: Vec<(f32, f32)> = (0..size.1)
+        .map(|y| {
+            let row: Vec<usize> = (24..72).map(|x| analysis.index(x, y)).collect();
+            let z = analysis.position[row[0]][2];
+            let v = row.iter().map(|&i| values[i]).sum::<f32>() / row.len() as f32;
+            (z, v)
+        })
+        .collect();
+    let crossing = |level: f32| {
+        profile.windows(2).find_map(|w| {
+            let ((z0, v0), (z1, v1)) = (w[0], w[1]);
+            ((v0 - level) * (v1 - level) <= 0.0 && v0 != v1)
+                .then(|| z0 + (level - v0) / (v1 - v0) * (z1 - z0))
+        })
+    };
+    let summary = || {
+        format!(
+            "profile z {:?}..{:?}, v {:?}",
+            profile.first(),
+            profile.last(),
+            profile.iter().map(|p| (p.1 * 100.0).round() as i32).step_by(20).collect::<Vec<_>>()
+        )
+    };
+    let (Some(z10), Some(z90)) = (crossing(0.1), crossing(0.9)) else {
+        panic!("no 10%/90% crossing: {}", summary())
+    };
+    let radius_units = disk_crossing(0.9) - disk_crossing(0.1);
+    ((z90 - z10).abs() as f64 * 2.0 / radius_units) as f32
+}
+
+#[test]
+fn penumbra_grows_with_blocker_distance_as_similar_triangles_say() {
+    // Light straight above the slabs, so depths along its axis are heights and the formula is
+    // exact: w_penumbra = w_light * (d_receiver - d_blocker) / d_blocker.
+    let overhead = [
+        ("light.0.position", "[0, 40, 0]"),
+        ("light.0.target", "[0, 0, 0]"),
+        ("light.0.up", "[0, 0, -1]"),
+        ("light.0.fov_deg", "70"),
+        ("rotate_per_pixel", "false"),
+        ("samples", "64"),
+        ("pcf_kernel", "vogel"),
+        ("reference_samples", "256"),
+    ];
+    let (_ctx, mut renderer) = common::gpu();
+    let w_light = 4.0f32;
+    let light_height = 40.0f32;
+    // (slab centre x, slab mid-height, the slab's z edge away from the light's axis, whose
+    // shadow falls on open floor)
+    let slabs = [(-6.0f32, 3.0f32, -8.0f32), (6.0, 10.0, -8.0)];
+    let mut widths = Vec::new();
+    for (x, height, z_edge) in slabs {
+        let d_blocker = light_height - height;
+        let expected = w_light * (light_height - d_blocker) / d_blocker;
+        // The edge's shadow on the floor, projected from the light's centre.
+        let scale = light_height / d_blocker;
+        let (shadow_x, shadow_z) = (x * scale, z_edge * scale);
+        let scene = common::scene("contact", &overhead);
+        let pcss = measured_penumbra(&mut renderer, scene.clone(), shadow_x, shadow_z, false);
+        let truth = measured_penumbra(&mut renderer, scene, shadow_x, shadow_z, true);
+        eprintln!(
+            "blocker at height {height}: formula {expected:.3}, ground truth {truth:.3}, PCSS {pcss:.3} (world units)"
+        );
+        for (what, measured) in [("ground truth", truth), ("PCSS", pcss)] {
+            let ratio = measured / expected;
+            assert!(
+                (0.8..=1.2).contains(&ratio),
+                "{what}: penumbra {measured:.3} vs formula {expected:.3} at height {height}"
+            );
+        }
+        widths.push(pcss);
+    }
+    assert!(widths[1] > 3.0 * widths[0], "the higher slab's penumbra must be much wider: {widths:?}");
+}
