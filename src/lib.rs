@@ -2,6 +2,7 @@
 //! of every shader function and a ground truth to compare against.
 
 pub mod cli;
+pub mod diagrams;
 pub mod export;
 pub mod probe;
 pub mod reference;

@@ -1,0 +1,209 @@
+//! Shadow acne and peter panning: a tilted receiver under light from above, the depth "steps"
+//! the shadow map stores (one per texel: the depth at the texel centre), and the bias that
+//! moves the steps down.
+
+use super::canvas::Canvas;
+use super::style::{Anchor, FS_LABEL, FS_SMALL, Style, Swatch, col, fin, ndc, num, pal};
+use super::widgets::Column;
+use super::{DiagramInputs, bias_world, ndc_per_world};
+
+/// Plot box: x, y, w, h.
+const PLOT: [f32; 4] = [30.0, 100.0, 540.0, 376.0];
+/// Thickness of the object (a plate resting on the receiver), texels.
+const PLATE: f32 = 0.6;
+
+#[derive(Clone, Copy, PartialEq)]
+enum Verdict {
+    Lit,
+    Acne,
+    Shadow,
+    Leak,
+}
+
+/// The zoomed window, in texel units: `n` texels wide, depth measured downwards.
+struct View {
+    n: usize,
+    tpx: f32,
+    x_left: f32,
+    y_mid: f32,
+    slope: f32,
+    contact: f32,
+}
+
+impl View {
+    fn sx(&self, x: f32) -> f32 {
+        self.x_left + x * self.tpx
+    }
+    fn sy(&self, d: f32) -> f32 {
+        self.y_mid + d * self.tpx
+    }
+    /// Receiver depth at `x` (texels, relative to the window's middle).
+    fn surf(&self, x: f32) -> f32 {
+        (x - self.n as f32 * 0.5) * self.slope
+    }
+    fn plate_top(&self) -> f32 {
+        self.surf(self.contact) - PLATE
+    }
+    /// Depth stored by texel `i`: the plate where it covers the texel centre, else the surface.
+    fn stored(&self, i: usize) -> f32 {
+        let xc = i as f32 + 0.5;
+        if xc >= self.contact { self.plate_top() } else { self.surf(xc) }
+    }
+    fn at(&self, x: f32) -> [f32; 2] {
+        [self.sx(x), self.sy(self.surf(x))]
+    }
+}
+
+pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
+    let map = inp.shadow_map_size_texels.max(1) as f32;
+    let w_frustum = fin(inp.frustum_width_world, 200.0).abs().max(1e-6);
+    let texel = w_frustum / map;
+    let angle = fin(inp.light_angle_deg, 45.0).abs().min(89.9);
+    let slope = angle.to_radians().tan();
+    let slope_draw = angle.min(85.0).to_radians().tan();
+    let recv = fin(inp.receiver_depth_linear, 113.0);
+    let k_normal = fin(inp.normal_offset_texels, 0.0).max(0.0);
+    // A normal offset of k texels acts as an extra depth bias of k * texel / cos(angle).
+    let normal_world = k_normal * texel / angle.min(85.0).to_radians().cos();
+    let bias_w = bias_world(inp, recv).max(0.0);
+    let bias_eff = bias_w + normal_world;
+    let needed = 0.5 * texel * slope;
+
+    // A fixed world window (8 texels of a 2048 map), narrowed for steep slopes so it fits.
+    let n = ((8.0 * map / 2048.0 / slope_draw.max(1.0)).round() as usize).clamp(3, 20);
+    let nf = n as f32;
+    let tpx = (PLOT[2] / nf).min(PLOT[3] / (nf * slope_draw + 3.0)).max(12.0);
+    let v = View {
+        n,
+        tpx,
+        x_left: PLOT[0] + (PLOT[2] - nf * tpx) * 0.5,
+        y_mid: PLOT[1] + (1.2 + nf * 0.5 * slope_draw) * tpx,
+        slope: slope_draw,
+        contact: nf * 0.5 + 0.5,
+    };
+    let bias_tx = bias_eff / texel;
+
+    c.set_clip(Some(PLOT));
+    // Receiver body and the plate.
+    let (x0, x1, bottom) = (-2.0, nf + 2.0, PLOT[1] + PLOT[3] + 10.0);
+    let body = [v.at(x0), v.at(x1), [v.sx(x1), bottom], [v.sx(x0), bottom]];
+    c.polygon(&body, col(pal::RECEIVER, 0.35));
+    let (top, base) = (v.sy(v.plate_top()), v.sy(v.surf(v.contact)));
+    let (pl, pr) = (v.sx(v.contact), v.sx(x1));
+    c.polygon(&[[pl, top], [pr, top], [pr, base], [pl, base]], col(pal::BLOCKER, 1.0));
+    // Light rays through the texel centres.
+    for i in 0..n {
+        let x = v.sx(i as f32 + 0.5);
+        c.arrow([x, PLOT[1] - 4.0], [x, v.sy(v.stored(i)) - 4.0], col(pal::LIGHT, 0.75), 2.0, false);
+    }
+    // Surface, coloured by the shadow test at each point.
+    let steps = 240;
+    let mut prev: Option<([f32; 2], Verdict)> = None;
+    let (mut acne_at, mut leak_end) = (None, v.contact);
+    let inside =
+        |p: [f32; 2]| p[0] > PLOT[0] + 40.0 && (PLOT[1] + 10.0..PLOT[1] + PLOT[3] - 40.0).contains(&p[1]);
+    for j in 0..=steps {
+        let x = j as f32 / steps as f32 * nf;
+        let i = (x.floor() as usize).min(n - 1);
+        let shadowed = v.surf(x) - bias_tx > v.stored(i) + 1e-4;
+        let verdict = match (x > v.contact, shadowed) {
+            (false, false) => Verdict::Lit,
+            (false, true) => Verdict::Acne,
+            (true, true) => Verdict::Shadow,
+            (true, false) => Verdict::Leak,
+        };
+        if verdict == Verdict::Leak {
+            leak_end = x;
+        }
+        let pt = v.at(x);
+        if let Some((pp, pv)) = prev {
+            let (color, width) = match pv {
+                Verdict::Lit | Verdict::Leak => (pal::LIGHT, 8.0),
+                Verdict::Acne => (pal::BLOCKED, 10.0),
+                Verdict::Shadow => (pal::SHADOW, 8.0),
+            };
+            c.line(pp, pt, col(color, 1.0), width);
+            if pv == Verdict::Acne && acne_at.is_none() && inside(pp) {
+                acne_at = Some(pp);
+            }
+        }
+        prev = Some((pt, verdict));
+    }
+    // Stored steps, and the same steps moved down by the bias.
+    let shift_px = (bias_tx * tpx).min(PLOT[3] * 2.0);
+    for i in 0..n {
+        let (a, b, y) = (v.sx(i as f32), v.sx(i as f32 + 1.0), v.sy(v.stored(i)));
+        c.line([a, y], [b, y], col(pal::BLOCKER, 1.0), 3.5);
+        if shift_px > 0.5 {
+            c.dashed([a, y + shift_px], [b, y + shift_px], col(pal::SEARCH, 1.0), 3.0, 7.0);
+        }
+    }
+    c.set_clip(None);
+
+    // Shadow-map row at the top.
+    for i in 0..n {
+        let cell = [v.sx(i as f32), PLOT[1] - 26.0, tpx, 18.0];
+        c.rect(cell, Some(col(pal::BG, 1.0)), Some((col(pal::INK, 1.0), 1.5)));
+    }
+    c.label("shadow-map texels", [v.sx(0.0), PLOT[1] - 30.0], Anchor::BottomLeft, FS_SMALL);
+    // Bias arrow on the first visible texel.
+    let first = (0..n).find(|&i| v.sy(v.stored(i)) > PLOT[1] + 6.0).unwrap_or(0);
+    if shift_px > 0.5 {
+        let (x, y) = (v.sx(first as f32 + 0.75), v.sy(v.stored(first)));
+        let y_end = (y + shift_px).min(PLOT[1] + PLOT[3] - 4.0);
+        c.arrow([x, y], [x, y_end], col(pal::SEARCH, 1.0), 2.5, false);
+        let more = if y + shift_px > y_end { " (steps below view)" } else { "" };
+        let t = format!("bias = {} texels{more}", num(bias_tx));
+        c.label(&t, [x + 8.0, (y + y_end) * 0.5], Anchor::MidLeft, FS_SMALL);
+    }
+    if let Some(p) = acne_at {
+        let st = Style::em(FS_LABEL, pal::BLOCKED);
+        c.text("acne (surface below its own step)", [p[0] - 14.0, p[1] + 16.0], Anchor::TopRight, st);
+    }
+    if leak_end > v.contact + 0.02 {
+        let gap_w = if slope > 1e-6 { (bias_eff - PLATE * texel).max(0.0) / slope } else { f32::INFINITY };
+        let end = leak_end.min(nf);
+        let (a, b) = (v.at(v.contact), v.at(end));
+        let (a, b) = ([a[0], a[1] + 26.0], [b[0], b[1] + 26.0]);
+        c.arrow(a, b, col(pal::PENUMBRA, 1.0), 3.0, true);
+        let off = if leak_end >= nf - 0.01 { ", beyond view" } else { "" };
+        let t = format!("peter panning gap = {} world{off}", num(gap_w));
+        let at = [(a[0] + b[0]) * 0.5, ((a[1] + b[1]) * 0.5 + 16.0).min(PLOT[1] + PLOT[3] - 12.0)];
+        c.text(&t, at, Anchor::TopCenter, Style::em(FS_SMALL, pal::PENUMBRA));
+    }
+    c.label("contact", [v.sx(v.contact) - 6.0, top - 6.0], Anchor::BottomRight, FS_SMALL);
+
+    // Numbers, in a column on the right.
+    let npw = ndc_per_world(inp, recv);
+    let mut text = Column { x: 600.0, y: PLOT[1] + 4.0 };
+    text.line(c, "texel = W / map size");
+    text.line(c, &format!("   = {} / {} = {} world", num(w_frustum), map as u32, num(texel)));
+    text.line(c, &format!("slope = tan({angle:.0}°) = {slope:.2}"));
+    text.line(c, "needed bias ≈ texel/2 · slope");
+    text.line(c, &format!("   = {} world = {} NDC", num(needed), ndc(needed * npw)));
+    let b_ndc = ndc(fin(inp.bias_ndc, 0.0));
+    text.line(c, &format!("bias = {b_ndc} NDC = {} world", num(bias_w)));
+    text.line(c, &format!("normal offset = {} texels", num(k_normal)));
+    text.line(c, &format!("   = {} world of extra bias", num(normal_world)));
+    text.y += 10.0;
+    let (verdict, vc) = if bias_eff < needed * 0.999 {
+        (["too little bias:", "acne (self-shadowing stripes)"], pal::BLOCKED)
+    } else if bias_eff > needed * 3.0 {
+        (["more bias than needed:", "shadow detaches (peter panning)"], pal::PENUMBRA)
+    } else {
+        (["bias about right:", "no acne, small gap"], pal::LIT)
+    };
+    for l in verdict {
+        text.em(c, l, vc);
+    }
+
+    let items = [
+        (Swatch::Line(pal::LIGHT), "lit"),
+        (Swatch::Line(pal::BLOCKED), "acne"),
+        (Swatch::Line(pal::SHADOW), "shadow"),
+        (Swatch::Line(pal::BLOCKER), "stored depth"),
+        (Swatch::Dashed(pal::SEARCH), "stored + bias"),
+        (Swatch::Fill(pal::BLOCKER, 1.0), "object"),
+    ];
+    c.legend_row(&items, [480.0, 530.0]);
+}

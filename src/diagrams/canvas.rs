@@ -1,0 +1,221 @@
+//! Drawing surface for the diagrams: a 960x540 design box scaled uniformly onto the pixmap and
+//! centred in it, with shape, clip and text primitives in design units.
+
+use tiny_skia::{
+    Color, FillRule, GradientStop, LineCap, LineJoin, LinearGradient, Mask, Paint, Path, PathBuilder, Pixmap,
+    Point, SpreadMode, Stroke, StrokeDash, Transform,
+};
+
+use super::style::{Anchor, Style, col, fin, pal};
+use super::text::{TextRenderer, TextStyle};
+
+/// Pixmap plus a uniform scale from logical units (at least 960x540) to pixels.
+pub struct Canvas {
+    pub pixmap: Pixmap,
+    scale: f32,
+    /// Design size (960x540): diagrams lay out in this box, centred on the pixmap.
+    pub w: f32,
+    pub h: f32,
+    /// Offset of the design box inside the full logical canvas.
+    off: [f32; 2],
+    clip: Option<Mask>,
+    text: &'static TextRenderer,
+}
+
+impl Canvas {
+    pub fn new(pixmap: Pixmap) -> Self {
+        let (pw, ph) = (pixmap.width() as f32, pixmap.height() as f32);
+        let scale = (pw / 960.0).min(ph / 540.0).max(1e-3);
+        let off = [(pw / scale - 960.0) * 0.5, (ph / scale - 540.0) * 0.5];
+        let mut c = Self { pixmap, scale, w: 960.0, h: 540.0, off, clip: None, text: TextRenderer::shared() };
+        c.pixmap.fill(col(pal::BG, 1.0));
+        c
+    }
+
+    fn ts(&self) -> Transform {
+        let s = self.scale;
+        Transform::from_row(s, 0.0, 0.0, s, self.off[0] * s, self.off[1] * s)
+    }
+
+    /// Clips later shapes (not text) to the rectangle; `None` removes the clip.
+    pub fn set_clip(&mut self, rect: Option<[f32; 4]>) {
+        self.clip = rect.and_then(|[x, y, w, h]| {
+            let mut mask = Mask::new(self.pixmap.width(), self.pixmap.height())?;
+            let path = Self::poly(&[[x, y], [x + w, y], [x + w, y + h], [x, y + h]], true)?;
+            mask.fill_path(&path, FillRule::Winding, true, self.ts());
+            Some(mask)
+        });
+    }
+
+    fn paint(color: Color) -> Paint<'static> {
+        let mut p = Paint::default();
+        p.set_color(color);
+        p.anti_alias = true;
+        p
+    }
+
+    pub fn fill_path(&mut self, path: &Path, color: Color) {
+        let t = self.ts();
+        let paint = Self::paint(color);
+        self.pixmap.fill_path(path, &paint, FillRule::Winding, t, self.clip.as_ref());
+    }
+
+    pub fn stroke_path(&mut self, path: &Path, color: Color, width: f32, dash: Option<f32>) {
+        let mut stroke = Stroke {
+            width: width.max(0.1),
+            line_cap: LineCap::Round,
+            line_join: LineJoin::Round,
+            ..Stroke::default()
+        };
+        if let Some(d) = dash {
+            stroke.line_cap = LineCap::Butt;
+            stroke.dash = StrokeDash::new(vec![d, d * 0.7], 0.0);
+        }
+        let t = self.ts();
+        let paint = Self::paint(color);
+        self.pixmap.stroke_path(path, &paint, &stroke, t, self.clip.as_ref());
+    }
+
+    /// Fills the rectangle with a horizontal gradient from `c0` (left) to `c1` (right).
+    pub fn gradient_rect(&mut self, r: [f32; 4], c0: Color, c1: Color) {
+        let [x, y, w, h] = r.map(|v| fin(v, 0.0).clamp(-1e4, 1e4));
+        let (p0, p1) = (Point::from_xy(x, y), Point::from_xy(x + w.max(0.01), y));
+        let stops = vec![GradientStop::new(0.0, c0), GradientStop::new(1.0, c1)];
+        let Some(shader) = LinearGradient::new(p0, p1, stops, SpreadMode::Pad, Transform::identity()) else {
+            return;
+        };
+        let Some(path) = Self::poly(&[[x, y], [x + w, y], [x + w, y + h], [x, y + h]], true) else {
+            return;
+        };
+        let paint = Paint { shader, anti_alias: true, ..Paint::default() };
+        let t = self.ts();
+        self.pixmap.fill_path(&path, &paint, FillRule::Winding, t, self.clip.as_ref());
+    }
+
+    /// Polygon or polyline through `pts` (coordinates clamped to a sane range).
+    pub fn poly(pts: &[[f32; 2]], close: bool) -> Option<Path> {
+        let mut pb = PathBuilder::new();
+        for (i, p) in pts.iter().enumerate() {
+            let (x, y) = (fin(p[0], 0.0).clamp(-1e4, 1e4), fin(p[1], 0.0).clamp(-1e4, 1e4));
+            if i == 0 { pb.move_to(x, y) } else { pb.line_to(x, y) }
+        }
+        if close {
+            pb.close();
+        }
+        pb.finish()
+    }
+
+    pub fn line(&mut self, a: [f32; 2], b: [f32; 2], color: Color, width: f32) {
+        self.polyline(&[a, b], color, width, None);
+    }
+
+    pub fn dashed(&mut self, a: [f32; 2], b: [f32; 2], color: Color, width: f32, dash: f32) {
+        self.polyline(&[a, b], color, width, Some(dash));
+    }
+
+    pub fn polyline(&mut self, pts: &[[f32; 2]], color: Color, width: f32, dash: Option<f32>) {
+        if let Some(p) = Self::poly(pts, false) {
+            self.stroke_path(&p, color, width, dash);
+        }
+    }
+
+    pub fn polygon(&mut self, pts: &[[f32; 2]], fill: Color) {
+        if let Some(p) = Self::poly(pts, true) {
+            self.fill_path(&p, fill);
+        }
+    }
+
+    /// Rectangle `[x, y, w, h]`, filled and/or outlined.
+    pub fn rect(&mut self, r: [f32; 4], fill: Option<Color>, line: Option<(Color, f32)>) {
+        let [x, y, w, h] = r;
+        let r = [[x, y], [x + w, y], [x + w, y + h], [x, y + h]];
+        if let Some(p) = Self::poly(&r, true) {
+            if let Some(f) = fill {
+                self.fill_path(&p, f);
+            }
+            if let Some((c, lw)) = line {
+                self.stroke_path(&p, c, lw, None);
+            }
+        }
+    }
+
+    pub fn circle(&mut self, c: [f32; 2], r: f32, fill: Option<Color>, line: Option<(Color, f32)>) {
+        let (x, y) = (fin(c[0], 0.0).clamp(-1e4, 1e4), fin(c[1], 0.0).clamp(-1e4, 1e4));
+        let Some(p) = PathBuilder::from_circle(x, y, fin(r, 1.0).clamp(0.1, 1e4)) else {
+            return;
+        };
+        if let Some(f) = fill {
+            self.fill_path(&p, f);
+        }
+        if let Some((c, lw)) = line {
+            self.stroke_path(&p, c, lw, None);
+        }
+    }
+
+    /// Line from `a` to `b` with an arrow head at `b` (and at `a` when `both`).
+    pub fn arrow(&mut self, a: [f32; 2], b: [f32; 2], color: Color, width: f32, both: bool) {
+        self.line(a, b, color, width);
+        let heads: &[([f32; 2], [f32; 2])] = if both { &[(a, b), (b, a)] } else { &[(a, b)] };
+        for &(from, to) in heads {
+            let (dx, dy) = (to[0] - from[0], to[1] - from[1]);
+            let len = (dx * dx + dy * dy).sqrt();
+            if len.is_nan() || len <= 1e-3 {
+                continue;
+            }
+            let (ux, uy) = (dx / len, dy / len);
+            let s = (4.0 + width * 2.5).min(len * 0.6);
+            let back = [to[0] - ux * s, to[1] - uy * s];
+            let l = [back[0] - uy * s * 0.55, back[1] + ux * s * 0.55];
+            let r = [back[0] + uy * s * 0.55, back[1] - ux * s * 0.55];
+            self.polygon(&[to, l, r], color);
+        }
+    }
+
+    pub fn measure(&self, text: &str, size: f32) -> (f32, f32) {
+        let m = self.text.measure(text, size * self.scale);
+        (m.width_px / self.scale, m.height_px() / self.scale)
+    }
+
+    /// The whole pixmap in design units, `[x, y, w, h]` (wider or taller than the design box
+    /// when the aspect ratio differs from 16:9).
+    pub fn full_rect(&self) -> [f32; 4] {
+        let [ox, oy] = self.off;
+        [-ox, -oy, self.w + 2.0 * ox, self.h + 2.0 * oy]
+    }
+
+    /// Draws text anchored at `p`, kept inside the pixmap; with `st.plate`, a translucent plate
+    /// behind it keeps it legible over lines. Returns the box `[x, y, w, h]`.
+    pub fn text(&mut self, s: &str, p: [f32; 2], anchor: Anchor, st: Style) -> [f32; 4] {
+        let sc = self.scale;
+        let m = self.text.measure(s, st.size * sc);
+        let (w, asc, h) = (m.width_px / sc, m.ascent_px / sc, m.height_px() / sc);
+        use Anchor::*;
+        let fx = match anchor {
+            TopLeft | MidLeft | BottomLeft => 0.0,
+            TopCenter | BottomCenter => 0.5,
+            _ => 1.0,
+        };
+        let fy = match anchor {
+            TopLeft | TopCenter | TopRight => 0.0,
+            MidLeft | MidRight => 0.5,
+            _ => 1.0,
+        };
+        let pad = 3.0;
+        let [fx0, fy0, fw, fh] = self.full_rect();
+        let x = (fin(p[0], 0.0) - fx * w).clamp(fx0 + pad, (fx0 + fw - w - pad).max(fx0 + pad));
+        let y = (fin(p[1], 0.0) - fy * h).clamp(fy0 + pad, (fy0 + fh - h - pad).max(fy0 + pad));
+        if st.plate {
+            let plate = [x - pad, y - pad * 0.5, w + 2.0 * pad, h + pad];
+            self.rect(plate, Some(col(pal::BG, 0.88)), None);
+        }
+        let [ox, oy] = self.off;
+        let style = TextStyle { px: st.size * sc, color: col(st.color, 1.0), bold: st.bold };
+        self.text.draw(&mut self.pixmap, s, (x + ox) * sc, (y + oy + asc) * sc, style);
+        [x, y, w, h]
+    }
+
+    /// Shorthand: ink-coloured label with a plate.
+    pub fn label(&mut self, s: &str, p: [f32; 2], anchor: Anchor, size: f32) -> [f32; 4] {
+        self.text(s, p, anchor, Style::label(size))
+    }
+}

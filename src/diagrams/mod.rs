@@ -1,0 +1,256 @@
+//! Explanatory 2D diagrams of shadow techniques, drawn with tiny-skia from live numbers.
+//!
+//! Every diagram is drawn in a logical space of at least 960x540 units scaled uniformly onto the
+//! requested pixmap, so labels keep their proportions at any size (19 px labels at 960x540).
+
+mod acne_bias;
+mod canvas;
+mod multi_light;
+mod pcf_kernel;
+mod pcss;
+mod style;
+mod text;
+mod two_pass;
+mod widgets;
+
+#[cfg(test)]
+mod tests;
+
+pub use text::{CJK_FONT_PATHS, TextMetrics, TextRenderer, TextStyle, load_system_cjk_font};
+
+/// Largest accepted width or height, in pixels.
+pub const MAX_SIDE_PX: u32 = 8192;
+
+/// Errors from [`draw`] and [`encode_png`].
+#[derive(Debug, thiserror::Error)]
+pub enum DiagramError {
+    #[error("invalid diagram size {width_px}x{height_px}: each side must be 1..={MAX_SIDE_PX} px")]
+    InvalidSize { width_px: u32, height_px: u32 },
+    #[error("PNG encoding failed: {0}")]
+    Encode(String),
+    #[error("invalid font data: {0}")]
+    Font(String),
+}
+
+/// The available diagrams.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DiagramKind {
+    TwoPass,
+    AcneBias,
+    PcfKernel,
+    PcssTriangles,
+    MultiLight,
+}
+
+impl DiagramKind {
+    pub const ALL: [DiagramKind; 5] = [
+        DiagramKind::TwoPass,
+        DiagramKind::AcneBias,
+        DiagramKind::PcfKernel,
+        DiagramKind::PcssTriangles,
+        DiagramKind::MultiLight,
+    ];
+
+    /// Stable identifier (file names, command line).
+    pub fn id(&self) -> &'static str {
+        match self {
+            DiagramKind::TwoPass => "two-pass",
+            DiagramKind::AcneBias => "acne-bias",
+            DiagramKind::PcfKernel => "pcf-kernel",
+            DiagramKind::PcssTriangles => "pcss",
+            DiagramKind::MultiLight => "multi-light",
+        }
+    }
+
+    pub fn from_id(id: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|k| k.id() == id)
+    }
+
+    /// English title shown in the diagram's title bar.
+    pub fn title(&self) -> &'static str {
+        match self {
+            DiagramKind::TwoPass => "Shadow mapping in two passes",
+            DiagramKind::AcneBias => "Shadow acne, depth bias and peter panning",
+            DiagramKind::PcfKernel => "PCF: the filter kernel on the shadow map",
+            DiagramKind::PcssTriangles => "PCSS: penumbra width from similar triangles",
+            DiagramKind::MultiLight => "Several lights: one shadow map each (top view)",
+        }
+    }
+}
+
+/// One light seen from above (XZ plane), for [`DiagramKind::MultiLight`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct LightTopView {
+    pub position_xz: [f32; 2],
+    pub target_xz: [f32; 2],
+    /// Orthographic half extent, or tan(fov/2) * distance-to-target for a spot light (world).
+    pub half_width_world: f32,
+    pub spot: bool,
+    pub color_rgb: [f32; 3],
+}
+
+/// Live numbers the diagrams are drawn from. Units are in the field names; depths are linear
+/// distances from the light along its axis.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DiagramInputs {
+    /// Angle between the light direction and the receiver's normal (0 = overhead), degrees.
+    pub light_angle_deg: f32,
+    pub shadow_map_size_texels: u32,
+    /// W: orthographic width, or near-plane width for a perspective light (world).
+    pub frustum_width_world: f32,
+    pub light_near: f32,
+    pub light_far: f32,
+    pub orthographic: bool,
+    /// Depth bias currently applied, NDC depth units.
+    pub bias_ndc: f32,
+    pub normal_offset_texels: f32,
+    pub receiver_depth_linear: f32,
+    pub stored_depth_linear: f32,
+    /// Average blocker depth; `None` = the blocker search found nothing.
+    pub blocker_depth_linear: Option<f32>,
+    /// Area-light model: light width (world). Exactly one of this and the angular diameter is set.
+    pub light_width_world: Option<f32>,
+    /// Directional model: angular diameter of the light (degrees).
+    pub light_angular_diameter_deg: Option<f32>,
+    pub penumbra_width_world: f32,
+    pub search_radius_texels: f32,
+    pub filter_radius_texels: f32,
+    /// PCF sample offsets in the unit disk.
+    pub pcf_samples: Vec<[f32; 2]>,
+    /// Per sample: true = blocked (same length as `pcf_samples`).
+    pub sample_blocked: Vec<bool>,
+    pub blockers_found: u32,
+    pub blocker_samples: u32,
+    pub visibility: f32,
+    pub lights: Vec<LightTopView>,
+    /// Object centre and radius in the XZ plane (world).
+    pub objects_xz: Vec<([f32; 2], f32)>,
+    pub camera_xz: [f32; 2],
+}
+
+/// `n` points of a Vogel (golden-angle) disk in the unit disk.
+pub fn vogel_disk(n: usize) -> Vec<[f32; 2]> {
+    let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
+    (0..n)
+        .map(|i| {
+            let r = ((i as f32 + 0.5) / n as f32).sqrt();
+            let a = i as f32 * golden;
+            [r * a.cos(), r * a.sin()]
+        })
+        .collect()
+}
+
+impl Default for DiagramInputs {
+    fn default() -> Self {
+        let pcf_samples = vogel_disk(16);
+        // A straight shadow edge across the kernel: the half of the samples on one side is blocked.
+        let proj: Vec<f32> = pcf_samples.iter().map(|s| s[0] * 0.8 + s[1] * 0.6).collect();
+        let sample_blocked =
+            proj.iter().map(|p| proj.iter().filter(|q| *q < p).count() < pcf_samples.len() / 2).collect();
+        let spot_dist = (80f32 * 80.0 + 20.0 * 20.0).sqrt();
+        Self {
+            light_angle_deg: 45.0,
+            shadow_map_size_texels: 2048,
+            frustum_width_world: 200.0,
+            light_near: 0.01,
+            light_far: 400.0,
+            orthographic: true,
+            bias_ndc: 0.002,
+            normal_offset_texels: 0.0,
+            receiver_depth_linear: 113.0,
+            stored_depth_linear: 113.0,
+            blocker_depth_linear: Some(100.0),
+            light_width_world: Some(2.0),
+            light_angular_diameter_deg: None,
+            penumbra_width_world: 0.26,
+            search_radius_texels: 10.0,
+            filter_radius_texels: 5.0,
+            pcf_samples,
+            sample_blocked,
+            blockers_found: 8,
+            blocker_samples: 16,
+            visibility: 0.5,
+            lights: vec![
+                LightTopView {
+                    position_xz: [0.0, 80.0],
+                    target_xz: [0.0, 0.0],
+                    half_width_world: 100.0,
+                    spot: false,
+                    color_rgb: [1.0, 1.0, 1.0],
+                },
+                LightTopView {
+                    position_xz: [-70.0, -20.0],
+                    target_xz: [10.0, 0.0],
+                    half_width_world: (30f32).to_radians().tan() * spot_dist,
+                    spot: true,
+                    color_rgb: [1.0, 0.55, 0.2],
+                },
+            ],
+            objects_xz: vec![([0.0, 0.0], 10.0), ([40.0, 0.0], 10.0), ([-30.0, 25.0], 6.0)],
+            camera_xz: [30.0, 30.0],
+        }
+    }
+}
+
+/// Sanitised near/far planes: finite, near > 0, far > near.
+fn planes(inputs: &DiagramInputs) -> (f32, f32) {
+    let near = style::fin(inputs.light_near, 0.01).clamp(1e-6, 1e8);
+    let far = style::fin(inputs.light_far, 400.0).clamp(near * 1.0001 + 1e-6, 1e9);
+    (near, far)
+}
+
+/// NDC depth in [0, 1] (wgpu range) of linear depth `d` for the light described by `inputs`.
+fn ndc_from_linear(inputs: &DiagramInputs, d: f32) -> f32 {
+    let (near, far) = planes(inputs);
+    let d = style::fin(d, far).clamp(near * 1e-3, 1e12);
+    let z =
+        if inputs.orthographic { (d - near) / (far - near) } else { far / (far - near) * ((d - near) / d) };
+    style::fin(z, 1.0)
+}
+
+/// World length of the NDC bias at linear depth `d` (exact for orthographic; the local slope of
+/// the depth curve for perspective).
+fn bias_world(inputs: &DiagramInputs, d: f32) -> f32 {
+    style::fin(style::fin(inputs.bias_ndc, 0.0) / ndc_per_world(inputs, d), 0.0)
+}
+
+/// NDC depth per world unit at linear depth `d` (constant for orthographic).
+fn ndc_per_world(inputs: &DiagramInputs, d: f32) -> f32 {
+    let (near, far) = planes(inputs);
+    if inputs.orthographic {
+        1.0 / (far - near)
+    } else {
+        let d = style::fin(d, near).clamp(near, far);
+        near * far / ((far - near) * d * d)
+    }
+}
+
+/// Draws `kind` from `inputs` onto a new `width_px` x `height_px` premultiplied RGBA pixmap.
+/// Fails only for a zero or oversized (> [`MAX_SIDE_PX`]) size.
+pub fn draw(
+    kind: DiagramKind,
+    inputs: &DiagramInputs,
+    width_px: u32,
+    height_px: u32,
+) -> Result<tiny_skia::Pixmap, DiagramError> {
+    let bad = DiagramError::InvalidSize { width_px, height_px };
+    if width_px == 0 || height_px == 0 || width_px > MAX_SIDE_PX || height_px > MAX_SIDE_PX {
+        return Err(bad);
+    }
+    let pixmap = tiny_skia::Pixmap::new(width_px, height_px).ok_or(bad)?;
+    let mut c = canvas::Canvas::new(pixmap);
+    c.title_bar(kind.title());
+    match kind {
+        DiagramKind::TwoPass => two_pass::draw(&mut c, inputs),
+        DiagramKind::AcneBias => acne_bias::draw(&mut c, inputs),
+        DiagramKind::PcfKernel => pcf_kernel::draw(&mut c, inputs),
+        DiagramKind::PcssTriangles => pcss::draw(&mut c, inputs),
+        DiagramKind::MultiLight => multi_light::draw(&mut c, inputs),
+    }
+    Ok(c.pixmap)
+}
+
+/// Encodes a pixmap as PNG (straight alpha, as PNG requires).
+pub fn encode_png(pixmap: &tiny_skia::Pixmap) -> Result<Vec<u8>, DiagramError> {
+    pixmap.encode_png().map_err(|e| DiagramError::Encode(e.to_string()))
+}

@@ -1,0 +1,381 @@
+use super::*;
+use tiny_skia::Pixmap;
+
+const BG: [u8; 3] = [250, 250, 246];
+
+fn render(kind: DiagramKind, inp: &DiagramInputs, w: u32, h: u32) -> Pixmap {
+    draw(kind, inp, w, h).unwrap_or_else(|e| panic!("{} at {w}x{h}: {e}", kind.id()))
+}
+
+/// Number of cells of a `cols` x `rows` grid (below the title bar) holding pixels that differ
+/// clearly from the background.
+fn busy_cells(pm: &Pixmap, cols: u32, rows: u32) -> usize {
+    let (w, h) = (pm.width(), pm.height());
+    let top = h / 10;
+    let mut count = 0;
+    for cy in 0..rows {
+        for cx in 0..cols {
+            let (x0, x1) = (cx * w / cols, (cx + 1) * w / cols);
+            let (y0, y1) = (top + cy * (h - top) / rows, top + (cy + 1) * (h - top) / rows);
+            let busy = (y0..y1).flat_map(|y| (x0..x1).map(move |x| (x, y))).any(|(x, y)| {
+                pm.pixel(x, y).is_some_and(|p| {
+                    let d = [p.red(), p.green(), p.blue()]
+                        .iter()
+                        .zip(BG)
+                        .map(|(a, b)| (*a as i32 - b as i32).abs())
+                        .max()
+                        .unwrap_or(0);
+                    d > 40
+                })
+            });
+            count += busy as usize;
+        }
+    }
+    count
+}
+
+fn differs(a: &Pixmap, b: &Pixmap) -> usize {
+    a.data().chunks(4).zip(b.data().chunks(4)).filter(|(p, q)| p != q).count()
+}
+
+fn dark_pixels(pm: &Pixmap) -> usize {
+    pm.pixels().iter().filter(|p| p.red() < 128 && p.green() < 128 && p.blue() < 128).count()
+}
+
+#[test]
+fn every_kind_renders_at_both_sizes_with_content_spread_out() {
+    for kind in DiagramKind::ALL {
+        for (w, h) in [(960, 540), (320, 180)] {
+            let pm = render(kind, &DiagramInputs::default(), w, h);
+            assert_eq!((pm.width(), pm.height()), (w, h));
+            let busy = busy_cells(&pm, 3, 3);
+            assert!(busy >= 6, "{} at {w}x{h}: only {busy} of 9 regions drawn", kind.id());
+            // The title bar is dark.
+            let p = pm.pixel(w - 2, 2).expect("pixel");
+            assert!(p.red() < 80, "{}: no title bar", kind.id());
+        }
+    }
+}
+
+#[test]
+fn other_aspect_ratios_keep_the_design_centred() {
+    for kind in DiagramKind::ALL {
+        for (w, h) in [(540, 960), (1920, 600), (1, 1), (8192, 16)] {
+            let pm = render(kind, &DiagramInputs::default(), w, h);
+            assert_eq!((pm.width(), pm.height()), (w, h));
+        }
+    }
+}
+
+#[test]
+fn bad_sizes_are_errors() {
+    let inp = DiagramInputs::default();
+    for (w, h) in [(0, 10), (10, 0), (0, 0), (8193, 100), (100, 8193), (u32::MAX, 1)] {
+        match draw(DiagramKind::TwoPass, &inp, w, h) {
+            Err(DiagramError::InvalidSize { width_px, height_px }) => {
+                assert_eq!((width_px, height_px), (w, h))
+            }
+            other => panic!("{w}x{h}: expected InvalidSize, got {other:?}"),
+        }
+    }
+}
+
+#[test]
+fn ids_titles_and_round_trip() {
+    let ids: Vec<&str> = DiagramKind::ALL.iter().map(|k| k.id()).collect();
+    assert_eq!(ids, ["two-pass", "acne-bias", "pcf-kernel", "pcss", "multi-light"]);
+    for kind in DiagramKind::ALL {
+        assert_eq!(DiagramKind::from_id(kind.id()), Some(kind));
+        assert!(!kind.title().is_empty());
+    }
+    assert_eq!(DiagramKind::from_id("nope"), None);
+    assert_eq!(DiagramKind::from_id(""), None);
+}
+
+#[test]
+fn defaults_are_consistent() {
+    let d = DiagramInputs::default();
+    assert_eq!(d.pcf_samples.len(), 16);
+    assert_eq!(d.sample_blocked.len(), 16);
+    let lit = d.sample_blocked.iter().filter(|b| !**b).count();
+    assert!((lit as f32 / 16.0 - d.visibility).abs() < 1e-6);
+    assert!(d.pcf_samples.iter().all(|s| s[0].hypot(s[1]) <= 1.0));
+    assert!(d.light_width_world.is_some() != d.light_angular_diameter_deg.is_some());
+    let (w, b, r) = (2.0, 100.0, 113.0);
+    assert!((w * (r - b) / b - d.penumbra_width_world).abs() < 1e-6);
+    assert_eq!(d.lights.len(), 2);
+}
+
+#[test]
+fn pcss_changes_with_receiver_and_blocker_depth() {
+    let base = DiagramInputs::default();
+    let a = render(DiagramKind::PcssTriangles, &base, 960, 540);
+    let mut i = base.clone();
+    i.receiver_depth_linear = 200.0;
+    let b = render(DiagramKind::PcssTriangles, &i, 960, 540);
+    assert!(differs(&a, &b) > 1000);
+    let mut i = base.clone();
+    i.blocker_depth_linear = Some(110.0);
+    let close = render(DiagramKind::PcssTriangles, &i, 960, 540);
+    i.blocker_depth_linear = Some(30.0);
+    let far = render(DiagramKind::PcssTriangles, &i, 960, 540);
+    assert!(differs(&close, &far) > 1000);
+    let mut i = base;
+    i.light_width_world = None;
+    i.light_angular_diameter_deg = Some(0.53);
+    assert!(differs(&a, &render(DiagramKind::PcssTriangles, &i, 960, 540)) > 1000);
+}
+
+#[test]
+fn acne_bias_changes_with_bias_map_size_and_angle() {
+    let mut i = DiagramInputs { bias_ndc: 0.0, ..DiagramInputs::default() };
+    let none = render(DiagramKind::AcneBias, &i, 960, 540);
+    i.bias_ndc = 0.01;
+    let large = render(DiagramKind::AcneBias, &i, 960, 540);
+    assert!(differs(&none, &large) > 1000);
+    // Acne (magenta) shows only without bias.
+    let magenta =
+        |pm: &Pixmap| pm.pixels().iter().filter(|p| p.red() > 170 && p.green() < 60 && p.blue() > 90).count();
+    assert!(magenta(&none) > magenta(&large) + 200);
+    let mut i = DiagramInputs { bias_ndc: 0.0001, ..DiagramInputs::default() };
+    let m2048 = render(DiagramKind::AcneBias, &i, 960, 540);
+    i.shadow_map_size_texels = 4096;
+    assert!(differs(&m2048, &render(DiagramKind::AcneBias, &i, 960, 540)) > 1000);
+    i.light_angle_deg = 70.0;
+    assert!(differs(&m2048, &render(DiagramKind::AcneBias, &i, 960, 540)) > 1000);
+}
+
+#[test]
+fn pcf_blocked_flags_change_sample_colours() {
+    let base = DiagramInputs::default();
+    let a = render(DiagramKind::PcfKernel, &base, 960, 540);
+    let mut i = base.clone();
+    i.sample_blocked = vec![false; i.pcf_samples.len()];
+    i.visibility = 1.0;
+    let b = render(DiagramKind::PcfKernel, &i, 960, 540);
+    assert!(differs(&a, &b) > 300);
+    let teal =
+        |pm: &Pixmap| pm.pixels().iter().filter(|p| p.red() < 30 && p.green() > 140 && p.blue() > 95).count();
+    assert!(teal(&b) > teal(&a));
+    let mut i = base;
+    i.filter_radius_texels = 2.0;
+    assert!(differs(&a, &render(DiagramKind::PcfKernel, &i, 960, 540)) > 300);
+}
+
+#[test]
+fn two_pass_and_multi_light_follow_their_inputs() {
+    let base = DiagramInputs::default();
+    let lit = render(DiagramKind::TwoPass, &base, 960, 540);
+    let mut i = base.clone();
+    i.stored_depth_linear = 100.0;
+    let shadowed = render(DiagramKind::TwoPass, &i, 960, 540);
+    assert!(differs(&lit, &shadowed) > 1000);
+    i.orthographic = false;
+    assert!(differs(&shadowed, &render(DiagramKind::TwoPass, &i, 960, 540)) > 1000);
+    let m = render(DiagramKind::MultiLight, &base, 960, 540);
+    let mut i = base;
+    i.lights[1].position_xz = [60.0, -40.0];
+    assert!(differs(&m, &render(DiagramKind::MultiLight, &i, 960, 540)) > 1000);
+}
+
+fn degenerate_inputs() -> Vec<(&'static str, DiagramInputs)> {
+    let d = DiagramInputs::default;
+    let mut out = Vec::new();
+    let mut push = |name, f: &dyn Fn(&mut DiagramInputs)| {
+        let mut i = d();
+        f(&mut i);
+        out.push((name, i));
+    };
+    push("zero light width", &|i| i.light_width_world = Some(0.0));
+    push("no light model", &|i| i.light_width_world = None);
+    push("no blockers", &|i| i.blocker_depth_linear = None);
+    push("blocker at receiver", &|i| i.blocker_depth_linear = Some(113.0));
+    push("blocker behind receiver", &|i| i.blocker_depth_linear = Some(500.0));
+    push("blocker at zero", &|i| i.blocker_depth_linear = Some(0.0));
+    push("huge", &|i| {
+        i.receiver_depth_linear = 1e30;
+        i.stored_depth_linear = f32::MAX;
+        i.blocker_depth_linear = Some(1e20);
+        i.light_width_world = Some(1e30);
+        i.frustum_width_world = 1e35;
+        i.filter_radius_texels = 1e30;
+        i.search_radius_texels = f32::MAX;
+        i.bias_ndc = 1e30;
+        i.light_far = f32::MAX;
+        i.lights[0].half_width_world = 1e30;
+        i.objects_xz.push(([1e30, -1e30], 1e30));
+        i.camera_xz = [1e30, 1e30];
+    });
+    push("nan and inf", &|i| {
+        i.light_angle_deg = f32::NAN;
+        i.receiver_depth_linear = f32::NAN;
+        i.stored_depth_linear = f32::INFINITY;
+        i.blocker_depth_linear = Some(f32::NEG_INFINITY);
+        i.light_angular_diameter_deg = Some(f32::NAN);
+        i.bias_ndc = f32::NAN;
+        i.normal_offset_texels = f32::INFINITY;
+        i.filter_radius_texels = f32::NAN;
+        i.pcf_samples[0] = [f32::NAN, f32::INFINITY];
+        i.lights[0].position_xz = [f32::NAN, 0.0];
+        i.lights[1].color_rgb = [f32::NAN, 2.0, -1.0];
+    });
+    push("zeros", &|i| {
+        i.shadow_map_size_texels = 0;
+        i.frustum_width_world = 0.0;
+        i.light_near = 0.0;
+        i.light_far = 0.0;
+        i.receiver_depth_linear = 0.0;
+        i.stored_depth_linear = 0.0;
+        i.filter_radius_texels = 0.0;
+        i.search_radius_texels = 0.0;
+        i.lights[1].half_width_world = 0.0;
+        i.lights[1].target_xz = i.lights[1].position_xz;
+    });
+    push("negatives", &|i| {
+        i.light_angle_deg = -60.0;
+        i.bias_ndc = -0.01;
+        i.normal_offset_texels = -3.0;
+        i.light_width_world = Some(-2.0);
+        i.filter_radius_texels = -5.0;
+        i.objects_xz[0].1 = -4.0;
+    });
+    push("grazing angles", &|i| {
+        i.light_angle_deg = 90.0;
+        i.orthographic = false;
+        i.light_near = 1e-9;
+    });
+    push("empty samples", &|i| {
+        i.pcf_samples.clear();
+        i.sample_blocked.clear();
+    });
+    push("mismatched lengths", &|i| i.sample_blocked.truncate(5));
+    push("more flags than samples", &|i| i.sample_blocked.extend([true; 40]));
+    push("empty scene", &|i| {
+        i.lights.clear();
+        i.objects_xz.clear();
+    });
+    push("many lights", &|i| {
+        let l = i.lights[1].clone();
+        i.lights.extend(std::iter::repeat_n(l, 12));
+    });
+    out
+}
+
+#[test]
+fn degenerate_inputs_render_without_panic() {
+    for (name, inp) in degenerate_inputs() {
+        for kind in DiagramKind::ALL {
+            for (w, h) in [(960, 540), (320, 180)] {
+                let pm = render(kind, &inp, w, h);
+                assert!(busy_cells(&pm, 3, 3) >= 2, "{name}: {} at {w}x{h} is blank", kind.id());
+                assert!(encode_png(&pm).is_ok(), "{name}: {}", kind.id());
+            }
+        }
+    }
+}
+
+#[test]
+fn depth_conversions_stay_finite() {
+    for (name, inp) in degenerate_inputs() {
+        for d in [0.0, 1e-9, 113.0, 1e30, f32::MAX, f32::NAN, f32::INFINITY, -5.0] {
+            let vals = [ndc_from_linear(&inp, d), bias_world(&inp, d), ndc_per_world(&inp, d)];
+            assert!(vals.iter().all(|v| v.is_finite()), "{name}, d = {d}: {vals:?}");
+        }
+    }
+    let i = DiagramInputs::default();
+    assert!((ndc_from_linear(&i, 0.01)).abs() < 1e-6);
+    assert!((bias_world(&i, 113.0) - 0.002 * 399.99).abs() < 1e-3);
+}
+
+#[test]
+fn text_draws_dark_pixels_where_it_is_drawn() {
+    let tr = TextRenderer::shared();
+    let mut pm = Pixmap::new(300, 60).expect("pixmap");
+    pm.fill(tiny_skia::Color::WHITE);
+    let m = tr.measure("d_blocker = 100.0", 20.0);
+    assert!(m.width_px > 100.0 && m.width_px < 250.0, "{m:?}");
+    assert!(m.height_px() > 15.0);
+    let black = tiny_skia::Color::BLACK;
+    let regular = TextStyle { px: 20.0, color: black, bold: false };
+    tr.draw(&mut pm, "d_blocker = 100.0", 10.0, 40.0, regular);
+    let dark_at = |x0: u32, x1: u32| {
+        (x0..x1)
+            .flat_map(|x| (15..45).map(move |y| (x, y)))
+            .any(|(x, y)| pm.pixel(x, y).is_some_and(|p| p.red() < 100))
+    };
+    assert!(dark_at(10, 40), "no ink at the start of the label");
+    assert!(!dark_at(260, 300), "ink beyond the label's width");
+    assert!(dark_pixels(&pm) > 100);
+    // Nothing above the ascent or left of the start.
+    let stray = (0..300).any(|x| pm.pixel(x, 2).is_some_and(|p| p.red() < 200));
+    assert!(!stray, "ink above the text");
+    // Maths symbols come from the fallback font.
+    for ch in ['≈', '×', '·', '−', '≤', 'θ', '→', 'Σ'] {
+        assert!(tr.covers(ch), "no glyph for {ch}");
+    }
+    // Bold is heavier.
+    let mut bold = Pixmap::new(300, 60).expect("pixmap");
+    bold.fill(tiny_skia::Color::WHITE);
+    let heavy = TextStyle { px: 20.0, color: black, bold: true };
+    tr.draw(&mut bold, "d_blocker = 100.0", 10.0, 40.0, heavy);
+    assert!(dark_pixels(&bold) > dark_pixels(&pm));
+    // Off-canvas and non-finite positions are ignored.
+    tr.draw(&mut pm, "x", -1e9, f32::NAN, regular);
+    let huge = TextStyle { px: f32::INFINITY, ..regular };
+    tr.draw(&mut pm, "x", 1e9, 1e9, huge);
+}
+
+#[test]
+fn cjk_fallback_renders_chinese_text() {
+    let Some(bytes) = load_system_cjk_font() else {
+        panic!(
+            "no CJK font found in {CJK_FONT_PATHS:?}: install the Debian package fonts-noto-cjk \
+             (apt-get install -y fonts-noto-cjk) so Chinese labels can render"
+        );
+    };
+    let primary = epaint_default_fonts::UBUNTU_LIGHT.to_vec();
+    let without = TextRenderer::from_font_data(primary.clone(), vec![]).expect("font");
+    assert!(!without.covers('阴'));
+    let tr = TextRenderer::from_font_data(primary, vec![bytes]).expect("cjk font");
+    assert!(tr.covers('阴') && tr.covers('a'));
+    assert!(TextRenderer::shared().covers('影'), "shared renderer lacks the CJK fallback");
+    let mut pm = Pixmap::new(260, 50).expect("pixmap");
+    pm.fill(tiny_skia::Color::WHITE);
+    let st = TextStyle { px: 26.0, color: tiny_skia::Color::BLACK, bold: false };
+    tr.draw(&mut pm, "阴影贴图 PCSS", 5.0, 36.0, st);
+    assert!(dark_pixels(&pm) > 150, "Chinese text drew {} dark pixels", dark_pixels(&pm));
+    // The CJK glyphs take the width of full-width characters.
+    assert!(tr.measure("阴影贴图", 26.0).width_px > 80.0);
+}
+
+#[test]
+fn png_round_trip() {
+    let pm = render(DiagramKind::PcfKernel, &DiagramInputs::default(), 320, 180);
+    let png = encode_png(&pm).expect("png");
+    assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+    let img = image::load_from_memory(&png).expect("decode").to_rgba8();
+    assert_eq!(img.dimensions(), (320, 180));
+    let p = img.get_pixel(300, 170);
+    assert_eq!(p.0[3], 255);
+}
+
+#[test]
+fn writes_default_pngs_for_inspection() {
+    let dir = std::env::temp_dir().join("diagrams");
+    std::fs::create_dir_all(&dir).expect("mkdir");
+    let save = |name: &str, kind: DiagramKind, inp: &DiagramInputs| {
+        let png = encode_png(&render(kind, inp, 960, 540)).expect("png");
+        std::fs::write(dir.join(format!("{name}.png")), png).expect("write");
+    };
+    for kind in DiagramKind::ALL {
+        save(kind.id(), kind, &DiagramInputs::default());
+    }
+    let mut i = DiagramInputs { blocker_depth_linear: Some(110.0), ..DiagramInputs::default() };
+    save("pcss-close", DiagramKind::PcssTriangles, &i);
+    i.blocker_depth_linear = Some(30.0);
+    save("pcss-far", DiagramKind::PcssTriangles, &i);
+    let mut i = DiagramInputs { stored_depth_linear: 100.0, ..DiagramInputs::default() };
+    save("two-pass-shadowed", DiagramKind::TwoPass, &i);
+    i.bias_ndc = 0.0;
+    save("acne-bias-zero", DiagramKind::AcneBias, &i);
+}

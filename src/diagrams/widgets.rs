@@ -1,0 +1,133 @@
+//! Title bar, legends, markers and text columns drawn on a [`Canvas`].
+
+use tiny_skia::{Color, ColorU8};
+
+use super::canvas::Canvas;
+use super::style::{Anchor, FS_LABEL, FS_SMALL, FS_TITLE, Style, Swatch, TITLE_H, col, pal};
+
+impl Canvas {
+    /// Dark bar across the top of the whole pixmap with the title in white.
+    pub fn title_bar(&mut self, title: &str) {
+        let [x, y, w, _] = self.full_rect();
+        self.rect([x, y, w, TITLE_H], Some(col(pal::TITLE_BG, 1.0)), None);
+        let st = Style::em(FS_TITLE, pal::TITLE_FG).no_plate();
+        self.text(title, [x + 18.0, y + TITLE_H * 0.5], Anchor::MidLeft, st);
+    }
+
+    /// Legend box with its corner `anchor` at `p`. Returns its box `[x, y, w, h]`.
+    pub fn legend(&mut self, items: &[(Swatch, &str)], p: [f32; 2], anchor: Anchor) -> [f32; 4] {
+        let (row, sw) = (FS_SMALL * 1.45, 30.0);
+        let tw = items.iter().map(|(_, s)| self.measure(s, FS_SMALL).0).fold(0.0, f32::max);
+        let (w, h) = (sw + 22.0 + tw, row * items.len() as f32 + 12.0);
+        let x = match anchor {
+            Anchor::TopRight | Anchor::BottomRight | Anchor::MidRight => p[0] - w,
+            _ => p[0],
+        };
+        let y = match anchor {
+            Anchor::BottomLeft | Anchor::BottomRight | Anchor::BottomCenter => p[1] - h,
+            _ => p[1],
+        };
+        self.rect([x, y, w, h], Some(col(pal::BG, 0.94)), Some((col(pal::MUTED, 1.0), 1.5)));
+        for (i, (swatch, s)) in items.iter().enumerate() {
+            let cy = y + 6.0 + row * (i as f32 + 0.5);
+            self.swatch(*swatch, x + 8.0, cy, sw);
+            let st = Style::label(FS_SMALL).no_plate();
+            self.text(s, [x + sw + 18.0, cy], Anchor::MidLeft, st);
+        }
+        [x, y, w, h]
+    }
+
+    /// One-row legend centred on `center` (x centre, bottom y).
+    pub fn legend_row(&mut self, items: &[(Swatch, &str)], center: [f32; 2]) -> [f32; 4] {
+        let (sw, gap) = (26.0, 22.0);
+        let widths: Vec<f32> = items.iter().map(|(_, s)| self.measure(s, FS_SMALL).0 + sw + 8.0).collect();
+        let total = widths.iter().sum::<f32>() + gap * (items.len().max(1) - 1) as f32 + 20.0;
+        let (h, x0) = (FS_SMALL * 1.6, center[0] - total * 0.5);
+        let y = center[1] - h;
+        let frame = Some((col(pal::MUTED, 1.0), 1.5));
+        self.rect([x0, y, total, h], Some(col(pal::BG, 0.94)), frame);
+        let (mut x, cy) = (x0 + 10.0, y + h * 0.5);
+        for ((swatch, s), w) in items.iter().zip(&widths) {
+            self.swatch(*swatch, x, cy, sw);
+            let st = Style::label(FS_SMALL).no_plate();
+            self.text(s, [x + sw + 8.0, cy], Anchor::MidLeft, st);
+            x += w + gap;
+        }
+        [x0, y, total, h]
+    }
+
+    fn swatch(&mut self, swatch: Swatch, x0: f32, cy: f32, sw: f32) {
+        let (x1, mid) = (x0 + sw, [x0 + sw / 2.0, cy]);
+        match swatch {
+            Swatch::Fill(c, a) => {
+                self.rect([x0, cy - 7.0, sw, 14.0], Some(col(c, a)), Some((col(c, 1.0), 1.5)))
+            }
+            Swatch::Line(c) => self.line([x0, cy], [x1, cy], col(c, 1.0), 4.0),
+            Swatch::Dashed(c) => self.dashed([x0, cy], [x1, cy], col(c, 1.0), 3.0, 6.0),
+            Swatch::Dot(c) => self.circle(mid, 6.5, Some(col(c, 1.0)), None),
+            Swatch::HollowCross(c) => self.cross_marker(mid, 7.0, c),
+        }
+    }
+
+    /// Hollow ring with an X: the "blocked" marker.
+    pub fn cross_marker(&mut self, c: [f32; 2], r: f32, color: ColorU8) {
+        let k = col(color, 1.0);
+        self.circle(c, r, Some(col(pal::BG, 1.0)), Some((k, 2.5)));
+        let d = r * 0.62;
+        self.line([c[0] - d, c[1] - d], [c[0] + d, c[1] + d], k, 2.5);
+        self.line([c[0] - d, c[1] + d], [c[0] + d, c[1] - d], k, 2.5);
+    }
+
+    /// Light icon: a disc filled with `fill` and eight rays, outlined in `ray`.
+    pub fn sun(&mut self, at: [f32; 2], fill: Color, ray: Color) {
+        for i in 0..8 {
+            let (s, c) = (i as f32 * std::f32::consts::FRAC_PI_4).sin_cos();
+            let (r0, r1) = (16.0, 23.0);
+            self.line([at[0] + c * r0, at[1] + s * r0], [at[0] + c * r1, at[1] + s * r1], ray, 3.0);
+        }
+        self.circle(at, 12.0, Some(fill), Some((ray, 3.5)));
+    }
+
+    /// Camera icon (body and lens) at `at` looking along `angle` (radians), scaled by `k`.
+    pub fn camera_icon(&mut self, at: [f32; 2], angle: f32, k: f32) {
+        let (sa, ca) = angle.sin_cos();
+        let rot = |x: f32, y: f32| [at[0] + k * (x * ca - y * sa), at[1] + k * (x * sa + y * ca)];
+        let body = [rot(-26.0, -13.0), rot(4.0, -13.0), rot(4.0, 13.0), rot(-26.0, 13.0)];
+        self.polygon(&body, col(pal::CAMERA, 1.0));
+        self.polygon(&[rot(4.0, 0.0), rot(18.0, -10.0), rot(18.0, 10.0)], col(pal::CAMERA, 1.0));
+    }
+
+    /// Horizontal bracket over the span `x0..x1` at `y`, its ticks pointing up.
+    pub fn bracket(&mut self, x0: f32, x1: f32, y: f32, color: Color, width: f32) {
+        let pts = [[x0, y - 9.0], [x0, y], [x1, y], [x1, y - 9.0]];
+        self.polyline(&pts, color, width, None);
+    }
+}
+
+/// A column of text lines with plates, top to bottom.
+pub struct Column {
+    pub x: f32,
+    pub y: f32,
+}
+
+impl Column {
+    pub fn styled(&mut self, c: &mut Canvas, s: &str, st: Style) {
+        c.text(s, [self.x, self.y], Anchor::TopLeft, st);
+        self.y += st.size * 1.5;
+    }
+
+    /// Regular ink line at label size.
+    pub fn line(&mut self, c: &mut Canvas, s: &str) {
+        self.styled(c, s, Style::label(FS_LABEL));
+    }
+
+    /// Regular coloured line at label size.
+    pub fn tint(&mut self, c: &mut Canvas, s: &str, color: ColorU8) {
+        self.styled(c, s, Style::tint(FS_LABEL, color));
+    }
+
+    /// Bold coloured line at label size.
+    pub fn em(&mut self, c: &mut Canvas, s: &str, color: ColorU8) {
+        self.styled(c, s, Style::em(FS_LABEL, color));
+    }
+}
