@@ -148,10 +148,13 @@ fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
     }
 }
 
+/// Longest scene time accepted, seconds (a day: beyond it f32 time loses sub-frame precision).
+pub const MAX_TIME_S: f32 = 86_400.0;
+
 fn parse_time(s: &str) -> Result<f32, String> {
     match s.parse::<f32>() {
-        Ok(t) if t.is_finite() => Ok(t),
-        _ => Err(format!("`{s}` is not a finite number of seconds")),
+        Ok(t) if t.is_finite() && t.abs() <= MAX_TIME_S => Ok(t),
+        _ => Err(format!("`{s}` is not a number of seconds in -{MAX_TIME_S}..={MAX_TIME_S}")),
     }
 }
 
@@ -169,11 +172,14 @@ fn load(frame: &FrameArgs) -> Result<Scene, CliError> {
 
 pub fn gpu() -> Result<(GpuContext, Renderer), CliError> {
     let ctx = GpuContext::new_headless()?;
-    let renderer = Renderer::new(&ctx.device, &ctx.queue);
+    let renderer = Renderer::new(&ctx.device, &ctx.queue)?;
     Ok((ctx, renderer))
 }
 
 fn check_out_path(out: &Path) -> Result<(), CliError> {
+    if out.is_dir() {
+        return Err(CliError::input(format!("{}: is a folder, not a file", out.display())));
+    }
     let is_png = out.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
     if !is_png {
         return Err(CliError::input(format!("{}: the output must be a .png file", out.display())));
@@ -274,6 +280,13 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
 
 fn probe(args: ProbeArgs) -> Result<(), CliError> {
     let scene = load(&args.frame)?;
+    let (w, h) = args.frame.size;
+    if args.pixel.0 >= w || args.pixel.1 >= h {
+        return Err(CliError::input(format!(
+            "--pixel {},{} is outside the {w}x{h} image",
+            args.pixel.0, args.pixel.1
+        )));
+    }
     let (_ctx, mut renderer) = gpu()?;
     let request = FrameRequest { time_s: args.frame.time, size: args.frame.size, ..Default::default() };
     let report = crate::probe::probe(&mut renderer, &scene, &request, args.pixel, !args.no_reference)?;

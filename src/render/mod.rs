@@ -137,9 +137,19 @@ fn compare_sampler(device: &wgpu::Device) -> wgpu::Sampler {
 }
 
 impl Renderer {
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
+    /// Build the pipelines. Fails (rather than panicking) where the adapter cannot compile them.
+    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Result<Self, RenderError> {
+        let internal = device.push_error_scope(wgpu::ErrorFilter::Internal);
+        let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let layouts = Layouts::new(device);
         let pipelines = Pipelines::new(device, &layouts);
+        let error = pollster::block_on(validation.pop()).or(pollster::block_on(internal.pop()));
+        if let Some(e) = error {
+            return Err(RenderError::Device(format!(
+                "this adapter cannot build shadowlab's pipelines: {}",
+                first_cause(&e)
+            )));
+        }
         let frame_buffer = uniform_buffer(device, "frame", std::mem::size_of::<FrameGpu>() as u64);
         let lights_buffer =
             uniform_buffer(device, "lights", (std::mem::size_of::<LightGpu>() * MAX_LIGHTS) as u64);
@@ -156,7 +166,7 @@ impl Renderer {
             .features()
             .contains(wgpu::Features::TIMESTAMP_QUERY)
             .then(|| timing::Timer::new(device, queue));
-        Self {
+        Ok(Self {
             device: device.clone(),
             queue: queue.clone(),
             compare_sampler: compare_sampler(device),
@@ -176,7 +186,7 @@ impl Renderer {
             frame_lights: Vec::new(),
             frame_params: ShadowParamsGpu::new(&Default::default()),
             last_request: None,
-        }
+        })
     }
 
     pub fn device(&self) -> &wgpu::Device {
@@ -208,11 +218,13 @@ impl Renderer {
         work: impl FnOnce(&mut Self) -> Result<T, RenderError>,
     ) -> Result<T, RenderError> {
         let memory = self.device.push_error_scope(wgpu::ErrorFilter::OutOfMemory);
+        let internal = self.device.push_error_scope(wgpu::ErrorFilter::Internal);
         let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = work(self);
         let validation_error = pollster::block_on(validation.pop());
+        let internal_error = pollster::block_on(internal.pop());
         let memory_error = pollster::block_on(memory.pop());
-        match (validation_error.or(memory_error), result) {
+        match (validation_error.or(internal_error).or(memory_error), result) {
             (Some(e), _) => Err(RenderError::Device(
                 e.to_string().lines().next().unwrap_or("GPU error").to_string() + " " + &first_cause(&e),
             )),
@@ -519,7 +531,7 @@ impl Renderer {
     }
 }
 
-/// The innermost cause of a wgpu error, on one line.
+/// The innermost cause of a wgpu error, on one line (shader compiler logs cut short).
 fn first_cause(e: &wgpu::Error) -> String {
     let mut source: Option<&dyn std::error::Error> = std::error::Error::source(e);
     let mut last = String::new();
@@ -527,7 +539,11 @@ fn first_cause(e: &wgpu::Error) -> String {
         last = s.to_string();
         source = s.source();
     }
-    last.replace('\n', " ")
+    let line = last.replace('\n', " ");
+    match line.char_indices().nth(240) {
+        Some((cut, _)) => format!("{}...", &line[..cut]),
+        None => line,
+    }
 }
 
 /// Background of the camera view, already sRGB-encoded (the target stores sRGB bytes).

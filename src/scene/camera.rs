@@ -25,7 +25,8 @@ pub struct Camera {
 
 impl Camera {
     pub fn view_from_world(&self) -> Mat4 {
-        Mat4::look_at_rh(self.position, self.target, self.up)
+        let forward = (self.target - self.position).normalize_or(Vec3::NEG_Z);
+        Mat4::look_to_rh(self.position, forward, super::light::safe_up(forward, self.up))
     }
 
     pub fn clip_from_view(&self, aspect: f32) -> Mat4 {

@@ -312,6 +312,9 @@ fn build_scene(
         near,
         far: ranged("camera.far", c.far, near * 1.0001, 1e7)?,
     };
+    if camera.up.length() < 1e-6 {
+        return Err(BuildError::Invalid("`camera.up` must not be zero".into()));
+    }
     if (camera.target - camera.position).length() < 1e-6 {
         return Err(BuildError::Invalid("camera.position and camera.target coincide".into()));
     }

@@ -48,7 +48,8 @@ impl Light {
 
     /// The light's position at time `t`, after orbiting.
     pub fn position_at(&self, t_s: f32) -> Vec3 {
-        let angle = (self.orbit_deg_per_s * t_s).to_radians();
+        // Wrapped in f64 so long times keep their precision.
+        let angle = ((f64::from(self.orbit_deg_per_s) * f64::from(t_s)) % 360.0).to_radians() as f32;
         if angle == 0.0 {
             return self.position;
         }

@@ -38,7 +38,11 @@ pub struct Object {
 impl Object {
     /// Model matrix at time `t`: scale, then rotate (XYZ Euler, degrees, plus spin), then translate.
     pub fn world_from_object(&self, t_s: f32) -> Mat4 {
-        let r = (self.rotate_deg + self.spin_deg_per_s * t_s) * (std::f32::consts::PI / 180.0);
+        let t = f64::from(t_s);
+        let spin = |rate: f32| ((f64::from(rate) * t) % 360.0) as f32;
+        let spun =
+            Vec3::new(spin(self.spin_deg_per_s.x), spin(self.spin_deg_per_s.y), spin(self.spin_deg_per_s.z));
+        let r = (self.rotate_deg + spun) * (std::f32::consts::PI / 180.0);
         let rotation = Quat::from_euler(glam::EulerRot::XYZ, r.x, r.y, r.z);
         Mat4::from_scale_rotation_translation(self.scale, rotation, self.translate)
     }

@@ -14,7 +14,7 @@ pub fn gpu() -> (GpuContext, Renderer) {
     let ctx = GpuContext::new_headless().unwrap_or_else(|e| {
         panic!("these tests need a GPU adapter; on a machine without a GPU install Mesa's software one (apt-get install mesa-vulkan-drivers): {e}")
     });
-    let renderer = Renderer::new(&ctx.device, &ctx.queue);
+    let renderer = Renderer::new(&ctx.device, &ctx.queue).expect("renderer");
     (ctx, renderer)
 }
 

@@ -1,0 +1,333 @@
+//! Lessons are data: one TOML file per lesson in `lessons/`, steps in order. A step names a
+//! scene, overrides any scene value (the same keys as `--set`), and says what to show and what
+//! to read, in English and Simplified Chinese. Parsed with `deny_unknown_fields`, so a typo is an
+//! error naming the file, the line and the key.
+
+use crate::diagrams::DiagramKind;
+use crate::scene::{Scene, SceneError, load_scene};
+use crate::views::View;
+use serde::Deserialize;
+use std::path::{Path, PathBuf};
+use toml::Spanned;
+
+#[derive(Debug, thiserror::Error)]
+pub enum LessonError {
+    #[error("{path}: cannot read: {reason}")]
+    Io { path: String, reason: String },
+    #[error("{path}:{line}: {message}")]
+    Parse { path: String, line: usize, message: String },
+    #[error("{path}:{line}: step {step}: {message}")]
+    Step { path: String, line: usize, step: usize, message: String },
+    #[error("{0}")]
+    NotFound(String),
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
+pub enum Lang {
+    #[default]
+    En,
+    Zh,
+}
+
+impl Lang {
+    pub fn code(self) -> &'static str {
+        match self {
+            Lang::En => "en",
+            Lang::Zh => "zh",
+        }
+    }
+    pub fn from_code(code: &str) -> Option<Lang> {
+        match code {
+            "en" => Some(Lang::En),
+            "zh" => Some(Lang::Zh),
+            _ => None,
+        }
+    }
+}
+
+/// Text in both languages; both are required.
+#[derive(Clone, Debug, PartialEq, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Text {
+    pub en: String,
+    pub zh: String,
+}
+
+impl Text {
+    pub fn get(&self, lang: Lang) -> &str {
+        match lang {
+            Lang::En => &self.en,
+            Lang::Zh => &self.zh,
+        }
+    }
+}
+
+/// Panels a step can show.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Panel {
+    Camera,
+    ShadowMap,
+    Diagram,
+    KernelPlot,
+    Probe,
+}
+
+/// Overlays on the camera view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Overlay {
+    BlockerRadius,
+    Penumbra,
+    Blockers,
+    TexelGrid,
+    OutsideFrustum,
+    Error,
+    LightFrustum,
+}
+
+impl Overlay {
+    pub const ALL: [Overlay; 7] = [
+        Overlay::BlockerRadius,
+        Overlay::Penumbra,
+        Overlay::Blockers,
+        Overlay::TexelGrid,
+        Overlay::OutsideFrustum,
+        Overlay::Error,
+        Overlay::LightFrustum,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            Overlay::BlockerRadius => "blocker-search radius",
+            Overlay::Penumbra => "penumbra width",
+            Overlay::Blockers => "blockers found",
+            Overlay::TexelGrid => "shadow-map texel grid",
+            Overlay::OutsideFrustum => "outside the light frustum",
+            Overlay::Error => "error vs ground truth",
+            Overlay::LightFrustum => "light frustum wireframe",
+        }
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct LessonFile {
+    id: String,
+    order: u32,
+    title: Text,
+    summary: Text,
+    #[serde(rename = "step")]
+    steps: Vec<Spanned<StepFile>>,
+}
+
+fn default_panels() -> Vec<Panel> {
+    vec![Panel::Camera, Panel::ShadowMap, Panel::Diagram]
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct StepFile {
+    title: Text,
+    text: Text,
+    #[serde(default)]
+    try_this: Vec<Text>,
+    scene: Spanned<String>,
+    set: Option<Spanned<toml::Table>>,
+    #[serde(default)]
+    time: f32,
+    #[serde(default)]
+    play: bool,
+    #[serde(default = "default_panels")]
+    panels: Vec<Panel>,
+    #[serde(default)]
+    overlays: Vec<Overlay>,
+    /// Probe pixel in a 960x540 frame (scaled to the view's size).
+    probe: Option<[u32; 2]>,
+    diagram: Option<Spanned<String>>,
+    view: Option<Spanned<String>>,
+    #[serde(default)]
+    light: usize,
+}
+
+/// One step of a lesson, checked: its scene loads with its overrides.
+#[derive(Clone, Debug)]
+pub struct Step {
+    pub title: Text,
+    pub text: Text,
+    pub try_this: Vec<Text>,
+    pub scene_path: PathBuf,
+    /// `--set`-style overrides, in file order.
+    pub overrides: Vec<(String, String)>,
+    pub time_s: f32,
+    pub play: bool,
+    pub panels: Vec<Panel>,
+    pub overlays: Vec<Overlay>,
+    pub probe: Option<[u32; 2]>,
+    pub diagram: Option<DiagramKind>,
+    pub view: View,
+    pub light: usize,
+}
+
+impl Step {
+    /// The step's scene with its overrides applied.
+    pub fn scene(&self) -> Result<Scene, SceneError> {
+        load_scene(&self.scene_path, &self.overrides)
+    }
+}
+
+#[derive(Clone, Debug)]
+pub struct Lesson {
+    pub id: String,
+    pub order: u32,
+    pub title: Text,
+    pub summary: Text,
+    pub path: PathBuf,
+    pub steps: Vec<Step>,
+}
+
+/// The folder the lessons ship in.
+pub fn default_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons")
+}
+
+fn line_of(text: &str, byte: usize) -> usize {
+    text.as_bytes()[..byte.min(text.len())].iter().filter(|&&b| b == b'\n').count() + 1
+}
+
+/// Flatten a `set` table into `--set` pairs: `{ light = { 0 = { width = 4 } } }` and
+/// `"light.0.width" = 4` both give `light.0.width=4`.
+fn flatten(prefix: &str, table: &toml::Table, out: &mut Vec<(String, String)>) {
+    for (key, value) in table {
+        let full = if prefix.is_empty() { key.clone() } else { format!("{prefix}.{key}") };
+        match value {
+            toml::Value::Table(inner) => flatten(&full, inner, out),
+            toml::Value::String(s) => out.push((full, s.clone())),
+            other => out.push((full, other.to_string())),
+        }
+    }
+}
+
+/// Load and check one lesson file.
+pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
+    let label = path.display().to_string();
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| LessonError::Io { path: label.clone(), reason: e.to_string() })?;
+    let file: LessonFile = toml::from_str(&text).map_err(|e| LessonError::Parse {
+        path: label.clone(),
+        line: e.span().map_or(1, |s| line_of(&text, s.start)),
+        message: e.message().trim().to_string(),
+    })?;
+    if file.steps.is_empty() {
+        return Err(LessonError::Parse {
+            path: label,
+            line: 1,
+            message: "a lesson needs at least one [[step]]".into(),
+        });
+    }
+    let base = path.parent().unwrap_or(Path::new("."));
+    let mut steps = Vec::with_capacity(file.steps.len());
+    for (index, spanned) in file.steps.into_iter().enumerate() {
+        let step_line = line_of(&text, spanned.span().start);
+        let s = spanned.into_inner();
+        let error = |span: std::ops::Range<usize>, message: String| LessonError::Step {
+            path: label.clone(),
+            line: if span.is_empty() { step_line } else { line_of(&text, span.start) },
+            step: index + 1,
+            message,
+        };
+        let diagram = match &s.diagram {
+            None => None,
+            Some(d) => Some(DiagramKind::from_id(d.get_ref()).ok_or_else(|| {
+                let ids: Vec<_> = DiagramKind::ALL.iter().map(|k| k.id()).collect();
+                error(
+                    d.span(),
+                    format!("unknown diagram `{}` (expected one of {})", d.get_ref(), ids.join(", ")),
+                )
+            })?),
+        };
+        let view = match &s.view {
+            None => View::Final,
+            Some(v) => View::from_name(v.get_ref())
+                .ok_or_else(|| error(v.span(), format!("unknown view `{}`", v.get_ref())))?,
+        };
+        if !s.time.is_finite() {
+            return Err(error(0..0, "`time` must be a finite number of seconds".into()));
+        }
+        let mut overrides = Vec::new();
+        if let Some(set) = &s.set {
+            flatten("", set.get_ref(), &mut overrides);
+        }
+        let set_span = s.set.as_ref().map_or(0..0, |set| set.span());
+        let step = Step {
+            title: s.title,
+            text: s.text,
+            try_this: s.try_this,
+            scene_path: base.join(s.scene.get_ref()),
+            overrides,
+            time_s: s.time,
+            play: s.play,
+            panels: s.panels,
+            overlays: s.overlays,
+            probe: s.probe,
+            diagram,
+            view,
+            light: s.light,
+        };
+        // A lesson that cannot render is caught here, before anything is shown or written.
+        let scene = step.scene().map_err(|e| match e {
+            SceneError::Override { .. } => error(set_span.clone(), e.to_string()),
+            _ => error(s.scene.span(), e.to_string()),
+        })?;
+        if step.light >= scene.lights.len().max(1) {
+            return Err(error(
+                0..0,
+                format!("`light` = {} but the scene has {} light(s)", step.light, scene.lights.len()),
+            ));
+        }
+        if let Some([x, y]) = step.probe
+            && (x >= 960 || y >= 540)
+        {
+            return Err(error(0..0, format!("probe {x},{y} is outside the 960x540 frame")));
+        }
+        steps.push(step);
+    }
+    Ok(Lesson {
+        id: file.id,
+        order: file.order,
+        title: file.title,
+        summary: file.summary,
+        path: path.to_path_buf(),
+        steps,
+    })
+}
+
+/// Every `*.toml` lesson in `dir`, in their `order`.
+pub fn load_all(dir: &Path) -> Result<Vec<Lesson>, LessonError> {
+    let entries = std::fs::read_dir(dir)
+        .map_err(|e| LessonError::Io { path: dir.display().to_string(), reason: e.to_string() })?;
+    let mut paths: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .collect();
+    paths.sort();
+    let mut lessons = paths.iter().map(|p| load_lesson(p)).collect::<Result<Vec<_>, _>>()?;
+    lessons.sort_by_key(|l| l.order);
+    for pair in lessons.windows(2) {
+        if pair[0].id == pair[1].id {
+            return Err(LessonError::NotFound(format!("two lessons have the id `{}`", pair[0].id)));
+        }
+    }
+    Ok(lessons)
+}
+
+/// Find a lesson by id (or by its 1-based position).
+pub fn find<'a>(lessons: &'a [Lesson], id: &str) -> Result<&'a Lesson, LessonError> {
+    lessons
+        .iter()
+        .find(|l| l.id == id)
+        .or_else(|| id.parse::<usize>().ok().and_then(|n| n.checked_sub(1)).and_then(|i| lessons.get(i)))
+        .ok_or_else(|| {
+            let ids: Vec<_> = lessons.iter().map(|l| l.id.as_str()).collect();
+            LessonError::NotFound(format!("no lesson `{id}` (lessons: {})", ids.join(", ")))
+        })
+}

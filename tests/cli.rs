@@ -1,0 +1,737 @@
+//! The command line as a user meets it: the `shadowlab` binary run as a process.
+//!
+//! Bad input must exit with code 2, print exactly one line on stderr starting `shadowlab: `
+//! that names the file or key at fault, never panic, and leave no output (nor a temporary
+//! file) behind. The positive tests render at small sizes with few reference samples.
+
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+use tempfile::TempDir;
+
+fn repo_path(relative: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(relative)
+}
+
+fn contact() -> String {
+    repo_path("assets/scenes/contact.toml").display().to_string()
+}
+
+fn fixture(name: &str) -> String {
+    repo_path("tests/data/scenes").join(name).display().to_string()
+}
+
+struct Run {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+impl std::fmt::Display for Run {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "exit code {:?}\n--- stdout\n{}--- stderr\n{}", self.code, self.stdout, self.stderr)
+    }
+}
+
+/// A private runtime folder for the child processes. Without `XDG_RUNTIME_DIR` the Vulkan
+/// driver's Wayland client library prints a complaint to stderr while the adapter is set up,
+/// which is the environment's noise, not shadowlab's; the one-line checks need a quiet stderr.
+fn runtime_dir() -> Option<PathBuf> {
+    static DIR: OnceLock<Option<PathBuf>> = OnceLock::new();
+    DIR.get_or_init(|| {
+        if std::env::var_os("XDG_RUNTIME_DIR").is_some() {
+            return None;
+        }
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-runtime-dir");
+        std::fs::create_dir_all(&dir).expect("create runtime folder");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700))
+                .expect("chmod runtime folder");
+        }
+        Some(dir)
+    })
+    .clone()
+}
+
+fn shadowlab<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Run {
+    let mut command = Command::new(env!("CARGO_BIN_EXE_shadowlab"));
+    command.args(args).current_dir(env!("CARGO_MANIFEST_DIR"));
+    if let Some(dir) = runtime_dir() {
+        command.env("XDG_RUNTIME_DIR", dir);
+    }
+    let output = command.output().expect("the shadowlab binary runs");
+    Run {
+        code: output.status.code(),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    }
+}
+
+/// A scratch folder for outputs and hand-written scenes.
+struct Scratch {
+    dir: TempDir,
+}
+
+impl Scratch {
+    fn new() -> Self {
+        Self { dir: tempfile::tempdir().expect("temporary folder") }
+    }
+
+    fn path(&self, name: &str) -> PathBuf {
+        self.dir.path().join(name)
+    }
+
+    fn arg(&self, name: &str) -> String {
+        self.path(name).display().to_string()
+    }
+
+    /// Write a scene file into the folder and return its path.
+    fn scene(&self, name: &str, text: &str) -> String {
+        let path = self.path(name);
+        std::fs::write(&path, text).expect("write scene");
+        path.display().to_string()
+    }
+
+    /// Temporary files the atomic writer may have left behind.
+    fn stray_temp_files(&self) -> Vec<String> {
+        std::fs::read_dir(self.dir.path())
+            .expect("read scratch folder")
+            .map(|e| e.expect("directory entry").file_name().to_string_lossy().into_owned())
+            .filter(|name| name.starts_with('.') && name.contains(".tmp-"))
+            .collect()
+    }
+
+    fn assert_no_output(&self, out: &str) {
+        assert!(!self.path(out).exists(), "{out} must not be written");
+        assert_eq!(self.stray_temp_files(), Vec::<String>::new(), "stray temporary files");
+    }
+}
+
+/// Exit code 2, one `shadowlab: ` line on stderr mentioning every needle, nothing on stdout.
+#[track_caller]
+fn assert_bad_input(run: &Run, needles: &[&str]) {
+    assert_eq!(run.code, Some(2), "bad input should exit with 2:\n{run}");
+    assert!(!run.stderr.contains("panicked"), "panicked:\n{run}");
+    let lines: Vec<&str> = run.stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "exactly one line on stderr:\n{run}");
+    assert!(lines[0].starts_with("shadowlab: "), "stderr should start with `shadowlab: `:\n{run}");
+    for needle in needles {
+        assert!(lines[0].contains(needle), "stderr should mention {needle:?}:\n{run}");
+    }
+    assert!(run.stdout.is_empty(), "nothing on stdout for bad input:\n{run}");
+}
+
+/// A usage error reported by the argument parser: exit code 2, the argument named.
+#[track_caller]
+fn assert_usage_error(run: &Run, needles: &[&str]) {
+    assert_eq!(run.code, Some(2), "usage errors exit with 2:\n{run}");
+    assert!(!run.stderr.contains("panicked"), "panicked:\n{run}");
+    for needle in needles {
+        assert!(run.stderr.contains(needle), "stderr should mention {needle:?}:\n{run}");
+    }
+    assert!(run.stdout.is_empty(), "nothing on stdout for bad input:\n{run}");
+}
+
+/// `render` of `scene` with extra arguments into scratch/out.png (at 32x18 unless `extra`
+/// gives a size); returns the run.
+fn render(scratch: &Scratch, scene: &str, extra: &[&str]) -> Run {
+    let out = scratch.arg("out.png");
+    let mut args = vec!["render", "--scene", scene, "--out", &out];
+    if !extra.contains(&"--size") {
+        args.extend_from_slice(&["--size", "32x18"]);
+    }
+    args.extend_from_slice(extra);
+    shadowlab(&args)
+}
+
+#[track_caller]
+fn render_rejected(scene: &str, extra: &[&str], needles: &[&str]) {
+    let scratch = Scratch::new();
+    let run = render(&scratch, scene, extra);
+    assert_bad_input(&run, needles);
+    scratch.assert_no_output("out.png");
+}
+
+#[track_caller]
+fn render_usage_error(extra: &[&str], needles: &[&str]) {
+    let scratch = Scratch::new();
+    let run = render(&scratch, &contact(), extra);
+    assert_usage_error(&run, needles);
+    scratch.assert_no_output("out.png");
+}
+
+fn decode_png(path: &Path) -> image::RgbaImage {
+    image::open(path).unwrap_or_else(|e| panic!("{} should be a PNG: {e}", path.display())).to_rgba8()
+}
+
+/// Render `view` of contact.toml at 160x90 and return the image and stdout.
+fn render_view(view: &str, extra: &[&str]) -> (image::RgbaImage, String) {
+    let scratch = Scratch::new();
+    let out = scratch.arg("view.png");
+    let scene = contact();
+    let mut args = vec!["render", "--scene", &scene, "--size", "160x90", "--view", view, "--out", &out];
+    args.extend_from_slice(extra);
+    let run = shadowlab(&args);
+    assert_eq!(run.code, Some(0), "render --view {view} should succeed:\n{run}");
+    assert!(run.stderr.is_empty(), "nothing on stderr for a good render:\n{run}");
+    assert!(run.stdout.contains("wrote "), "{run}");
+    assert_eq!(scratch.stray_temp_files(), Vec::<String>::new());
+    (decode_png(&scratch.path("view.png")), run.stdout)
+}
+
+/// The two numbers of a legend line `label: MIN .. MAX unit ...`.
+fn legend_range(stdout: &str, label: &str) -> (f64, f64) {
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with(label))
+        .unwrap_or_else(|| panic!("no `{label}` legend line in:\n{stdout}"));
+    let rest = line[label.len()..].trim_start_matches(':').trim();
+    let mut words = rest.split_whitespace();
+    let min: f64 =
+        words.next().and_then(|w| w.parse().ok()).unwrap_or_else(|| panic!("no minimum in {line:?}"));
+    assert_eq!(words.next(), Some(".."), "{line:?}");
+    let max: f64 =
+        words.next().and_then(|w| w.parse().ok()).unwrap_or_else(|| panic!("no maximum in {line:?}"));
+    (min, max)
+}
+
+fn probe_json(extra: &[&str]) -> Value {
+    let scene = contact();
+    let mut args = vec!["probe", "--scene", &scene, "--size", "160x90"];
+    args.extend_from_slice(extra);
+    let run = shadowlab(&args);
+    assert_eq!(run.code, Some(0), "probe should succeed:\n{run}");
+    assert!(!run.stderr.contains("panicked"), "{run}");
+    serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("probe prints JSON ({e}):\n{run}"))
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input: scene files.
+
+#[test]
+fn missing_scene_file_names_the_file() {
+    let scratch = Scratch::new();
+    let scene = scratch.arg("no_such_scene.toml");
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["no_such_scene.toml", "cannot read"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn scene_path_that_is_a_folder_is_rejected() {
+    let scratch = Scratch::new();
+    let folder = scratch.path("folder.toml");
+    std::fs::create_dir(&folder).expect("create folder");
+    let run = render(&scratch, &folder.display().to_string(), &[]);
+    assert_bad_input(&run, &["folder.toml"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn scene_file_that_is_not_utf8_is_rejected() {
+    let scratch = Scratch::new();
+    let path = scratch.path("binary.toml");
+    std::fs::write(&path, b"\xff\xfe[camera]\n").expect("write");
+    let run = render(&scratch, &path.display().to_string(), &[]);
+    assert_bad_input(&run, &["binary.toml"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn toml_syntax_error_names_file_and_line() {
+    let scratch = Scratch::new();
+    let scene = scratch.scene("syntax.toml", "[camera]\nposition = [0.0, 4.0, 10.0]\nfov_deg = = 40\n");
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["syntax.toml:3:"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn unclosed_array_names_file_and_line() {
+    let scratch = Scratch::new();
+    let scene = scratch.scene("unclosed.toml", "# comment\n[camera]\nposition = [0, 1, 5\n");
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["unclosed.toml:3:"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn unknown_shadow_key_names_file_key_and_line() {
+    let scratch = Scratch::new();
+    let scene = scratch.scene(
+        "unknown_key.toml",
+        "[camera]\nposition = [0.0, 4.0, 10.0]\n\n[shadow]\ntechnique = \"pcf\"\nfoo = 1\n",
+    );
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["unknown_key.toml:6:", "foo"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn unknown_light_key_names_file_key_and_line() {
+    let scratch = Scratch::new();
+    let scene = scratch.scene(
+        "unknown_light_key.toml",
+        "[camera]\nposition = [0.0, 4.0, 10.0]\n\n[[light]]\nkind = \"spot\"\nposition = [0.0, 9.0, 0.0]\nfov_deg = 50.0\nradius = 2.0\n",
+    );
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["unknown_light_key.toml:8:", "radius"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn wrong_value_type_in_file_names_file_and_line() {
+    let scratch = Scratch::new();
+    let scene = scratch
+        .scene("wrong_type.toml", "[camera]\nposition = [0.0, 4.0, 10.0]\n\n[shadow]\nsamples = \"many\"\n");
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["wrong_type.toml:5:"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn out_of_range_value_in_file_names_file_and_key() {
+    let scratch = Scratch::new();
+    let scene =
+        scratch.scene("range.toml", "[camera]\nposition = [0.0, 4.0, 10.0]\n\n[shadow]\nsamples = 1000\n");
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["range.toml", "samples", "1..=128"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn nan_in_file_names_file_and_key() {
+    let scratch = Scratch::new();
+    let scene = scratch.scene("nan.toml", "[camera]\nposition = [0.0, 4.0, 10.0]\n\n[shadow]\nbias = nan\n");
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["nan.toml", "bias"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn too_many_lights_names_the_file() {
+    let scratch = Scratch::new();
+    let mut text = String::from("[camera]\nposition = [0.0, 4.0, 10.0]\n");
+    for _ in 0..5 {
+        text.push_str("\n[[light]]\nkind = \"spot\"\nposition = [0.0, 9.0, 0.0]\nfov_deg = 50.0\n");
+    }
+    let scene = scratch.scene("five_lights.toml", &text);
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["five_lights.toml", "at most 4"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn missing_texture_names_the_texture() {
+    render_rejected(&fixture("missing_texture.toml"), &[], &["does_not_exist.png", "missing_texture.mtl"]);
+}
+
+#[test]
+fn missing_obj_names_the_mesh_file() {
+    render_rejected(&fixture("missing_mesh.toml"), &[], &["no_such_mesh.obj"]);
+}
+
+#[test]
+fn malformed_obj_names_the_mesh_file() {
+    let scratch = Scratch::new();
+    let obj = repo_path("tests/data/obj/malformed.obj");
+    let scene = scratch.scene(
+        "malformed_mesh.toml",
+        &format!(
+            "[camera]\nposition = [0.0, 4.0, 10.0]\n\n[[object]]\nmesh = {:?}\n",
+            obj.display().to_string()
+        ),
+    );
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["malformed.obj"]);
+    scratch.assert_no_output("out.png");
+}
+
+#[test]
+fn unknown_primitive_names_the_mesh() {
+    let scratch = Scratch::new();
+    let scene =
+        scratch.scene("blob.toml", "[camera]\nposition = [0.0, 4.0, 10.0]\n\n[[object]]\nmesh = \"blob\"\n");
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["blob.toml", "blob", "plane"]);
+    scratch.assert_no_output("out.png");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input: --set overrides.
+
+#[test]
+fn set_unknown_technique_lists_the_allowed_values() {
+    render_rejected(
+        &contact(),
+        &["--set", "technique=blurry"],
+        &["technique", "blurry", "hard", "pcf", "pcss"],
+    );
+}
+
+#[test]
+fn set_samples_zero_names_key_and_range() {
+    render_rejected(&contact(), &["--set", "samples=0"], &["samples", "1..=128"]);
+}
+
+#[test]
+fn set_samples_500_names_key_and_range() {
+    render_rejected(&contact(), &["--set", "samples=500"], &["samples", "1..=128"]);
+}
+
+#[test]
+fn set_bias_nan_names_bias() {
+    render_rejected(&contact(), &["--set", "bias=nan"], &["bias"]);
+}
+
+#[test]
+fn set_camera_fov_inf_names_the_key() {
+    render_rejected(&contact(), &["--set", "camera.fov_deg=inf"], &["camera.fov_deg"]);
+}
+
+#[test]
+fn set_missing_light_names_light_7() {
+    render_rejected(&contact(), &["--set", "light.7.width=1"], &["light.7", "light 7"]);
+}
+
+#[test]
+fn set_unknown_shadow_key_names_it() {
+    render_rejected(&contact(), &["--set", "foo=1"], &["foo"]);
+}
+
+#[test]
+fn set_unknown_section_names_the_key() {
+    render_rejected(&contact(), &["--set", "lamp.0.width=1"], &["lamp.0.width"]);
+}
+
+#[test]
+fn set_shadow_map_size_100_names_the_key() {
+    render_rejected(
+        &contact(),
+        &["--set", "light.0.shadow_map_size=100"],
+        &["light.0.shadow_map_size", "256..=8192"],
+    );
+}
+
+#[test]
+fn set_object_mesh_to_missing_obj_names_the_file() {
+    render_rejected(&contact(), &["--set", "object.0.mesh=no_such_mesh.obj"], &["no_such_mesh.obj"]);
+}
+
+#[test]
+fn set_without_equals_sign_is_a_usage_error() {
+    render_usage_error(&["--set", "technique"], &["--set", "technique"]);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Bad input: command-line values.
+
+#[test]
+fn unknown_view_lists_the_views() {
+    render_usage_error(&["--view", "sideways"], &["--view", "sideways", "shadow-map", "blocker-radius"]);
+}
+
+#[test]
+fn size_with_a_zero_side_is_rejected() {
+    render_usage_error(&["--size", "0x10"], &["--size", "0x10"]);
+}
+
+#[test]
+fn size_that_is_not_a_size_is_rejected() {
+    render_usage_error(&["--size", "big"], &["--size", "big"]);
+}
+
+#[test]
+fn time_nan_is_rejected() {
+    render_usage_error(&["--time", "nan"], &["--time", "nan"]);
+}
+
+#[test]
+fn negative_light_index_is_rejected() {
+    render_usage_error(&["--light", "-1"], &["-1"]);
+}
+
+#[test]
+fn probe_pixel_without_comma_is_rejected() {
+    let run = shadowlab(&["probe", "--scene", &contact(), "--size", "32x18", "--pixel", "5"]);
+    assert_usage_error(&run, &["--pixel", "5"]);
+}
+
+#[test]
+fn probe_pixel_outside_the_image_is_rejected() {
+    let run =
+        shadowlab(&["probe", "--scene", &contact(), "--size", "32x18", "--pixel", "32,5", "--no-reference"]);
+    assert_bad_input(&run, &["32,5", "32x18"]);
+}
+
+#[test]
+fn probe_with_a_bad_override_prints_no_json() {
+    let run = shadowlab(&[
+        "probe",
+        "--scene",
+        &contact(),
+        "--size",
+        "32x18",
+        "--pixel",
+        "1,1",
+        "--set",
+        "samples=0",
+    ]);
+    assert_bad_input(&run, &["samples"]);
+}
+
+#[test]
+fn out_path_not_png_is_rejected() {
+    let scratch = Scratch::new();
+    let out = scratch.arg("x.jpg");
+    let run = shadowlab(&["render", "--scene", &contact(), "--size", "32x18", "--out", &out]);
+    assert_bad_input(&run, &["x.jpg", ".png"]);
+    scratch.assert_no_output("x.jpg");
+}
+
+#[test]
+fn out_path_without_extension_is_rejected() {
+    let scratch = Scratch::new();
+    let out = scratch.arg("picture");
+    let run = shadowlab(&["render", "--scene", &contact(), "--size", "32x18", "--out", &out]);
+    assert_bad_input(&run, &["picture", ".png"]);
+    scratch.assert_no_output("picture");
+}
+
+#[test]
+fn out_folder_missing_is_rejected() {
+    let scratch = Scratch::new();
+    let out = scratch.path("missing").join("out.png");
+    let run =
+        shadowlab(&["render", "--scene", &contact(), "--size", "32x18", "--out", &out.display().to_string()]);
+    assert_bad_input(&run, &["missing", "does not exist"]);
+    assert!(!out.exists());
+    assert!(!scratch.path("missing").exists(), "the folder must not be created");
+    assert_eq!(scratch.stray_temp_files(), Vec::<String>::new());
+}
+
+#[test]
+fn light_index_out_of_range_is_rejected() {
+    render_rejected(&contact(), &["--light", "3"], &["--light 3", "contact.toml", "1 light"]);
+}
+
+#[test]
+fn debug_view_of_a_scene_without_lights_is_rejected() {
+    render_rejected(
+        &fixture("minimal.toml"),
+        &["--view", "shadow-map"],
+        &["minimal.toml", "no lights", "shadow-map"],
+    );
+}
+
+#[test]
+fn bench_missing_scene_names_the_file() {
+    let scratch = Scratch::new();
+    let scene = scratch.arg("no_bench_scene.toml");
+    let run = shadowlab(&["bench", "--scene", &scene, "--frames", "1", "--size", "32x18"]);
+    assert_bad_input(&run, &["no_bench_scene.toml"]);
+}
+
+#[test]
+fn bench_zero_frames_is_rejected() {
+    let run = shadowlab(&["bench", "--frames", "0"]);
+    assert_usage_error(&run, &["--frames", "0"]);
+}
+
+#[test]
+fn no_arguments_exits_non_zero_with_one_line() {
+    let run = shadowlab::<&str>(&[]);
+    assert_ne!(run.code, Some(0), "{run}");
+    assert!(!run.stderr.contains("panicked"), "{run}");
+    let lines: Vec<&str> = run.stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "one line on stderr:\n{run}");
+    assert!(lines[0].starts_with("shadowlab: "), "{run}");
+    assert!(lines[0].contains("render"), "the message points at the commands:\n{run}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Good input.
+
+#[test]
+fn render_final_writes_a_png_of_the_requested_size() {
+    let (image, stdout) = render_view("final", &[]);
+    assert_eq!(image.dimensions(), (160, 90));
+    assert!(stdout.contains("160x90"), "{stdout}");
+    let first = image.get_pixel(0, 0);
+    assert!(image.pixels().any(|p| p != first), "the final image should not be one flat colour");
+}
+
+#[test]
+fn render_visibility_writes_a_png_of_the_requested_size() {
+    let (image, stdout) = render_view("visibility", &[]);
+    assert_eq!(image.dimensions(), (160, 90));
+    assert!(stdout.contains("visibility"), "{stdout}");
+    // Surfaces are grey levels; contact.toml has both lit and shadowed surfaces in view.
+    let greys: Vec<u8> = image.pixels().filter(|p| p[0] == p[1] && p[1] == p[2]).map(|p| p[0]).collect();
+    assert!(greys.iter().any(|&g| g > 200), "some surface is lit");
+    assert!(greys.iter().any(|&g| g < 50), "some surface is shadowed");
+}
+
+#[test]
+fn render_shadow_map_is_the_size_of_the_light_map() {
+    let scene = shadowlab::scene::load_scene(&repo_path("assets/scenes/contact.toml"), &[])
+        .expect("contact.toml loads");
+    let map = scene.lights[0].shadow_map_size;
+    let (image, stdout) = render_view("shadow-map", &[]);
+    assert_eq!(image.dimensions(), (map, map), "the shadow-map view ignores --size");
+    let (near, far) = legend_range(&stdout, "light-space depth");
+    assert!(0.0 < near && near <= far, "{stdout}");
+}
+
+#[test]
+fn render_shadow_map_follows_a_shadow_map_size_override() {
+    let (image, _) = render_view("shadow-map", &["--set", "light.0.shadow_map_size=512"]);
+    assert_eq!(image.dimensions(), (512, 512));
+}
+
+#[test]
+fn render_blocker_radius_prints_a_legend_in_texels() {
+    let (image, stdout) = render_view("blocker-radius", &[]);
+    assert_eq!(image.dimensions(), (160, 90));
+    let line = stdout.lines().find(|l| l.starts_with("blocker-search radius")).unwrap_or_default();
+    assert!(line.contains("texels"), "legend in texels:\n{stdout}");
+    let (min, max) = legend_range(&stdout, "blocker-search radius");
+    assert!(min.is_finite() && max.is_finite() && min <= max && max > 0.0, "{stdout}");
+}
+
+#[test]
+fn render_penumbra_and_blockers_views_print_legends() {
+    let (image, stdout) = render_view("penumbra", &[]);
+    assert_eq!(image.dimensions(), (160, 90));
+    let (min, max) = legend_range(&stdout, "penumbra width");
+    assert!(min <= max, "{stdout}");
+    let (image, stdout) = render_view("blockers", &["--set", "blocker_samples=8"]);
+    assert_eq!(image.dimensions(), (160, 90));
+    let (min, max) = legend_range(&stdout, "blockers found");
+    assert!(min <= max && max <= 8.0, "at most blocker_samples blockers:\n{stdout}");
+}
+
+#[test]
+fn render_reference_view_writes_a_png() {
+    let (image, stdout) = render_view("reference", &["--set", "reference_samples=8"]);
+    assert_eq!(image.dimensions(), (160, 90));
+    assert!(stdout.contains("8 hard shadows"), "{stdout}");
+}
+
+#[test]
+fn render_error_view_prints_the_mean_absolute_error() {
+    let (image, stdout) = render_view("error", &["--set", "reference_samples=16"]);
+    assert_eq!(image.dimensions(), (160, 90));
+    let line = stdout
+        .lines()
+        .find(|l| l.starts_with("mean absolute error:"))
+        .unwrap_or_else(|| panic!("no mean absolute error in:\n{stdout}"));
+    let mae: f64 =
+        line["mean absolute error:".len()..].trim().parse().unwrap_or_else(|e| panic!("{line:?}: {e}"));
+    assert!((0.0..1.0).contains(&mae), "{line}");
+}
+
+#[test]
+fn render_light_index_selects_the_light() {
+    let scratch = Scratch::new();
+    let scene = repo_path("assets/scenes/multi_light.toml").display().to_string();
+    let run = render(&scratch, &scene, &["--view", "visibility", "--light", "1"]);
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(run.stdout.contains("light 1"), "{run}");
+    assert_eq!(decode_png(&scratch.path("out.png")).dimensions(), (32, 18));
+}
+
+const LIGHT_KEYS: [&str; 15] = [
+    "shadow_map_uv",
+    "receiver_depth_ndc",
+    "receiver_depth_linear",
+    "stored_depth_ndc",
+    "bias_ndc",
+    "blocker_search_radius_uv",
+    "blocker_search_radius_texels",
+    "blockers_found",
+    "avg_blocker_depth_linear",
+    "penumbra_width_world",
+    "filter_radius_uv",
+    "filter_radius_texels",
+    "visibility_gpu",
+    "visibility_twin",
+    "visibility_reference",
+];
+
+#[track_caller]
+fn assert_light_report(light: &Value) {
+    for key in LIGHT_KEYS {
+        assert!(light.get(key).is_some(), "probe light report lacks `{key}`:\n{light:#}");
+    }
+    let number =
+        |key: &str| light[key].as_f64().unwrap_or_else(|| panic!("`{key}` is not a number:\n{light:#}"));
+    let gpu = number("visibility_gpu");
+    let twin = number("visibility_twin");
+    assert!((0.0..=1.0).contains(&gpu), "{light:#}");
+    assert!((gpu - twin).abs() <= 1e-3, "GPU and CPU twin disagree: {gpu} vs {twin}");
+    let uv = light["shadow_map_uv"].as_array().expect("shadow_map_uv is an array");
+    assert_eq!(uv.len(), 2);
+    assert!(number("receiver_depth_linear") > 0.0, "{light:#}");
+}
+
+#[test]
+fn probe_at_the_centre_reports_a_hit_with_every_light_key() {
+    let json = probe_json(&["--pixel", "80,45", "--set", "reference_samples=8"]);
+    assert_eq!(json["hit"], Value::Bool(true), "{json:#}");
+    assert_eq!(json["pixel"], serde_json::json!([80, 45]));
+    assert!(json["object"].is_string(), "{json:#}");
+    let lights = json["lights"].as_array().expect("lights is an array");
+    assert_eq!(lights.len(), 1, "contact.toml has one light");
+    assert_light_report(&lights[0]);
+    let reference = lights[0]["visibility_reference"].as_f64().expect("visibility_reference is a number");
+    assert!((0.0..=1.0).contains(&reference), "{reference}");
+}
+
+#[test]
+fn probe_without_reference_leaves_the_reference_null() {
+    let json = probe_json(&["--pixel", "80,45", "--no-reference"]);
+    assert_eq!(json["hit"], Value::Bool(true), "{json:#}");
+    let lights = json["lights"].as_array().expect("lights is an array");
+    assert_eq!(lights.len(), 1);
+    assert_light_report(&lights[0]);
+    assert!(lights[0]["visibility_reference"].is_null());
+}
+
+#[test]
+fn probe_at_the_sky_reports_no_hit() {
+    let json = probe_json(&["--pixel", "0,0", "--no-reference", "--set", "camera.target=[0,100,0]"]);
+    assert_eq!(json["hit"], Value::Bool(false), "{json:#}");
+    assert_eq!(json["lights"], serde_json::json!([]));
+    assert!(json.get("object").is_none(), "{json:#}");
+}
+
+#[test]
+fn bench_json_has_six_rows_positive_times_and_the_adapter() {
+    let scene = contact();
+    let run = shadowlab(&["bench", "--scene", &scene, "--frames", "2", "--size", "160x90", "--json"]);
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value =
+        serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("bench prints JSON ({e}):\n{run}"));
+    let adapter = json["adapter"].as_str().expect("adapter is a string");
+    assert!(!adapter.trim().is_empty());
+    assert_eq!(json["frames"], serde_json::json!(2));
+    assert_eq!(json["size"], serde_json::json!([160, 90]));
+    let rows = json["rows"].as_array().expect("rows is an array");
+    assert_eq!(rows.len(), 6, "{json:#}");
+    for row in rows {
+        assert!(row["technique"].is_string(), "{row}");
+        for key in ["median_frame_ms", "min_frame_ms"] {
+            let ms = row[key].as_f64().unwrap_or_else(|| panic!("`{key}` is not a number: {row}"));
+            assert!(ms > 0.0 && ms.is_finite(), "{row}");
+        }
+        assert!(row["min_frame_ms"].as_f64() <= row["median_frame_ms"].as_f64(), "{row}");
+        for key in ["shadow_pass_ms", "camera_pass_ms"] {
+            let value = &row[key];
+            assert!(value.is_null() || value.as_f64().is_some_and(|ms| ms >= 0.0), "{row}");
+        }
+    }
+}

@@ -1,0 +1,380 @@
+//! Scene files at the library level: the shipped scenes, defaults, `--set` overrides and the
+//! validation of lights. Fixture scenes live in tests/data/scenes/ (their mesh paths are
+//! relative to that folder).
+
+use shadowlab::scene::{
+    LightKind, LightSize, MAX_LIGHTS, Projection, Scene, SceneError, ShadowSettings, Technique, load_scene,
+    parse_scene_str,
+};
+use std::path::{Path, PathBuf};
+
+fn repo_path(relative: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(relative)
+}
+
+fn fixture(name: &str) -> PathBuf {
+    repo_path("tests/data/scenes").join(name)
+}
+
+fn overrides(pairs: &[(&str, &str)]) -> Vec<(String, String)> {
+    pairs.iter().map(|(k, v)| (k.to_string(), v.to_string())).collect()
+}
+
+fn load_fixture(name: &str, pairs: &[(&str, &str)]) -> Scene {
+    let path = fixture(name);
+    load_scene(&path, &overrides(pairs)).unwrap_or_else(|e| panic!("{} should load: {e}", path.display()))
+}
+
+/// Parse inline scene text; mesh paths resolve against tests/data/obj.
+fn parse(text: &str, pairs: &[(&str, &str)]) -> Result<Scene, SceneError> {
+    parse_scene_str(text, &repo_path("tests/data/obj"), "inline.toml", &overrides(pairs))
+}
+
+fn parse_ok(text: &str) -> Scene {
+    parse(text, &[]).unwrap_or_else(|e| panic!("scene should parse: {e}\n{text}"))
+}
+
+fn parse_err(text: &str, pairs: &[(&str, &str)]) -> String {
+    match parse(text, pairs) {
+        Ok(_) => panic!("scene should be rejected:\n{text}\noverrides: {pairs:?}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+fn assert_one_line_naming(message: &str, needles: &[&str]) {
+    assert_eq!(message.lines().count(), 1, "error should be one line: {message:?}");
+    for needle in needles {
+        assert!(message.contains(needle), "error should mention {needle:?}: {message}");
+    }
+}
+
+const CAMERA: &str = "[camera]\nposition = [0.0, 4.0, 10.0]\n";
+
+/// A scene with the camera, a plane and the given `[[light]]` tables.
+fn scene_with_lights(lights: &[&str]) -> String {
+    let mut text = format!("{CAMERA}\n[[object]]\nmesh = \"plane\"\n");
+    for light in lights {
+        text.push_str("\n[[light]]\n");
+        text.push_str(light);
+        text.push('\n');
+    }
+    text
+}
+
+const SPOT: &str = "kind = \"spot\"\nposition = [0.0, 10.0, 0.0]\nfov_deg = 60.0";
+const DIRECTIONAL: &str = "kind = \"directional\"\nposition = [5.0, 10.0, 0.0]\nextent = 10.0";
+
+#[test]
+fn every_shipped_scene_loads_with_lights_and_triangles() {
+    let dir = repo_path("assets/scenes");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("assets/scenes is readable")
+        .map(|entry| entry.expect("directory entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    assert!(!paths.is_empty(), "no scenes found in {}", dir.display());
+    for path in &paths {
+        let scene = load_scene(path, &[]).unwrap_or_else(|e| panic!("{} should load: {e}", path.display()));
+        assert_eq!(scene.path.as_deref(), Some(path.as_path()));
+        assert!(!scene.lights.is_empty(), "{}: a shipped scene needs a light", path.display());
+        assert!(scene.lights.len() <= MAX_LIGHTS, "{}", path.display());
+        assert!(!scene.objects.is_empty(), "{}: no objects", path.display());
+        for object in &scene.objects {
+            assert!(
+                object.mesh.triangle_count() > 0,
+                "{}: object `{}` has no triangles",
+                path.display(),
+                object.name
+            );
+        }
+        scene.shadow.validate().unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    }
+}
+
+#[test]
+fn minimal_scene_gets_every_default() {
+    let scene = load_fixture("minimal.toml", &[]);
+    assert_eq!(scene.shadow, ShadowSettings::default());
+    assert!(scene.lights.is_empty());
+    assert_eq!(scene.ambient.to_array(), [0.08, 0.08, 0.1]);
+
+    let camera = scene.camera;
+    assert_eq!(camera.projection, Projection::Perspective { fov_deg: 45.0 });
+    assert_eq!(camera.position.to_array(), [0.0, 4.0, 10.0]);
+    assert_eq!(camera.target.to_array(), [0.0, 0.0, 0.0]);
+    assert_eq!(camera.up.to_array(), [0.0, 1.0, 0.0]);
+    assert_eq!((camera.near, camera.far), (0.1, 1000.0));
+
+    assert_eq!(scene.objects.len(), 1);
+    let object = &scene.objects[0];
+    assert_eq!(object.name, "plane", "an unnamed object takes its mesh's name");
+    assert_eq!(object.color.to_array(), [0.8, 0.8, 0.8]);
+    assert_eq!(object.translate.to_array(), [0.0; 3]);
+    assert_eq!(object.rotate_deg.to_array(), [0.0; 3]);
+    assert_eq!(object.scale.to_array(), [1.0; 3]);
+    assert_eq!(object.spin_deg_per_s.to_array(), [0.0; 3]);
+}
+
+#[test]
+fn inline_minimal_scene_matches_the_fixture_file() {
+    let text = std::fs::read_to_string(fixture("minimal.toml")).expect("fixture is readable");
+    let scene = parse_ok(&text);
+    assert_eq!(scene.path, None, "scenes parsed from text have no path");
+    assert_eq!(scene.shadow, ShadowSettings::default());
+}
+
+#[test]
+fn light_defaults_are_applied() {
+    let scene = parse_ok(&scene_with_lights(&[SPOT, DIRECTIONAL]));
+    let spot = scene.lights[0];
+    assert_eq!(spot.kind, LightKind::Spot { fov_deg: 60.0 });
+    assert_eq!(spot.shadow_map_size, 2048);
+    assert_eq!((spot.near, spot.far), (1.0, 500.0));
+    assert_eq!(spot.size, LightSize::Width { width_world: 0.0 });
+    assert_eq!(spot.color.to_array(), [1.0; 3]);
+    assert_eq!(spot.intensity, 1.0);
+    assert_eq!(spot.orbit_deg_per_s, 0.0);
+    let directional = scene.lights[1];
+    assert_eq!(directional.kind, LightKind::Directional { extent_world: 10.0 });
+    assert_eq!(directional.near, 0.01);
+}
+
+#[test]
+fn overrides_reach_camera_light_object_and_shadow() {
+    let scene = load_fixture(
+        "one_light.toml",
+        &[
+            ("camera.fov_deg", "40"),
+            ("light.0.width", "4"),
+            ("object.0.spin_deg_per_s", "[0,90,0]"),
+            ("technique", "pcf"),
+        ],
+    );
+    assert_eq!(scene.camera.projection, Projection::Perspective { fov_deg: 40.0 });
+    assert_eq!(scene.lights[0].size, LightSize::Width { width_world: 4.0 });
+    assert_eq!(scene.objects[0].spin_deg_per_s.to_array(), [0.0, 90.0, 0.0]);
+    assert_eq!(scene.objects[1].spin_deg_per_s.to_array(), [0.0; 3], "only object 0 changes");
+    assert_eq!(scene.shadow.technique, Technique::Pcf);
+    // Untouched values keep the file's.
+    assert_eq!(scene.shadow.samples, 16);
+    assert_eq!(scene.camera.position.to_array(), [0.0, 6.0, 12.0]);
+}
+
+#[test]
+fn overrides_apply_in_order() {
+    let scene = load_fixture(
+        "one_light.toml",
+        &[("technique", "hard"), ("samples", "8"), ("technique", "pcf"), ("samples", "64")],
+    );
+    assert_eq!(scene.shadow.technique, Technique::Pcf);
+    assert_eq!(scene.shadow.samples, 64);
+
+    let scene = load_fixture("one_light.toml", &[("technique", "pcf"), ("technique", "hard")]);
+    assert_eq!(scene.shadow.technique, Technique::Hard);
+}
+
+#[test]
+fn overrides_accept_section_prefixes_and_quoted_values() {
+    let scene = load_fixture(
+        "one_light.toml",
+        &[
+            ("shadow.bias_mode", "slope"),
+            ("pcf_kernel", "\"vogel\""),
+            ("ambient", "[0.2, 0.3, 0.4]"),
+            ("camera.position", "[1, 2, 3]"),
+            ("light.0.shadow_map_size", "512"),
+            ("object.1.name", "\"crate\""),
+        ],
+    );
+    assert_eq!(scene.shadow.bias_mode.name(), "slope");
+    assert_eq!(scene.shadow.pcf_kernel.name(), "vogel");
+    assert_eq!(scene.ambient.to_array(), [0.2, 0.3, 0.4]);
+    assert_eq!(scene.camera.position.to_array(), [1.0, 2.0, 3.0]);
+    assert_eq!(scene.lights[0].shadow_map_size, 512);
+    assert_eq!(scene.objects[1].name, "crate");
+}
+
+#[test]
+fn override_errors_name_the_key() {
+    let path = fixture("one_light.toml");
+    let cases: &[(&str, &str, &[&str])] = &[
+        ("technique", "blurry", &["technique", "blurry", "hard", "pcf", "pcss"]),
+        ("samples", "0", &["samples", "1..=128"]),
+        ("samples", "500", &["samples", "1..=128"]),
+        ("bias", "nan", &["bias"]),
+        ("foo", "1", &["foo"]),
+        ("light.7.width", "1", &["light.7", "no light 7"]),
+        ("object.9.scale", "2", &["object.9", "no object 9"]),
+        ("light.x.width", "1", &["light.x"]),
+        ("camera.fov_deg", "400", &["camera.fov_deg", "1..=170"]),
+        ("light.0.shadow_map_size", "100", &["light.0.shadow_map_size", "256..=8192"]),
+        ("nosuch.key", "1", &["nosuch.key"]),
+    ];
+    for (key, value, needles) in cases {
+        let err = load_scene(&path, &overrides(&[(key, value)]))
+            .err()
+            .unwrap_or_else(|| panic!("--set {key}={value} should be rejected"));
+        assert_one_line_naming(&err.to_string(), needles);
+    }
+}
+
+#[test]
+fn a_bad_override_is_reported_even_after_good_ones() {
+    let err =
+        load_fixture_err("one_light.toml", &[("technique", "pcf"), ("samples", "0"), ("samples", "16")]);
+    assert_one_line_naming(&err, &["samples", "out of range"]);
+}
+
+fn load_fixture_err(name: &str, pairs: &[(&str, &str)]) -> String {
+    match load_scene(&fixture(name), &overrides(pairs)) {
+        Ok(_) => panic!("{name} with {pairs:?} should be rejected"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn directional_angular_diameter_parses_as_angular_diameter() {
+    let scene = load_fixture("sun.toml", &[]);
+    assert_eq!(scene.lights.len(), 1);
+    assert_eq!(scene.lights[0].kind, LightKind::Directional { extent_world: 15.0 });
+    assert_eq!(scene.lights[0].size, LightSize::AngularDiameter { angular_diameter_deg: 0.53 });
+}
+
+#[test]
+fn spot_light_with_angular_diameter_is_rejected() {
+    let err = parse_err(&scene_with_lights(&[&format!("{SPOT}\nangular_diameter_deg = 0.5")]), &[]);
+    assert_one_line_naming(&err, &["inline.toml", "angular_diameter_deg", "spot"]);
+}
+
+#[test]
+fn width_and_angular_diameter_together_are_rejected() {
+    let err = parse_err(
+        &scene_with_lights(&[&format!("{DIRECTIONAL}\nwidth = 1.0\nangular_diameter_deg = 0.5")]),
+        &[],
+    );
+    assert_one_line_naming(&err, &["inline.toml", "width", "angular_diameter_deg"]);
+}
+
+#[test]
+fn angular_diameter_override_on_a_light_with_width_is_rejected() {
+    let err = load_fixture_err("one_light.toml", &[("light.0.angular_diameter_deg", "1")]);
+    assert_one_line_naming(&err, &["light.0.angular_diameter_deg"]);
+}
+
+#[test]
+fn at_most_four_lights() {
+    let four = scene_with_lights(&[SPOT; MAX_LIGHTS]);
+    assert_eq!(parse_ok(&four).lights.len(), MAX_LIGHTS);
+    let five = scene_with_lights(&[SPOT; MAX_LIGHTS + 1]);
+    let err = parse_err(&five, &[]);
+    assert_one_line_naming(&err, &["inline.toml", "5 lights", "at most 4"]);
+}
+
+#[test]
+fn shadow_map_size_out_of_range_names_the_key() {
+    for size in ["100", "255", "8193"] {
+        let err = parse_err(&scene_with_lights(&[&format!("{SPOT}\nshadow_map_size = {size}")]), &[]);
+        assert_one_line_naming(&err, &["inline.toml", "light.0.shadow_map_size", size, "256..=8192"]);
+    }
+    for size in [256, 8192] {
+        let scene = parse_ok(&scene_with_lights(&[&format!("{SPOT}\nshadow_map_size = {size}")]));
+        assert_eq!(scene.lights[0].shadow_map_size, size);
+    }
+}
+
+#[test]
+fn light_kind_specific_keys_are_checked() {
+    let err = parse_err(&scene_with_lights(&[&format!("{SPOT}\nextent = 5.0")]), &[]);
+    assert_one_line_naming(&err, &["light.0.extent"]);
+    let err = parse_err(&scene_with_lights(&[&format!("{DIRECTIONAL}\nfov_deg = 30.0")]), &[]);
+    assert_one_line_naming(&err, &["light.0.fov_deg"]);
+    let err = parse_err(&scene_with_lights(&["kind = \"directional\"\nposition = [0.0, 9.0, 0.0]"]), &[]);
+    assert_one_line_naming(&err, &["light.0.extent", "required"]);
+    let err = parse_err(&scene_with_lights(&["kind = \"spot\"\nposition = [0.0, 9.0, 0.0]"]), &[]);
+    assert_one_line_naming(&err, &["light.0.fov_deg", "required"]);
+}
+
+#[test]
+fn utf8_object_names_survive() {
+    let scene = load_fixture("utf8_names.toml", &[]);
+    assert_eq!(scene.objects[0].name, "Würfel 立方体 ✓");
+    // An unnamed object takes its mesh's name (the file stem); the OBJ object and material
+    // names keep their UTF-8 in the mesh parts and materials.
+    let mesh = &scene.objects[1].mesh;
+    assert_eq!(scene.objects[1].name, mesh.name);
+    assert_eq!(mesh.triangle_count(), 12);
+    assert!(mesh.parts.iter().any(|p| p.name.contains("Würfel_立方体")), "parts: {:?}", mesh.parts);
+    assert!(mesh.materials.iter().any(|m| m.name == "材质_Matériel"), "materials: {:?}", mesh.materials);
+
+    let scene = load_fixture("utf8_names.toml", &[("object.0.name", "\"Ωmega ☂\"")]);
+    assert_eq!(scene.objects[0].name, "Ωmega ☂");
+}
+
+#[test]
+fn mesh_paths_are_relative_to_the_scene_file() {
+    let scene = load_fixture("relative_mesh.toml", &[]);
+    assert_eq!(scene.objects[0].name, "polygons");
+    assert_eq!(scene.objects[0].mesh.triangle_count(), 5, "a quad and a pentagon, fan-triangulated");
+
+    // parse_scene_str resolves against the base folder it is given.
+    let scene = parse_ok(&format!("{CAMERA}\n[[object]]\nmesh = \"quad_ngon.obj\"\n"));
+    assert_eq!(scene.objects[0].mesh.triangle_count(), 5);
+}
+
+#[test]
+fn objects_sharing_a_mesh_share_one_copy() {
+    let scene = load_scene(&repo_path("assets/scenes/games202.toml"), &[]).expect("games202 loads");
+    let bunnies: Vec<_> = scene.objects.iter().filter(|o| o.name.contains("bunny")).collect();
+    assert_eq!(bunnies.len(), 2);
+    assert!(std::sync::Arc::ptr_eq(&bunnies[0].mesh, &bunnies[1].mesh));
+}
+
+#[test]
+fn missing_mesh_and_texture_errors_name_the_file() {
+    let err = load_fixture_err("missing_mesh.toml", &[]);
+    assert_one_line_naming(&err, &["no_such_mesh.obj"]);
+    let err = load_fixture_err("missing_texture.toml", &[]);
+    assert_one_line_naming(&err, &["does_not_exist.png", "missing_texture.mtl"]);
+    let err = parse_err(&format!("{CAMERA}\n[[object]]\nmesh = \"blob\"\n"), &[]);
+    assert_one_line_naming(&err, &["inline.toml", "blob", "plane", "cube"]);
+}
+
+#[test]
+fn missing_scene_file_names_the_file() {
+    let path = fixture("there_is_no_such_scene.toml");
+    let err = load_scene(&path, &[]).expect_err("a missing file is an error").to_string();
+    assert_one_line_naming(&err, &["there_is_no_such_scene.toml", "cannot read"]);
+}
+
+#[test]
+fn file_errors_name_the_label_and_line() {
+    // Unknown key on line 5 (CAMERA is two lines, then a blank line and `[shadow]`).
+    let err = parse_err(&format!("{CAMERA}\n[shadow]\nfoo = 1\n"), &[]);
+    assert_one_line_naming(&err, &["inline.toml:5:", "foo"]);
+    // Wrong type on line 2.
+    let err = parse_err("[camera]\nposition = \"here\"\n", &[]);
+    assert_one_line_naming(&err, &["inline.toml:2:"]);
+    // Syntax error on line 3.
+    let err = parse_err("[camera]\nposition = [0.0, 1.0, 5.0]\nfov_deg = = 3\n", &[]);
+    assert_one_line_naming(&err, &["inline.toml:3:"]);
+    // No camera at all.
+    let err = parse_err("[[object]]\nmesh = \"plane\"\n", &[]);
+    assert_one_line_naming(&err, &["inline.toml", "camera"]);
+}
+
+#[test]
+fn non_finite_and_degenerate_values_are_rejected() {
+    let err = parse_err(&format!("{CAMERA}fov_deg = nan\n"), &[]);
+    assert_one_line_naming(&err, &["camera.fov_deg"]);
+    let err = parse_err("[camera]\nposition = [0.0, inf, 0.0]\n", &[]);
+    assert_one_line_naming(&err, &["camera.position"]);
+    let err = parse_err("[camera]\nposition = [0.0, 0.0, 0.0]\n", &[]);
+    assert_one_line_naming(&err, &["camera.position", "camera.target"]);
+    let err = parse_err(&format!("{CAMERA}\n[[object]]\nmesh = \"cube\"\nscale = 0.0\n"), &[]);
+    assert_one_line_naming(&err, &["object.0.scale"]);
+    let err = parse_err(&format!("{CAMERA}\n[shadow]\nbias = nan\n"), &[]);
+    assert_one_line_naming(&err, &["inline.toml", "bias"]);
+    let err = parse_err(&scene_with_lights(&[&format!("{SPOT}\ncolor = [1.0, -1.0, 1.0]")]), &[]);
+    assert_one_line_naming(&err, &["light.0.color"]);
+}
