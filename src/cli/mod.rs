@@ -4,6 +4,7 @@
 mod bench;
 
 use crate::export;
+use crate::lessons;
 use crate::render::{FrameRequest, GpuContext, RenderError, Renderer};
 use crate::scene::{Scene, SceneError, load_scene};
 use crate::views::{self, View};
@@ -29,19 +30,27 @@ pub enum Command {
     Probe(ProbeArgs),
     /// Time every technique on this machine's adapter.
     Bench(BenchArgs),
+    /// List the lessons and their steps.
+    Lessons,
 }
 
 #[derive(Args, Debug, Clone)]
 pub struct FrameArgs {
     /// Scene file (TOML).
+    #[arg(long, required_unless_present = "lesson", conflicts_with = "lesson")]
+    pub scene: Option<PathBuf>,
+    /// A lesson's step instead of a scene: the lesson's id (see `shadowlab lessons`) or number.
     #[arg(long)]
-    pub scene: PathBuf,
+    pub lesson: Option<String>,
+    /// The lesson's step, from 1.
+    #[arg(long, requires = "lesson", default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..))]
+    pub step: u32,
     /// Override a scene value: a [shadow] key (`technique=pcss`) or `camera.KEY`, `light.N.KEY`, `object.N.KEY`.
     #[arg(long = "set", value_name = "KEY=VALUE", value_parser = parse_key_value)]
     pub set: Vec<(String, String)>,
-    /// Scene time, seconds (lights orbit, objects spin).
-    #[arg(long, default_value_t = 0.0, value_parser = parse_time)]
-    pub time: f32,
+    /// Scene time, seconds (lights orbit, objects spin); a lesson step sets its own.
+    #[arg(long, value_parser = parse_time)]
+    pub time: Option<f32>,
     /// Image size, pixels.
     #[arg(long, default_value = "960x540", value_parser = parse_size)]
     pub size: (u32, u32),
@@ -51,12 +60,13 @@ pub struct FrameArgs {
 pub struct RenderArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
-    /// What to show: final, visibility, shadow-map, blocker-radius, penumbra, blockers, reference, error.
-    #[arg(long, default_value = "final", value_parser = parse_view)]
-    pub view: View,
-    /// The light the debug views describe.
-    #[arg(long, default_value_t = 0)]
-    pub light: usize,
+    /// What to show: final, visibility, shadow-map, blocker-radius, penumbra, blockers, reference,
+    /// error (default: final, or the lesson step's view).
+    #[arg(long, value_parser = parse_view)]
+    pub view: Option<View>,
+    /// The light the debug views describe (default: 0, or the lesson step's light).
+    #[arg(long)]
+    pub light: Option<usize>,
     /// Output PNG file.
     #[arg(long)]
     pub out: PathBuf,
@@ -165,9 +175,48 @@ fn parse_view(s: &str) -> Result<View, String> {
     })
 }
 
+/// What a frame's arguments resolve to: the scene, a label for messages, and the defaults a
+/// lesson step gives.
+struct Resolved {
+    scene: Scene,
+    label: String,
+    time_s: f32,
+    view: View,
+    light: usize,
+}
+
 /// The checks every command makes before touching the GPU.
-fn load(frame: &FrameArgs) -> Result<Scene, CliError> {
-    Ok(load_scene(&frame.scene, &frame.set)?)
+fn load(frame: &FrameArgs) -> Result<Resolved, CliError> {
+    if let Some(id) = &frame.lesson {
+        let lessons =
+            lessons::load_all(&lessons::default_dir()).map_err(|e| CliError::input(e.to_string()))?;
+        let lesson = lessons::find(&lessons, id).map_err(|e| CliError::input(e.to_string()))?;
+        let step = lesson.steps.get(frame.step as usize - 1).ok_or_else(|| {
+            CliError::input(format!(
+                "--step {}: lesson `{}` has {} steps",
+                frame.step,
+                lesson.id,
+                lesson.steps.len()
+            ))
+        })?;
+        let mut overrides = step.overrides.clone();
+        overrides.extend(frame.set.iter().cloned());
+        return Ok(Resolved {
+            scene: load_scene(&step.scene_path, &overrides)?,
+            label: format!("lesson {} step {}", lesson.id, frame.step),
+            time_s: frame.time.unwrap_or(step.time_s),
+            view: step.view,
+            light: step.light,
+        });
+    }
+    let path = frame.scene.as_deref().ok_or_else(|| CliError::input("give --scene FILE or --lesson ID"))?;
+    Ok(Resolved {
+        scene: load_scene(path, &frame.set)?,
+        label: path.display().to_string(),
+        time_s: frame.time.unwrap_or(0.0),
+        view: View::Final,
+        light: 0,
+    })
 }
 
 pub fn gpu() -> Result<(GpuContext, Renderer), CliError> {
@@ -196,81 +245,51 @@ pub fn run(command: Command) -> Result<(), CliError> {
         Command::Render(args) => render(args),
         Command::Probe(args) => probe(args),
         Command::Bench(args) => bench::run(args),
+        Command::Lessons => list_lessons(),
     }
+}
+
+fn list_lessons() -> Result<(), CliError> {
+    let lessons = lessons::load_all(&lessons::default_dir()).map_err(|e| CliError::input(e.to_string()))?;
+    for (i, lesson) in lessons.iter().enumerate() {
+        println!("{}. {}  ({})  {}", i + 1, lesson.title.en, lesson.id, lesson.title.zh);
+        for (j, step) in lesson.steps.iter().enumerate() {
+            println!("   {}. {}  |  {}", j + 1, step.title.en, step.title.zh);
+        }
+    }
+    Ok(())
 }
 
 fn render(args: RenderArgs) -> Result<(), CliError> {
     check_out_path(&args.out)?;
-    let scene = load(&args.frame)?;
-    if args.light >= scene.lights.len().max(1) {
+    let resolved = load(&args.frame)?;
+    let scene = resolved.scene;
+    let view = args.view.unwrap_or(resolved.view);
+    let light = args.light.unwrap_or(resolved.light);
+    if light >= scene.lights.len().max(1) {
         return Err(CliError::input(format!(
-            "--light {}: {} has {} light(s)",
-            args.light,
-            args.frame.scene.display(),
+            "--light {light}: {} has {} light(s)",
+            resolved.label,
             scene.lights.len()
         )));
     }
-    if scene.lights.is_empty() && args.view != View::Final {
+    if scene.lights.is_empty() && view != View::Final {
         return Err(CliError::input(format!(
             "{}: the scene has no lights, so no `{}` view",
-            args.frame.scene.display(),
-            args.view.name()
+            resolved.label,
+            view.name()
         )));
     }
     let (_ctx, mut renderer) = gpu()?;
-    let request = FrameRequest {
-        time_s: args.frame.time,
-        size: args.frame.size,
-        selected_light: args.light,
-        final_color: args.view == View::Final,
-        analysis: args.view != View::Final,
-        timestamps: false,
-    };
-    renderer.render(&scene, &request)?;
-    let (image, summary) = match args.view {
-        View::Final => (renderer.read_color()?, None),
-        View::ShadowMap => {
-            let map = renderer.read_shadow_map(args.light)?;
-            let (image, legend) = views::shadow_map_image(&map, &renderer.frame_lights[args.light]);
-            (image, Some(legend.to_string()))
-        }
-        View::Visibility => {
-            let a = renderer.read_analysis()?;
-            (
-                views::gray_image(&a, |i| a.shadow[i][0]),
-                Some("visibility: black = shadowed, white = lit".into()),
-            )
-        }
-        View::BlockerRadius | View::Penumbra | View::Blockers => {
-            let a = renderer.read_analysis()?;
-            let (label, unit, channel) = match args.view {
-                View::BlockerRadius => ("blocker-search radius", "texels", 1),
-                View::Penumbra => ("penumbra width", "texels", 2),
-                _ => ("blockers found", "taps", 3),
-            };
-            let (image, legend) = views::heat_image(&a, label, unit, |i| a.shadow[i][channel]);
-            (image, Some(legend.to_string()))
-        }
-        View::Reference | View::Error => {
-            let a = renderer.read_analysis()?;
-            let reference = renderer.render_reference(&scene, args.light)?;
-            if args.view == View::Reference {
-                let note = format!("reference: {} hard shadows averaged", scene.shadow.reference_samples);
-                (views::gray_image(&a, |i| reference[i]), Some(note))
-            } else {
-                let (image, legend, mae) = views::error_image(&a, &reference);
-                (image, Some(format!("{legend}\nmean absolute error: {mae:.5}")))
-            }
-        }
-    };
+    let (image, summary) =
+        views::render_view(&mut renderer, &scene, view, light, resolved.time_s, args.frame.size)?;
     export::write_png(&args.out, &image)?;
     println!(
-        "wrote {} ({}x{}, view {}, light {})",
+        "wrote {} ({}x{}, view {}, light {light})",
         args.out.display(),
         image.width(),
         image.height(),
-        args.view.name(),
-        args.light
+        view.name()
     );
     if let Some(summary) = summary {
         println!("{summary}");
@@ -279,7 +298,8 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
 }
 
 fn probe(args: ProbeArgs) -> Result<(), CliError> {
-    let scene = load(&args.frame)?;
+    let resolved = load(&args.frame)?;
+    let scene = resolved.scene;
     let (w, h) = args.frame.size;
     if args.pixel.0 >= w || args.pixel.1 >= h {
         return Err(CliError::input(format!(
@@ -288,7 +308,7 @@ fn probe(args: ProbeArgs) -> Result<(), CliError> {
         )));
     }
     let (_ctx, mut renderer) = gpu()?;
-    let request = FrameRequest { time_s: args.frame.time, size: args.frame.size, ..Default::default() };
+    let request = FrameRequest { time_s: resolved.time_s, size: args.frame.size, ..Default::default() };
     let report = crate::probe::probe(&mut renderer, &scene, &request, args.pixel, !args.no_reference)?;
     let json =
         serde_json::to_string_pretty(&report).map_err(|e| CliError { code: 1, message: e.to_string() })?;

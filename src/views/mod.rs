@@ -167,3 +167,57 @@ pub fn error_image(analysis: &Analysis, reference: &[f32]) -> (RgbaImage, Legend
     });
     (image, Legend { label: "|visibility - reference|", min: 0.0, max: 1.0, unit: "" }, mae)
 }
+
+/// Render `view` of `scene` for light `light` at time `t`: the image, and a summary line for the
+/// legend (value range, mean error) where the view has one.
+pub fn render_view(
+    renderer: &mut crate::render::Renderer,
+    scene: &crate::scene::Scene,
+    view: View,
+    light: usize,
+    time_s: f32,
+    size: (u32, u32),
+) -> Result<(RgbaImage, Option<String>), crate::render::RenderError> {
+    let request = crate::render::FrameRequest {
+        time_s,
+        size,
+        selected_light: light,
+        final_color: view == View::Final,
+        analysis: view != View::Final,
+        timestamps: false,
+    };
+    renderer.render(scene, &request)?;
+    Ok(match view {
+        View::Final => (renderer.read_color()?, None),
+        View::ShadowMap => {
+            let map = renderer.read_shadow_map(light)?;
+            let (image, legend) = shadow_map_image(&map, &renderer.frame_lights[light]);
+            (image, Some(legend.to_string()))
+        }
+        View::Visibility => {
+            let a = renderer.read_analysis()?;
+            (gray_image(&a, |i| a.shadow[i][0]), Some("visibility: black = shadowed, white = lit".into()))
+        }
+        View::BlockerRadius | View::Penumbra | View::Blockers => {
+            let a = renderer.read_analysis()?;
+            let (label, unit, channel) = match view {
+                View::BlockerRadius => ("blocker-search radius", "texels", 1),
+                View::Penumbra => ("penumbra width", "texels", 2),
+                _ => ("blockers found", "taps", 3),
+            };
+            let (image, legend) = heat_image(&a, label, unit, |i| a.shadow[i][channel]);
+            (image, Some(legend.to_string()))
+        }
+        View::Reference | View::Error => {
+            let a = renderer.read_analysis()?;
+            let reference = renderer.render_reference(scene, light)?;
+            if view == View::Reference {
+                let note = format!("reference: {} hard shadows averaged", scene.shadow.reference_samples);
+                (gray_image(&a, |i| reference[i]), Some(note))
+            } else {
+                let (image, legend, mae) = error_image(&a, &reference);
+                (image, Some(format!("{legend}\nmean absolute error: {mae:.5}")))
+            }
+        }
+    })
+}
