@@ -10,4 +10,5 @@ pub mod reference;
 pub mod render;
 pub mod scene;
 pub mod shadow;
+pub mod ui;
 pub mod views;

@@ -4,10 +4,12 @@ use shadowlab::cli::{Cli, run};
 fn main() {
     let cli = Cli::parse();
     let Some(command) = cli.command else {
-        eprintln!(
-            "shadowlab: the interactive app is not part of this build yet; use `shadowlab render`, `probe` or `bench` (see --help)"
-        );
-        std::process::exit(2);
+        // No command: the interactive app.
+        if let Err(message) = shadowlab::ui::run() {
+            eprintln!("shadowlab: {message}");
+            std::process::exit(2);
+        }
+        return;
     };
     if let Err(e) = run(command) {
         eprintln!("shadowlab: {}", e.message);

@@ -5,6 +5,7 @@
 
 mod acne_bias;
 mod canvas;
+pub mod live;
 mod multi_light;
 mod pcf_kernel;
 mod pcss;

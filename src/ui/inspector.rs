@@ -1,0 +1,233 @@
+//! The inspector: every scene, light and `[shadow]` parameter, with units in the labels, and
+//! the probe's numbers. Any change re-renders at once.
+
+use super::{AbSplit, ShadowlabApp};
+use crate::lessons::Overlay;
+use crate::scene::{BiasMode, Kernel, LightKind, LightSize, Projection, Technique};
+use egui::{Slider, Ui};
+
+fn combo<T: Copy + PartialEq>(
+    ui: &mut Ui,
+    label: &str,
+    value: &mut T,
+    all: &[T],
+    name: impl Fn(T) -> &'static str,
+) -> bool {
+    let mut changed = false;
+    egui::ComboBox::from_label(label).selected_text(name(*value)).show_ui(ui, |ui| {
+        for &option in all {
+            changed |= ui.selectable_value(value, option, name(option)).changed();
+        }
+    });
+    changed
+}
+
+pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
+    let mut changed = false;
+    let s = &mut app.scene.shadow;
+    ui.heading("Technique");
+    changed |= combo(ui, "technique", &mut s.technique, Technique::ALL, Technique::name);
+    let mut ab_on = app.ab.is_some();
+    if ui
+        .checkbox(&mut ab_on, "A/B split against")
+        .on_hover_text("drag the divider in the camera view")
+        .changed()
+    {
+        app.ab = ab_on.then_some(AbSplit { b: Technique::Hard, divider: 0.5 });
+        changed = true;
+    }
+    if let Some(ab) = &mut app.ab {
+        changed |= combo(ui, "right side", &mut ab.b, Technique::ALL, Technique::name);
+    }
+
+    ui.separator();
+    ui.heading("Bias");
+    changed |= combo(ui, "bias mode", &mut s.bias_mode, BiasMode::ALL, BiasMode::name);
+    changed |=
+        ui.add(Slider::new(&mut s.bias, 0.0..=0.05).logarithmic(true).text("bias (NDC depth)")).changed();
+    changed |= ui
+        .add(Slider::new(&mut s.slope_bias, 0.0..=0.2).logarithmic(true).text("slope bias (NDC)"))
+        .changed();
+    changed |= ui.add(Slider::new(&mut s.adaptive_c, 0.0..=8.0).text("adaptive c (× half texel)")).changed();
+    changed |=
+        ui.add(Slider::new(&mut s.normal_offset_texels, 0.0..=4.0).text("normal offset (texels)")).changed();
+    changed |= ui
+        .add(Slider::new(&mut s.depth_bias_constant, 0..=20000).text("hardware bias (depth units)"))
+        .changed();
+    changed |= ui.add(Slider::new(&mut s.depth_bias_slope, -4.0..=8.0).text("hardware slope bias")).changed();
+    changed |= ui.checkbox(&mut s.cull_front_faces, "cull front faces in the shadow pass").changed();
+    changed |= ui.checkbox(&mut s.clamp_outside, "outside the light frustum = lit").changed();
+
+    ui.separator();
+    ui.heading("PCF");
+    changed |= combo(ui, "kernel", &mut s.pcf_kernel, Kernel::ALL, Kernel::name);
+    changed |= ui.add(Slider::new(&mut s.samples, 1..=128).text("samples")).changed();
+    if s.pcf_kernel == Kernel::Grid {
+        let side = crate::shadow::kernels::grid_side(s.samples);
+        ui.small(format!("grid uses {side}×{side} = {} taps", side * side));
+    }
+    changed |= ui.add(Slider::new(&mut s.radius_texels, 0.0..=32.0).text("radius (texels)")).changed();
+    changed |= ui.checkbox(&mut s.rotate_per_pixel, "rotate the pattern per pixel").changed();
+    changed |= ui.add(egui::DragValue::new(&mut s.noise_seed).prefix("noise seed ")).changed();
+
+    ui.separator();
+    ui.heading("PCSS");
+    changed |= ui.add(Slider::new(&mut s.blocker_samples, 1..=128).text("blocker samples")).changed();
+    changed |= ui
+        .add(Slider::new(&mut s.min_filter_radius_texels, 0.0..=16.0).text("min filter radius (texels)"))
+        .changed();
+    changed |= ui
+        .add(Slider::new(&mut s.reference_samples, 1..=1024).logarithmic(true).text("ground-truth samples"))
+        .changed();
+
+    ui.separator();
+    changed |= lights(app, ui);
+
+    ui.separator();
+    ui.heading("Camera");
+    if let Projection::Perspective { fov_deg } = &mut app.scene.camera.projection {
+        changed |= ui.add(Slider::new(fov_deg, 10.0..=120.0).text("field of view (°)")).changed();
+    }
+    if ui.button("Reset camera (R)").clicked() {
+        app.reset_camera();
+    }
+
+    ui.separator();
+    ui.heading("Overlays");
+    for overlay in Overlay::ALL {
+        let mut on = app.overlays.contains(&overlay);
+        if ui.checkbox(&mut on, overlay.name()).changed() {
+            if on {
+                app.overlays.push(overlay);
+            } else {
+                app.overlays.retain(|o| *o != overlay);
+            }
+            changed = true;
+        }
+    }
+
+    ui.separator();
+    if ui.button("↺ Reset to scene/lesson values").clicked() {
+        app.reset();
+    }
+    ui.separator();
+    probe_values(app, ui);
+    if changed {
+        app.mark_dirty();
+    }
+}
+
+fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
+    let mut changed = false;
+    ui.heading("Lights");
+    let count = app.scene.lights.len();
+    if count == 0 {
+        ui.label("this scene has no lights");
+        return false;
+    }
+    ui.horizontal(|ui| {
+        for i in 0..count {
+            if ui.selectable_label(app.selected_light == i, format!("light {i}")).clicked() {
+                app.selected_light = i;
+                changed = true;
+            }
+        }
+    });
+    let Some(light) = app.scene.lights.get_mut(app.selected_light) else { return changed };
+    let mut size = light.shadow_map_size;
+    egui::ComboBox::from_label("shadow map (texels)").selected_text(format!("{size}²")).show_ui(ui, |ui| {
+        for option in [256u32, 512, 1024, 2048, 4096, 8192] {
+            ui.selectable_value(&mut size, option, format!("{option}²"));
+        }
+    });
+    if size != light.shadow_map_size {
+        light.shadow_map_size = size;
+        changed = true;
+    }
+    match &mut light.kind {
+        LightKind::Directional { extent_world } => {
+            ui.label("directional light, orthographic map");
+            changed |=
+                ui.add(Slider::new(extent_world, 1.0..=300.0).text("half-width (world units)")).changed();
+        }
+        LightKind::Spot { fov_deg } => {
+            ui.label("spot light, perspective map");
+            changed |= ui.add(Slider::new(fov_deg, 5.0..=150.0).text("field of view (°)")).changed();
+        }
+    }
+    let far = light.far;
+    changed |= ui
+        .add(Slider::new(&mut light.near, 0.01..=far * 0.9).logarithmic(true).text("near (world units)"))
+        .changed();
+    let near = light.near;
+    changed |= ui
+        .add(Slider::new(&mut light.far, near * 1.1..=2000.0).logarithmic(true).text("far (world units)"))
+        .changed();
+    let directional = light.is_orthographic();
+    match &mut light.size {
+        LightSize::Width { width_world } => {
+            changed |=
+                ui.add(Slider::new(width_world, 0.0..=40.0).text("light width (world units)")).changed();
+            if directional && ui.small_button("use an angular diameter instead").clicked() {
+                light.size = LightSize::AngularDiameter { angular_diameter_deg: 0.53 };
+                changed = true;
+            }
+        }
+        LightSize::AngularDiameter { angular_diameter_deg } => {
+            changed |=
+                ui.add(Slider::new(angular_diameter_deg, 0.0..=20.0).text("angular diameter (°)")).changed();
+            if ui.small_button("use a width instead").clicked() {
+                light.size = LightSize::Width { width_world: 2.0 };
+                changed = true;
+            }
+        }
+    }
+    changed |= ui.add(Slider::new(&mut light.intensity, 0.0..=4.0).text("intensity")).changed();
+    changed |= ui.add(Slider::new(&mut light.orbit_deg_per_s, -180.0..=180.0).text("orbit (°/s)")).changed();
+    changed
+}
+
+fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
+    ui.heading("Probe");
+    let Some(report) = app.probe_report() else {
+        ui.label("click the camera view to pin a probe");
+        return;
+    };
+    if !report.hit {
+        ui.label(format!("pixel {},{}: no surface", report.pixel[0], report.pixel[1]));
+        return;
+    }
+    ui.label(format!(
+        "pixel {},{} on {}",
+        report.pixel[0],
+        report.pixel[1],
+        report.object.as_deref().unwrap_or("?")
+    ));
+    let Some(l) = report.lights.iter().find(|l| l.light == app.selected_light) else { return };
+    egui::Grid::new("probe").striped(true).num_columns(2).show(ui, |ui| {
+        let mut row = |name: &str, value: String| {
+            ui.label(name);
+            ui.monospace(value);
+            ui.end_row();
+        };
+        row("shadow-map uv", format!("{:.4}, {:.4}", l.shadow_map_uv[0], l.shadow_map_uv[1]));
+        row("texel", format!("{}, {}", l.shadow_map_texel[0], l.shadow_map_texel[1]));
+        row(
+            "receiver depth",
+            format!("{:.4} NDC · {:.3} world", l.receiver_depth_ndc, l.receiver_depth_linear),
+        );
+        row("stored depth", format!("{:.4} NDC · {:.3} world", l.stored_depth_ndc, l.stored_depth_linear));
+        row("bias", format!("{:.6} NDC", l.bias_ndc));
+        row("N·L", format!("{:.3}", l.n_dot_l));
+        row("blocker search", format!("{:.2} texels", l.blocker_search_radius_texels));
+        row("blockers found", format!("{} / {}", l.blockers_found, l.blocker_samples));
+        row(
+            "avg blocker depth",
+            l.avg_blocker_depth_linear.map_or("none".into(), |d| format!("{d:.3} world")),
+        );
+        row("penumbra width", format!("{:.4} world", l.penumbra_width_world));
+        row("filter radius", format!("{:.2} texels ({} taps)", l.filter_radius_texels, l.filter_samples));
+        row("visibility (CPU twin)", format!("{:.4}", l.visibility_twin));
+        row("visibility (GPU)", format!("{:.4}", l.visibility_gpu));
+    });
+}

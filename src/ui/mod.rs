@@ -1,0 +1,732 @@
+//! The inspector app: the camera view beside the light's shadow map, live parameters, the pixel
+//! probe with its samples drawn on the map, overlays, lessons and diagrams.
+
+mod gpu;
+mod inspector;
+mod lesson_panel;
+mod overlays;
+mod panels;
+mod settings;
+mod view_panels;
+
+pub use settings::Settings;
+
+use crate::lessons::{self, Lang, Lesson, Overlay};
+use crate::probe::ProbeReport;
+use crate::render::{Analysis, FrameRequest};
+use crate::scene::{Camera, Scene, Technique, load_scene, parse_scene_str};
+use gpu::ViewGpu;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+
+/// Where the current scene came from.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Source {
+    Scene(PathBuf),
+    Lesson { lesson: usize, step: usize },
+}
+
+/// A/B comparison: the right part of the camera view shows technique `b`.
+#[derive(Clone, Debug)]
+pub struct AbSplit {
+    pub b: Technique,
+    /// Divider position, 0..1 of the view width.
+    pub divider: f32,
+}
+
+pub struct ShadowlabApp {
+    gpu: Option<ViewGpu>,
+    gpu_b: Option<ViewGpu>,
+    /// Why there is no GPU view (shown in place of the views).
+    gpu_error: Option<String>,
+    pub scene: Scene,
+    /// The scene as loaded (the reset button returns to it).
+    base_scene: Scene,
+    pub source: Source,
+    pub time_s: f32,
+    pub playing: bool,
+    pub speed: f32,
+    pub selected_light: usize,
+    /// Probe position as fractions of the camera view (survives resizing).
+    pub probe_at: Option<(f32, f32)>,
+    pub probe: Option<ProbeReport>,
+    pub overlays: Vec<Overlay>,
+    pub ab: Option<AbSplit>,
+    pub lessons: Vec<Lesson>,
+    pub lang: Lang,
+    pub diagram: crate::diagrams::DiagramKind,
+    pub settings: Settings,
+    /// A problem to show (bad file, bad value); the last good scene stays.
+    pub error: Option<String>,
+    pub status: String,
+    pub show_help: bool,
+    /// Something changed: render again.
+    dirty: bool,
+    /// The user is dragging: render at reduced resolution.
+    interacting: bool,
+    last_render_ms: f64,
+    analysis: Option<Analysis>,
+    reference: Option<Vec<f32>>,
+    view_state: view_panels::ViewState,
+    panel_state: panels::PanelState,
+    open_path: String,
+    screenshot: Arc<Mutex<Option<Arc<egui::ColorImage>>>>,
+    screenshot_pending: bool,
+}
+
+const DEFAULT_SCENE: &str = "assets/scenes/games202.toml";
+
+/// Resolve a path shipped with shadowlab (scenes, lessons) from the working folder or the crate.
+pub fn shipped_path(relative: &str) -> PathBuf {
+    let local = PathBuf::from(relative);
+    if local.exists() { local } else { Path::new(env!("CARGO_MANIFEST_DIR")).join(relative) }
+}
+
+/// A scene around one OBJ file: the model on a floor under a directional light, scaled to fit.
+pub fn scene_for_obj(path: &Path) -> Result<Scene, String> {
+    let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+    let dir = path.parent().unwrap_or(Path::new("."));
+    let mesh = crate::scene::mesh::load_obj(path).map_err(|e| e.to_string())?;
+    let (lo, hi) = mesh.bounds();
+    let extent = (hi - lo).max_element().max(1e-6);
+    let scale = 10.0 / extent;
+    let lift = -lo.y * scale;
+    let text = format!(
+        r#"[camera]
+position = [18.0, 14.0, 18.0]
+target = [0.0, 4.0, 0.0]
+fov_deg = 50.0
+[[object]]
+name = "floor"
+mesh = "plane"
+scale = [60.0, 1.0, 60.0]
+[[object]]
+name = {name:?}
+mesh = {name:?}
+scale = {scale}
+translate = [0.0, {lift}, 0.0]
+[[light]]
+kind = "directional"
+position = [10.0, 40.0, 20.0]
+extent = 20.0
+far = 120.0
+width = 2.0
+"#
+    );
+    parse_scene_str(&text, dir, &path.display().to_string(), &[]).map_err(|e| e.to_string())
+}
+
+impl ShadowlabApp {
+    pub fn new(cc: &eframe::CreationContext<'_>) -> Self {
+        let settings: Settings =
+            cc.storage.and_then(|s| eframe::get_value(s, settings::STORAGE_KEY)).unwrap_or_default();
+        install_cjk_font(&cc.egui_ctx);
+        cc.egui_ctx.set_visuals(egui::Visuals::dark());
+        let (gpu, gpu_error) = match cc.wgpu_render_state.as_ref() {
+            Some(rs) => match ViewGpu::new(rs) {
+                Ok(g) => (Some(g), None),
+                Err(e) => (None, Some(e.to_string())),
+            },
+            None => (None, Some("no wgpu renderer: shadowlab needs eframe's wgpu backend".to_string())),
+        };
+        Self::with_settings(gpu, gpu_error, settings)
+    }
+
+    fn with_settings(gpu: Option<ViewGpu>, gpu_error: Option<String>, settings: Settings) -> Self {
+        let (lessons, lesson_error) = match lessons::load_all(&shipped_path("lessons")) {
+            Ok(l) => (l, None),
+            Err(e) => (Vec::new(), Some(e.to_string())),
+        };
+        let default_path = shipped_path(DEFAULT_SCENE);
+        let mut error = lesson_error;
+        let wanted = settings.last_scene.clone().unwrap_or_else(|| default_path.clone());
+        let scene = match load_scene(&wanted, &[]) {
+            Ok(s) => s,
+            Err(e) => {
+                error = Some(e.to_string());
+                match load_scene(&default_path, &[]) {
+                    Ok(s) => s,
+                    Err(e) => fallback_scene(&e.to_string()),
+                }
+            }
+        };
+        let source = Source::Scene(scene.path.clone().unwrap_or(default_path));
+        let mut app = Self {
+            gpu,
+            gpu_b: None,
+            gpu_error,
+            base_scene: scene.clone(),
+            scene,
+            source,
+            time_s: 0.0,
+            playing: false,
+            speed: 1.0,
+            selected_light: 0,
+            probe_at: None,
+            probe: None,
+            overlays: settings.overlays.clone(),
+            ab: None,
+            lessons,
+            lang: settings.lang,
+            diagram: crate::diagrams::DiagramKind::PcssTriangles,
+            settings,
+            error,
+            status: String::new(),
+            show_help: false,
+            dirty: true,
+            interacting: false,
+            last_render_ms: 0.0,
+            analysis: None,
+            reference: None,
+            view_state: Default::default(),
+            panel_state: Default::default(),
+            open_path: String::new(),
+            screenshot: Arc::new(Mutex::new(None)),
+            screenshot_pending: false,
+        };
+        if let Some((id, step)) = app.settings.last_lesson.clone()
+            && let Some(index) = app.lessons.iter().position(|l| l.id == id)
+        {
+            app.go_to_step(index, step);
+        }
+        app
+    }
+
+    /// Replace the scene, keeping the old one if the new one fails.
+    pub fn open(&mut self, path: &Path) {
+        let is_obj = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("obj"));
+        let loaded =
+            if is_obj { scene_for_obj(path) } else { load_scene(path, &[]).map_err(|e| e.to_string()) };
+        match loaded {
+            Ok(scene) => {
+                self.set_scene(scene, Source::Scene(path.to_path_buf()));
+                self.settings.last_scene = (!is_obj).then(|| path.to_path_buf());
+                self.settings.last_lesson = None;
+                self.error = None;
+                self.status = format!("opened {}", path.display());
+            }
+            Err(e) => self.error = Some(e),
+        }
+    }
+
+    fn set_scene(&mut self, scene: Scene, source: Source) {
+        self.base_scene = scene.clone();
+        self.scene = scene;
+        self.source = source;
+        self.selected_light = self.selected_light.min(self.scene.lights.len().saturating_sub(1));
+        self.probe = None;
+        self.mark_dirty();
+    }
+
+    pub fn mark_dirty(&mut self) {
+        self.dirty = true;
+        self.reference = None;
+    }
+
+    /// Back to the scene (or lesson step) as loaded.
+    pub fn reset(&mut self) {
+        self.scene = self.base_scene.clone();
+        self.mark_dirty();
+    }
+
+    pub fn reset_camera(&mut self) {
+        self.scene.camera = self.base_scene.camera;
+        self.mark_dirty();
+    }
+
+    /// Show step `step` of lesson `lesson`: its scene, time, overlays, probe and diagram.
+    pub fn go_to_step(&mut self, lesson: usize, step: usize) {
+        let Some(l) = self.lessons.get(lesson) else { return };
+        let step = step.min(l.steps.len().saturating_sub(1));
+        let s = l.steps[step].clone();
+        let id = l.id.clone();
+        match s.scene() {
+            Ok(scene) => {
+                self.set_scene(scene, Source::Lesson { lesson, step });
+                self.time_s = s.time_s;
+                self.playing = s.play;
+                self.overlays = s.overlays.clone();
+                self.selected_light = s.light;
+                self.probe_at = s.probe.map(|[x, y]| (x as f32 / 960.0, y as f32 / 540.0));
+                if let Some(d) = s.diagram {
+                    self.diagram = d;
+                }
+                self.settings.last_lesson = Some((id, step));
+                self.error = None;
+            }
+            Err(e) => self.error = Some(format!("{}: step {}: {e}", l.path.display(), step + 1)),
+        }
+    }
+
+    /// Step forward (+1) or back (-1) through the lessons.
+    pub fn step_lesson(&mut self, delta: i32) {
+        let (lesson, step) = match self.source {
+            Source::Lesson { lesson, step } => (lesson, step),
+            Source::Scene(_) => {
+                if !self.lessons.is_empty() {
+                    self.go_to_step(0, 0);
+                }
+                return;
+            }
+        };
+        let steps = self.lessons[lesson].steps.len();
+        if delta > 0 {
+            if step + 1 < steps {
+                self.go_to_step(lesson, step + 1);
+            } else if lesson + 1 < self.lessons.len() {
+                self.go_to_step(lesson + 1, 0);
+            }
+        } else if step > 0 {
+            self.go_to_step(lesson, step - 1);
+        } else if lesson > 0 {
+            let last = self.lessons[lesson - 1].steps.len().saturating_sub(1);
+            self.go_to_step(lesson - 1, last);
+        }
+    }
+
+    pub fn current_step(&self) -> Option<(&Lesson, &lessons::Step, usize)> {
+        match self.source {
+            Source::Lesson { lesson, step } => {
+                self.lessons.get(lesson).and_then(|l| l.steps.get(step).map(|s| (l, s, step)))
+            }
+            Source::Scene(_) => None,
+        }
+    }
+
+    pub fn probe_report(&self) -> Option<&ProbeReport> {
+        self.probe.as_ref()
+    }
+
+    pub fn camera(&self) -> &Camera {
+        &self.scene.camera
+    }
+
+    fn handle_keys(&mut self, ctx: &egui::Context) {
+        if ctx.egui_wants_keyboard_input() {
+            return;
+        }
+        let (right, left, space, s, f1, r) = ctx.input(|i| {
+            (
+                i.key_pressed(egui::Key::ArrowRight),
+                i.key_pressed(egui::Key::ArrowLeft),
+                i.key_pressed(egui::Key::Space),
+                i.key_pressed(egui::Key::S),
+                i.key_pressed(egui::Key::F1),
+                i.key_pressed(egui::Key::R),
+            )
+        });
+        if right {
+            self.step_lesson(1);
+        }
+        if left {
+            self.step_lesson(-1);
+        }
+        if space {
+            self.playing = !self.playing;
+        }
+        if s {
+            self.request_screenshot(ctx);
+        }
+        if f1 {
+            self.show_help = !self.show_help;
+        }
+        if r {
+            self.reset_camera();
+        }
+    }
+
+    fn handle_dropped_files(&mut self, ctx: &egui::Context) {
+        let dropped: Vec<PathBuf> =
+            ctx.input(|i| i.raw.dropped_files.iter().map(|f| f.path().to_path_buf()).collect());
+        if let Some(path) = dropped.last() {
+            self.open(path);
+        }
+    }
+
+    pub fn request_screenshot(&mut self, ctx: &egui::Context) {
+        let slot = self.screenshot.clone();
+        ctx.request_screenshot(move |image| {
+            if let Ok(mut s) = slot.lock() {
+                *s = Some(image);
+            }
+        });
+        self.screenshot_pending = true;
+        self.status = "taking a screenshot...".into();
+    }
+
+    /// Save a finished window screenshot and each viewport as PNGs.
+    fn save_screenshot_if_ready(&mut self) {
+        let image = match self.screenshot.lock() {
+            Ok(mut slot) => slot.take(),
+            Err(_) => None,
+        };
+        let Some(window) = image else { return };
+        self.screenshot_pending = false;
+        match self.save_screenshot(&window) {
+            Ok(paths) => {
+                let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+                self.status = format!("saved {}", names.join(", "));
+            }
+            Err(e) => self.error = Some(e),
+        }
+    }
+
+    fn save_screenshot(&mut self, window: &egui::ColorImage) -> Result<Vec<PathBuf>, String> {
+        let dir = self.settings.screenshot_dir.clone();
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let n = (1..10_000).find(|n| !dir.join(format!("shot-{n:03}-window.png")).exists()).unwrap_or(0);
+        let mut written = Vec::new();
+        let [w, h] = window.size;
+        let bytes: Vec<u8> = window.pixels.iter().flat_map(|c| c.to_srgba_unmultiplied()).collect();
+        let mut images = Vec::new();
+        if let Some(img) = image::RgbaImage::from_raw(w as u32, h as u32, bytes) {
+            images.push(("window", img));
+        }
+        if let Some(gpu) = &self.gpu {
+            if let Ok(img) = gpu.renderer.read_color() {
+                images.push(("camera", img));
+            }
+            if let (Ok(map), Some(light)) = (
+                gpu.renderer.read_shadow_map(self.selected_light),
+                gpu.renderer.frame_lights.get(self.selected_light),
+            ) {
+                images.push(("shadow-map", crate::views::shadow_map_image(&map, light).0));
+            }
+        }
+        for (what, img) in images {
+            let path = dir.join(format!("shot-{n:03}-{what}.png"));
+            crate::export::write_png(&path, &img).map_err(|e| e.to_string())?;
+            written.push(path);
+        }
+        Ok(written)
+    }
+
+    fn top_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal_wrapped(|ui| {
+            ui.strong("shadowlab");
+            ui.separator();
+            self.source_selector(ui);
+            ui.add(
+                egui::TextEdit::singleline(&mut self.open_path)
+                    .hint_text("scene .toml or .obj path")
+                    .desired_width(180.0),
+            );
+            if ui.button("Open").clicked() && !self.open_path.trim().is_empty() {
+                let path = PathBuf::from(self.open_path.trim());
+                self.open(&path);
+            }
+            ui.separator();
+            let play_label = if self.playing { "⏸ Pause" } else { "▶ Play" };
+            if ui.button(play_label).on_hover_text("Space").clicked() {
+                self.playing = !self.playing;
+            }
+            ui.label("time (s)");
+            if ui.add(egui::Slider::new(&mut self.time_s, 0.0..=60.0).max_decimals(2)).changed() {
+                self.mark_dirty();
+            }
+            ui.label("speed");
+            ui.add(egui::DragValue::new(&mut self.speed).speed(0.05).range(0.0..=10.0).suffix("×"));
+            ui.separator();
+            if ui.button("📷 Screenshot").on_hover_text("S: window and each view as PNGs").clicked() {
+                self.request_screenshot(ui.ctx());
+            }
+            egui::ComboBox::from_id_salt("lang")
+                .selected_text(match self.lang {
+                    Lang::En => "English",
+                    Lang::Zh => "中文",
+                })
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut self.lang, Lang::En, "English");
+                    ui.selectable_value(&mut self.lang, Lang::Zh, "中文");
+                });
+            if ui.button("F1 Help").clicked() {
+                self.show_help = !self.show_help;
+            }
+        });
+    }
+
+    fn source_selector(&mut self, ui: &mut egui::Ui) {
+        let current = match &self.source {
+            Source::Scene(p) => p.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default(),
+            Source::Lesson { lesson, step } => self
+                .lessons
+                .get(*lesson)
+                .map(|l| format!("{} · {}/{}", l.title.get(self.lang), step + 1, l.steps.len()))
+                .unwrap_or_default(),
+        };
+        let mut choice: Option<Result<PathBuf, usize>> = None;
+        egui::ComboBox::from_id_salt("source").selected_text(current).width(240.0).show_ui(ui, |ui| {
+            ui.label("Scenes");
+            let mut scenes: Vec<PathBuf> = std::fs::read_dir(shipped_path("assets/scenes"))
+                .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
+                .unwrap_or_default();
+            scenes.retain(|p| p.extension().is_some_and(|e| e == "toml"));
+            scenes.sort();
+            for path in scenes {
+                let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+                if ui.selectable_label(self.source == Source::Scene(path.clone()), name).clicked() {
+                    choice = Some(Ok(path));
+                }
+            }
+            ui.separator();
+            ui.label("Lessons");
+            for (i, lesson) in self.lessons.iter().enumerate() {
+                let selected = matches!(self.source, Source::Lesson { lesson, .. } if lesson == i);
+                if ui
+                    .selectable_label(selected, format!("{}. {}", i + 1, lesson.title.get(self.lang)))
+                    .clicked()
+                {
+                    choice = Some(Err(i));
+                }
+            }
+        });
+        match choice {
+            Some(Ok(path)) => self.open(&path),
+            Some(Err(lesson)) => self.go_to_step(lesson, 0),
+            None => {}
+        }
+    }
+
+    fn status_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            if let Some(error) = self.error.clone() {
+                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), format!("⚠ {error}"));
+                if ui.small_button("dismiss").clicked() {
+                    self.error = None;
+                }
+                ui.separator();
+            }
+            ui.label(&self.status);
+            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                let mut text = format!("frame {:.1} ms", self.last_render_ms);
+                if let Some(gpu) = &self.gpu
+                    && let Ok(Some(t)) = gpu.renderer.last_pass_times()
+                {
+                    text += &format!(" (GPU shadow {:.2} ms, camera {:.2} ms)", t.shadow_ms, t.camera_ms);
+                }
+                if self.interacting {
+                    text += " · preview resolution";
+                }
+                ui.label(text);
+            });
+        });
+    }
+
+    fn help_window(&mut self, ctx: &egui::Context) {
+        let mut open = self.show_help;
+        egui::Window::new("Shortcuts").open(&mut open).collapsible(false).show(ctx, |ui| {
+            egui::Grid::new("keys").striped(true).show(ui, |ui| {
+                for (key, what) in [
+                    ("Left / Right", "previous / next lesson step"),
+                    ("Space", "play / pause"),
+                    ("S", "screenshot (window and each view)"),
+                    ("F1", "this help"),
+                    ("R", "reset the camera"),
+                    ("Left-drag (camera view)", "orbit"),
+                    ("Right- or middle-drag", "pan"),
+                    ("Wheel", "zoom"),
+                    ("Click", "pin the probe"),
+                    ("Double-click", "focus the camera on a point"),
+                    ("Drag (shadow map)", "move the light"),
+                    ("Drop a .toml or .obj", "open it"),
+                ] {
+                    ui.strong(key);
+                    ui.label(what);
+                    ui.end_row();
+                }
+            });
+        });
+        self.show_help = open;
+    }
+
+    /// Render what changed; called once per frame before the views are drawn.
+    fn render_if_needed(&mut self, view_size_px: (u32, u32)) {
+        let Some(gpu) = self.gpu.as_mut() else { return };
+        let wanted = if self.interacting {
+            ((view_size_px.0 / 2).max(1), (view_size_px.1 / 2).max(1))
+        } else {
+            view_size_px
+        };
+        let size_changed = gpu.texture().is_none_or(|(_, s)| s != wanted);
+        if !(self.dirty || size_changed || self.playing) {
+            return;
+        }
+        let start = std::time::Instant::now();
+        if self.scene.lights.is_empty() {
+            self.selected_light = 0;
+        }
+        let request = FrameRequest {
+            time_s: self.time_s,
+            size: wanted,
+            selected_light: self.selected_light,
+            final_color: true,
+            analysis: false,
+            timestamps: true,
+        };
+        let full_detail = !self.interacting && !self.playing;
+        // The probe renders the analysis pass per light; the final render below restores the
+        // selected light's analysis for the overlays.
+        if full_detail && !self.scene.lights.is_empty() {
+            self.probe = match self.probe_at {
+                Some((fx, fy)) => {
+                    let px = ((fx * wanted.0 as f32) as u32).min(wanted.0 - 1);
+                    let py = ((fy * wanted.1 as f32) as u32).min(wanted.1 - 1);
+                    match crate::probe::probe(&mut gpu.renderer, &self.scene, &request, (px, py), false) {
+                        Ok(report) => Some(report),
+                        Err(e) => {
+                            self.error = Some(e.to_string());
+                            None
+                        }
+                    }
+                }
+                None => None,
+            };
+        }
+        let with_analysis =
+            FrameRequest { analysis: full_detail && !self.scene.lights.is_empty(), ..request };
+        match gpu.render(&self.scene, &with_analysis) {
+            Ok(()) => {
+                self.analysis = if with_analysis.analysis { gpu.renderer.read_analysis().ok() } else { None };
+                if with_analysis.analysis
+                    && self.overlays.contains(&Overlay::Error)
+                    && self.reference.is_none()
+                {
+                    self.reference = gpu.renderer.render_reference(&self.scene, self.selected_light).ok();
+                }
+            }
+            Err(e) => self.error = Some(e.to_string()),
+        }
+        if let (Some(ab), Some(gpu_b)) = (&self.ab, self.gpu_b.as_mut()) {
+            let mut scene_b = self.scene.clone();
+            scene_b.shadow.technique = ab.b;
+            if let Err(e) = gpu_b.render(&scene_b, &request) {
+                self.error = Some(e.to_string());
+            }
+        }
+        self.last_render_ms = start.elapsed().as_secs_f64() * 1e3;
+        self.dirty = false;
+        self.view_state.invalidate();
+    }
+
+    /// Make sure the second renderer exists when the A/B split is on.
+    fn ensure_ab_gpu(&mut self, frame: &eframe::Frame) {
+        if self.ab.is_some()
+            && self.gpu_b.is_none()
+            && let Some(rs) = frame.wgpu_render_state()
+        {
+            match ViewGpu::new(rs) {
+                Ok(g) => self.gpu_b = Some(g),
+                Err(e) => self.error = Some(e.to_string()),
+            }
+        }
+    }
+}
+
+/// A minimal scene for when even the shipped scene is missing.
+fn fallback_scene(why: &str) -> Scene {
+    let text = "[camera]\nposition = [4.0, 3.0, 4.0]\n[[object]]\nmesh = \"cube\"\n[[light]]\nkind = \"directional\"\nposition = [2.0, 6.0, 3.0]\nextent = 4.0\nfar = 20.0\n";
+    match parse_scene_str(text, Path::new("."), "<built-in>", &[]) {
+        Ok(scene) => scene,
+        Err(e) => panic!("the built-in scene must parse ({e}); loading the shipped scene failed: {why}"),
+    }
+}
+
+fn install_cjk_font(ctx: &egui::Context) {
+    let Some(bytes) = crate::diagrams::load_system_cjk_font() else { return };
+    let mut fonts = egui::FontDefinitions::default();
+    fonts.font_data.insert("cjk".to_owned(), Arc::new(egui::FontData::from_owned(bytes)));
+    for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
+        fonts.families.entry(family).or_default().push("cjk".to_owned());
+    }
+    ctx.set_fonts(fonts);
+}
+
+impl eframe::App for ShadowlabApp {
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        self.handle_keys(&ctx);
+        self.handle_dropped_files(&ctx);
+        self.save_screenshot_if_ready();
+        self.ensure_ab_gpu(frame);
+        if self.playing {
+            let dt = ctx.input(|i| i.stable_dt).min(0.1);
+            self.time_s = (self.time_s + dt * self.speed) % 3600.0;
+            self.reference = None;
+            ctx.request_repaint();
+        }
+        if self.screenshot_pending {
+            ctx.request_repaint();
+        }
+        egui::Panel::top("top").show(ui, |ui| self.top_bar(ui));
+        egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
+        let inspector = egui::Panel::left("inspector")
+            .resizable(true)
+            .default_size(self.settings.inspector_width)
+            .show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| inspector::show(self, ui));
+            });
+        self.settings.inspector_width = inspector.response.rect.width();
+        if self.current_step().is_some() {
+            egui::Panel::right("lesson").resizable(true).default_size(320.0).show(ui, |ui| {
+                egui::ScrollArea::vertical().show(ui, |ui| lesson_panel::show(self, ui));
+            });
+        }
+        let diagrams = egui::Panel::bottom("diagrams")
+            .resizable(true)
+            .default_size(self.settings.diagram_height)
+            .show(ui, |ui| panels::show_bottom(self, ui));
+        self.settings.diagram_height = diagrams.response.rect.height();
+        egui::CentralPanel::default().show(ui, |ui| view_panels::show(self, ui));
+        self.help_window(&ctx);
+    }
+
+    fn save(&mut self, storage: &mut dyn eframe::Storage) {
+        self.settings.overlays = self.overlays.clone();
+        self.settings.lang = self.lang;
+        eframe::set_value(storage, settings::STORAGE_KEY, &self.settings);
+    }
+}
+
+/// Open the app. Returns a one-line reason where no window can be opened.
+pub fn run() -> Result<(), String> {
+    let has_display =
+        ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()));
+    if cfg!(target_os = "linux") && !has_display {
+        return Err("no display found (DISPLAY and WAYLAND_DISPLAY are unset): run it on a desktop, under \
+                    `xvfb-run -a`, or use `shadowlab render`/`shadowlab export`, which need no display"
+            .into());
+    }
+    let mut wgpu_setup = eframe::egui_wgpu::WgpuSetupCreateNew::without_display_handle();
+    wgpu_setup.instance_descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+    wgpu_setup.device_descriptor = Arc::new(|adapter: &wgpu::Adapter| wgpu::DeviceDescriptor {
+        label: Some("shadowlab"),
+        required_features: adapter.features() & crate::render::optional_features(),
+        required_limits: adapter.limits(),
+        ..Default::default()
+    });
+    let options = eframe::NativeOptions {
+        viewport: egui::ViewportBuilder::default()
+            .with_title("shadowlab")
+            .with_inner_size([1560.0, 880.0])
+            .with_drag_and_drop(true),
+        wgpu_options: eframe::egui_wgpu::WgpuConfiguration {
+            wgpu_setup: eframe::egui_wgpu::WgpuSetup::CreateNew(wgpu_setup),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    eframe::run_native("shadowlab", options, Box::new(|cc| Ok(Box::new(ShadowlabApp::new(cc)))))
+        .map_err(|e| format!("could not open the window: {e}; install a Vulkan driver (apt-get install mesa-vulkan-drivers) or use `shadowlab render`"))
+}
+
+/// Build the app for tests and tools, with explicit settings (no storage).
+pub fn app_for_test(cc: &eframe::CreationContext<'_>, settings: Settings) -> ShadowlabApp {
+    install_cjk_font(&cc.egui_ctx);
+    let gpu = cc.wgpu_render_state.as_ref().map(ViewGpu::new);
+    let (gpu, err) = match gpu {
+        Some(Ok(g)) => (Some(g), None),
+        Some(Err(e)) => (None, Some(e.to_string())),
+        None => (None, Some("no wgpu renderer".to_string())),
+    };
+    ShadowlabApp::with_settings(gpu, err, settings)
+}

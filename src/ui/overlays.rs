@@ -1,0 +1,115 @@
+//! Overlays on the camera view, computed from the analysis pass: PCSS heatmaps, the shadow-map
+//! texel grid projected on surfaces, the outside-the-frustum tint, and the error against the
+//! ground truth. Each comes with a legend line.
+
+use crate::lessons::Overlay;
+use crate::render::{Analysis, LightGpu};
+use crate::shadow::project_to_light;
+use crate::views::heat_color;
+use glam::Vec3;
+use image::{Rgba, RgbaImage};
+
+/// The overlays combined into one translucent image, and their legends.
+pub fn compose(
+    overlays: &[Overlay],
+    analysis: &Analysis,
+    light: Option<&LightGpu>,
+    reference: Option<&[f32]>,
+) -> (RgbaImage, Vec<String>) {
+    let mut image = RgbaImage::new(analysis.width, analysis.height);
+    let mut legends = Vec::new();
+    for &overlay in overlays {
+        match overlay {
+            Overlay::BlockerRadius | Overlay::Penumbra | Overlay::Blockers => {
+                let (channel, label, unit) = match overlay {
+                    Overlay::BlockerRadius => (1, "blocker-search radius", "texels"),
+                    Overlay::Penumbra => (2, "penumbra width", "texels"),
+                    _ => (3, "blockers found", "taps"),
+                };
+                let max = (0..analysis.shadow.len())
+                    .filter(|&i| analysis.hit(i))
+                    .map(|i| analysis.shadow[i][channel])
+                    .fold(0.0f32, f32::max);
+                legends.push(format!("{label}: 0 .. {max:.2} {unit} (dark blue .. yellow)"));
+                let scale = if max > 0.0 { 1.0 / max } else { 0.0 };
+                paint(&mut image, analysis, |i| {
+                    let v = analysis.shadow[i][channel];
+                    (v > 0.0).then(|| with_alpha(heat_color(v * scale), 170))
+                });
+            }
+            Overlay::TexelGrid => {
+                let Some(light) = light else { continue };
+                legends.push(format!(
+                    "texel grid: lines where the shadow-map texel changes ({}² map)",
+                    light.map_size_texels
+                ));
+                let texel = |i: usize| {
+                    let p = Vec3::from_slice(&analysis.position[i][..3]);
+                    let s = project_to_light(light, p);
+                    (
+                        (s.x * light.map_size_texels).floor() as i64,
+                        (s.y * light.map_size_texels).floor() as i64,
+                    )
+                };
+                let w = analysis.width as usize;
+                paint(&mut image, analysis, |i| {
+                    let right = i + 1;
+                    let down = i + w;
+                    let here = texel(i);
+                    let edge = (right % w != 0
+                        && right < analysis.shadow.len()
+                        && analysis.hit(right)
+                        && texel(right) != here)
+                        || (down < analysis.shadow.len() && analysis.hit(down) && texel(down) != here);
+                    edge.then_some(Rgba([255, 255, 255, 150]))
+                });
+            }
+            Overlay::OutsideFrustum => {
+                let Some(light) = light else { continue };
+                legends.push("orange: outside the light's frustum (no shadow-map data)".into());
+                paint(&mut image, analysis, |i| {
+                    let s = project_to_light(light, Vec3::from_slice(&analysis.position[i][..3]));
+                    let outside = s.x < 0.0 || s.y < 0.0 || s.x > 1.0 || s.y > 1.0 || s.z < 0.0 || s.z > 1.0;
+                    outside.then_some(Rgba([255, 140, 0, 110]))
+                });
+            }
+            Overlay::Error => {
+                let Some(reference) = reference else {
+                    legends.push("error: computing the ground truth...".into());
+                    continue;
+                };
+                let (_, _, mae) = crate::views::error_image(analysis, reference);
+                legends.push(format!("|visibility − ground truth|: 0 .. 1, mean {mae:.4}"));
+                paint(&mut image, analysis, |i| {
+                    let e = (analysis.shadow[i][0] - reference[i]).abs();
+                    (e > 0.02).then(|| with_alpha(heat_color(e), 200))
+                });
+            }
+            Overlay::LightFrustum => {}
+        }
+    }
+    (image, legends)
+}
+
+fn with_alpha(c: Rgba<u8>, a: u8) -> Rgba<u8> {
+    Rgba([c[0], c[1], c[2], a])
+}
+
+/// Alpha-blend `color(i)` over the surfaces.
+fn paint(image: &mut RgbaImage, analysis: &Analysis, color: impl Fn(usize) -> Option<Rgba<u8>>) {
+    for (i, pixel) in image.pixels_mut().enumerate() {
+        if !analysis.hit(i) {
+            continue;
+        }
+        if let Some(c) = color(i) {
+            let a = f32::from(c[3]) / 255.0;
+            let under = f32::from(pixel[3]) / 255.0;
+            let out_a = a + under * (1.0 - a);
+            for k in 0..3 {
+                let mixed = f32::from(c[k]) * a + f32::from(pixel[k]) * under * (1.0 - a);
+                pixel[k] = if out_a > 0.0 { (mixed / out_a).round() as u8 } else { 0 };
+            }
+            pixel[3] = (out_a * 255.0).round() as u8;
+        }
+    }
+}

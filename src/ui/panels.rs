@@ -1,0 +1,127 @@
+//! The bottom panel: the live diagram for the current step (or the one picked) and the
+//! sample-pattern plot of the current kernel.
+
+use super::ShadowlabApp;
+use crate::diagrams::{self, DiagramInputs, DiagramKind};
+use crate::shadow::kernels;
+use egui::{Color32, Rect, Sense, Stroke, Ui, pos2, vec2};
+
+/// The drawn diagram, redrawn when its kind, inputs or size change.
+#[derive(Default)]
+pub struct PanelState {
+    diagram: Option<(egui::TextureHandle, DiagramKind, DiagramInputs, (u32, u32))>,
+}
+
+fn live_inputs(app: &ShadowlabApp) -> DiagramInputs {
+    let probe = app.probe.as_ref();
+    let light_probe = probe.and_then(|p| p.lights.iter().find(|l| l.light == app.selected_light));
+    diagrams::live::inputs_from_scene(
+        &app.scene,
+        app.selected_light,
+        app.time_s,
+        light_probe,
+        probe.and_then(|p| p.normal),
+    )
+}
+
+pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
+    ui.horizontal(|ui| {
+        ui.strong("Diagram");
+        for kind in DiagramKind::ALL {
+            if ui.selectable_label(app.diagram == kind, kind.id()).on_hover_text(kind.title()).clicked() {
+                app.diagram = kind;
+            }
+        }
+        ui.separator();
+        ui.checkbox(&mut app.settings.show_kernel_plot, "sample pattern");
+    });
+    let avail = ui.available_rect_before_wrap();
+    let plot_width =
+        if app.settings.show_kernel_plot { avail.height().min(avail.width() * 0.3) } else { 0.0 };
+    let diagram_rect = Rect::from_min_max(avail.min, pos2(avail.right() - plot_width - 8.0, avail.bottom()));
+    let plot_rect = Rect::from_min_max(pos2(avail.right() - plot_width, avail.top()), avail.max);
+    diagram(app, ui, diagram_rect);
+    if app.settings.show_kernel_plot {
+        kernel_plot(app, ui, plot_rect);
+    }
+    ui.allocate_rect(avail, Sense::hover());
+}
+
+fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
+    // 16:9 inside the rect, drawn at the screen's pixel density.
+    let (w, h) = if rect.width() / rect.height().max(1.0) > 16.0 / 9.0 {
+        (rect.height() * 16.0 / 9.0, rect.height())
+    } else {
+        (rect.width(), rect.width() * 9.0 / 16.0)
+    };
+    let ppp = ui.ctx().pixels_per_point();
+    let size_px = ((w * ppp).max(32.0) as u32, (h * ppp).max(18.0) as u32);
+    let inputs = live_inputs(app);
+    let current = app
+        .panel_state
+        .diagram
+        .as_ref()
+        .is_some_and(|(_, kind, old, size)| *kind == app.diagram && *old == inputs && *size == size_px);
+    if !current {
+        match diagrams::draw(app.diagram, &inputs, size_px.0, size_px.1) {
+            Ok(pixmap) => {
+                let image = egui::ColorImage::from_rgba_premultiplied(
+                    [pixmap.width() as usize, pixmap.height() as usize],
+                    pixmap.data(),
+                );
+                let texture = ui.ctx().load_texture("diagram", image, egui::TextureOptions::LINEAR);
+                app.panel_state.diagram = Some((texture, app.diagram, inputs, size_px));
+            }
+            Err(e) => app.error = Some(e.to_string()),
+        }
+    }
+    if let Some((texture, ..)) = &app.panel_state.diagram {
+        let shown = Rect::from_min_size(rect.min, vec2(w, h));
+        ui.painter().image(
+            texture.id(),
+            shown,
+            Rect::from_min_max(pos2(0.0, 0.0), pos2(1.0, 1.0)),
+            Color32::WHITE,
+        );
+    }
+}
+
+fn kernel_plot(app: &ShadowlabApp, ui: &mut Ui, rect: Rect) {
+    let painter = ui.painter_at(rect);
+    painter.rect_filled(rect, 4.0, Color32::from_gray(24));
+    let s = &app.scene.shadow;
+    let seed = app
+        .probe
+        .as_ref()
+        .map(|p| kernels::pixel_seed((p.pixel[0], p.pixel[1]), s.noise_seed, s.rotate_per_pixel))
+        .unwrap_or_else(|| kernels::pixel_seed((0, 0), s.noise_seed, s.rotate_per_pixel));
+    let points = kernels::kernel_points(s.pcf_kernel, s.samples, seed);
+    let radius = rect.width().min(rect.height() - 36.0) * 0.42;
+    let centre = pos2(rect.center().x, rect.top() + 20.0 + radius * 1.1);
+    painter.circle_stroke(centre, radius, Stroke::new(1.0, Color32::GRAY));
+    painter.line_segment(
+        [centre - vec2(radius, 0.0), centre + vec2(radius, 0.0)],
+        Stroke::new(0.5, Color32::DARK_GRAY),
+    );
+    painter.line_segment(
+        [centre - vec2(0.0, radius), centre + vec2(0.0, radius)],
+        Stroke::new(0.5, Color32::DARK_GRAY),
+    );
+    for (i, p) in points.iter().enumerate() {
+        let t = i as f32 / points.len().max(1) as f32;
+        let color = Color32::from_rgb((86.0 + 160.0 * t) as u8, (180.0 - 60.0 * t) as u8, 233);
+        painter.circle_filled(centre + vec2(p.x, -p.y) * radius, 3.0, color);
+    }
+    painter.text(
+        pos2(rect.left() + 6.0, rect.top() + 4.0),
+        egui::Align2::LEFT_TOP,
+        format!(
+            "{} · {} taps{}",
+            s.pcf_kernel.name(),
+            points.len(),
+            if s.rotate_per_pixel { " · rotated per pixel" } else { "" }
+        ),
+        egui::FontId::proportional(13.0),
+        Color32::LIGHT_GRAY,
+    );
+}

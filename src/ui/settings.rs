@@ -1,0 +1,39 @@
+//! What the app remembers between runs (eframe storage).
+
+use crate::lessons::{Lang, Overlay};
+use serde::{Deserialize, Serialize};
+use std::path::PathBuf;
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(default)]
+pub struct Settings {
+    pub last_scene: Option<PathBuf>,
+    /// Lesson id and step index.
+    pub last_lesson: Option<(String, usize)>,
+    pub overlays: Vec<Overlay>,
+    pub lang: Lang,
+    /// Fraction of the view area given to the camera view (the shadow map gets the rest).
+    pub split: f32,
+    pub inspector_width: f32,
+    pub diagram_height: f32,
+    pub screenshot_dir: PathBuf,
+    pub show_kernel_plot: bool,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Self {
+            last_scene: None,
+            last_lesson: None,
+            overlays: Vec::new(),
+            lang: Lang::En,
+            split: 0.62,
+            inspector_width: 300.0,
+            diagram_height: 250.0,
+            screenshot_dir: PathBuf::from("screenshots"),
+            show_kernel_plot: true,
+        }
+    }
+}
+
+pub const STORAGE_KEY: &str = "shadowlab-settings";

@@ -1,0 +1,372 @@
+//! The centre: the camera view beside the light's shadow map (resizable split).
+//! Camera view: orbit/pan/zoom, click to pin the probe, overlays, A/B divider, light frustum.
+//! Shadow map: linear depth with a legend, hover readout, the probe's uv, search and filter
+//! circles and every tap at its real size; drag to move the light.
+
+use super::ShadowlabApp;
+use crate::render::{DepthImage, LightGpu};
+use crate::shadow::depth_linear_from_ndc;
+use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
+use glam::{Mat4, Vec4};
+
+/// Texture caches, rebuilt after each render.
+#[derive(Default)]
+pub struct ViewState {
+    stale: bool,
+    overlay: Option<egui::TextureHandle>,
+    legends: Vec<String>,
+    map: Option<(egui::TextureHandle, DepthImage, LightGpu)>,
+    map_legend: String,
+}
+
+impl ViewState {
+    pub fn invalidate(&mut self) {
+        self.stale = true;
+    }
+}
+
+/// Most texels per side of the shadow map as shown (larger maps are subsampled for display).
+const MAP_DISPLAY_TEXELS: u32 = 1024;
+
+fn color_image(image: &image::RgbaImage) -> egui::ColorImage {
+    egui::ColorImage::from_rgba_unmultiplied(
+        [image.width() as usize, image.height() as usize],
+        image.as_raw(),
+    )
+}
+
+fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
+    if !app.view_state.stale {
+        return;
+    }
+    app.view_state.stale = false;
+    let Some(gpu) = app.gpu.as_ref() else { return };
+    let light = gpu.renderer.frame_lights.get(app.selected_light).copied();
+    // Overlays from the analysis pass.
+    app.view_state.overlay = None;
+    app.view_state.legends.clear();
+    if let Some(analysis) = &app.analysis {
+        let (image, legends) =
+            super::overlays::compose(&app.overlays, analysis, light.as_ref(), app.reference.as_deref());
+        app.view_state.legends = legends;
+        if !app.overlays.is_empty() {
+            app.view_state.overlay =
+                Some(ctx.load_texture("overlay", color_image(&image), egui::TextureOptions::NEAREST));
+        }
+    }
+    // The selected light's shadow map.
+    if let Some(light) = light
+        && let Ok(map) = gpu.renderer.read_shadow_map(app.selected_light)
+    {
+        let (image, legend) = crate::views::shadow_map_image(&map, &light);
+        let step = (map.size / MAP_DISPLAY_TEXELS).max(1);
+        let shown = if step > 1 {
+            image::imageops::resize(
+                &image,
+                map.size / step,
+                map.size / step,
+                image::imageops::FilterType::Nearest,
+            )
+        } else {
+            image
+        };
+        app.view_state.map_legend = legend.to_string();
+        let texture = ctx.load_texture("shadow map", color_image(&shown), egui::TextureOptions::NEAREST);
+        app.view_state.map = Some((texture, map, light));
+    }
+}
+
+pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
+    if app.gpu.is_none() {
+        ui.centered_and_justified(|ui| {
+            ui.label(format!(
+                "No GPU view: {}",
+                app.gpu_error.clone().unwrap_or_else(|| "unknown reason".into())
+            ));
+        });
+        return;
+    }
+    let full = ui.available_rect_before_wrap();
+    let split = app.settings.split.clamp(0.25, 0.85);
+    let divider_x = full.left() + full.width() * split;
+    let camera_rect = Rect::from_min_max(full.min, pos2(divider_x - 3.0, full.bottom() - 40.0));
+    let map_rect = Rect::from_min_max(pos2(divider_x + 3.0, full.top()), full.max);
+    let legend_rect =
+        Rect::from_min_max(pos2(full.left(), camera_rect.bottom()), pos2(divider_x - 3.0, full.bottom()));
+
+    // The split between the two views.
+    let divider = Rect::from_min_max(pos2(divider_x - 3.0, full.top()), pos2(divider_x + 3.0, full.bottom()));
+    let divider_response = ui.interact(divider, ui.scope_id().with("split"), Sense::drag());
+    if divider_response.dragged() {
+        app.settings.split =
+            ((divider_x + divider_response.drag_delta().x - full.left()) / full.width()).clamp(0.25, 0.85);
+    }
+    let divider_color = if divider_response.hovered() { Color32::GRAY } else { Color32::from_gray(60) };
+    ui.painter().rect_filled(divider.shrink2(vec2(2.0, 0.0)), 0.0, divider_color);
+
+    let ppp = ui.ctx().pixels_per_point();
+    let size_px =
+        ((camera_rect.width() * ppp).max(16.0) as u32, (camera_rect.height() * ppp).max(16.0) as u32);
+    app.render_if_needed(size_px);
+    refresh(app, ui.ctx());
+
+    camera_view(app, ui, camera_rect);
+    let painter = ui.painter_at(legend_rect);
+    let mut y = legend_rect.top() + 4.0;
+    for legend in &app.view_state.legends {
+        painter.text(
+            pos2(legend_rect.left() + 4.0, y),
+            egui::Align2::LEFT_TOP,
+            legend,
+            egui::FontId::proportional(13.0),
+            Color32::LIGHT_GRAY,
+        );
+        y += 16.0;
+    }
+    shadow_map_panel(app, ui, map_rect);
+    ui.allocate_rect(full, Sense::hover());
+}
+
+fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
+    let response = ui.interact(rect, ui.scope_id().with("camera view"), Sense::click_and_drag());
+    let painter = ui.painter_at(rect);
+    let uv = Rect::from_min_max(Pos2::ZERO, pos2(1.0, 1.0));
+    if let Some((id, _)) = app.gpu.as_ref().and_then(|g| g.texture()) {
+        painter.image(id, rect, uv, Color32::WHITE);
+    }
+    if let (Some(ab), Some((id_b, _))) = (&app.ab, app.gpu_b.as_ref().and_then(|g| g.texture())) {
+        let x = rect.left() + rect.width() * ab.divider;
+        let right = Rect::from_min_max(pos2(x, rect.top()), rect.max);
+        let uv_right = Rect::from_min_max(pos2(ab.divider, 0.0), pos2(1.0, 1.0));
+        painter.image(id_b, right, uv_right, Color32::WHITE);
+        painter.line_segment([pos2(x, rect.top()), pos2(x, rect.bottom())], Stroke::new(2.0, Color32::WHITE));
+        let label = |text: &str, pos: Pos2, align| {
+            painter.text(pos, align, text, egui::FontId::proportional(15.0), Color32::WHITE);
+        };
+        label(app.scene.shadow.technique.name(), pos2(x - 8.0, rect.top() + 8.0), egui::Align2::RIGHT_TOP);
+        label(ab.b.name(), pos2(x + 8.0, rect.top() + 8.0), egui::Align2::LEFT_TOP);
+    }
+    if let Some(overlay) = &app.view_state.overlay {
+        painter.image(overlay.id(), rect, uv, Color32::WHITE);
+    }
+    if app.overlays.contains(&crate::lessons::Overlay::LightFrustum) {
+        draw_light_frusta(app, &painter, rect);
+    }
+    if let Some((fx, fy)) = app.probe_at {
+        let p = pos2(rect.left() + fx * rect.width(), rect.top() + fy * rect.height());
+        painter.circle_stroke(p, 7.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
+        painter.line_segment([p - vec2(12.0, 0.0), p + vec2(12.0, 0.0)], Stroke::new(1.5, Color32::BLACK));
+        painter.line_segment([p - vec2(0.0, 12.0), p + vec2(0.0, 12.0)], Stroke::new(1.5, Color32::BLACK));
+    }
+
+    // Interaction: the A/B divider first, then the camera.
+    let mut handled = false;
+    if let Some(ab) = &mut app.ab
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        let x = rect.left() + rect.width() * ab.divider;
+        if response.dragged_by(egui::PointerButton::Primary) && (pos.x - x).abs() < 12.0 {
+            ab.divider = ((pos.x - rect.left()) / rect.width()).clamp(0.02, 0.98);
+            handled = true;
+        }
+    }
+    let delta = response.drag_delta();
+    app.interacting = response.dragged() && delta != Vec2::ZERO;
+    if !handled && response.dragged_by(egui::PointerButton::Primary) && delta != Vec2::ZERO {
+        app.scene.camera.orbit(-delta.x * 0.008, -delta.y * 0.008);
+        app.mark_dirty();
+    }
+    if response.dragged_by(egui::PointerButton::Secondary) || response.dragged_by(egui::PointerButton::Middle)
+    {
+        let distance = (app.scene.camera.position - app.scene.camera.target).length();
+        let world_per_point = distance / rect.height().max(1.0);
+        app.scene.camera.pan(-delta.x * world_per_point, delta.y * world_per_point);
+        app.mark_dirty();
+    }
+    if response.hovered() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if scroll != 0.0 {
+            app.scene.camera.zoom((-scroll * 0.002).exp());
+            app.mark_dirty();
+        }
+    }
+    let pointer_fraction =
+        |pos: Pos2| ((pos.x - rect.left()) / rect.width(), (pos.y - rect.top()) / rect.height());
+    if response.double_clicked() {
+        if let (Some(pos), Some(analysis)) = (response.interact_pointer_pos(), &app.analysis) {
+            let (fx, fy) = pointer_fraction(pos);
+            let x = ((fx * analysis.width as f32) as u32).min(analysis.width - 1);
+            let y = ((fy * analysis.height as f32) as u32).min(analysis.height - 1);
+            let i = analysis.index(x, y);
+            if analysis.hit(i) {
+                let p = analysis.position[i];
+                app.scene.camera.target = glam::Vec3::new(p[0], p[1], p[2]);
+                app.mark_dirty();
+            }
+        }
+    } else if response.clicked()
+        && let Some(pos) = response.interact_pointer_pos()
+    {
+        app.probe_at = Some(pointer_fraction(pos));
+        app.mark_dirty();
+    }
+}
+
+/// Project a world point with `clip_from_world` into `rect`; None behind the eye.
+fn to_screen(clip_from_world: &Mat4, p: glam::Vec3, rect: Rect) -> Option<Pos2> {
+    let clip = *clip_from_world * p.extend(1.0);
+    (clip.w > 1e-4).then(|| {
+        let ndc = clip.truncate() / clip.w;
+        pos2(
+            rect.left() + (ndc.x * 0.5 + 0.5) * rect.width(),
+            rect.top() + (0.5 - ndc.y * 0.5) * rect.height(),
+        )
+    })
+}
+
+fn draw_light_frusta(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
+    let Some(gpu) = &app.gpu else { return };
+    let camera = app.scene.camera.clip_from_world(rect.width() / rect.height().max(1.0));
+    for (i, light) in gpu.renderer.frame_lights.iter().enumerate() {
+        let world_from_clip = Mat4::from_cols_array_2d(&light.clip_from_world).inverse();
+        let corner = |x: f32, y: f32, z: f32| {
+            let w = world_from_clip * Vec4::new(x, y, z, 1.0);
+            w.truncate() / w.w
+        };
+        let c: Vec<glam::Vec3> = [
+            (-1., -1., 0.),
+            (1., -1., 0.),
+            (1., 1., 0.),
+            (-1., 1., 0.),
+            (-1., -1., 1.),
+            (1., -1., 1.),
+            (1., 1., 1.),
+            (-1., 1., 1.),
+        ]
+        .iter()
+        .map(|&(x, y, z)| corner(x, y, z))
+        .collect();
+        let color = if i == app.selected_light {
+            Color32::from_rgb(255, 200, 60)
+        } else {
+            Color32::from_rgb(120, 170, 255)
+        };
+        for (a, b) in
+            [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+        {
+            if let (Some(pa), Some(pb)) = (to_screen(&camera, c[a], rect), to_screen(&camera, c[b], rect)) {
+                painter.line_segment([pa, pb], Stroke::new(1.5, color));
+            }
+        }
+    }
+}
+
+fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
+    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect));
+    let ui = &mut child;
+    let light_count = app.scene.lights.len();
+    ui.horizontal(|ui| {
+        ui.strong("Shadow map");
+        for i in 0..light_count {
+            if ui.selectable_label(app.selected_light == i, format!("light {i}")).clicked()
+                && app.selected_light != i
+            {
+                app.selected_light = i;
+                app.mark_dirty();
+            }
+        }
+    });
+    ui.small(&app.view_state.map_legend);
+    let Some((texture, map, light)) = &app.view_state.map else {
+        ui.label("no light in this scene");
+        return;
+    };
+    let avail = ui.available_rect_before_wrap();
+    let side = avail.width().min(avail.height() - 60.0).max(64.0);
+    let map_rect = Rect::from_min_size(avail.min, vec2(side, side));
+    let response = ui.allocate_rect(map_rect, Sense::click_and_drag());
+    let painter = ui.painter_at(map_rect);
+    painter.image(texture.id(), map_rect, Rect::from_min_max(Pos2::ZERO, pos2(1.0, 1.0)), Color32::WHITE);
+    let to_rect = |uv: [f32; 2]| pos2(map_rect.left() + uv[0] * side, map_rect.top() + uv[1] * side);
+
+    // The probe on the map, at its real size.
+    if let Some(report) = &app.probe
+        && let Some(l) = report.lights.iter().find(|l| l.light == app.selected_light)
+    {
+        let centre = to_rect(l.shadow_map_uv);
+        if l.blocker_search_radius_uv > 0.0 {
+            painter.circle_stroke(
+                centre,
+                l.blocker_search_radius_uv * side,
+                Stroke::new(1.5, Color32::from_rgb(86, 180, 233)),
+            );
+        }
+        if l.filter_radius_uv > 0.0 {
+            painter.circle_stroke(centre, l.filter_radius_uv * side, Stroke::new(1.5, Color32::WHITE));
+        }
+        for tap in &l.taps {
+            let p = to_rect(tap.uv);
+            let (fill, search) = match tap.kind {
+                "blocker-search" => (tap.value > 0.5, true),
+                _ => (tap.value < 0.5, false),
+            };
+            let color = if fill { Color32::from_rgb(204, 121, 167) } else { Color32::from_rgb(0, 158, 115) };
+            if search {
+                painter.circle_stroke(p, 2.5, Stroke::new(1.0, color));
+            } else {
+                painter.circle_filled(p, 2.5, color);
+            }
+        }
+        painter.circle_stroke(centre, 4.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
+    }
+    let info_pos = pos2(map_rect.left(), map_rect.bottom() + 4.0);
+    let mut info = String::from(
+        "drag to move the light · blue: blocker search · white: filter · green lit, pink blocked",
+    );
+    if let Some(pos) = response.hover_pos() {
+        let u = ((pos.x - map_rect.left()) / side).clamp(0.0, 0.9999);
+        let v = ((pos.y - map_rect.top()) / side).clamp(0.0, 0.9999);
+        let (tx, ty) = ((u * map.size as f32) as u32, (v * map.size as f32) as u32);
+        let z = map.depth_ndc[(ty * map.size + tx) as usize];
+        if z < 1.0 {
+            let ndc = Vec4::new(u * 2.0 - 1.0, 1.0 - v * 2.0, z, 1.0);
+            let w = Mat4::from_cols_array_2d(&light.clip_from_world).inverse() * ndc;
+            let p = w.truncate() / w.w;
+            info = format!(
+                "texel {tx},{ty} · stored {z:.5} NDC = {:.3} world · point ({:.2}, {:.2}, {:.2})",
+                depth_linear_from_ndc(light, z),
+                p.x,
+                p.y,
+                p.z
+            );
+        } else {
+            info = format!("texel {tx},{ty} · nothing stored (cleared to 1.0)");
+        }
+    }
+    ui.painter().text(
+        info_pos,
+        egui::Align2::LEFT_TOP,
+        info,
+        egui::FontId::proportional(13.0),
+        Color32::LIGHT_GRAY,
+    );
+
+    // Dragging on the map moves the light: yaw about its up axis, pitch towards it.
+    if response.dragged() && response.drag_delta() != Vec2::ZERO {
+        let d = response.drag_delta();
+        if let Some(l) = app.scene.lights.get_mut(app.selected_light) {
+            let offset = l.position - l.target;
+            let up = l.up.normalize_or(glam::Vec3::Y);
+            let yawed = glam::Quat::from_axis_angle(up, -d.x * 0.005) * offset;
+            let right = yawed.cross(up).normalize_or(glam::Vec3::X);
+            let pitched = glam::Quat::from_axis_angle(right, -d.y * 0.005) * yawed;
+            if pitched.normalize().dot(up).abs() < 0.995 {
+                l.position = l.target + pitched;
+            } else {
+                l.position = l.target + yawed;
+            }
+        }
+        app.interacting = true;
+        app.mark_dirty();
+    }
+}
