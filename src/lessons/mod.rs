@@ -212,10 +212,9 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
     let label = path.display().to_string();
     let text = std::fs::read_to_string(path)
         .map_err(|e| LessonError::Io { path: label.clone(), reason: e.to_string() })?;
-    let file: LessonFile = toml::from_str(&text).map_err(|e| LessonError::Parse {
-        path: label.clone(),
-        line: e.span().map_or(1, |s| line_of(&text, s.start)),
-        message: e.message().trim().to_string(),
+    let file: LessonFile = toml::from_str(&text).map_err(|e| {
+        let (line, message) = crate::scene::describe_toml_error(&text, &e);
+        LessonError::Parse { path: label.clone(), line, message }
     })?;
     if file.steps.is_empty() {
         return Err(LessonError::Parse {

@@ -173,10 +173,9 @@ pub fn parse_scene_str(
     label: &str,
     overrides: &[(String, String)],
 ) -> Result<Scene, SceneError> {
-    let parse_error = |e: toml::de::Error| SceneError::Parse {
-        path: label.to_string(),
-        line: e.span().map_or(1, |s| line_of(text, s.start)),
-        message: e.message().trim().to_string(),
+    let parse_error = |e: toml::de::Error| {
+        let (line, message) = describe_toml_error(text, &e);
+        SceneError::Parse { path: label.to_string(), line, message }
     };
     let mut table: toml::Table = toml::from_str(text).map_err(parse_error)?;
     // The file alone must be valid, so its errors point at its lines, not at an override.
@@ -248,8 +247,25 @@ pub fn apply_override(table: &mut toml::Table, key: &str, value: &str) -> Result
     Ok(())
 }
 
-fn line_of(text: &str, byte: usize) -> usize {
+pub(crate) fn line_of(text: &str, byte: usize) -> usize {
     text.as_bytes()[..byte.min(text.len())].iter().filter(|&&b| b == b'\n').count() + 1
+}
+
+/// The line of a TOML error and its message, naming the key where serde's message does not
+/// (`unknown variant 'blurry'` becomes "`technique`: unknown variant ...").
+pub(crate) fn describe_toml_error(text: &str, e: &toml::de::Error) -> (usize, String) {
+    let message = e.message().trim().to_string();
+    let Some(span) = e.span() else { return (1, message) };
+    let line = line_of(text, span.start);
+    let line_text = text.lines().nth(line - 1).unwrap_or("");
+    let key = line_text
+        .split_once('=')
+        .map(|(k, _)| k.trim().trim_matches('"'))
+        .filter(|k| !k.is_empty() && !k.contains(['[', ']', '{']) && !message.contains(&format!("`{k}`")));
+    match key {
+        Some(key) => (line, format!("`{key}`: {message}")),
+        None => (line, message),
+    }
 }
 
 /// A problem found while building, before we know whether the file or an override caused it.

@@ -10,6 +10,7 @@ pub mod mesh;
 mod settings;
 
 pub use camera::{Camera, Projection};
+pub(crate) use file::describe_toml_error;
 pub use file::{SceneError, load_scene, parse_scene_str};
 pub use light::{Light, LightKind, LightSize, safe_up as safe_up_for};
 pub use mesh::{Material, Mesh, MeshError, MeshPart, TextureImage, Vertex};

@@ -107,7 +107,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     }
 
     ui.separator();
-    if ui.button("↺ Reset to scene/lesson values").clicked() {
+    if ui.button("Reset to scene/lesson values").clicked() {
         app.reset();
     }
     ui.separator();

@@ -28,10 +28,10 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     }
     ui.add_space(12.0);
     ui.horizontal(|ui| {
-        if ui.button("◀ Previous").on_hover_text("Left arrow").clicked() {
+        if ui.button("Previous").on_hover_text("Left arrow").clicked() {
             app.step_lesson(-1);
         }
-        if ui.button("Next ▶").on_hover_text("Right arrow").clicked() {
+        if ui.button("Next").on_hover_text("Right arrow").clicked() {
             app.step_lesson(1);
         }
     });

@@ -301,6 +301,16 @@ impl ShadowlabApp {
         &self.scene.camera
     }
 
+    /// Why there is no GPU view, or the last rendering error, if any.
+    pub fn gpu_problem(&self) -> Option<String> {
+        self.gpu_error.clone().or_else(|| self.error.clone())
+    }
+
+    /// The camera view as last rendered (for screenshots and tests).
+    pub fn camera_image(&self) -> Option<image::RgbaImage> {
+        self.gpu.as_ref().and_then(|g| g.renderer.read_color().ok())
+    }
+
     fn handle_keys(&mut self, ctx: &egui::Context) {
         if ctx.egui_wants_keyboard_input() {
             return;
@@ -406,30 +416,35 @@ impl ShadowlabApp {
             ui.strong("shadowlab");
             ui.separator();
             self.source_selector(ui);
+            let file_label = ui.label("file");
             ui.add(
                 egui::TextEdit::singleline(&mut self.open_path)
                     .hint_text("scene .toml or .obj path")
                     .desired_width(180.0),
-            );
+            )
+            .labelled_by(file_label.id);
             if ui.button("Open").clicked() && !self.open_path.trim().is_empty() {
                 let path = PathBuf::from(self.open_path.trim());
                 self.open(&path);
             }
             ui.separator();
-            let play_label = if self.playing { "⏸ Pause" } else { "▶ Play" };
+            let play_label = if self.playing { "Pause" } else { "Play" };
             if ui.button(play_label).on_hover_text("Space").clicked() {
                 self.playing = !self.playing;
             }
-            ui.label("time (s)");
-            if ui.add(egui::Slider::new(&mut self.time_s, 0.0..=60.0).max_decimals(2)).changed() {
+            let time_label = ui.label("time (s)");
+            let time = ui.add(egui::Slider::new(&mut self.time_s, 0.0..=60.0).max_decimals(2));
+            if time.labelled_by(time_label.id).changed() {
                 self.mark_dirty();
             }
-            ui.label("speed");
-            ui.add(egui::DragValue::new(&mut self.speed).speed(0.05).range(0.0..=10.0).suffix("×"));
+            let speed_label = ui.label("speed");
+            ui.add(egui::DragValue::new(&mut self.speed).speed(0.05).range(0.0..=10.0).suffix("×"))
+                .labelled_by(speed_label.id);
             ui.separator();
-            if ui.button("📷 Screenshot").on_hover_text("S: window and each view as PNGs").clicked() {
+            if ui.button("Screenshot").on_hover_text("S: window and each view as PNGs").clicked() {
                 self.request_screenshot(ui.ctx());
             }
+            let lang_label = ui.label("language");
             egui::ComboBox::from_id_salt("lang")
                 .selected_text(match self.lang {
                     Lang::En => "English",
@@ -438,7 +453,9 @@ impl ShadowlabApp {
                 .show_ui(ui, |ui| {
                     ui.selectable_value(&mut self.lang, Lang::En, "English");
                     ui.selectable_value(&mut self.lang, Lang::Zh, "中文");
-                });
+                })
+                .response
+                .labelled_by(lang_label.id);
             if ui.button("F1 Help").clicked() {
                 self.show_help = !self.show_help;
             }
@@ -455,31 +472,34 @@ impl ShadowlabApp {
                 .unwrap_or_default(),
         };
         let mut choice: Option<Result<PathBuf, usize>> = None;
-        egui::ComboBox::from_id_salt("source").selected_text(current).width(240.0).show_ui(ui, |ui| {
-            ui.label("Scenes");
-            let mut scenes: Vec<PathBuf> = std::fs::read_dir(shipped_path("assets/scenes"))
-                .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
-                .unwrap_or_default();
-            scenes.retain(|p| p.extension().is_some_and(|e| e == "toml"));
-            scenes.sort();
-            for path in scenes {
-                let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-                if ui.selectable_label(self.source == Source::Scene(path.clone()), name).clicked() {
-                    choice = Some(Ok(path));
+        let label = ui.label("scene");
+        let combo =
+            egui::ComboBox::from_id_salt("source").selected_text(current).width(240.0).show_ui(ui, |ui| {
+                ui.label("Scenes");
+                let mut scenes: Vec<PathBuf> = std::fs::read_dir(shipped_path("assets/scenes"))
+                    .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
+                    .unwrap_or_default();
+                scenes.retain(|p| p.extension().is_some_and(|e| e == "toml"));
+                scenes.sort();
+                for path in scenes {
+                    let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+                    if ui.selectable_label(self.source == Source::Scene(path.clone()), name).clicked() {
+                        choice = Some(Ok(path));
+                    }
                 }
-            }
-            ui.separator();
-            ui.label("Lessons");
-            for (i, lesson) in self.lessons.iter().enumerate() {
-                let selected = matches!(self.source, Source::Lesson { lesson, .. } if lesson == i);
-                if ui
-                    .selectable_label(selected, format!("{}. {}", i + 1, lesson.title.get(self.lang)))
-                    .clicked()
-                {
-                    choice = Some(Err(i));
+                ui.separator();
+                ui.label("Lessons");
+                for (i, lesson) in self.lessons.iter().enumerate() {
+                    let selected = matches!(self.source, Source::Lesson { lesson, .. } if lesson == i);
+                    if ui
+                        .selectable_label(selected, format!("{}. {}", i + 1, lesson.title.get(self.lang)))
+                        .clicked()
+                    {
+                        choice = Some(Err(i));
+                    }
                 }
-            }
-        });
+            });
+        combo.response.labelled_by(label.id);
         match choice {
             Some(Ok(path)) => self.open(&path),
             Some(Err(lesson)) => self.go_to_step(lesson, 0),
@@ -490,13 +510,16 @@ impl ShadowlabApp {
     fn status_bar(&mut self, ui: &mut egui::Ui) {
         ui.horizontal(|ui| {
             if let Some(error) = self.error.clone() {
-                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), format!("⚠ {error}"));
+                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), format!("Error: {error}"));
                 if ui.small_button("dismiss").clicked() {
                     self.error = None;
                 }
                 ui.separator();
             }
             ui.label(&self.status);
+            if !self.settings.show_timings {
+                return;
+            }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
                 let mut text = format!("frame {:.1} ms", self.last_render_ms);
                 if let Some(gpu) = &self.gpu
@@ -687,6 +710,22 @@ impl eframe::App for ShadowlabApp {
     }
 }
 
+/// The device shadowlab needs: Vulkan unless `WGPU_BACKEND` says otherwise, the adapter's own
+/// limits (the analysis pass writes 48 bytes per pixel, over WebGPU's default 32), timestamps
+/// where available.
+pub fn configure_wgpu(
+    mut setup: eframe::egui_wgpu::WgpuSetupCreateNew,
+) -> eframe::egui_wgpu::WgpuSetupCreateNew {
+    setup.instance_descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
+    setup.device_descriptor = Arc::new(|adapter: &wgpu::Adapter| wgpu::DeviceDescriptor {
+        label: Some("shadowlab"),
+        required_features: adapter.features() & crate::render::optional_features(),
+        required_limits: adapter.limits(),
+        ..Default::default()
+    });
+    setup
+}
+
 /// Open the app. Returns a one-line reason where no window can be opened.
 pub fn run() -> Result<(), String> {
     let has_display =
@@ -696,21 +735,15 @@ pub fn run() -> Result<(), String> {
                     `xvfb-run -a`, or use `shadowlab render`/`shadowlab export`, which need no display"
             .into());
     }
-    let mut wgpu_setup = eframe::egui_wgpu::WgpuSetupCreateNew::without_display_handle();
-    wgpu_setup.instance_descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
-    wgpu_setup.device_descriptor = Arc::new(|adapter: &wgpu::Adapter| wgpu::DeviceDescriptor {
-        label: Some("shadowlab"),
-        required_features: adapter.features() & crate::render::optional_features(),
-        required_limits: adapter.limits(),
-        ..Default::default()
-    });
     let options = eframe::NativeOptions {
         viewport: egui::ViewportBuilder::default()
             .with_title("shadowlab")
             .with_inner_size([1560.0, 880.0])
             .with_drag_and_drop(true),
         wgpu_options: eframe::egui_wgpu::WgpuConfiguration {
-            wgpu_setup: eframe::egui_wgpu::WgpuSetup::CreateNew(wgpu_setup),
+            wgpu_setup: eframe::egui_wgpu::WgpuSetup::CreateNew(configure_wgpu(
+                eframe::egui_wgpu::WgpuSetupCreateNew::without_display_handle(),
+            )),
             ..Default::default()
         },
         ..Default::default()

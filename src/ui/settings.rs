@@ -18,6 +18,8 @@ pub struct Settings {
     pub diagram_height: f32,
     pub screenshot_dir: PathBuf,
     pub show_kernel_plot: bool,
+    /// Frame and pass times in the status bar (off for reproducible screenshots).
+    pub show_timings: bool,
 }
 
 impl Default for Settings {
@@ -32,6 +34,7 @@ impl Default for Settings {
             diagram_height: 250.0,
             screenshot_dir: PathBuf::from("screenshots"),
             show_kernel_plot: true,
+            show_timings: true,
         }
     }
 }

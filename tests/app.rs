@@ -1,0 +1,168 @@
+//! The app driven the way a user drives it (egui_kittest on the wgpu renderer): layout
+//! snapshots per technique, a click that pins the probe (checked against `shadowlab probe`),
+//! a parameter change that changes the image, a bad scene that keeps the old one, and lesson
+//! stepping with the arrow keys.
+
+use egui_kittest::kittest::Queryable;
+use egui_kittest::{Harness, SnapshotOptions};
+use shadowlab::ui::{Settings, ShadowlabApp, Source, app_for_test};
+
+fn harness() -> Harness<'static, ShadowlabApp> {
+    let mut setup = egui_kittest::wgpu::default_wgpu_setup();
+    if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
+        setup = eframe::egui_wgpu::WgpuSetup::CreateNew(shadowlab::ui::configure_wgpu(create));
+    }
+    let mut harness = Harness::builder()
+        .with_size([1400.0, 820.0])
+        .wgpu_setup(setup)
+        .build_eframe(|cc| app_for_test(cc, Settings { show_timings: false, ..Settings::default() }));
+    harness.run_steps(4);
+    assert!(
+        harness.state().camera_image().is_some(),
+        "the app has no GPU view ({:?}): these tests need a Vulkan adapter (apt-get install mesa-vulkan-drivers)",
+        harness.state().gpu_problem()
+    );
+    harness
+}
+
+fn snapshot_options() -> SnapshotOptions {
+    // Software rasterisers round a little differently from run to run of the driver version.
+    SnapshotOptions::new().threshold(2.0).max_failed_pixels(2000)
+}
+
+#[test]
+fn layout_snapshots_per_technique() {
+    let mut results = egui_kittest::SnapshotResults::new();
+    for technique in ["hard", "pcf", "pcss"] {
+        let mut h = harness();
+        h.state_mut().scene.shadow.technique =
+            shadowlab::scene::Technique::from_name(technique).expect("technique");
+        h.state_mut().mark_dirty();
+        h.run_steps(3);
+        h.snapshot_options(format!("app_games202_{technique}"), &snapshot_options());
+        results.extend(h.take_snapshot_results());
+    }
+}
+
+fn camera_view_rect(h: &Harness<'_, ShadowlabApp>) -> egui::Rect {
+    // The camera view fills the left part of the central panel, below the top bar; find it from
+    // the inspector's right edge and the shadow-map heading.
+    let map = h.get_by_label("Shadow map").rect();
+    let inspector_right = h.get_by_label("Technique").rect().left() + 290.0;
+    egui::Rect::from_min_max(
+        egui::pos2(inspector_right + 20.0, map.top() + 10.0),
+        egui::pos2(map.left() - 20.0, map.top() + 400.0),
+    )
+}
+
+#[test]
+fn clicking_the_camera_view_pins_a_probe_matching_the_cli() {
+    let mut h = harness();
+    let view = camera_view_rect(&h);
+    let target = egui::pos2(view.left() + view.width() * 0.55, view.top() + view.height() * 0.6);
+    h.hover_at(target);
+    h.run_steps(1);
+    h.event(egui::Event::PointerButton {
+        pos: target,
+        button: egui::PointerButton::Primary,
+        pressed: true,
+        modifiers: Default::default(),
+    });
+    h.run_steps(1);
+    h.event(egui::Event::PointerButton {
+        pos: target,
+        button: egui::PointerButton::Primary,
+        pressed: false,
+        modifiers: Default::default(),
+    });
+    h.run_steps(4);
+    let report = h.state().probe_report().cloned().expect("a click pins the probe");
+    assert!(report.hit, "the probe should land on the floor or a model");
+    // The inspector shows the probe's numbers.
+    h.get_by_label("visibility (CPU twin)");
+
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"))
+        .args(["probe", "--scene", "assets/scenes/games202.toml", "--no-reference"])
+        .args(["--pixel", &format!("{},{}", report.pixel[0], report.pixel[1])])
+        .args(["--size", &format!("{}x{}", report.size[0], report.size[1])])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("run shadowlab probe");
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let cli: serde_json::Value = serde_json::from_slice(&output.stdout).expect("probe JSON");
+    let app_light = &report.lights[0];
+    let cli_light = &cli["lights"][0];
+    let close = |key: &str, app: f32| {
+        let cli = cli_light[key].as_f64().unwrap_or(f64::NAN) as f32;
+        assert!((cli - app).abs() < 1e-4, "{key}: app {app} vs CLI {cli}");
+    };
+    close("visibility_twin", app_light.visibility_twin);
+    close("visibility_gpu", app_light.visibility_gpu);
+    close("receiver_depth_ndc", app_light.receiver_depth_ndc);
+    close("stored_depth_ndc", app_light.stored_depth_ndc);
+    close("penumbra_width_world", app_light.penumbra_width_world);
+    assert_eq!(cli_light["blockers_found"].as_u64(), Some(u64::from(app_light.blockers_found)));
+}
+
+#[test]
+fn changing_a_parameter_changes_the_image() {
+    let mut h = harness();
+    let before = h.state().camera_image().expect("image");
+    h.get_by_label("rotate the pattern per pixel").click();
+    h.run_steps(4);
+    assert!(!h.state().scene.shadow.rotate_per_pixel, "the checkbox should turn rotation off");
+    let after = h.state().camera_image().expect("image");
+    assert_eq!(before.dimensions(), after.dimensions());
+    let changed = before.pixels().zip(after.pixels()).filter(|(a, b)| a != b).count();
+    assert!(changed > 100, "only {changed} pixels changed");
+}
+
+#[test]
+fn a_malformed_scene_shows_the_error_and_keeps_the_old_scene() {
+    let mut h = harness();
+    let objects_before = h.state().scene.objects.len();
+    let dir = tempfile::tempdir().expect("temp dir");
+    let bad = dir.path().join("broken.toml");
+    std::fs::write(&bad, "[camera]\nposition = [1, 2, 3]\n[shadow]\ntechnique = \"blurry\"\n")
+        .expect("write");
+    h.get_by_label("file").click();
+    h.run_steps(1);
+    h.get_by_label("file").type_text(&bad.display().to_string());
+    h.run_steps(1);
+    h.get_by_label("Open").click();
+    h.run_steps(3);
+    let error = h.state().error.clone().expect("an error is shown");
+    assert!(error.contains("broken.toml") && error.contains("technique"), "{error}");
+    h.get_by_label_contains("broken.toml");
+    assert_eq!(h.state().scene.objects.len(), objects_before, "the old scene stays");
+    assert!(h.state().camera_image().is_some());
+}
+
+#[test]
+fn arrow_keys_step_through_a_lesson_and_the_panels_follow() {
+    let mut h = harness();
+    h.key_press(egui::Key::ArrowRight);
+    h.run_steps(4);
+    let first = h
+        .state()
+        .current_step()
+        .map(|(l, s, i)| (l.id.clone(), s.title.en.clone(), i))
+        .expect("a lesson step");
+    assert_eq!(first.2, 0);
+    h.get_by_label(&first.1);
+    assert!(matches!(h.state().source, Source::Lesson { lesson: 0, step: 0 }));
+    h.key_press(egui::Key::ArrowRight);
+    h.run_steps(4);
+    let second = h.state().current_step().map(|(_, s, i)| (s.clone(), i)).expect("step 2");
+    assert_eq!(second.1, 1);
+    h.get_by_label(&second.0.title.en);
+    assert_eq!(h.state().overlays, second.0.overlays, "the step's overlays are shown");
+    if let Some(diagram) = second.0.diagram {
+        assert_eq!(h.state().diagram, diagram, "the step's diagram is drawn");
+    }
+    h.key_press(egui::Key::ArrowLeft);
+    h.run_steps(4);
+    assert!(matches!(h.state().source, Source::Lesson { lesson: 0, step: 0 }));
+    h.get_by_label(&first.1);
+}
