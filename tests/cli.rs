@@ -542,13 +542,25 @@ fn bench_zero_frames_is_rejected() {
 }
 
 #[test]
-fn no_arguments_exits_non_zero_with_one_line() {
-    let run = shadowlab::<&str>(&[]);
-    assert_ne!(run.code, Some(0), "{run}");
+fn no_arguments_without_a_display_exits_2_with_one_line() {
+    // No arguments opens the app; with no display it must say so and point at the commands.
+    let output = Command::new(env!("CARGO_BIN_EXE_shadowlab"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env_remove("DISPLAY")
+        .env_remove("WAYLAND_DISPLAY")
+        .env("XDG_RUNTIME_DIR", runtime_dir().unwrap_or_else(std::env::temp_dir))
+        .output()
+        .expect("the shadowlab binary runs");
+    let run = Run {
+        code: output.status.code(),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    };
+    assert_eq!(run.code, Some(2), "{run}");
     assert!(!run.stderr.contains("panicked"), "{run}");
     let lines: Vec<&str> = run.stderr.lines().collect();
     assert_eq!(lines.len(), 1, "one line on stderr:\n{run}");
-    assert!(lines[0].starts_with("shadowlab: "), "{run}");
+    assert!(lines[0].starts_with("shadowlab: no display"), "{run}");
     assert!(lines[0].contains("render"), "the message points at the commands:\n{run}");
 }
 

@@ -110,6 +110,13 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     if ui.button("Reset to scene/lesson values").clicked() {
         app.reset();
     }
+    ui.horizontal(|ui| {
+        let label = ui.label("screenshot folder");
+        let mut folder = app.settings.screenshot_dir.display().to_string();
+        if ui.text_edit_singleline(&mut folder).labelled_by(label.id).changed() {
+            app.settings.screenshot_dir = folder.into();
+        }
+    });
     ui.separator();
     probe_values(app, ui);
     if changed {

@@ -417,13 +417,15 @@ impl ShadowlabApp {
             ui.separator();
             self.source_selector(ui);
             let file_label = ui.label("file");
-            ui.add(
-                egui::TextEdit::singleline(&mut self.open_path)
-                    .hint_text("scene .toml or .obj path")
-                    .desired_width(180.0),
-            )
-            .labelled_by(file_label.id);
-            if ui.button("Open").clicked() && !self.open_path.trim().is_empty() {
+            let field = ui
+                .add(
+                    egui::TextEdit::singleline(&mut self.open_path)
+                        .hint_text("scene .toml or .obj path")
+                        .desired_width(180.0),
+                )
+                .labelled_by(file_label.id);
+            let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            if (ui.button("Open").clicked() || entered) && !self.open_path.trim().is_empty() {
                 let path = PathBuf::from(self.open_path.trim());
                 self.open(&path);
             }

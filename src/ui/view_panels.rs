@@ -16,7 +16,13 @@ pub struct ViewState {
     overlay: Option<egui::TextureHandle>,
     legends: Vec<String>,
     map: Option<(egui::TextureHandle, DepthImage, LightGpu)>,
-    map_legend: String,
+    /// Linear depth range of the shown map, world units.
+    map_range: (f32, f32),
+    /// One small picture per light (several lights only).
+    thumbnails: Vec<egui::TextureHandle>,
+    /// Zoom of the shadow-map panel (1 = whole map) and the uv at its centre.
+    zoom: f32,
+    zoom_centre: (f32, f32),
 }
 
 impl ViewState {
@@ -26,7 +32,9 @@ impl ViewState {
 }
 
 /// Most texels per side of the shadow map as shown (larger maps are subsampled for display).
-const MAP_DISPLAY_TEXELS: u32 = 1024;
+const MAP_DISPLAY_TEXELS: u32 = 2048;
+/// Texels per side of a light's thumbnail.
+const THUMBNAIL_TEXELS: u32 = 96;
 
 fn color_image(image: &image::RgbaImage) -> egui::ColorImage {
     egui::ColorImage::from_rgba_unmultiplied(
@@ -70,9 +78,28 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
         } else {
             image
         };
-        app.view_state.map_legend = legend.to_string();
+        app.view_state.map_range = (legend.min, legend.max);
         let texture = ctx.load_texture("shadow map", color_image(&shown), egui::TextureOptions::NEAREST);
         app.view_state.map = Some((texture, map, light));
+    }
+    // Thumbnails of every light's map, while nothing moves (each is a full read-back).
+    app.view_state.thumbnails.clear();
+    if gpu.renderer.frame_lights.len() > 1 && !app.playing && !app.interacting {
+        for (i, light) in gpu.renderer.frame_lights.iter().enumerate() {
+            let Ok(map) = gpu.renderer.read_shadow_map(i) else { continue };
+            let (image, _) = crate::views::shadow_map_image(&map, light);
+            let small = image::imageops::resize(
+                &image,
+                THUMBNAIL_TEXELS,
+                THUMBNAIL_TEXELS,
+                image::imageops::FilterType::Triangle,
+            );
+            app.view_state.thumbnails.push(ctx.load_texture(
+                format!("thumbnail {i}"),
+                color_image(&small),
+                egui::TextureOptions::LINEAR,
+            ));
+        }
     }
 }
 
@@ -212,6 +239,25 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     }
 }
 
+/// The depth colour ramp with its range in world units.
+fn legend_bar(ui: &mut Ui, (lo, hi): (f32, f32)) {
+    ui.horizontal(|ui| {
+        ui.small(format!("{lo:.1}"));
+        let (rect, _) = ui.allocate_exact_size(vec2(140.0, 10.0), Sense::hover());
+        let steps = 28;
+        for k in 0..steps {
+            let c = crate::views::heat_color(k as f32 / (steps - 1) as f32);
+            let x0 = rect.left() + rect.width() * k as f32 / steps as f32;
+            let cell = Rect::from_min_max(
+                pos2(x0, rect.top()),
+                pos2(x0 + rect.width() / steps as f32 + 0.5, rect.bottom()),
+            );
+            ui.painter().rect_filled(cell, 0.0, Color32::from_rgb(c[0], c[1], c[2]));
+        }
+        ui.small(format!("{hi:.1} world units from the light · white: nothing stored · wheel: zoom"));
+    });
+}
+
 /// Project a world point with `clip_from_world` into `rect`; None behind the eye.
 fn to_screen(clip_from_world: &Mat4, p: glam::Vec3, rect: Rect) -> Option<Pos2> {
     let clip = *clip_from_world * p.extend(1.0);
@@ -268,15 +314,27 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     ui.horizontal(|ui| {
         ui.strong("Shadow map");
         for i in 0..light_count {
-            if ui.selectable_label(app.selected_light == i, format!("light {i}")).clicked()
-                && app.selected_light != i
-            {
+            let selected = app.selected_light == i;
+            let clicked = match app.view_state.thumbnails.get(i) {
+                Some(t) => ui
+                    .add(
+                        egui::Button::image_and_text(
+                            egui::Image::new(t).fit_to_exact_size(vec2(40.0, 40.0)),
+                            format!("light {i}"),
+                        )
+                        .selected(selected),
+                    )
+                    .clicked(),
+                None => ui.selectable_label(selected, format!("light {i}")).clicked(),
+            };
+            if clicked && !selected {
                 app.selected_light = i;
                 app.mark_dirty();
             }
         }
     });
-    ui.small(&app.view_state.map_legend);
+    legend_bar(ui, app.view_state.map_range);
+    let zoom = app.view_state.zoom.max(1.0);
     let Some((texture, map, light)) = &app.view_state.map else {
         ui.label("no light in this scene");
         return;
@@ -286,8 +344,17 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let map_rect = Rect::from_min_size(avail.min, vec2(side, side));
     let response = ui.allocate_rect(map_rect, Sense::click_and_drag());
     let painter = ui.painter_at(map_rect);
-    painter.image(texture.id(), map_rect, Rect::from_min_max(Pos2::ZERO, pos2(1.0, 1.0)), Color32::WHITE);
-    let to_rect = |uv: [f32; 2]| pos2(map_rect.left() + uv[0] * side, map_rect.top() + uv[1] * side);
+    // The part of the map shown: all of it, or a window of 1/zoom around the zoom centre.
+    let half = 0.5 / zoom;
+    let (cx, cy) = app.view_state.zoom_centre;
+    let (cx, cy) =
+        if zoom > 1.0 { (cx.clamp(half, 1.0 - half), cy.clamp(half, 1.0 - half)) } else { (0.5, 0.5) };
+    let shown = Rect::from_min_max(pos2(cx - half, cy - half), pos2(cx + half, cy + half));
+    painter.image(texture.id(), map_rect, shown, Color32::WHITE);
+    let side = side * zoom;
+    let to_rect = |uv: [f32; 2]| {
+        pos2(map_rect.left() + (uv[0] - shown.left()) * side, map_rect.top() + (uv[1] - shown.top()) * side)
+    };
 
     // The probe on the map, at its real size.
     if let Some(report) = &app.probe
@@ -324,8 +391,8 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         "drag to move the light · blue: blocker search · white: filter · green lit, pink blocked",
     );
     if let Some(pos) = response.hover_pos() {
-        let u = ((pos.x - map_rect.left()) / side).clamp(0.0, 0.9999);
-        let v = ((pos.y - map_rect.top()) / side).clamp(0.0, 0.9999);
+        let u = (shown.left() + (pos.x - map_rect.left()) / side).clamp(0.0, 0.9999);
+        let v = (shown.top() + (pos.y - map_rect.top()) / side).clamp(0.0, 0.9999);
         let (tx, ty) = ((u * map.size as f32) as u32, (v * map.size as f32) as u32);
         let z = map.depth_ndc[(ty * map.size + tx) as usize];
         if z < 1.0 {
@@ -350,6 +417,27 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         egui::FontId::proportional(13.0),
         Color32::LIGHT_GRAY,
     );
+
+    // Wheel over the map zooms around the probe (or the pointer), to see taps at texel scale.
+    let map_size = map.size;
+    let probe_uv = app
+        .probe
+        .as_ref()
+        .and_then(|r| r.lights.iter().find(|l| l.light == app.selected_light))
+        .map(|l| (l.shadow_map_uv[0], l.shadow_map_uv[1]));
+    if response.hovered() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if scroll != 0.0 {
+            let max_zoom = (map_size as f32 / 16.0).max(1.0);
+            app.view_state.zoom = (zoom * (scroll * 0.004).exp()).clamp(1.0, max_zoom);
+            let pointer = response.hover_pos().map(|p| {
+                (shown.left() + (p.x - map_rect.left()) / side, shown.top() + (p.y - map_rect.top()) / side)
+            });
+            if let Some(centre) = probe_uv.or(pointer) {
+                app.view_state.zoom_centre = centre;
+            }
+        }
+    }
 
     // Dragging on the map moves the light: yaw about its up axis, pitch towards it.
     if response.dragged() && response.drag_delta() != Vec2::ZERO {
