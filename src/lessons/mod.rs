@@ -310,12 +310,12 @@ pub fn load_all(dir: &Path) -> Result<Vec<Lesson>, LessonError> {
         .collect();
     paths.sort();
     let mut lessons = paths.iter().map(|p| load_lesson(p)).collect::<Result<Vec<_>, _>>()?;
-    lessons.sort_by_key(|l| l.order);
-    for pair in lessons.windows(2) {
-        if pair[0].id == pair[1].id {
-            return Err(LessonError::NotFound(format!("two lessons have the id `{}`", pair[0].id)));
-        }
+    let mut ids: Vec<&str> = lessons.iter().map(|l| l.id.as_str()).collect();
+    ids.sort_unstable();
+    if let Some(pair) = ids.windows(2).find(|pair| pair[0] == pair[1]) {
+        return Err(LessonError::NotFound(format!("two lessons in {} have the id `{}`", dir.display(), pair[0])));
     }
+    lessons.sort_by_key(|l| l.order);
     Ok(lessons)
 }
 

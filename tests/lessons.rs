@@ -1,0 +1,215 @@
+//! The shipped lessons: they load, they are complete in both languages, every step renders, and
+//! malformed lesson files are rejected with an error naming the file, the line and the key.
+
+mod common;
+
+use shadowlab::lessons::{self, Lesson, LessonError, Text};
+use shadowlab::views::{View, render_view};
+use std::collections::HashSet;
+use std::path::PathBuf;
+
+/// Size the render test uses; probes are given in a 960x540 frame.
+const RENDER_SIZE: (u32, u32) = (160, 90);
+
+fn shipped() -> Vec<Lesson> {
+    lessons::load_all(&lessons::default_dir())
+        .unwrap_or_else(|e| panic!("the shipped lessons must load: {e}"))
+}
+
+fn check_text(text: &Text, what: &str) {
+    assert!(!text.en.trim().is_empty(), "{what}: English text is empty");
+    assert!(!text.zh.trim().is_empty(), "{what}: Chinese text is empty");
+}
+
+#[test]
+fn every_lesson_loads_with_unique_ids_and_orders() {
+    let lessons = shipped();
+    assert_eq!(lessons.len(), 5, "expected 5 lessons, found {}", lessons.len());
+    let ids: HashSet<&str> = lessons.iter().map(|l| l.id.as_str()).collect();
+    assert_eq!(ids.len(), lessons.len(), "lesson ids must be unique");
+    let orders: Vec<u32> = lessons.iter().map(|l| l.order).collect();
+    assert_eq!(orders, vec![1, 2, 3, 4, 5], "lessons must be ordered 1..5");
+    let expected = ["hard-shadows", "bias", "pcf", "pcss", "multi-light"];
+    let found: Vec<&str> = lessons.iter().map(|l| l.id.as_str()).collect();
+    assert_eq!(found, expected);
+}
+
+#[test]
+fn every_lesson_has_three_to_six_steps() {
+    for lesson in shipped() {
+        let n = lesson.steps.len();
+        assert!((3..=6).contains(&n), "{}: {n} steps, expected 3 to 6", lesson.id);
+    }
+}
+
+#[test]
+fn every_text_is_given_in_both_languages() {
+    for lesson in shipped() {
+        check_text(&lesson.title, &format!("{} title", lesson.id));
+        check_text(&lesson.summary, &format!("{} summary", lesson.id));
+        for (i, step) in lesson.steps.iter().enumerate() {
+            let at = format!("{} step {}", lesson.id, i + 1);
+            check_text(&step.title, &format!("{at} title"));
+            check_text(&step.text, &format!("{at} text"));
+            assert!(
+                (1..=2).contains(&step.try_this.len()),
+                "{at}: {} try_this prompts, expected 1 or 2",
+                step.try_this.len()
+            );
+            for (j, prompt) in step.try_this.iter().enumerate() {
+                check_text(prompt, &format!("{at} try_this {}", j + 1));
+            }
+        }
+    }
+}
+
+#[test]
+fn every_probe_lies_inside_the_frame() {
+    for lesson in shipped() {
+        for (i, step) in lesson.steps.iter().enumerate() {
+            let [x, y] = step.probe.unwrap_or_else(|| panic!("{} step {}: no probe pixel", lesson.id, i + 1));
+            assert!(x < 960 && y < 540, "{} step {}: probe {x},{y} outside 960x540", lesson.id, i + 1);
+        }
+    }
+}
+
+#[test]
+fn every_step_scene_loads_and_names_an_existing_light() {
+    for lesson in shipped() {
+        for (i, step) in lesson.steps.iter().enumerate() {
+            let scene = step.scene().unwrap_or_else(|e| panic!("{} step {}: {e}", lesson.id, i + 1));
+            assert!(
+                step.light < scene.lights.len(),
+                "{} step {}: light {} but the scene has {}",
+                lesson.id,
+                i + 1,
+                step.light,
+                scene.lights.len()
+            );
+            assert!(step.time_s.is_finite() && step.time_s >= 0.0, "{} step {}: bad time", lesson.id, i + 1);
+        }
+    }
+}
+
+/// Variance of the luminance, in 8-bit levels squared.
+fn luminance_variance(image: &image::RgbaImage) -> f64 {
+    let values: Vec<f64> = image
+        .pixels()
+        .map(|p| 0.2126 * f64::from(p[0]) + 0.7152 * f64::from(p[1]) + 0.0722 * f64::from(p[2]))
+        .collect();
+    let n = values.len().max(1) as f64;
+    let mean = values.iter().sum::<f64>() / n;
+    values.iter().map(|v| (v - mean).powi(2)).sum::<f64>() / n
+}
+
+#[test]
+fn every_step_renders_its_view_and_a_final_image_that_is_not_blank() {
+    let lessons = shipped();
+    let (_ctx, mut renderer) = common::gpu();
+    for lesson in &lessons {
+        for (i, step) in lesson.steps.iter().enumerate() {
+            let at = format!("{} step {}", lesson.id, i + 1);
+            let scene = step.scene().unwrap_or_else(|e| panic!("{at}: {e}"));
+            let (image, _) =
+                render_view(&mut renderer, &scene, step.view, step.light, step.time_s, RENDER_SIZE)
+                    .unwrap_or_else(|e| panic!("{at}: view {} failed: {e}", step.view.name()));
+            assert!(image.width() > 0 && image.height() > 0, "{at}: empty {} image", step.view.name());
+            let (final_image, _) =
+                render_view(&mut renderer, &scene, View::Final, step.light, step.time_s, RENDER_SIZE)
+                    .unwrap_or_else(|e| panic!("{at}: final view failed: {e}"));
+            assert_eq!(final_image.dimensions(), RENDER_SIZE, "{at}: final image size");
+            let variance = luminance_variance(&final_image);
+            assert!(variance > 25.0, "{at}: the final image is blank (luminance variance {variance:.2})");
+        }
+    }
+}
+
+// ------------------------------------------------------------------ malformed lessons
+
+fn data_file(name: &str) -> PathBuf {
+    common::repo_path(&format!("tests/data/lessons/{name}"))
+}
+
+/// 1-based line of the first line containing `needle`.
+fn line_of(path: &std::path::Path, needle: &str) -> usize {
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.lines()
+        .position(|l| l.contains(needle))
+        .map(|i| i + 1)
+        .unwrap_or_else(|| panic!("{}: no line contains {needle:?}", path.display()))
+}
+
+/// Load a malformed lesson and return its error message; it must name the file and `line`.
+fn error_of(name: &str, line: usize) -> String {
+    let path = data_file(name);
+    let error: LessonError = match lessons::load_lesson(&path) {
+        Ok(_) => panic!("{name}: a malformed lesson was accepted"),
+        Err(e) => e,
+    };
+    let message = error.to_string();
+    assert!(message.contains(name), "{name}: the error does not name the file: {message}");
+    assert!(
+        message.contains(&format!(":{line}:")),
+        "{name}: the error does not point at line {line}: {message}"
+    );
+    message
+}
+
+#[test]
+fn unknown_key_in_a_step_names_file_line_and_key() {
+    let line = line_of(&data_file("unknown_step_key.toml"), "tittle =");
+    let message = error_of("unknown_step_key.toml", line);
+    assert!(message.contains("tittle"), "{message}");
+}
+
+#[test]
+fn missing_chinese_text_names_file_line_and_key() {
+    let line = line_of(&data_file("missing_zh.toml"), "text = ");
+    let message = error_of("missing_zh.toml", line);
+    assert!(message.contains("zh"), "{message}");
+}
+
+#[test]
+fn unknown_diagram_names_file_line_and_id() {
+    let line = line_of(&data_file("unknown_diagram.toml"), "diagram = ");
+    let message = error_of("unknown_diagram.toml", line);
+    assert!(message.contains("two-passes"), "{message}");
+    assert!(message.contains("diagram"), "{message}");
+}
+
+#[test]
+fn unknown_overlay_names_file_line_and_value() {
+    let line = line_of(&data_file("unknown_overlay.toml"), "overlays = ");
+    let message = error_of("unknown_overlay.toml", line);
+    assert!(message.contains("shadow-rays"), "{message}");
+}
+
+#[test]
+fn bad_override_key_names_file_line_and_key() {
+    let line = line_of(&data_file("bad_set_key.toml"), "set = ");
+    let message = error_of("bad_set_key.toml", line);
+    assert!(message.contains("techniqe"), "{message}");
+}
+
+#[test]
+fn missing_scene_file_names_file_line_and_scene() {
+    let line = line_of(&data_file("missing_scene.toml"), "scene = ");
+    let message = error_of("missing_scene.toml", line);
+    assert!(message.contains("no_such_scene.toml"), "{message}");
+}
+
+#[test]
+fn probe_outside_the_frame_names_file_line_and_probe() {
+    // `probe` carries no span of its own, so the error points at the step it belongs to.
+    let line = line_of(&data_file("probe_outside.toml"), "[[step]]");
+    let message = error_of("probe_outside.toml", line);
+    assert!(message.contains("probe 960,100"), "{message}");
+}
+
+#[test]
+fn malformed_lessons_are_not_picked_up_with_the_shipped_ones() {
+    let error = lessons::load_all(&common::repo_path("tests/data/lessons"))
+        .err()
+        .unwrap_or_else(|| panic!("loading the malformed lessons as a folder must fail"));
+    assert!(error.to_string().contains("tests/data/lessons"), "{error}");
+}
