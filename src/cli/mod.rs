@@ -2,6 +2,8 @@
 //! values, no adapter), 1 for a rendering failure. Errors are one line naming what and where.
 
 mod bench;
+#[path = "export.rs"]
+mod export_cmd;
 
 use crate::export;
 use crate::lessons;
@@ -32,6 +34,8 @@ pub enum Command {
     Bench(BenchArgs),
     /// List the lessons and their steps.
     Lessons,
+    /// Export lessons as slides (PNG) with an index.html that shows them in order.
+    Export(ExportArgs),
 }
 
 #[derive(Args, Debug, Clone)]
@@ -96,6 +100,25 @@ pub struct BenchArgs {
     /// Print JSON instead of a table.
     #[arg(long)]
     pub json: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct ExportArgs {
+    /// Lesson id (see `shadowlab lessons`) or number, or `all`.
+    #[arg(long, default_value = "all")]
+    pub lesson: String,
+    /// Language of the slides: en or zh.
+    #[arg(long, default_value = "en", value_parser = export_cmd::parse_lang)]
+    pub lang: lessons::Lang,
+    /// Slide size, pixels.
+    #[arg(long, default_value = "1920x1080", value_parser = parse_size)]
+    pub size: (u32, u32),
+    /// Output folder (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Folder of lesson files (default: the lessons shipped with shadowlab).
+    #[arg(long, hide = true)]
+    pub lessons_dir: Option<PathBuf>,
 }
 
 /// A failure with its exit code.
@@ -246,6 +269,7 @@ pub fn run(command: Command) -> Result<(), CliError> {
         Command::Probe(args) => probe(args),
         Command::Bench(args) => bench::run(args),
         Command::Lessons => list_lessons(),
+        Command::Export(args) => export_cmd::run(args),
     }
 }
 

@@ -345,7 +345,8 @@ normal_offset_texels = 0.5
         assert_eq!(inp.objects_xz.len(), 1);
         let ([x, z], r) = inp.objects_xz[0];
         assert!((x - 4.0).abs() < 1e-3 && (z + 2.0).abs() < 1e-3, "{x},{z}");
-        assert!((r - 3.0).abs() < 0.1, "{r}");
+        // The unit sphere has radius 0.5.
+        assert!((r - 1.5).abs() < 0.05, "{r}");
         assert_eq!(inp.camera_xz, [30.0, 40.0]);
     }
 

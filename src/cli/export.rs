@@ -1,0 +1,240 @@
+//! `shadowlab export`: every step of the chosen lessons as PNG slides (plus the camera view,
+//! shadow map and diagram of each on their own) and one `index.html` showing them in order.
+//!
+//! Everything is checked before the first file is written: the lessons (all of them), the
+//! language's font, the output folder and the GPU. Rendering is deterministic: each step's own
+//! time and the scene's noise seed, no wall clock.
+
+use super::{CliError, ExportArgs, gpu};
+use crate::diagrams::{self, TextRenderer};
+use crate::export::html::{LessonEntry, SlideEntry, index_html};
+use crate::export::slide::{MIN_SIZE, SlideLayout, SlideText, compose};
+use crate::export::step::render_step;
+use crate::export::write_atomic;
+use crate::lessons::{self, Lang, Lesson};
+use crate::scene::Scene;
+use image::imageops::{FilterType, resize};
+use std::io::{IsTerminal, Write};
+use std::path::Path;
+
+pub fn parse_lang(s: &str) -> Result<Lang, String> {
+    Lang::from_code(s).ok_or_else(|| format!("`{s}` is not a slide language (expected en or zh)"))
+}
+
+/// Lesson ids become folder names: keep them to letters, digits, `-` and `_`.
+fn check_id(lesson: &Lesson) -> Result<(), CliError> {
+    let ok =
+        !lesson.id.is_empty() && lesson.id.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_');
+    if ok {
+        Ok(())
+    } else {
+        Err(CliError::input(format!(
+            "{}: lesson id `{}` must be letters, digits, `-` or `_` (it names the output folder)",
+            lesson.path.display(),
+            lesson.id
+        )))
+    }
+}
+
+/// The progress line: rewritten in place on a terminal, one line each otherwise.
+struct Progress {
+    terminal: bool,
+    width: usize,
+}
+
+impl Progress {
+    fn show(&mut self, line: &str) {
+        let mut err = std::io::stderr().lock();
+        if self.terminal {
+            let pad = self.width.saturating_sub(line.chars().count());
+            let _ = write!(err, "\r{line}{}", " ".repeat(pad));
+            self.width = line.chars().count();
+        } else {
+            let _ = writeln!(err, "{line}");
+        }
+        let _ = err.flush();
+    }
+
+    /// A warning on its own line (the progress line is redrawn by the next step).
+    fn warn(&mut self, message: &str) {
+        let mut err = std::io::stderr().lock();
+        if self.terminal {
+            let _ = write!(err, "\r{}\r", " ".repeat(self.width));
+            self.width = 0;
+        }
+        let _ = writeln!(err, "shadowlab: warning: {message}");
+    }
+
+    fn finish(&self) {
+        if self.terminal {
+            let _ = writeln!(std::io::stderr());
+        }
+    }
+}
+
+fn failed(what: &str, e: impl std::fmt::Display) -> CliError {
+    CliError { code: 1, message: format!("{what}: {e}") }
+}
+
+pub fn run(args: ExportArgs) -> Result<(), CliError> {
+    let (w, h) = args.size;
+    if w < MIN_SIZE.0 || h < MIN_SIZE.1 || w > diagrams::MAX_SIDE_PX || h > diagrams::MAX_SIDE_PX {
+        return Err(CliError::input(format!(
+            "--size {w}x{h}: slides need {}x{} to {max}x{max} pixels",
+            MIN_SIZE.0,
+            MIN_SIZE.1,
+            max = diagrams::MAX_SIDE_PX
+        )));
+    }
+    let dir = args.lessons_dir.clone().unwrap_or_else(lessons::default_dir);
+    let all = lessons::load_all(&dir).map_err(|e| CliError::input(e.to_string()))?;
+    if all.is_empty() {
+        return Err(CliError::input(format!("{}: no lessons (*.toml) in this folder", dir.display())));
+    }
+    let selected: Vec<&Lesson> = if args.lesson == "all" {
+        all.iter().collect()
+    } else {
+        vec![lessons::find(&all, &args.lesson).map_err(|e| CliError::input(e.to_string()))?]
+    };
+    for lesson in &selected {
+        check_id(lesson)?;
+    }
+    let fonts = TextRenderer::shared();
+    if args.lang == Lang::Zh && !fonts.covers('中') {
+        return Err(CliError::input(
+            "Chinese slides need a CJK font and none is installed: \
+             install fonts-noto-cjk (apt-get install fonts-noto-cjk)",
+        ));
+    }
+    if args.out.exists() && !args.out.is_dir() {
+        return Err(CliError::input(format!("{}: is a file, not a folder", args.out.display())));
+    }
+    // Every step's scene, loaded before anything is rendered or written.
+    let mut scenes: Vec<Vec<Scene>> = Vec::with_capacity(selected.len());
+    for lesson in &selected {
+        let loaded = lesson
+            .steps
+            .iter()
+            .enumerate()
+            .map(|(i, step)| {
+                step.scene()
+                    .map_err(|e| CliError::input(format!("{}: step {}: {e}", lesson.path.display(), i + 1)))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        scenes.push(loaded);
+    }
+
+    let (_ctx, mut renderer) = gpu()?;
+    let make_dir = |path: &Path| {
+        std::fs::create_dir_all(path)
+            .map_err(|e| CliError::input(format!("{}: cannot create the folder: {e}", path.display())))
+    };
+    make_dir(&args.out)?;
+
+    let layout = SlideLayout::new(w, h);
+    let camera_size = (layout.camera.w, layout.camera.h);
+    let total: usize = selected.iter().map(|l| l.steps.len()).sum();
+    let mut progress = Progress { terminal: std::io::stderr().is_terminal(), width: 0 };
+    let mut done = 0;
+    // On failure the progress line is finished before the error is printed.
+    let mut export_all = || -> Result<Vec<LessonEntry>, CliError> {
+        let mut entries = Vec::with_capacity(selected.len());
+        for (lesson, scenes) in selected.iter().zip(&scenes) {
+            let lesson_dir = args.out.join(&lesson.id);
+            make_dir(&lesson_dir)?;
+            let mut slides = Vec::with_capacity(lesson.steps.len());
+            for (i, (step, scene)) in lesson.steps.iter().zip(scenes).enumerate() {
+                done += 1;
+                progress.show(&format!(
+                    "[{done}/{total}] {} step {}/{}",
+                    lesson.id,
+                    i + 1,
+                    lesson.steps.len()
+                ));
+                let pictures = render_step(&mut renderer, lesson, i, scene, camera_size)?;
+                let map_panel = pictures.shadow_map.as_ref().map(|(img, _)| {
+                    resize(img, layout.shadow_map.w, layout.shadow_map.h, FilterType::Triangle)
+                });
+                let d = layout.diagram;
+                let diagram = diagrams::draw(pictures.diagram, &pictures.inputs, d.w, d.h)
+                    .map_err(|e| failed("diagram", e))?;
+                let text = SlideText {
+                    lang: args.lang,
+                    lesson_title: lesson.title.get(args.lang),
+                    step_number: i + 1,
+                    step_count: lesson.steps.len(),
+                    step_title: step.title.get(args.lang),
+                    body: step.text.get(args.lang),
+                    try_this: step.try_this.iter().map(|t| t.get(args.lang)).collect(),
+                };
+                let slide = compose(&layout, &text, &pictures, map_panel.as_ref(), &diagram, fonts)
+                    .ok_or_else(|| failed("slide", format!("cannot allocate a {w}x{h} image")))?;
+
+                let name = |what: &str| format!("step-{:02}-{what}.png", i + 1);
+                let write_pixmap = |what: &str, pixmap: &tiny_skia::Pixmap| {
+                    let path = lesson_dir.join(name(what));
+                    let bytes =
+                        diagrams::encode_png(pixmap).map_err(|e| failed(&path.display().to_string(), e))?;
+                    write_atomic(&path, &bytes).map_err(CliError::from)
+                };
+                crate::export::write_png(&lesson_dir.join(name("camera")), &pictures.camera)?;
+                match &map_panel {
+                    Some(map) => crate::export::write_png(&lesson_dir.join(name("shadow-map")), map)?,
+                    None => {
+                        // A scene without lights: the panel as the slide shows it.
+                        let blank = image::RgbaImage::from_pixel(
+                            layout.shadow_map.w,
+                            layout.shadow_map.h,
+                            image::Rgba([238, 240, 236, 255]),
+                        );
+                        crate::export::write_png(&lesson_dir.join(name("shadow-map")), &blank)?;
+                    }
+                }
+                write_pixmap("diagram", &diagram)?;
+                write_pixmap("slide", &slide.pixmap)?;
+                if slide.text_cut {
+                    progress.warn(&format!(
+                        "{}: step {}: the {} text is too long for a {w}x{h} slide and was cut \
+                         (index.html has all of it)",
+                        lesson.path.display(),
+                        i + 1,
+                        args.lang.code()
+                    ));
+                }
+
+                let rel = |what: &str| format!("{}/{}", lesson.id, name(what));
+                slides.push(SlideEntry {
+                    title: step.title.get(args.lang).to_string(),
+                    body: step.text.get(args.lang).to_string(),
+                    try_this: step.try_this.iter().map(|t| t.get(args.lang).to_string()).collect(),
+                    slide: rel("slide"),
+                    camera: rel("camera"),
+                    shadow_map: rel("shadow-map"),
+                    diagram: rel("diagram"),
+                });
+            }
+            entries.push(LessonEntry {
+                id: lesson.id.clone(),
+                title: lesson.title.get(args.lang).to_string(),
+                summary: lesson.summary.get(args.lang).to_string(),
+                slides,
+            });
+        }
+        Ok(entries)
+    };
+    let entries = export_all();
+    progress.finish();
+    let entries = entries?;
+    let index = args.out.join("index.html");
+    write_atomic(&index, index_html(args.lang, &entries).as_bytes())?;
+    println!(
+        "exported {total} slide{} from {} lesson{} ({}, {w}x{h}) to {}; open {}",
+        if total == 1 { "" } else { "s" },
+        entries.len(),
+        if entries.len() == 1 { "" } else { "s" },
+        args.lang.code(),
+        args.out.display(),
+        index.display()
+    );
+    Ok(())
+}

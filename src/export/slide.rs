@@ -1,0 +1,706 @@
+//! One slide per lesson step: a title bar, the camera view and the shadow map side by side with
+//! captions, the diagram, the probe's numbers, the explanation and the try-this prompts.
+//!
+//! Laid out on a 1920x1080 design grid scaled uniformly onto the slide, so the proportions and
+//! the text sizes hold at any size: body text is 34 units (17 px on a 960x540 slide; smaller only
+//! when a long text needs it), captions 22. A slide of another shape keeps the grid centred
+//! across, with the spare room at the bottom.
+
+use super::step::{PROBE_FRAME, StepPictures};
+use super::wrap::{is_cjk, wrap};
+use crate::diagrams::{TextRenderer, TextStyle};
+use crate::lessons::Lang;
+use crate::scene::Technique;
+use crate::views::View;
+use image::RgbaImage;
+use tiny_skia::{Color, Paint, PathBuilder, Pixmap, PixmapPaint, Rect as SkRect, Stroke, Transform};
+
+/// The design grid.
+pub const DESIGN: (f32, f32) = (1920.0, 1080.0);
+/// Smallest slide accepted (text below this size is no longer readable).
+pub const MIN_SIZE: (u32, u32) = (480, 270);
+
+/// A rectangle in slide pixels.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Rect {
+    pub x: u32,
+    pub y: u32,
+    pub w: u32,
+    pub h: u32,
+}
+
+impl Rect {
+    fn right(&self) -> f32 {
+        (self.x + self.w) as f32
+    }
+    fn bottom(&self) -> f32 {
+        (self.y + self.h) as f32
+    }
+}
+
+/// Where everything goes on a slide of a given size.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SlideLayout {
+    pub size: (u32, u32),
+    /// Slide pixels per design unit.
+    pub scale: f32,
+    pub title_bar: Rect,
+    /// The camera view; the camera image is rendered at exactly this size.
+    pub camera: Rect,
+    /// The shadow map panel (square).
+    pub shadow_map: Rect,
+    /// Captions under the camera view and the shadow map.
+    pub camera_caption: Rect,
+    pub shadow_map_caption: Rect,
+    /// The diagram, drawn at exactly this size.
+    pub diagram: Rect,
+    /// The probe's numbers.
+    pub probe: Rect,
+    /// The explanation and the try-this prompts.
+    pub text: Rect,
+}
+
+impl SlideLayout {
+    pub fn new(width: u32, height: u32) -> Self {
+        let scale = (width as f32 / DESIGN.0).min(height as f32 / DESIGN.1);
+        // Centred across, from the top down (a taller slide keeps its spare room at the bottom).
+        let origin = ((width as f32 - DESIGN.0 * scale) * 0.5, 0.0);
+        let r = |x: f32, y: f32, w: f32, h: f32| {
+            let x0 = (origin.0 + x * scale).round();
+            let y0 = (origin.1 + y * scale).round();
+            let x1 = (origin.0 + (x + w) * scale).round();
+            let y1 = (origin.1 + (y + h) * scale).round();
+            Rect { x: x0 as u32, y: y0 as u32, w: ((x1 - x0) as u32).max(1), h: ((y1 - y0) as u32).max(1) }
+        };
+        let camera = r(28.0, 96.0, 768.0, 432.0);
+        // The map is as tall as the camera view, to the pixel.
+        let map_x = r(816.0, 96.0, 432.0, 432.0);
+        let shadow_map = Rect { h: camera.h, w: camera.h, y: camera.y, ..map_x };
+        Self {
+            size: (width, height),
+            scale,
+            title_bar: Rect { x: 0, y: 0, w: width, h: (72.0 * scale).round().max(1.0) as u32 },
+            camera,
+            shadow_map,
+            camera_caption: r(28.0, 534.0, 768.0, 56.0),
+            shadow_map_caption: r(816.0, 534.0, 432.0, 56.0),
+            diagram: r(28.0, 598.0, 807.0, 454.0),
+            probe: r(855.0, 598.0, 393.0, 454.0),
+            text: r(1276.0, 96.0, 616.0, 956.0),
+        }
+    }
+
+    /// Design units to slide pixels.
+    pub fn px(&self, design: f32) -> f32 {
+        design * self.scale
+    }
+}
+
+/// The words on a slide, in one language.
+pub struct SlideText<'a> {
+    pub lang: Lang,
+    pub lesson_title: &'a str,
+    pub step_number: usize,
+    pub step_count: usize,
+    pub step_title: &'a str,
+    pub body: &'a str,
+    pub try_this: Vec<&'a str>,
+}
+
+/// `en` or `zh`.
+pub fn tr(lang: Lang, en: &'static str, zh: &'static str) -> &'static str {
+    match lang {
+        Lang::En => en,
+        Lang::Zh => zh,
+    }
+}
+
+mod pal {
+    pub const BG: [u8; 3] = [250, 250, 246];
+    pub const INK: [u8; 3] = [20, 24, 28];
+    pub const MUTED: [u8; 3] = [84, 92, 100];
+    pub const TITLE_BG: [u8; 3] = [38, 50, 56];
+    pub const TITLE_FG: [u8; 3] = [255, 255, 255];
+    pub const TITLE_DIM: [u8; 3] = [176, 190, 197];
+    pub const FRAME: [u8; 3] = [160, 166, 172];
+    pub const PANEL: [u8; 3] = [238, 240, 236];
+    pub const TRY_BG: [u8; 3] = [255, 243, 214];
+    pub const TRY_EDGE: [u8; 3] = [230, 159, 0];
+    pub const PROBE: [u8; 3] = [230, 159, 0];
+}
+
+fn rgb(c: [u8; 3]) -> Color {
+    Color::from_rgba8(c[0], c[1], c[2], 255)
+}
+
+/// The view's name as the caption shows it.
+pub fn view_label(view: View, lang: Lang) -> &'static str {
+    match view {
+        View::Final => tr(lang, "shaded", "着色画面"),
+        View::Visibility => tr(lang, "visibility", "可见度"),
+        View::ShadowMap => tr(lang, "shadow map", "阴影贴图"),
+        View::BlockerRadius => tr(lang, "blocker-search radius", "遮挡物搜索半径"),
+        View::Penumbra => tr(lang, "penumbra width", "半影宽度"),
+        View::Blockers => tr(lang, "blockers found", "找到的遮挡物"),
+        View::Reference => tr(lang, "ground truth", "参考真值"),
+        View::Error => tr(lang, "error vs ground truth", "与参考真值的误差"),
+    }
+}
+
+/// A number with about three significant digits.
+pub fn short_num(v: f32) -> String {
+    let a = v.abs();
+    if !v.is_finite() {
+        "–".into()
+    } else if a == 0.0 {
+        "0".into()
+    } else if a >= 100.0 {
+        format!("{v:.0}")
+    } else if a >= 10.0 {
+        format!("{v:.1}")
+    } else if a >= 1.0 {
+        format!("{v:.2}")
+    } else if a >= 0.001 {
+        format!("{v:.3}")
+    } else {
+        format!("{v:.1e}")
+    }
+}
+
+/// A view's legend line, numbers shortened, in the slide's language.
+pub fn legend_caption(summary: &str, lang: Lang) -> String {
+    let shortened: Vec<String> = summary
+        .split(['\n'])
+        .map(|line| {
+            line.split(' ')
+                .map(|w| match w.parse::<f32>() {
+                    Ok(v) if w.contains('.') => short_num(v),
+                    _ => w.to_string(),
+                })
+                .collect::<Vec<_>>()
+                .join(" ")
+        })
+        .collect();
+    let mut s = shortened.join(" · ").replace("  ", " ");
+    if lang == Lang::Zh {
+        const ZH: [(&str, &str); 12] = [
+            ("visibility: black = shadowed, white = lit", "可见度：黑 = 阴影，白 = 受光"),
+            ("|visibility - reference|:", "|可见度 − 参考真值|："),
+            ("blocker-search radius:", "遮挡物搜索半径："),
+            ("penumbra width:", "半影宽度："),
+            ("blockers found:", "找到的遮挡物："),
+            ("(dark blue .. yellow)", "（深蓝 .. 黄）"),
+            ("hard shadows averaged", "个硬阴影的平均"),
+            ("reference:", "参考真值："),
+            ("mean absolute error:", "平均绝对误差："),
+            ("texels", "纹素"),
+            ("taps", "次采样"),
+            ("..", "至"),
+        ];
+        for (en, zh) in ZH {
+            s = s.replace(en, zh);
+        }
+        s = s.replace("： ", "：").replace(" （", "（");
+    }
+    s
+}
+
+/// Draws onto the slide in pixels.
+struct Painter<'a> {
+    pm: Pixmap,
+    fonts: &'a TextRenderer,
+    lang: Lang,
+}
+
+impl Painter<'_> {
+    fn fill(&mut self, r: [f32; 4], c: [u8; 3]) {
+        if let Some(rect) = SkRect::from_xywh(r[0], r[1], r[2], r[3]) {
+            let mut paint = Paint::default();
+            paint.set_color(rgb(c));
+            self.pm.fill_rect(rect, &paint, Transform::identity(), None);
+        }
+    }
+
+    fn frame(&mut self, r: Rect, c: [u8; 3], width: f32) {
+        let mut pb = PathBuilder::new();
+        let (x, y, w, h) =
+            (r.x as f32 - 0.5 * width, r.y as f32 - 0.5 * width, r.w as f32 + width, r.h as f32 + width);
+        if let Some(rect) = SkRect::from_xywh(x, y, w, h) {
+            pb.push_rect(rect);
+        }
+        if let Some(path) = pb.finish() {
+            let mut paint = Paint::default();
+            paint.set_color(rgb(c));
+            paint.anti_alias = true;
+            let stroke = Stroke { width, ..Stroke::default() };
+            self.pm.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
+        }
+    }
+
+    fn line(&mut self, a: [f32; 2], b: [f32; 2], c: [u8; 3], width: f32) {
+        let mut pb = PathBuilder::new();
+        pb.move_to(a[0], a[1]);
+        pb.line_to(b[0], b[1]);
+        if let Some(path) = pb.finish() {
+            let mut paint = Paint::default();
+            paint.set_color(rgb(c));
+            paint.anti_alias = true;
+            let stroke = Stroke { width, line_cap: tiny_skia::LineCap::Round, ..Stroke::default() };
+            self.pm.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
+        }
+    }
+
+    /// A cross-hair with a dark outline, visible on light and dark pictures.
+    fn marker(&mut self, p: [f32; 2], size: f32) {
+        let (arm, gap) = (size, size * 0.35);
+        let segments = [
+            ([p[0] - arm, p[1]], [p[0] - gap, p[1]]),
+            ([p[0] + gap, p[1]], [p[0] + arm, p[1]]),
+            ([p[0], p[1] - arm], [p[0], p[1] - gap]),
+            ([p[0], p[1] + gap], [p[0], p[1] + arm]),
+        ];
+        for (a, b) in segments {
+            self.line(a, b, pal::INK, size * 0.32);
+        }
+        for (a, b) in segments {
+            self.line(a, b, pal::PROBE, size * 0.16);
+        }
+    }
+
+    fn image(&mut self, img: &RgbaImage, at: Rect) {
+        let Some(size) = tiny_skia::IntSize::from_wh(img.width(), img.height()) else {
+            return;
+        };
+        // Opaque pixels: straight and premultiplied alpha are the same bytes.
+        let data: Vec<u8> = img.pixels().flat_map(|p| [p[0], p[1], p[2], 255]).collect();
+        if let Some(src) = Pixmap::from_vec(data, size) {
+            self.pm.draw_pixmap(
+                at.x as i32,
+                at.y as i32,
+                src.as_ref(),
+                &PixmapPaint::default(),
+                Transform::identity(),
+                None,
+            );
+        }
+    }
+
+    fn pixmap(&mut self, src: &Pixmap, at: Rect) {
+        self.pm.draw_pixmap(
+            at.x as i32,
+            at.y as i32,
+            src.as_ref(),
+            &PixmapPaint::default(),
+            Transform::identity(),
+            None,
+        );
+    }
+
+    fn text(&mut self, s: &str, x: f32, baseline: f32, px: f32, c: [u8; 3], bold: bool) {
+        self.fonts.draw(&mut self.pm, s, x, baseline, TextStyle { px, color: rgb(c), bold });
+    }
+
+    fn width(&self, s: &str, px: f32) -> f32 {
+        self.fonts.measure(s, px).width_px
+    }
+
+    /// `s` cut to `max` pixels with an ellipsis.
+    fn fit(&self, s: &str, px: f32, max: f32) -> String {
+        if self.width(s, px) <= max {
+            return s.to_string();
+        }
+        let mut out: String = s.to_string();
+        while !out.is_empty() && self.width(&format!("{out}…"), px) > max {
+            out.pop();
+        }
+        format!("{}…", out.trim_end())
+    }
+
+    /// Line height for `px`; Chinese needs more room between lines.
+    fn leading(&self, px: f32) -> f32 {
+        px * if self.lang == Lang::Zh { 1.62 } else { 1.42 }
+    }
+}
+
+/// Layout of the explanation and the prompts at one text size.
+struct TextBlock {
+    body: Vec<String>,
+    prompts: Vec<Vec<String>>,
+    body_px: f32,
+    prompt_px: f32,
+}
+
+/// A composed slide.
+pub struct Slide {
+    pub pixmap: Pixmap,
+    /// The explanation did not fit even at the smallest text size and was cut short.
+    pub text_cut: bool,
+}
+
+/// Assemble the slide. The camera image is at `layout.camera`'s size, `map` is the shadow map
+/// panel at `layout.shadow_map`'s size and `diagram` is drawn at `layout.diagram`'s size.
+pub fn compose(
+    layout: &SlideLayout,
+    text: &SlideText,
+    pictures: &StepPictures,
+    map: Option<&RgbaImage>,
+    diagram: &Pixmap,
+    fonts: &TextRenderer,
+) -> Option<Slide> {
+    let camera = &pictures.camera;
+    let (w, h) = layout.size;
+    let mut pm = Pixmap::new(w, h)?;
+    pm.fill(rgb(pal::BG));
+    let lang = text.lang;
+    let mut p = Painter { pm, fonts, lang };
+    let u = |v: f32| layout.px(v);
+
+    // Title bar: lesson title · step n/N · step title.
+    let bar = layout.title_bar;
+    p.fill([0.0, 0.0, w as f32, bar.h as f32], pal::TITLE_BG);
+    let (tx, title_max) = (layout.camera.x as f32, layout.text.right() - layout.camera.x as f32);
+    let counter = match lang {
+        Lang::En => format!("step {}/{}", text.step_number, text.step_count),
+        Lang::Zh => format!("第 {}/{} 步", text.step_number, text.step_count),
+    };
+    let sep = "  ·  ";
+    let mut px = u(38.0);
+    let parts_width = |p: &Painter, px: f32| {
+        p.width(text.lesson_title, px)
+            + p.width(&format!("{sep}{counter}{sep}"), px)
+            + p.width(text.step_title, px)
+    };
+    while px > u(26.0) && parts_width(&p, px) > title_max {
+        px -= u(1.0);
+    }
+    let baseline = bar.h as f32 * 0.5 + px * 0.36;
+    let lesson_title = p.fit(text.lesson_title, px, title_max * 0.45);
+    p.text(&lesson_title, tx, baseline, px, pal::TITLE_FG, true);
+    let mut x = tx + p.width(&lesson_title, px);
+    let middle = format!("{sep}{counter}{sep}");
+    p.text(&middle, x, baseline, px, pal::TITLE_DIM, false);
+    x += p.width(&middle, px);
+    let step_title = p.fit(text.step_title, px, (tx + title_max - x).max(u(100.0)));
+    p.text(&step_title, x, baseline, px, pal::TITLE_FG, true);
+
+    // Pictures with frames and probe markers.
+    p.image(camera, layout.camera);
+    p.frame(layout.camera, pal::FRAME, u(2.0));
+    match map {
+        Some(img) => p.image(img, layout.shadow_map),
+        None => {
+            let r = layout.shadow_map;
+            p.fill([r.x as f32, r.y as f32, r.w as f32, r.h as f32], pal::PANEL);
+            let msg = tr(lang, "no light, no shadow map", "没有光源，也就没有阴影贴图");
+            let m = p.fit(msg, u(24.0), r.w as f32 - u(20.0));
+            let mx = r.x as f32 + (r.w as f32 - p.width(&m, u(24.0))) * 0.5;
+            p.text(&m, mx, r.y as f32 + r.h as f32 * 0.5, u(24.0), pal::MUTED, false);
+        }
+    }
+    p.frame(layout.shadow_map, pal::FRAME, u(2.0));
+    let marker = u(18.0);
+    if let Some((x, y)) = pictures.probe_pixel {
+        let c = layout.camera;
+        let sx = c.w as f32 / PROBE_FRAME.0 as f32;
+        let sy = c.h as f32 / PROBE_FRAME.1 as f32;
+        p.marker([c.x as f32 + (x as f32 + 0.5) * sx, c.y as f32 + (y as f32 + 0.5) * sy], marker);
+    }
+    let probe_light =
+        pictures.probe.as_ref().and_then(|r| r.lights.iter().find(|l| l.light == pictures.light));
+    if let (Some(l), Some(_)) = (probe_light, map) {
+        let r = layout.shadow_map;
+        let [u_, v_] = l.shadow_map_uv;
+        if (0.0..=1.0).contains(&u_) && (0.0..=1.0).contains(&v_) {
+            p.marker([r.x as f32 + u_ * r.w as f32, r.y as f32 + v_ * r.h as f32], marker);
+        }
+    }
+
+    // Captions.
+    let cap = u(22.0);
+    let cap_gap = p.leading(cap) * 0.95;
+    let c = layout.camera_caption;
+    let mut first = format!("{}{}", tr(lang, "Camera view: ", "相机画面："), view_label(pictures.view, lang));
+    if let Some((x, y)) = pictures.probe_pixel {
+        first += &match lang {
+            Lang::En => format!("  ·  probe + at ({x}, {y}) in {}×{}", PROBE_FRAME.0, PROBE_FRAME.1),
+            Lang::Zh => format!("  ·  探针 + 位于 {}×{} 画面的 ({x}, {y})", PROBE_FRAME.0, PROBE_FRAME.1),
+        };
+    }
+    let first = p.fit(&first, cap, c.w as f32);
+    p.text(&first, c.x as f32, c.y as f32 + cap, cap, pal::INK, true);
+    if let Some(summary) = &pictures.camera_summary {
+        let line = p.fit(&legend_caption(summary, lang), cap, c.w as f32);
+        p.text(&line, c.x as f32, c.y as f32 + cap + cap_gap, cap, pal::MUTED, false);
+    }
+    let c = layout.shadow_map_caption;
+    let (first, second) = match &pictures.shadow_map {
+        Some((img, legend)) => {
+            let kind = match pictures.inputs.orthographic {
+                true => tr(lang, "orthographic", "正交"),
+                false => tr(lang, "perspective", "透视"),
+            };
+            let first = match lang {
+                Lang::En => format!("Shadow map: light {} · {}² · {kind}", pictures.light, img.width()),
+                Lang::Zh => format!("阴影贴图：光源 {} · {}² · {kind}", pictures.light, img.width()),
+            };
+            let (lo, hi) = (short_num(legend.min), short_num(legend.max));
+            let second = match lang {
+                Lang::En => format!("depth {lo} (dark) .. {hi} (bright) from the light"),
+                Lang::Zh => format!("到光源的深度 {lo}（暗）至 {hi}（亮）"),
+            };
+            (first, second)
+        }
+        None => (tr(lang, "Shadow map", "阴影贴图").to_string(), String::new()),
+    };
+    let first = p.fit(&first, cap, c.w as f32);
+    p.text(&first, c.x as f32, c.y as f32 + cap, cap, pal::INK, true);
+    let second = p.fit(&second, cap, c.w as f32);
+    p.text(&second, c.x as f32, c.y as f32 + cap + cap_gap, cap, pal::MUTED, false);
+
+    // Diagram and probe numbers.
+    p.pixmap(diagram, layout.diagram);
+    p.frame(layout.diagram, pal::FRAME, u(2.0));
+    probe_panel(&mut p, layout, pictures);
+
+    // Explanation and prompts, at the largest size that fits.
+    let text_cut = text_column(&mut p, layout, text);
+    Some(Slide { pixmap: p.pm, text_cut })
+}
+
+fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
+    let technique = pictures.technique;
+    let lang = p.lang;
+    let u = |v: f32| layout.px(v);
+    let r = layout.probe;
+    p.fill([r.x as f32, r.y as f32, r.w as f32, r.h as f32], pal::PANEL);
+    p.frame(r, pal::FRAME, u(2.0));
+    let pad = u(18.0);
+    let head = u(26.0);
+    let mut y = r.y as f32 + pad + head;
+    p.marker([r.x as f32 + pad + u(10.0), y - head * 0.35], u(12.0));
+    let title = tr(lang, "Probe", "探针");
+    p.text(title, r.x as f32 + pad + u(30.0), y, head, pal::INK, true);
+    let technique_name = match technique {
+        Technique::Hard => tr(lang, "hard shadows", "硬阴影"),
+        Technique::Pcf => "PCF",
+        Technique::Pcss => "PCSS",
+    };
+    let tx = r.x as f32 + pad + u(30.0) + p.width(title, head) + u(14.0);
+    let tech = p.fit(technique_name, u(22.0), r.right() - pad - tx);
+    p.text(&tech, tx, y, u(22.0), pal::MUTED, false);
+
+    let mut rows: Vec<(&str, String)> = Vec::new();
+    let report = pictures.probe.as_ref();
+    let light = report.and_then(|rep| rep.lights.iter().find(|l| l.light == pictures.light));
+    match (pictures.probe_pixel, report, light) {
+        (None, _, _) => rows.push(("", tr(lang, "nothing to probe", "没有可探测的表面").into())),
+        (Some(_), Some(rep), _) if !rep.hit => {
+            rows.push(("", tr(lang, "no surface under the probe", "探针下没有表面").into()))
+        }
+        (Some((x, y)), Some(rep), Some(l)) => {
+            let source = match pictures.probe_from_lesson {
+                true => tr(lang, " (lesson)", "（课程指定）"),
+                false => tr(lang, " (auto)", "（自动选取）"),
+            };
+            rows.push((tr(lang, "pixel", "像素"), format!("{x}, {y}{source}")));
+            if let Some(object) = &rep.object {
+                rows.push((tr(lang, "surface", "表面"), object.clone()));
+            }
+            let [mu, mv] = l.shadow_map_uv;
+            rows.push((tr(lang, "map uv", "贴图 uv"), format!("{mu:.3}, {mv:.3}")));
+            let angle = l.n_dot_l.clamp(-1.0, 1.0).acos().to_degrees();
+            rows.push((tr(lang, "light angle", "光线夹角"), format!("{angle:.0}°  (N·L {:.2})", l.n_dot_l)));
+            let depth = |linear: f32, ndc: f32| format!("{}  (NDC {ndc:.4})", depth_num(linear));
+            rows.push((
+                tr(lang, "receiver depth", "接收点深度"),
+                depth(l.receiver_depth_linear, l.receiver_depth_ndc),
+            ));
+            rows.push((
+                tr(lang, "stored depth", "贴图存的深度"),
+                depth(l.stored_depth_linear, l.stored_depth_ndc),
+            ));
+            rows.push((tr(lang, "bias", "偏移"), format!("{} NDC", bias_num(l.bias_ndc))));
+            let texels = tr(lang, "texels", "纹素");
+            match technique {
+                Technique::Hard => {}
+                Technique::Pcf => {
+                    rows.push((
+                        tr(lang, "filter radius", "滤波半径"),
+                        format!("{} {texels}", short_num(l.filter_radius_texels)),
+                    ));
+                    rows.push((tr(lang, "samples", "采样数"), l.filter_samples.to_string()));
+                }
+                Technique::Pcss => {
+                    rows.push((
+                        tr(lang, "blockers", "遮挡物"),
+                        format!("{} / {}", l.blockers_found, l.blocker_samples),
+                    ));
+                    if let Some(d) = l.avg_blocker_depth_linear {
+                        rows.push((tr(lang, "blocker depth", "遮挡物深度"), depth_num(d)));
+                    }
+                    rows.push((tr(lang, "penumbra", "半影宽度"), short_num(l.penumbra_width_world)));
+                    rows.push((
+                        tr(lang, "filter radius", "滤波半径"),
+                        format!("{} {texels}", short_num(l.filter_radius_texels)),
+                    ));
+                }
+            }
+            let mut vis = format!("{:.2}", l.visibility_twin);
+            if let Some(t) = l.visibility_reference {
+                vis += &match lang {
+                    Lang::En => format!("  (truth {t:.2})"),
+                    Lang::Zh => format!("（真值 {t:.2}）"),
+                };
+            }
+            rows.push((tr(lang, "visibility", "可见度"), vis));
+            if !l.inside_light_frustum {
+                rows.push(("", tr(lang, "outside the light's frustum", "在光源视锥之外").into()));
+            }
+        }
+        _ => rows.push(("", tr(lang, "no light to probe", "没有光源").into())),
+    }
+
+    let avail = r.bottom() - pad - y - u(12.0);
+    let mut px = u(24.0);
+    while px > u(16.0) && rows.len() as f32 * p.leading(px) > avail {
+        px -= u(1.0);
+    }
+    let label_w = rows.iter().map(|(l, _)| p.width(l, px)).fold(0.0f32, f32::max);
+    let vx = r.x as f32 + pad + label_w + if label_w > 0.0 { u(16.0) } else { 0.0 };
+    y += u(12.0);
+    for (label, value) in rows {
+        y += p.leading(px);
+        if y > r.bottom() - pad * 0.5 {
+            break;
+        }
+        if label.is_empty() {
+            let value = p.fit(&value, px, r.right() - pad - (r.x as f32 + pad));
+            p.text(&value, r.x as f32 + pad, y, px, pal::INK, true);
+            continue;
+        }
+        p.text(label, r.x as f32 + pad, y, px, pal::MUTED, false);
+        let value = p.fit(&value, px, r.right() - pad - vx);
+        p.text(&value, vx, y, px, pal::INK, false);
+    }
+}
+
+/// Linear depths: one decimal, as the lessons quote them.
+fn depth_num(v: f32) -> String {
+    if v.abs() >= 1000.0 { format!("{v:.0}") } else { format!("{v:.1}") }
+}
+
+/// A bias in NDC: four decimals, or scientific notation when smaller.
+fn bias_num(v: f32) -> String {
+    if v == 0.0 || v.abs() >= 0.001 { format!("{v:.4}") } else { format!("{v:.1e}") }
+}
+
+/// Draws the explanation and the prompts; true when the explanation had to be cut.
+fn text_column(p: &mut Painter, layout: &SlideLayout, text: &SlideText) -> bool {
+    let lang = p.lang;
+    let u = |v: f32| layout.px(v);
+    let r = layout.text;
+    let width = r.w as f32;
+    let pad = u(22.0);
+    let bullet_indent = u(30.0);
+    let heading = u(28.0);
+    // Paragraph breaks in the lesson text are kept; single newlines inside a paragraph are not.
+    let body: String = text.body.split("\n\n").map(join_lines).collect::<Vec<_>>().join("\n");
+    let block_at = |p: &Painter, body_px: f32| {
+        let prompt_px = (body_px * 0.93).max(u(18.0));
+        TextBlock {
+            body: wrap(p.fonts, &body, body_px, width),
+            prompts: text
+                .try_this
+                .iter()
+                .map(|t| wrap(p.fonts, &join_lines(t), prompt_px, width - 2.0 * pad - bullet_indent))
+                .collect(),
+            body_px,
+            prompt_px,
+        }
+    };
+    let heights = |p: &Painter, b: &TextBlock| {
+        let body_h = b.body.len() as f32 * p.leading(b.body_px);
+        let lines: usize = b.prompts.iter().map(Vec::len).sum();
+        let prompts_h = if b.prompts.is_empty() {
+            0.0
+        } else {
+            pad * 2.0
+                + p.leading(heading)
+                + lines as f32 * p.leading(b.prompt_px)
+                + (b.prompts.len() - 1) as f32 * u(10.0)
+        };
+        (body_h, prompts_h)
+    };
+    let mut body_px = u(34.0);
+    let mut block = block_at(p, body_px);
+    loop {
+        let (body_h, prompts_h) = heights(p, &block);
+        if body_h + prompts_h + u(20.0) <= r.h as f32 || body_px <= u(16.0) {
+            break;
+        }
+        body_px -= u(0.5);
+        block = block_at(p, body_px);
+    }
+    let (_, prompts_h) = heights(p, &block);
+
+    let mut y = r.y as f32;
+    let lead = p.leading(block.body_px);
+    let bottom_of_body = r.bottom() - prompts_h - u(20.0);
+    // Lines that fit (all of them unless the text is too long even at the smallest size; then
+    // the last one shown ends in an ellipsis).
+    let fitting = block
+        .body
+        .iter()
+        .enumerate()
+        .take_while(|(i, _)| r.y as f32 + *i as f32 * lead + block.body_px <= bottom_of_body)
+        .count();
+    for (i, line) in block.body.iter().take(fitting).enumerate() {
+        // The first line's ascent sits at the top of the column.
+        let baseline = y + block.body_px;
+        let cut = i + 1 == fitting && fitting < block.body.len();
+        let line = if cut { p.fit(&format!("{line} …"), block.body_px, width) } else { line.clone() };
+        if !line.is_empty() {
+            p.text(&line, r.x as f32, baseline, block.body_px, pal::INK, false);
+        }
+        y += lead;
+    }
+
+    let cut = fitting < block.body.len();
+    if block.prompts.is_empty() {
+        return cut;
+    }
+    let top = r.bottom() - prompts_h;
+    p.fill([r.x as f32, top, width, prompts_h], pal::TRY_BG);
+    p.fill([r.x as f32, top, u(6.0), prompts_h], pal::TRY_EDGE);
+    let mut y = top + pad + heading;
+    p.text(tr(lang, "Try this", "试一试"), r.x as f32 + pad, y, heading, pal::INK, true);
+    y += p.leading(heading) - heading;
+    let lead = p.leading(block.prompt_px);
+    for prompt in &block.prompts {
+        for (i, line) in prompt.iter().enumerate() {
+            y += lead;
+            if i == 0 {
+                p.text("•", r.x as f32 + pad + u(4.0), y, block.prompt_px, pal::TRY_EDGE, true);
+            }
+            p.text(line, r.x as f32 + pad + bullet_indent, y, block.prompt_px, pal::INK, false);
+        }
+        y += u(10.0);
+    }
+    p.frame(Rect { x: r.x, y: top as u32, w: r.w, h: prompts_h as u32 }, pal::TRY_EDGE, u(1.5));
+    cut
+}
+
+/// Join the lines of a paragraph: with a space between Latin words, directly between Chinese
+/// characters.
+fn join_lines(s: &str) -> String {
+    let mut out = String::new();
+    for line in s.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        let glue = match (out.chars().last(), line.chars().next()) {
+            (Some(a), Some(b)) if !(is_cjk(a) && is_cjk(b)) => " ",
+            _ => "",
+        };
+        out.push_str(glue);
+        out.push_str(line);
+    }
+    out
+}

@@ -1,0 +1,162 @@
+//! The pictures of one lesson step, rendered deterministically (the step's time, the scene's
+//! noise seed): the camera view, the light's shadow map, the probe under one pixel and the
+//! diagram inputs taken from it.
+
+use crate::diagrams::{DiagramInputs, DiagramKind, live};
+use crate::lessons::{Lesson, Step};
+use crate::probe::{ProbeReport, probe};
+use crate::render::{Analysis, FrameRequest, RenderError, Renderer};
+use crate::scene::{Scene, Technique};
+use crate::views::{self, Legend, View};
+use image::RgbaImage;
+
+/// The frame lesson probe pixels are given in.
+pub const PROBE_FRAME: (u32, u32) = (960, 540);
+
+/// Everything a slide shows of a step, except its text.
+pub struct StepPictures {
+    /// The view in the camera panel.
+    pub view: View,
+    pub camera: RgbaImage,
+    /// The view's legend line(s), where it prints one.
+    pub camera_summary: Option<String>,
+    /// The shadow map of the step's light (full resolution) and its depth range; `None` for a
+    /// scene without lights.
+    pub shadow_map: Option<(RgbaImage, Legend)>,
+    pub light: usize,
+    /// The probed pixel in the lesson's 960x540 frame ([`PROBE_FRAME`]), and whether the
+    /// lesson chose it.
+    pub probe_pixel: Option<(u32, u32)>,
+    pub probe_from_lesson: bool,
+    pub probe: Option<ProbeReport>,
+    pub technique: Technique,
+    pub diagram: DiagramKind,
+    pub inputs: DiagramInputs,
+}
+
+/// The view shown in the camera panel: the step's, except that the shadow map has its own
+/// panel (the camera panel then shows the shaded scene) and a scene without lights has only
+/// the shaded view.
+pub fn camera_view(step: &Step, scene: &Scene) -> View {
+    if step.view == View::ShadowMap || scene.lights.is_empty() { View::Final } else { step.view }
+}
+
+/// The step's diagram; a step without one keeps the previous step's, and a lesson that names
+/// none gets the one that fits its scene (several lights, then the technique).
+pub fn diagram_for(lesson: &Lesson, step_index: usize, scene: &Scene) -> DiagramKind {
+    let named = |i: usize| lesson.steps.get(i).and_then(|s| s.diagram);
+    let earlier = (0..=step_index).rev().find_map(named);
+    earlier.or_else(|| (step_index..lesson.steps.len()).find_map(named)).unwrap_or(
+        if scene.lights.len() > 1 {
+            DiagramKind::MultiLight
+        } else {
+            match scene.shadow.technique {
+                Technique::Hard => DiagramKind::TwoPass,
+                Technique::Pcf => DiagramKind::PcfKernel,
+                Technique::Pcss => DiagramKind::PcssTriangles,
+            }
+        },
+    )
+}
+
+/// A pixel worth probing when the lesson names none: on a soft shadow's penumbra, else on a
+/// hard shadow's edge (shadowed, next to a lit pixel), else any surface — the one nearest the
+/// centre of the image.
+pub fn pick_probe_pixel(a: &Analysis) -> Option<(u32, u32)> {
+    let (w, h) = (a.width, a.height);
+    let vis = |x: u32, y: u32| {
+        let i = a.index(x, y);
+        a.hit(i).then(|| a.shadow[i][0])
+    };
+    let centre = |&(x, y): &(u32, u32)| {
+        let (dx, dy) = (i64::from(x) * 2 - i64::from(w), i64::from(y) * 2 - i64::from(h));
+        (dx * dx + dy * dy, y, x)
+    };
+    let pixels = || (0..h).flat_map(move |y| (0..w).map(move |x| (x, y)));
+    let penumbra =
+        pixels().filter(|&(x, y)| vis(x, y).is_some_and(|v| v > 0.05 && v < 0.95)).min_by_key(centre);
+    let edge = || {
+        pixels()
+            .filter(|&(x, y)| {
+                vis(x, y).is_some_and(|v| v < 0.5)
+                    && [(1i64, 0i64), (-1, 0), (0, 1), (0, -1)].iter().any(|(dx, dy)| {
+                        let (nx, ny) = (i64::from(x) + dx, i64::from(y) + dy);
+                        (0..i64::from(w)).contains(&nx)
+                            && (0..i64::from(h)).contains(&ny)
+                            && vis(nx as u32, ny as u32).is_some_and(|v| v >= 0.5)
+                    })
+            })
+            .min_by_key(centre)
+    };
+    let surface = || pixels().filter(|&(x, y)| vis(x, y).is_some()).min_by_key(centre);
+    penumbra.or_else(edge).or_else(surface)
+}
+
+/// Render step `step_index` of `lesson` (whose scene, overrides applied, is `scene`) with the
+/// camera view at `size`, and probe it for the diagram.
+pub fn render_step(
+    renderer: &mut Renderer,
+    lesson: &Lesson,
+    step_index: usize,
+    scene: &Scene,
+    size: (u32, u32),
+) -> Result<StepPictures, RenderError> {
+    let step = lesson.steps.get(step_index).ok_or_else(|| {
+        RenderError::Usage(format!("lesson `{}` has no step {}", lesson.id, step_index + 1))
+    })?;
+    let time_s = step.time_s;
+    let light = step.light.min(scene.lights.len().saturating_sub(1));
+    let has_lights = !scene.lights.is_empty();
+    // The probe works in the lesson's own 960x540 frame, so its numbers are the ones the lesson
+    // text quotes (`shadowlab probe --lesson ID --step N` gives the same), whatever the slide size.
+    let request = FrameRequest {
+        time_s,
+        size: PROBE_FRAME,
+        selected_light: light,
+        final_color: false,
+        analysis: true,
+        timestamps: false,
+    };
+    let (probe_pixel, probe_from_lesson) = match step.probe {
+        Some([x, y]) => (Some((x.min(PROBE_FRAME.0 - 1), y.min(PROBE_FRAME.1 - 1))), true),
+        None if has_lights => {
+            renderer.render(scene, &request)?;
+            (pick_probe_pixel(&renderer.read_analysis()?), false)
+        }
+        None => (None, false),
+    };
+    let view = camera_view(step, scene);
+    let report = match probe_pixel {
+        Some(pixel) if has_lights => Some(probe(renderer, scene, &request, pixel, view.needs_reference())?),
+        _ => None,
+    };
+    let light_probe = report.as_ref().and_then(|r| r.lights.iter().find(|l| l.light == light));
+    let normal = report.as_ref().and_then(|r| r.normal);
+    let inputs = live::inputs_from_scene(scene, light, time_s, light_probe, normal);
+
+    let (camera, camera_summary) = views::render_view(renderer, scene, view, light, time_s, size)?;
+    let shadow_map = if has_lights {
+        let map = renderer.read_shadow_map(light)?;
+        let light_gpu = renderer
+            .frame_lights
+            .get(light)
+            .copied()
+            .ok_or_else(|| RenderError::Usage(format!("light {light} was not rendered")))?;
+        Some(views::shadow_map_image(&map, &light_gpu))
+    } else {
+        None
+    };
+    Ok(StepPictures {
+        view,
+        camera,
+        camera_summary,
+        shadow_map,
+        light,
+        probe_pixel,
+        probe_from_lesson,
+        probe: report,
+        technique: scene.shadow.technique,
+        diagram: diagram_for(lesson, step_index, scene),
+        inputs,
+    })
+}

@@ -1,0 +1,249 @@
+//! `shadowlab export` run as a process: the files it writes, their sizes, the two languages,
+//! determinism, and the checks that stop it before anything is written.
+
+use shadowlab::export::slide::SlideLayout;
+use shadowlab::lessons;
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::sync::OnceLock;
+use tempfile::TempDir;
+
+const LESSON: &str = "hard-shadows";
+
+struct Run {
+    code: Option<i32>,
+    stdout: String,
+    stderr: String,
+}
+
+impl std::fmt::Display for Run {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "exit code {:?}\n--- stdout\n{}--- stderr\n{}", self.code, self.stdout, self.stderr)
+    }
+}
+
+/// A private, empty runtime folder for the children (the Vulkan loader's Wayland client
+/// complains on stderr without one).
+fn runtime_dir() -> &'static Path {
+    static DIR: OnceLock<TempDir> = OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = tempfile::tempdir().expect("runtime folder");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o700))
+                .expect("chmod runtime folder");
+        }
+        dir
+    })
+    .path()
+}
+
+fn shadowlab(args: &[&str]) -> Run {
+    let output = Command::new(env!("CARGO_BIN_EXE_shadowlab"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("XDG_RUNTIME_DIR", runtime_dir())
+        .output()
+        .expect("the shadowlab binary runs");
+    Run {
+        code: output.status.code(),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    }
+}
+
+/// Export `LESSON` in `lang` at `size` into a new temporary folder.
+fn export(lang: &str, size: &str) -> (TempDir, PathBuf) {
+    let tmp = tempfile::tempdir().expect("temporary folder");
+    let out = tmp.path().join("slides");
+    let out_arg = out.display().to_string();
+    let run = shadowlab(&["export", "--lesson", LESSON, "--lang", lang, "--size", size, "--out", &out_arg]);
+    assert_eq!(run.code, Some(0), "export failed:\n{run}");
+    assert!(run.stdout.contains("index.html"), "the summary names the index:\n{run}");
+    assert!(run.stderr.contains(&format!("[1/{}] {LESSON} step 1/", steps())), "progress on stderr:\n{run}");
+    (tmp, out)
+}
+
+/// The English export at 960x540, shared by the tests that only read it.
+fn english() -> &'static Path {
+    static EN: OnceLock<(TempDir, PathBuf)> = OnceLock::new();
+    &EN.get_or_init(|| export("en", "960x540")).1
+}
+
+fn steps() -> usize {
+    let all = lessons::load_all(&lessons::default_dir()).expect("the shipped lessons load");
+    lessons::find(&all, LESSON).expect("the lesson exists").steps.len()
+}
+
+/// Every file under `dir`, as relative paths with `/`.
+fn files(dir: &Path) -> BTreeSet<String> {
+    fn walk(root: &Path, dir: &Path, out: &mut BTreeSet<String>) {
+        for entry in std::fs::read_dir(dir).expect("read folder") {
+            let path = entry.expect("entry").path();
+            if path.is_dir() {
+                walk(root, &path, out);
+            } else {
+                let rel = path.strip_prefix(root).expect("inside root");
+                out.insert(
+                    rel.components().map(|c| c.as_os_str().to_string_lossy()).collect::<Vec<_>>().join("/"),
+                );
+            }
+        }
+    }
+    let mut out = BTreeSet::new();
+    walk(dir, dir, &mut out);
+    out
+}
+
+fn slide_names(n: usize) -> Vec<String> {
+    (1..=n).map(|i| format!("{LESSON}/step-{i:02}-slide.png")).collect()
+}
+
+fn decode(path: &Path) -> image::RgbaImage {
+    image::open(path).unwrap_or_else(|e| panic!("{}: {e}", path.display())).to_rgba8()
+}
+
+#[test]
+fn one_lesson_gives_four_pngs_per_step_and_an_index() {
+    let out = english();
+    let n = steps();
+    let mut expected: BTreeSet<String> = ["index.html".to_string()].into();
+    for i in 1..=n {
+        for what in ["camera", "shadow-map", "diagram", "slide"] {
+            expected.insert(format!("{LESSON}/step-{i:02}-{what}.png"));
+        }
+    }
+    assert_eq!(files(out), expected);
+
+    let layout = SlideLayout::new(960, 540);
+    for i in 1..=n {
+        let size = |what: &str| {
+            let img = decode(&out.join(format!("{LESSON}/step-{i:02}-{what}.png")));
+            (img.width(), img.height())
+        };
+        assert_eq!(size("slide"), (960, 540));
+        assert_eq!(size("camera"), (layout.camera.w, layout.camera.h));
+        assert_eq!(size("shadow-map"), (layout.shadow_map.w, layout.shadow_map.h));
+        assert_eq!(size("diagram"), (layout.diagram.w, layout.diagram.h));
+    }
+}
+
+#[test]
+fn the_index_shows_every_slide_in_order() {
+    let html = std::fs::read_to_string(english().join("index.html")).expect("index.html");
+    assert!(html.contains("<html lang=\"en\">"));
+    let mut last = 0;
+    for name in slide_names(steps()) {
+        let at = html.find(&format!("src=\"{name}\"")).unwrap_or_else(|| panic!("index lacks {name}"));
+        assert!(at > last, "{name} out of order");
+        last = at;
+    }
+    for what in ["camera", "shadow-map", "diagram"] {
+        assert!(html.contains(&format!("href=\"{LESSON}/step-01-{what}.png\"")));
+    }
+    assert!(html.contains("ArrowRight"), "keyboard navigation");
+}
+
+#[test]
+fn chinese_slides_differ_from_english_ones() {
+    let (_tmp, zh) = export("zh", "960x540");
+    let html = std::fs::read_to_string(zh.join("index.html")).expect("index.html");
+    assert!(html.contains("lang=\"zh-Hans\""));
+    for name in slide_names(steps()) {
+        let (a, b) = (decode(&english().join(&name)), decode(&zh.join(&name)));
+        assert_eq!(a.dimensions(), b.dimensions());
+        let differing = a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
+        assert!(differing > 1000, "{name}: only {differing} pixels differ between en and zh");
+    }
+    // The pictures themselves do not depend on the language.
+    let camera = format!("{LESSON}/step-01-camera.png");
+    assert_eq!(std::fs::read(english().join(&camera)).ok(), std::fs::read(zh.join(&camera)).ok());
+}
+
+#[test]
+fn exporting_twice_gives_identical_files() {
+    let (_a, first) = export("en", "640x360");
+    let (_b, second) = export("en", "640x360");
+    let names = files(&first);
+    assert_eq!(names, files(&second));
+    for name in &names {
+        let (x, y) = (std::fs::read(first.join(name)), std::fs::read(second.join(name)));
+        assert!(x.expect("read") == y.expect("read"), "{name} differs between two exports");
+    }
+}
+
+/// Exit code 2 with one `shadowlab: ` line mentioning every needle, nothing on stdout.
+#[track_caller]
+fn assert_bad_input(run: &Run, needles: &[&str]) {
+    assert_eq!(run.code, Some(2), "bad input exits with 2:\n{run}");
+    assert!(!run.stderr.contains("panicked"), "panicked:\n{run}");
+    for needle in needles {
+        assert!(run.stderr.contains(needle), "stderr should mention {needle:?}:\n{run}");
+    }
+    assert!(run.stdout.is_empty(), "nothing on stdout:\n{run}");
+}
+
+#[test]
+fn a_malformed_lesson_stops_everything_before_writing() {
+    let tmp = tempfile::tempdir().expect("temporary folder");
+    let lessons = tmp.path().join("lessons");
+    std::fs::create_dir(&lessons).expect("mkdir");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/games202.toml");
+    let good = format!(
+        "id = \"good\"\norder = 1\ntitle = {{ en = \"Good\", zh = \"好\" }}\n\
+         summary = {{ en = \"s\", zh = \"s\" }}\n\
+         [[step]]\ntitle = {{ en = \"t\", zh = \"t\" }}\ntext = {{ en = \"x\", zh = \"x\" }}\nscene = '{}'\n",
+        scene.display()
+    );
+    std::fs::write(lessons.join("01_good.toml"), good).expect("write");
+    // The Chinese title is missing.
+    let broken =
+        "id = \"broken\"\norder = 2\ntitle = { en = \"Broken\" }\nsummary = { en = \"s\", zh = \"s\" }\n";
+    std::fs::write(lessons.join("02_broken.toml"), broken).expect("write");
+    let out = tmp.path().join("slides");
+    let (dir_arg, out_arg) = (lessons.display().to_string(), out.display().to_string());
+    // Even exporting only the good lesson stops: every lesson is checked first.
+    let run = shadowlab(&["export", "--lessons-dir", &dir_arg, "--lesson", "good", "--out", &out_arg]);
+    assert_bad_input(&run, &["02_broken.toml"]);
+    assert_eq!(run.stderr.lines().count(), 1, "one line:\n{run}");
+    assert!(!out.exists(), "nothing may be written");
+}
+
+#[test]
+fn an_unknown_lesson_lists_the_lessons() {
+    let tmp = tempfile::tempdir().expect("temporary folder");
+    let out = tmp.path().join("slides");
+    let run = shadowlab(&["export", "--lesson", "no-such-lesson", "--out", &out.display().to_string()]);
+    assert_bad_input(&run, &["no-such-lesson", LESSON]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn an_unknown_language_is_refused() {
+    let tmp = tempfile::tempdir().expect("temporary folder");
+    let out = tmp.path().join("slides");
+    let run = shadowlab(&["export", "--lang", "fr", "--out", &out.display().to_string()]);
+    assert_bad_input(&run, &["fr", "--lang"]);
+    assert!(!out.exists());
+}
+
+#[test]
+fn an_output_that_is_a_file_is_refused() {
+    let tmp = tempfile::tempdir().expect("temporary folder");
+    let out = tmp.path().join("slides");
+    std::fs::write(&out, "keep me").expect("write");
+    let run = shadowlab(&["export", "--lesson", LESSON, "--out", &out.display().to_string()]);
+    assert_bad_input(&run, &["not a folder"]);
+    assert_eq!(std::fs::read_to_string(&out).ok().as_deref(), Some("keep me"));
+}
+
+#[test]
+fn a_slide_too_small_to_read_is_refused() {
+    let tmp = tempfile::tempdir().expect("temporary folder");
+    let out = tmp.path().join("slides");
+    let run = shadowlab(&["export", "--size", "320x180", "--out", &out.display().to_string()]);
+    assert_bad_input(&run, &["--size"]);
+    assert!(!out.exists());
+}
