@@ -313,7 +313,11 @@ pub fn load_all(dir: &Path) -> Result<Vec<Lesson>, LessonError> {
     let mut ids: Vec<&str> = lessons.iter().map(|l| l.id.as_str()).collect();
     ids.sort_unstable();
     if let Some(pair) = ids.windows(2).find(|pair| pair[0] == pair[1]) {
-        return Err(LessonError::NotFound(format!("two lessons in {} have the id `{}`", dir.display(), pair[0])));
+        return Err(LessonError::NotFound(format!(
+            "two lessons in {} have the id `{}`",
+            dir.display(),
+            pair[0]
+        )));
     }
     lessons.sort_by_key(|l| l.order);
     Ok(lessons)
