@@ -188,19 +188,7 @@ fn objects_xz(scene: &Scene, time_s: f32) -> Vec<([f32; 2], f32)> {
         .objects
         .iter()
         .filter_map(|object| {
-            let (a, b) = object.mesh.bounds();
-            let m = object.world_from_object(time_s);
-            let (mut lo, mut hi) = (Vec3::splat(f32::INFINITY), Vec3::splat(f32::NEG_INFINITY));
-            for i in 0..8 {
-                let corner = Vec3::new(
-                    if i & 1 == 0 { a.x } else { b.x },
-                    if i & 2 == 0 { a.y } else { b.y },
-                    if i & 4 == 0 { a.z } else { b.z },
-                );
-                let p = m.transform_point3(corner);
-                lo = lo.min(p);
-                hi = hi.max(p);
-            }
+            let (lo, hi) = object.world_bounds(time_s);
             let size = hi - lo;
             let radius = 0.5 * size.x.max(size.z);
             let flat = size.y <= FLAT_RATIO * size.x.max(size.z);

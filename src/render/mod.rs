@@ -400,22 +400,12 @@ impl Renderer {
         let layers = scene.lights.len().max(1) as u32;
         if !self.shadow_maps.as_ref().is_some_and(|m| m.atlas_size == atlas_size && m.layers == layers) {
             let maps = ShadowMaps::new(device, atlas_size, layers);
-            self.lights_bind_group = Some(device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("lights"),
-                layout: &self.layouts.lights,
-                entries: &[
-                    wgpu::BindGroupEntry { binding: 0, resource: self.lights_buffer.as_entire_binding() },
-                    wgpu::BindGroupEntry { binding: 1, resource: self.params_buffer.as_entire_binding() },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: wgpu::BindingResource::TextureView(&maps.array_view),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 3,
-                        resource: wgpu::BindingResource::Sampler(&self.compare_sampler),
-                    },
-                ],
-            }));
+            self.lights_bind_group = Some(self.shadow_inputs_group(
+                &self.layouts.lights,
+                self.lights_buffer.as_entire_binding(),
+                &self.params_buffer,
+                &maps,
+            ));
             self.shadow_maps = Some(maps);
         }
         if self.targets.as_ref().is_none_or(|t| t.size != request.size) {
@@ -450,6 +440,32 @@ impl Renderer {
         if let Some(scene_gpu) = &self.scene_gpu {
             scene_gpu.update(&self.queue, scene, t);
         }
+    }
+
+    /// Group 1 of the camera and reference shaders: light(s), parameters, maps, compare sampler.
+    fn shadow_inputs_group(
+        &self,
+        layout: &wgpu::BindGroupLayout,
+        lights: wgpu::BindingResource<'_>,
+        params: &wgpu::Buffer,
+        maps: &ShadowMaps,
+    ) -> wgpu::BindGroup {
+        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("shadow inputs"),
+            layout,
+            entries: &[
+                wgpu::BindGroupEntry { binding: 0, resource: lights },
+                wgpu::BindGroupEntry { binding: 1, resource: params.as_entire_binding() },
+                wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&maps.array_view),
+                },
+                wgpu::BindGroupEntry {
+                    binding: 3,
+                    resource: wgpu::BindingResource::Sampler(&self.compare_sampler),
+                },
+            ],
+        })
     }
 
     /// The camera view's colour texture (Rgba8Unorm holding sRGB-encoded bytes).

@@ -97,29 +97,16 @@ impl Renderer {
                 wgpu::BindGroupEntry { binding: 3, resource: info.as_entire_binding() },
             ],
         });
-        let light_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("reference light"),
-            layout: &self.layouts.reference_light,
-            entries: &[
-                wgpu::BindGroupEntry {
-                    binding: 0,
-                    resource: wgpu::BindingResource::Buffer(wgpu::BufferBinding {
-                        buffer: &light_buffer,
-                        offset: 0,
-                        size: std::num::NonZeroU64::new(std::mem::size_of::<LightGpu>() as u64),
-                    }),
-                },
-                wgpu::BindGroupEntry { binding: 1, resource: params.as_entire_binding() },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&maps.array_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(&self.compare_sampler),
-                },
-            ],
-        });
+        let light_group = self.shadow_inputs_group(
+            &self.layouts.reference_light,
+            wgpu::BindingResource::Buffer(wgpu::BufferBinding {
+                buffer: &light_buffer,
+                offset: 0,
+                size: std::num::NonZeroU64::new(std::mem::size_of::<LightGpu>() as u64),
+            }),
+            &params,
+            &maps,
+        );
         let view_group = shadow_view_group(&device, &self.layouts, &view_buffer);
         let key = ShadowPipelineKey {
             depth_bias_constant: scene.shadow.depth_bias_constant,

@@ -47,6 +47,25 @@ impl Object {
         let rotation = Quat::from_euler(glam::EulerRot::XYZ, r.x, r.y, r.z);
         Mat4::from_scale_rotation_translation(self.scale, rotation, self.translate)
     }
+
+    /// World-space bounds (min, max) at time `t`: the mesh's box, transformed corner by corner.
+    pub fn world_bounds(&self, t_s: f32) -> (Vec3, Vec3) {
+        let world_from_object = self.world_from_object(t_s);
+        let (a, b) = self.mesh.bounds();
+        let mut lo = Vec3::splat(f32::INFINITY);
+        let mut hi = Vec3::splat(f32::NEG_INFINITY);
+        for i in 0..8 {
+            let corner = Vec3::new(
+                if i & 1 == 0 { a.x } else { b.x },
+                if i & 2 == 0 { a.y } else { b.y },
+                if i & 4 == 0 { a.z } else { b.z },
+            );
+            let p = world_from_object.transform_point3(corner);
+            lo = lo.min(p);
+            hi = hi.max(p);
+        }
+        (lo, hi)
+    }
 }
 
 #[derive(Clone, Debug)]
@@ -59,27 +78,4 @@ pub struct Scene {
     pub shadow: ShadowSettings,
     /// Ambient light, linear RGB.
     pub ambient: Vec3,
-}
-
-impl Scene {
-    /// World-space bounds of every object at time `t` (min, max).
-    pub fn bounds(&self, t_s: f32) -> (Vec3, Vec3) {
-        let mut lo = Vec3::splat(f32::INFINITY);
-        let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        for object in &self.objects {
-            let world_from_object = object.world_from_object(t_s);
-            let (a, b) = object.mesh.bounds();
-            for i in 0..8 {
-                let corner = Vec3::new(
-                    if i & 1 == 0 { a.x } else { b.x },
-                    if i & 2 == 0 { a.y } else { b.y },
-                    if i & 4 == 0 { a.z } else { b.z },
-                );
-                let p = world_from_object.transform_point3(corner);
-                lo = lo.min(p);
-                hi = hi.max(p);
-            }
-        }
-        (lo, hi)
-    }
 }
