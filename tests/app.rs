@@ -166,3 +166,30 @@ fn arrow_keys_step_through_a_lesson_and_the_panels_follow() {
     assert!(matches!(h.state().source, Source::Lesson { lesson: 0, step: 0 }));
     h.get_by_label(&first.1);
 }
+
+#[test]
+fn a_step_shows_only_the_panels_it_names() {
+    let mut h = harness();
+    let pcss = h.state().lessons.iter().position(|l| l.id == "pcss").expect("the pcss lesson");
+    let steps = h.state().lessons[pcss].steps.clone();
+    let without_map = steps
+        .iter()
+        .position(|s| !s.panels.contains(&shadowlab::lessons::Panel::ShadowMap))
+        .expect("a pcss step without the shadow map");
+    let with_map = steps
+        .iter()
+        .position(|s| s.panels.contains(&shadowlab::lessons::Panel::ShadowMap))
+        .expect("a pcss step with the shadow map");
+    h.state_mut().go_to_step(pcss, without_map);
+    h.run_steps(4);
+    assert!(h.query_by_label("Shadow map").is_none(), "step {} names no shadow map", without_map + 1);
+    h.state_mut().go_to_step(pcss, with_map);
+    h.run_steps(4);
+    h.get_by_label("Shadow map");
+    // "show every panel" brings the map back on any step.
+    h.state_mut().go_to_step(pcss, without_map);
+    h.run_steps(2);
+    h.get_by_label("show every panel").click();
+    h.run_steps(4);
+    h.get_by_label("Shadow map");
+}

@@ -194,7 +194,7 @@ fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
     changed
 }
 
-fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
+pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
     ui.heading("Probe");
     let Some(report) = app.probe_report() else {
         ui.label("click the camera view to pin a probe");

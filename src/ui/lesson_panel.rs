@@ -1,6 +1,8 @@
-//! The lesson panel: the step's title, what to look at, and what to try.
+//! The lesson panel: step navigation, the step's title, what to look at, what to try, and the
+//! probe's numbers when the step names the probe.
 
 use super::ShadowlabApp;
+use crate::lessons::{Lang, Panel};
 use egui::{RichText, Ui};
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
@@ -11,28 +13,35 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let title = step.title.get(lang).to_string();
     let text = step.text.get(lang).to_string();
     let tries: Vec<String> = step.try_this.iter().map(|t| t.get(lang).to_string()).collect();
+    // Navigation first, so it stays in reach however long the text is.
+    ui.horizontal(|ui| {
+        if ui.button("Previous").on_hover_text("Left arrow").clicked() {
+            app.step_lesson(-1);
+        }
+        ui.label(RichText::new(format!("step {} / {count}", index + 1)).weak());
+        if ui.button("Next").on_hover_text("Right arrow").clicked() {
+            app.step_lesson(1);
+        }
+    });
+    ui.checkbox(&mut app.show_all_panels, "show every panel");
+    ui.separator();
     ui.label(RichText::new(lesson_title).small());
     ui.heading(title);
-    ui.label(RichText::new(format!("step {} / {count}", index + 1)).weak());
-    ui.separator();
+    ui.add_space(4.0);
     ui.label(RichText::new(text).size(15.0));
     if !tries.is_empty() {
         ui.add_space(8.0);
         ui.strong(match lang {
-            crate::lessons::Lang::En => "Try this",
-            crate::lessons::Lang::Zh => "试一试",
+            Lang::En => "Try this",
+            Lang::Zh => "试一试",
         });
         for t in tries {
             ui.label(format!("• {t}"));
         }
     }
-    ui.add_space(12.0);
-    ui.horizontal(|ui| {
-        if ui.button("Previous").on_hover_text("Left arrow").clicked() {
-            app.step_lesson(-1);
-        }
-        if ui.button("Next").on_hover_text("Right arrow").clicked() {
-            app.step_lesson(1);
-        }
-    });
+    if app.panel_visible(Panel::Probe) && app.probe_report().is_some() {
+        ui.add_space(8.0);
+        ui.separator();
+        super::inspector::probe_values(app, ui);
+    }
 }

@@ -60,6 +60,8 @@ pub struct ShadowlabApp {
     pub error: Option<String>,
     pub status: String,
     pub show_help: bool,
+    /// In a lesson: show every panel, not only the ones the step names.
+    pub show_all_panels: bool,
     /// Something changed: render again.
     dirty: bool,
     /// The user is dragging: render at reduced resolution.
@@ -173,6 +175,7 @@ impl ShadowlabApp {
             error,
             status: String::new(),
             show_help: false,
+            show_all_panels: false,
             dirty: true,
             interacting: false,
             last_render_ms: 0.0,
@@ -290,6 +293,17 @@ impl ShadowlabApp {
                 self.lessons.get(lesson).and_then(|l| l.steps.get(step).map(|s| (l, s, step)))
             }
             Source::Scene(_) => None,
+        }
+    }
+
+    /// Whether `panel` is shown: everything outside lessons, the step's panels inside one.
+    pub fn panel_visible(&self, panel: lessons::Panel) -> bool {
+        match self.current_step() {
+            Some((_, step, _)) if !self.show_all_panels => step.panels.contains(&panel),
+            _ => match panel {
+                lessons::Panel::KernelPlot => self.settings.show_kernel_plot,
+                _ => true,
+            },
         }
     }
 
@@ -696,11 +710,13 @@ impl eframe::App for ShadowlabApp {
                 egui::ScrollArea::vertical().show(ui, |ui| lesson_panel::show(self, ui));
             });
         }
-        let diagrams = egui::Panel::bottom("diagrams")
-            .resizable(true)
-            .default_size(self.settings.diagram_height)
-            .show(ui, |ui| panels::show_bottom(self, ui));
-        self.settings.diagram_height = diagrams.response.rect.height();
+        if self.panel_visible(lessons::Panel::Diagram) || self.panel_visible(lessons::Panel::KernelPlot) {
+            let diagrams = egui::Panel::bottom("diagrams")
+                .resizable(true)
+                .default_size(self.settings.diagram_height)
+                .show(ui, |ui| panels::show_bottom(self, ui));
+            self.settings.diagram_height = diagrams.response.rect.height();
+        }
         egui::CentralPanel::default().show(ui, |ui| view_panels::show(self, ui));
         self.help_window(&ctx);
     }

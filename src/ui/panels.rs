@@ -3,6 +3,7 @@
 
 use super::ShadowlabApp;
 use crate::diagrams::{self, DiagramInputs, DiagramKind};
+use crate::lessons::Panel;
 use crate::shadow::kernels;
 use egui::{Color32, Rect, Sense, Stroke, Ui, pos2, vec2};
 
@@ -25,23 +26,34 @@ fn live_inputs(app: &ShadowlabApp) -> DiagramInputs {
 }
 
 pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
+    let show_diagram = app.panel_visible(Panel::Diagram);
     ui.horizontal(|ui| {
-        ui.strong("Diagram");
-        for kind in DiagramKind::ALL {
-            if ui.selectable_label(app.diagram == kind, kind.id()).on_hover_text(kind.title()).clicked() {
-                app.diagram = kind;
+        if show_diagram {
+            ui.strong("Diagram");
+            for kind in DiagramKind::ALL {
+                if ui.selectable_label(app.diagram == kind, kind.id()).on_hover_text(kind.title()).clicked() {
+                    app.diagram = kind;
+                }
             }
+            ui.separator();
         }
-        ui.separator();
-        ui.checkbox(&mut app.settings.show_kernel_plot, "sample pattern");
+        if app.current_step().is_none() {
+            ui.checkbox(&mut app.settings.show_kernel_plot, "sample pattern");
+        }
     });
+    let show_plot = app.panel_visible(Panel::KernelPlot);
     let avail = ui.available_rect_before_wrap();
-    let plot_width =
-        if app.settings.show_kernel_plot { avail.height().min(avail.width() * 0.3) } else { 0.0 };
+    let plot_width = match (show_plot, show_diagram) {
+        (false, _) => 0.0,
+        (true, true) => avail.height().min(avail.width() * 0.3),
+        (true, false) => avail.width(),
+    };
     let diagram_rect = Rect::from_min_max(avail.min, pos2(avail.right() - plot_width - 8.0, avail.bottom()));
     let plot_rect = Rect::from_min_max(pos2(avail.right() - plot_width, avail.top()), avail.max);
-    diagram(app, ui, diagram_rect);
-    if app.settings.show_kernel_plot {
+    if show_diagram {
+        diagram(app, ui, diagram_rect);
+    }
+    if show_plot {
         kernel_plot(app, ui, plot_rect);
     }
     ui.allocate_rect(avail, Sense::hover());

@@ -114,23 +114,26 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         return;
     }
     let full = ui.available_rect_before_wrap();
-    let split = app.settings.split.clamp(0.25, 0.85);
+    let show_map = app.panel_visible(crate::lessons::Panel::ShadowMap);
+    let split = if show_map { app.settings.split.clamp(0.25, 0.85) } else { 1.0 };
     let divider_x = full.left() + full.width() * split;
     let camera_rect = Rect::from_min_max(full.min, pos2(divider_x - 3.0, full.bottom() - 40.0));
     let map_rect = Rect::from_min_max(pos2(divider_x + 3.0, full.top()), full.max);
     let legend_rect =
         Rect::from_min_max(pos2(full.left(), camera_rect.bottom()), pos2(divider_x - 3.0, full.bottom()));
 
-    // The split between the two views.
-    let divider = Rect::from_min_max(pos2(divider_x - 3.0, full.top()), pos2(divider_x + 3.0, full.bottom()));
-    let divider_response = ui.interact(divider, ui.scope_id().with("split"), Sense::drag());
-    if divider_response.dragged() {
-        app.settings.split =
-            ((divider_x + divider_response.drag_delta().x - full.left()) / full.width()).clamp(0.25, 0.85);
+    if show_map {
+        // The split between the two views.
+        let divider =
+            Rect::from_min_max(pos2(divider_x - 3.0, full.top()), pos2(divider_x + 3.0, full.bottom()));
+        let divider_response = ui.interact(divider, ui.scope_id().with("split"), Sense::drag());
+        if divider_response.dragged() {
+            app.settings.split = ((divider_x + divider_response.drag_delta().x - full.left()) / full.width())
+                .clamp(0.25, 0.85);
+        }
+        let divider_color = if divider_response.hovered() { Color32::GRAY } else { Color32::from_gray(60) };
+        ui.painter().rect_filled(divider.shrink2(vec2(2.0, 0.0)), 0.0, divider_color);
     }
-    let divider_color = if divider_response.hovered() { Color32::GRAY } else { Color32::from_gray(60) };
-    ui.painter().rect_filled(divider.shrink2(vec2(2.0, 0.0)), 0.0, divider_color);
-
     let ppp = ui.ctx().pixels_per_point();
     let size_px =
         ((camera_rect.width() * ppp).max(16.0) as u32, (camera_rect.height() * ppp).max(16.0) as u32);
@@ -150,7 +153,9 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         );
         y += 16.0;
     }
-    shadow_map_panel(app, ui, map_rect);
+    if show_map {
+        shadow_map_panel(app, ui, map_rect);
+    }
     ui.allocate_rect(full, Sense::hover());
 }
 
