@@ -24,7 +24,10 @@ fn render_and_compare(name: &str, scene: shadowlab::scene::Scene, time_s: f32) {
     let request =
         FrameRequest { time_s, size: (320, 180), final_color: true, analysis: false, ..Default::default() };
     renderer.render(&scene, &request).expect("render");
-    let actual = renderer.read_color().expect("read back");
+    compare_with_golden(name, renderer.read_color().expect("read back"));
+}
+
+fn compare_with_golden(name: &str, actual: RgbaImage) {
     let golden = common::repo_path(&format!("tests/golden/{name}.png"));
     if std::env::var("UPDATE_SNAPSHOTS").is_ok_and(|v| v == "1") {
         actual.save(&golden).expect("write golden");
@@ -93,4 +96,27 @@ fn contact_pcss() {
 #[test]
 fn multi_light_at_two_seconds() {
     check_at("multi_light_t2", "multi_light", 2.0);
+}
+
+/// The diagrams at fixed inputs (their defaults, and a PCSS case with a far blocker), compared
+/// with references like the renders above.
+fn check_diagram(
+    name: &str,
+    kind: shadowlab::diagrams::DiagramKind,
+    inputs: &shadowlab::diagrams::DiagramInputs,
+) {
+    let pixmap = shadowlab::diagrams::draw(kind, inputs, 960, 540).expect("draw");
+    let png = shadowlab::diagrams::encode_png(&pixmap).expect("encode");
+    let actual = image::load_from_memory(&png).expect("decode").to_rgba8();
+    compare_with_golden(name, actual);
+}
+
+#[test]
+fn diagrams_at_fixed_inputs() {
+    let defaults = shadowlab::diagrams::DiagramInputs::default();
+    for kind in shadowlab::diagrams::DiagramKind::ALL {
+        check_diagram(&format!("diagram_{}", kind.id()), kind, &defaults);
+    }
+    let far_blocker = shadowlab::diagrams::DiagramInputs { blocker_depth_linear: Some(40.0), ..defaults };
+    check_diagram("diagram_pcss_far_blocker", shadowlab::diagrams::DiagramKind::PcssTriangles, &far_blocker);
 }

@@ -36,6 +36,7 @@ pub fn inputs_from_scene(
         lights: top_views(scene, time_s),
         objects_xz: objects_xz(scene, time_s),
         camera_xz: [scene.camera.position.x, scene.camera.position.z],
+        clamp_outside: scene.shadow.clamp_outside,
         ..DiagramInputs::default()
     };
     let shadow = &scene.shadow;
@@ -103,6 +104,7 @@ pub fn inputs_from_scene(
             out.blockers_found = p.blockers_found;
             out.blocker_samples = p.blocker_samples;
             out.visibility = p.visibility_twin;
+            out.outside_frustum = !p.inside_light_frustum;
         }
         None => {
             // The receiver at the light's target, lit, with the scene's own parameters.

@@ -123,6 +123,10 @@ pub struct DiagramInputs {
     pub blockers_found: u32,
     pub blocker_samples: u32,
     pub visibility: f32,
+    /// The probed point lies outside the light's frustum (no shadow-map data for it).
+    pub outside_frustum: bool,
+    /// Points outside the frustum count as lit (`clamp_outside`); otherwise the lookup wraps.
+    pub clamp_outside: bool,
     pub lights: Vec<LightTopView>,
     /// Object centre and radius in the XZ plane (world).
     pub objects_xz: Vec<([f32; 2], f32)>,
@@ -171,6 +175,8 @@ impl Default for DiagramInputs {
             blockers_found: 8,
             blocker_samples: 16,
             visibility: 0.5,
+            outside_frustum: false,
+            clamp_outside: true,
             lights: vec![
                 LightTopView {
                     position_xz: [0.0, 80.0],

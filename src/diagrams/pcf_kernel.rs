@@ -76,9 +76,12 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let y_f = (centre[1] + r_f * ppt + 6.0).min(gy + side - 26.0);
     let t = format!("filter r = {} texels", num(r_f));
     c.label(&t, [centre[0], y_f], Anchor::TopCenter, FS_SMALL);
-    let y_s = (centre[1] - r_s * ppt - 6.0).max(gy + 26.0);
-    let t = format!("search r = {} texels", num(r_s));
-    c.text(&t, [centre[0], y_s], Anchor::BottomCenter, Style::em(FS_SMALL, pal::SEARCH));
+    // PCF has no blocker search: only PCSS draws (and labels) a search circle.
+    if r_s > 0.0 {
+        let y_s = (centre[1] - r_s * ppt - 6.0).max(gy + 26.0);
+        let t = format!("search r = {} texels", num(r_s));
+        c.text(&t, [centre[0], y_s], Anchor::BottomCenter, Style::em(FS_SMALL, pal::SEARCH));
+    }
 
     // Numbers on the right.
     let map = inp.shadow_map_size_texels.max(1) as f32;
@@ -87,7 +90,9 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     text.line(c, &format!("samples N = {n}"));
     text.line(c, &format!("filter radius r = {} texels", num(r_f)));
     text.line(c, &format!("   = {} / {} = {} UV", num(r_f), map as u32, num(r_f / map)));
-    text.tint(c, &format!("search radius = {} texels", num(r_s)), pal::SEARCH);
+    if r_s > 0.0 {
+        text.tint(c, &format!("search radius = {} texels", num(r_s)), pal::SEARCH);
+    }
     let grid = match k as u64 {
         1 => "grid: 1 cell = 1 texel".to_string(),
         k => format!("grid: a line every {k} texels"),

@@ -188,7 +188,13 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let bias_ndc = ndc(fin(inp.bias_ndc, 0.0));
     let test = format!("bias = {bias_ndc} NDC ≈ {b} world   →   {} − {b} ≤ {st} ?", num(recv));
     let bx = c.label(&test, [20.0, y0 + 30.0], Anchor::TopLeft, FS_LABEL);
-    let (verdict, vc) = if lit { ("yes → lit", pal::LIT) } else { ("no → in shadow", pal::BLOCKED) };
+    let (verdict, vc) = match (inp.outside_frustum, inp.clamp_outside, lit) {
+        (true, true, _) => ("outside the light frustum → lit", pal::LIT),
+        (true, false, true) => ("yes → lit (wrapped lookup!)", pal::LIT),
+        (true, false, false) => ("no → in shadow (wrapped lookup!)", pal::BLOCKED),
+        (false, _, true) => ("yes → lit", pal::LIT),
+        (false, _, false) => ("no → in shadow", pal::BLOCKED),
+    };
     let at = [bx[0] + bx[2] + 14.0, y0 + 30.0];
     c.text(verdict, at, Anchor::TopLeft, Style::em(FS_LABEL + 2.0, vc));
 
