@@ -12,21 +12,30 @@ fn combo<T: Copy + PartialEq>(
     value: &mut T,
     all: &[T],
     name: impl Fn(T) -> &'static str,
+    key: Option<&str>,
 ) -> bool {
     let mut changed = false;
-    egui::ComboBox::from_label(label).selected_text(name(*value)).show_ui(ui, |ui| {
+    let response = egui::ComboBox::from_label(label).selected_text(name(*value)).show_ui(ui, |ui| {
         for &option in all {
             changed |= ui.selectable_value(value, option, name(option)).changed();
         }
     });
+    if let Some(key) = key {
+        response.response.on_hover_text(key_hint(key));
+    }
     changed
+}
+
+/// The hover text naming a widget's key in scene and lesson files (`--set KEY=VALUE`).
+fn key_hint(key: &str) -> String {
+    format!("scene key `{key}` (lessons and --set use it)")
 }
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let mut changed = false;
     let s = &mut app.scene.shadow;
     ui.heading("Technique");
-    changed |= combo(ui, "technique", &mut s.technique, Technique::ALL, Technique::name);
+    changed |= combo(ui, "technique", &mut s.technique, Technique::ALL, Technique::name, Some("technique"));
     let mut ab_on = app.ab.is_some();
     if ui
         .checkbox(&mut ab_on, "A/B split against")
@@ -37,47 +46,79 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         changed = true;
     }
     if let Some(ab) = &mut app.ab {
-        changed |= combo(ui, "right side", &mut ab.b, Technique::ALL, Technique::name);
+        changed |= combo(ui, "right side", &mut ab.b, Technique::ALL, Technique::name, None);
     }
 
     ui.separator();
     ui.heading("Bias");
-    changed |= combo(ui, "bias mode", &mut s.bias_mode, BiasMode::ALL, BiasMode::name);
-    changed |=
-        ui.add(Slider::new(&mut s.bias, 0.0..=0.05).logarithmic(true).text("bias (NDC depth)")).changed();
+    changed |= combo(ui, "bias mode", &mut s.bias_mode, BiasMode::ALL, BiasMode::name, Some("bias_mode"));
+    changed |= ui
+        .add(Slider::new(&mut s.bias, 0.0..=0.05).logarithmic(true).text("bias (NDC depth)"))
+        .on_hover_text(key_hint("bias"))
+        .changed();
     changed |= ui
         .add(Slider::new(&mut s.slope_bias, 0.0..=0.2).logarithmic(true).text("slope bias (NDC)"))
+        .on_hover_text(key_hint("slope_bias"))
         .changed();
-    changed |= ui.add(Slider::new(&mut s.adaptive_c, 0.0..=8.0).text("adaptive c (× half texel)")).changed();
-    changed |=
-        ui.add(Slider::new(&mut s.normal_offset_texels, 0.0..=4.0).text("normal offset (texels)")).changed();
+    changed |= ui
+        .add(Slider::new(&mut s.adaptive_c, 0.0..=8.0).text("adaptive c (× half texel)"))
+        .on_hover_text(key_hint("adaptive_c"))
+        .changed();
+    changed |= ui
+        .add(Slider::new(&mut s.normal_offset_texels, 0.0..=4.0).text("normal offset (texels)"))
+        .on_hover_text(key_hint("normal_offset_texels"))
+        .changed();
     changed |= ui
         .add(Slider::new(&mut s.depth_bias_constant, 0..=20000).text("hardware bias (depth units)"))
+        .on_hover_text(key_hint("depth_bias_constant"))
         .changed();
-    changed |= ui.add(Slider::new(&mut s.depth_bias_slope, -4.0..=8.0).text("hardware slope bias")).changed();
-    changed |= ui.checkbox(&mut s.cull_front_faces, "cull front faces in the shadow pass").changed();
-    changed |= ui.checkbox(&mut s.clamp_outside, "outside the light frustum = lit").changed();
+    changed |= ui
+        .add(Slider::new(&mut s.depth_bias_slope, -4.0..=8.0).text("hardware slope bias"))
+        .on_hover_text(key_hint("depth_bias_slope"))
+        .changed();
+    changed |= ui
+        .checkbox(&mut s.cull_front_faces, "cull front faces in the shadow pass")
+        .on_hover_text(key_hint("cull_front_faces"))
+        .changed();
+    changed |= ui
+        .checkbox(&mut s.clamp_outside, "outside the light frustum = lit")
+        .on_hover_text(key_hint("clamp_outside"))
+        .changed();
 
     ui.separator();
     ui.heading("PCF");
-    changed |= combo(ui, "kernel", &mut s.pcf_kernel, Kernel::ALL, Kernel::name);
-    changed |= ui.add(Slider::new(&mut s.samples, 1..=128).text("samples")).changed();
+    changed |= combo(ui, "kernel", &mut s.pcf_kernel, Kernel::ALL, Kernel::name, Some("pcf_kernel"));
+    changed |= ui
+        .add(Slider::new(&mut s.samples, 1..=128).text("samples"))
+        .on_hover_text(key_hint("samples"))
+        .changed();
     if s.pcf_kernel == Kernel::Grid {
         let side = crate::shadow::kernels::grid_side(s.samples);
         ui.small(format!("grid uses {side}×{side} = {} taps", side * side));
     }
-    changed |= ui.add(Slider::new(&mut s.radius_texels, 0.0..=32.0).text("radius (texels)")).changed();
-    changed |= ui.checkbox(&mut s.rotate_per_pixel, "rotate the pattern per pixel").changed();
+    changed |= ui
+        .add(Slider::new(&mut s.radius_texels, 0.0..=32.0).text("radius (texels)"))
+        .on_hover_text(key_hint("radius_texels"))
+        .changed();
+    changed |= ui
+        .checkbox(&mut s.rotate_per_pixel, "rotate the pattern per pixel")
+        .on_hover_text(key_hint("rotate_per_pixel"))
+        .changed();
     changed |= ui.add(egui::DragValue::new(&mut s.noise_seed).prefix("noise seed ")).changed();
 
     ui.separator();
     ui.heading("PCSS");
-    changed |= ui.add(Slider::new(&mut s.blocker_samples, 1..=128).text("blocker samples")).changed();
+    changed |= ui
+        .add(Slider::new(&mut s.blocker_samples, 1..=128).text("blocker samples"))
+        .on_hover_text(key_hint("blocker_samples"))
+        .changed();
     changed |= ui
         .add(Slider::new(&mut s.min_filter_radius_texels, 0.0..=16.0).text("min filter radius (texels)"))
+        .on_hover_text(key_hint("min_filter_radius_texels"))
         .changed();
     changed |= ui
         .add(Slider::new(&mut s.reference_samples, 1..=1024).logarithmic(true).text("ground-truth samples"))
+        .on_hover_text(key_hint("reference_samples"))
         .changed();
 
     ui.separator();
@@ -154,8 +195,10 @@ fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
     match &mut light.kind {
         LightKind::Directional { extent_world } => {
             ui.label("directional light, orthographic map");
-            changed |=
-                ui.add(Slider::new(extent_world, 1.0..=300.0).text("half-width (world units)")).changed();
+            changed |= ui
+                .add(Slider::new(extent_world, 1.0..=300.0).text("half-width (world units)"))
+                .on_hover_text(key_hint("light.N.extent"))
+                .changed();
         }
         LightKind::Spot { fov_deg } => {
             ui.label("spot light, perspective map");
@@ -165,32 +208,44 @@ fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
     let far = light.far;
     changed |= ui
         .add(Slider::new(&mut light.near, 0.01..=far * 0.9).logarithmic(true).text("near (world units)"))
+        .on_hover_text(key_hint("light.N.near"))
         .changed();
     let near = light.near;
     changed |= ui
         .add(Slider::new(&mut light.far, near * 1.1..=2000.0).logarithmic(true).text("far (world units)"))
+        .on_hover_text(key_hint("light.N.far"))
         .changed();
     let directional = light.is_orthographic();
     match &mut light.size {
         LightSize::Width { width_world } => {
-            changed |=
-                ui.add(Slider::new(width_world, 0.0..=40.0).text("light width (world units)")).changed();
+            changed |= ui
+                .add(Slider::new(width_world, 0.0..=40.0).text("light width (world units)"))
+                .on_hover_text(key_hint("light.N.width"))
+                .changed();
             if directional && ui.small_button("use an angular diameter instead").clicked() {
                 light.size = LightSize::AngularDiameter { angular_diameter_deg: 0.53 };
                 changed = true;
             }
         }
         LightSize::AngularDiameter { angular_diameter_deg } => {
-            changed |=
-                ui.add(Slider::new(angular_diameter_deg, 0.0..=20.0).text("angular diameter (°)")).changed();
+            changed |= ui
+                .add(Slider::new(angular_diameter_deg, 0.0..=20.0).text("angular diameter (°)"))
+                .on_hover_text(key_hint("light.N.angular_diameter_deg"))
+                .changed();
             if ui.small_button("use a width instead").clicked() {
                 light.size = LightSize::Width { width_world: 2.0 };
                 changed = true;
             }
         }
     }
-    changed |= ui.add(Slider::new(&mut light.intensity, 0.0..=4.0).text("intensity")).changed();
-    changed |= ui.add(Slider::new(&mut light.orbit_deg_per_s, -180.0..=180.0).text("orbit (°/s)")).changed();
+    changed |= ui
+        .add(Slider::new(&mut light.intensity, 0.0..=4.0).text("intensity"))
+        .on_hover_text(key_hint("light.N.intensity"))
+        .changed();
+    changed |= ui
+        .add(Slider::new(&mut light.orbit_deg_per_s, -180.0..=180.0).text("orbit (°/s)"))
+        .on_hover_text(key_hint("light.N.orbit_deg_per_s"))
+        .changed();
     changed
 }
 

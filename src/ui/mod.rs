@@ -62,6 +62,8 @@ pub struct ShadowlabApp {
     pub show_help: bool,
     /// In a lesson: show every panel, not only the ones the step names.
     pub show_all_panels: bool,
+    /// Point the camera at the probe's surface point once the probe is computed (double-click).
+    focus_on_probe: bool,
     /// Something changed: render again.
     dirty: bool,
     /// The user is dragging: render at reduced resolution.
@@ -176,6 +178,7 @@ impl ShadowlabApp {
             status: String::new(),
             show_help: false,
             show_all_panels: false,
+            focus_on_probe: false,
             dirty: true,
             interacting: false,
             last_render_ms: 0.0,
@@ -621,8 +624,22 @@ impl ShadowlabApp {
                 None => None,
             };
         }
-        let with_analysis =
-            FrameRequest { analysis: full_detail && !self.scene.lights.is_empty(), ..request };
+        if self.focus_on_probe
+            && let Some(p) = self.probe.as_ref().and_then(|p| p.world_position)
+        {
+            self.scene.camera.target = glam::Vec3::from(p);
+            // The focused point now projects to the centre of the view, and so does the probe.
+            self.probe_at = Some((0.5, 0.5));
+            self.focus_on_probe = false;
+            self.dirty = true;
+            return;
+        }
+        // The analysis pass feeds the overlays only: skip it when none is on.
+        let overlays_need_analysis = self.overlays.iter().any(|o| *o != Overlay::LightFrustum);
+        let with_analysis = FrameRequest {
+            analysis: full_detail && overlays_need_analysis && !self.scene.lights.is_empty(),
+            ..request
+        };
         match gpu.render(&self.scene, &with_analysis) {
             Ok(()) => {
                 self.analysis = if with_analysis.analysis { gpu.renderer.read_analysis().ok() } else { None };
@@ -719,6 +736,9 @@ impl eframe::App for ShadowlabApp {
         }
         egui::CentralPanel::default().show(ui, |ui| view_panels::show(self, ui));
         self.help_window(&ctx);
+        if self.dirty {
+            ctx.request_repaint();
+        }
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {

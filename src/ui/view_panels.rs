@@ -225,16 +225,11 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let pointer_fraction =
         |pos: Pos2| ((pos.x - rect.left()) / rect.width(), (pos.y - rect.top()) / rect.height());
     if response.double_clicked() {
-        if let (Some(pos), Some(analysis)) = (response.interact_pointer_pos(), &app.analysis) {
-            let (fx, fy) = pointer_fraction(pos);
-            let x = ((fx * analysis.width as f32) as u32).min(analysis.width - 1);
-            let y = ((fy * analysis.height as f32) as u32).min(analysis.height - 1);
-            let i = analysis.index(x, y);
-            if analysis.hit(i) {
-                let p = analysis.position[i];
-                app.scene.camera.target = glam::Vec3::new(p[0], p[1], p[2]);
-                app.mark_dirty();
-            }
+        // Focus: the probe finds the surface point; the camera turns to it once it is known.
+        if let Some(pos) = response.interact_pointer_pos() {
+            app.probe_at = Some(pointer_fraction(pos));
+            app.focus_on_probe = true;
+            app.mark_dirty();
         }
     } else if response.clicked()
         && let Some(pos) = response.interact_pointer_pos()
