@@ -94,12 +94,16 @@ struct AnalysisOut {
 fn fs_analysis(in: VertexOut, @builtin(front_facing) front_facing: bool) -> AnalysisOut {
     var out: AnalysisOut;
     let n = shading_normal(in, front_facing);
+    out.position = vec4<f32>(in.world_position, 1.0);
+    out.normal = vec4<f32>(n, f32(object.object_index));
+    if frame.light_count == 0u {
+        out.shadow = vec4<f32>(1.0, 0.0, 0.0, 0.0);
+        return out;
+    }
     let light = lights[frame.selected_light];
     let coord = light_space_lookup(light, in.world_position, n);
     let result = shadow_visibility(light, coord, noise_seed_at(in.clip_position));
     let penumbra_texels = result.penumbra.width_world / texel_world_at(light, coord.depth_linear);
     out.shadow = vec4<f32>(result.visibility, result.search.radius_texels, penumbra_texels, f32(result.search.found));
-    out.position = vec4<f32>(in.world_position, 1.0);
-    out.normal = vec4<f32>(n, f32(object.object_index));
     return out;
 }

@@ -87,7 +87,8 @@ fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: 
         case BIAS_ADAPTIVE: {
             // Seed 000: A = (1 + ceil(R)) * W / (2 * map_size) is half a texel in world units,
             // grown with the filter; B = 1 - N.L; bias = c * max(A, A * B). As published,
-            // max(A, A*B) is A (B <= 1): texel-aware, not slope-aware.
+            // max(A, A*B) is A wherever the light reaches (N.L >= 0, so B <= 1): texel-aware,
+            // not slope-aware.
             let a = (1.0 + ceil(filter_radius_texels)) * 0.5 * texel_world_at(light, coord.depth_linear);
             let b = 1.0 - coord.n_dot_l;
             let bias_world = params.adaptive_c * max(a, a * b);
@@ -99,8 +100,18 @@ fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: 
     }
 }
 
+// Written as "not inside" so that NaN (a point in a spot light's own plane) counts as outside.
 fn outside_map(uv: vec2<f32>) -> bool {
-    return any(uv < vec2<f32>(0.0)) || any(uv > vec2<f32>(1.0));
+    return !(all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0)));
+}
+
+fn outside_depth(z: f32) -> bool {
+    return !(z >= 0.0 && z <= 1.0);
+}
+
+// The receiver has no shadow-map data: outside the map or past its depth range.
+fn outside_frustum(coord: ShadowCoord) -> bool {
+    return outside_map(coord.uv) || outside_depth(coord.depth_ndc);
 }
 
 // Stored depth at a uv, point-sampled. Without clamping the lookup wraps, the classic bug.
@@ -116,7 +127,7 @@ fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
 
 // 1 = lit, 0 = shadowed, for one tap. Outside the light frustum counts as lit when clamped.
 fn depth_test(light: LightGpu, uv: vec2<f32>, receiver_ndc: f32, bias_ndc: f32) -> f32 {
-    if params.clamp_outside == 1u && (outside_map(uv) || receiver_ndc > 1.0 || receiver_ndc < 0.0) {
+    if params.clamp_outside == 1u && (outside_map(uv) || outside_depth(receiver_ndc)) {
         return 1.0;
     }
     if params.kernel == KERNEL_HARDWARE && params.technique != TECHNIQUE_HARD {
@@ -133,8 +144,18 @@ fn depth_test(light: LightGpu, uv: vec2<f32>, receiver_ndc: f32, bias_ndc: f32) 
 
 // ---------------------------------------------------------------- sample patterns
 
+// floor(sqrt(n)) made exact: WGSL's sqrt need not be correctly rounded (9 -> 2.9999998).
 fn grid_side(n: u32) -> u32 {
-    return max(1u, u32(floor(sqrt(f32(n)))));
+    var side = u32(sqrt(f32(n)) + 0.5);
+    if side * side > n {
+        side -= 1u;
+    }
+    return max(1u, side);
+}
+
+// An angle brought into [-pi, pi], where WGSL's sin and cos have their stated accuracy.
+fn wrap_angle(a: f32) -> f32 {
+    return a - TAU * floor(a / TAU + 0.5);
 }
 
 fn rotate2(p: vec2<f32>, angle: f32) -> vec2<f32> {
@@ -149,7 +170,7 @@ fn kernel_offset(kernel: u32, i: u32, n: u32, seed: u32) -> vec2<f32> {
     switch kernel {
         case KERNEL_POISSON: {
             // GAMES202 poissonDiskSamples: a spiral, radius ((i+1)/n)^0.75, NUM_RINGS turns.
-            let angle = rotation + f32(i) * TAU * NUM_RINGS / f32(n);
+            let angle = wrap_angle(rotation + f32(i) * TAU * NUM_RINGS / f32(n));
             let r = pow(f32(i + 1u) / f32(n), 0.75);
             return vec2<f32>(cos(angle), sin(angle)) * r;
         }
@@ -171,7 +192,7 @@ fn kernel_offset(kernel: u32, i: u32, n: u32, seed: u32) -> vec2<f32> {
         }
         default: {
             // Vogel disk: golden-angle spiral, radius sqrt((i + 0.5) / n).
-            let angle = f32(i) * GOLDEN_ANGLE + rotation;
+            let angle = wrap_angle(f32(i) * GOLDEN_ANGLE + rotation);
             return vec2<f32>(cos(angle), sin(angle)) * sqrt((f32(i) + 0.5) / f32(n));
         }
     }
@@ -190,7 +211,7 @@ fn filter_taps(kernel: u32, samples: u32) -> u32 {
 // Hard shadow: one depth comparison.
 fn visibility_hard(light: LightGpu, coord: ShadowCoord) -> f32 {
     let bias = receiver_bias_ndc(light, coord, 0.0);
-    if params.clamp_outside == 1u && (outside_map(coord.uv) || coord.depth_ndc > 1.0 || coord.depth_ndc < 0.0) {
+    if params.clamp_outside == 1u && outside_frustum(coord) {
         return 1.0;
     }
     return select(0.0, 1.0, coord.depth_ndc - bias <= stored_depth_ndc(light, coord.uv));
@@ -219,6 +240,10 @@ struct BlockerSearch {
 // cut at the near plane (NVIDIA: w_search = w_light * (d_r - near) / d_r, in uv / W_near).
 fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSearch {
     var out: BlockerSearch;
+    // No map data for this receiver: nothing to search (and nothing to report).
+    if params.clamp_outside == 1u && outside_frustum(coord) {
+        return out;
+    }
     let d_r = coord.depth_linear;
     var radius_world = 0.0;
     if light.size_model == SIZE_MODEL_ANGULAR {

@@ -141,13 +141,21 @@ pub fn probe(
             blocker_search_radius_uv: result.search.radius_texels / map_size,
             blocker_search_radius_texels: result.search.radius_texels,
             blockers_found: result.search.found,
-            blocker_samples: kernels::filter_taps(scene.shadow.pcf_kernel, scene.shadow.blocker_samples),
+            // Only PCSS searches; the search uses Vogel where the filter is the hardware kernel.
+            blocker_samples: match scene.shadow.technique {
+                Technique::Pcss => {
+                    kernels::filter_taps(scene.shadow.pcf_kernel, scene.shadow.blocker_samples)
+                }
+                _ => 0,
+            },
             avg_blocker_depth_linear: (result.search.found > 0).then_some(result.search.avg_depth_linear),
             penumbra_width_world: result.penumbra.width_world,
             filter_radius_uv: filter_radius_texels / map_size,
             filter_radius_texels,
+            // Taps the filter really took: PCSS skips it where no blocker was found.
             filter_samples: match scene.shadow.technique {
                 Technique::Hard => 1,
+                Technique::Pcss if result.search.found == 0 => 0,
                 _ => scene.shadow.effective_samples(),
             },
             visibility_gpu: analysis.shadow[i][0],

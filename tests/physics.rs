@@ -186,3 +186,32 @@ fn penumbra_grows_with_blocker_distance_as_similar_triangles_say() {
     }
     assert!(widths[1] > 3.0 * widths[0], "the higher slab's penumbra must be much wider: {widths:?}");
 }
+
+#[test]
+fn a_directional_lights_ground_truth_tends_to_its_hard_shadow() {
+    // The width is turned into the angle it subtends at the target, and the reference tilts the
+    // orthographic map over it: a tiny light must give back the orthographic hard shadow.
+    let (_ctx, mut renderer) = common::gpu();
+    let mut errors = Vec::new();
+    for width in ["0.01", "10"] {
+        let scene = common::scene(
+            "games202",
+            &[
+                ("technique", "hard"),
+                ("light.0.width", width),
+                ("reference_samples", "16"),
+                ("bias_mode", "adaptive"),
+            ],
+        );
+        renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
+        let analysis = renderer.read_analysis().expect("analysis");
+        let truth = renderer.render_reference(&scene, 0).expect("reference");
+        let surface: Vec<usize> = (0..analysis.shadow.len()).filter(|&i| analysis.hit(i)).collect();
+        let hard: Vec<f32> = surface.iter().map(|&i| analysis.shadow[i][0]).collect();
+        let truth: Vec<f32> = surface.iter().map(|&i| truth[i]).collect();
+        errors.push(mean_abs(&hard, &truth));
+    }
+    eprintln!("mean |hard - reference| for width 0.01 and 10: {errors:?}");
+    assert!(errors[0] < 0.01, "a tiny light's ground truth should be its hard shadow: {errors:?}");
+    assert!(errors[1] > 3.0 * errors[0], "a wide light's ground truth should be soft: {errors:?}");
+}

@@ -1,6 +1,7 @@
 //! Ground truth for soft shadows: the average of many hard shadows from sample points over the
-//! light's area (width model: point lights on a disk of diameter `width`, perspective maps) or
-//! from directions over its angular disk (angular model: orthographic maps).
+//! light's area (spot lights: point lights on a disk of diameter `width`, perspective maps) or
+//! from directions over its angular disk (directional lights: orthographic maps; a width is
+//! turned into the angle it subtends at the light's target).
 //! REFERENCES "Ground truth for soft shadows"; published comparisons use 1024 hard shadows.
 
 use crate::render::LightGpu;
@@ -31,30 +32,27 @@ pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightGpu> {
     let (forward, right, up) = light_basis(light, t_s);
     let position = light.position_at(t_s);
     let distance = (light.target - position).length().max(1e-3);
-    match light.size {
-        LightSize::Width { width_world } if width_world > 0.0 && count > 1 => {
-            // A directional light's area is modelled by point lights too: perspective maps
-            // covering its ortho extent at the target's distance.
-            let as_spot = match light.kind {
-                LightKind::Spot { .. } => *light,
-                LightKind::Directional { extent_world } => Light {
-                    kind: LightKind::Spot {
-                        fov_deg: (2.0 * (extent_world / distance).atan()).to_degrees().min(150.0),
-                    },
-                    near: light.near.max(distance * 0.05),
-                    ..*light
-                },
-            };
-            (0..count)
-                .map(|k| {
-                    let p = disk_point(k, count) * (0.5 * width_world);
-                    let eye = position + right * p.x + up * p.y;
-                    let clip = as_spot.clip_from_view() * Mat4::look_to_rh(eye, forward, up);
-                    LightGpu::with_transform(&as_spot, clip, eye, forward, 0, size)
-                })
-                .collect()
+    // A directional light given a width is an area light seen from its target: the width
+    // subtends 2*atan(w / 2d) there. Its ground truth tilts the orthographic map over that angle,
+    // so that a width of 0 gives back exactly the orthographic hard shadow PCSS starts from.
+    let angle_deg = match (light.size, light.kind) {
+        (LightSize::AngularDiameter { angular_diameter_deg }, _) => Some(angular_diameter_deg),
+        (LightSize::Width { width_world }, LightKind::Directional { .. }) => {
+            Some((2.0 * (0.5 * width_world / distance).atan()).to_degrees())
         }
-        LightSize::AngularDiameter { angular_diameter_deg } if angular_diameter_deg > 0.0 && count > 1 => {
+        (LightSize::Width { .. }, LightKind::Spot { .. }) => None,
+    };
+    match (light.size, angle_deg) {
+        (LightSize::Width { width_world }, None) if width_world > 0.0 && count > 1 => (0..count)
+            .map(|k| {
+                // Point lights over the spot light's disk, each with the light's own frustum.
+                let p = disk_point(k, count) * (0.5 * width_world);
+                let eye = position + right * p.x + up * p.y;
+                let clip = light.clip_from_view() * Mat4::look_to_rh(eye, forward, up);
+                LightGpu::with_transform(light, clip, eye, forward, 0, size)
+            })
+            .collect(),
+        (_, Some(angular_diameter_deg)) if angular_diameter_deg > 0.0 && count > 1 => {
             let tan_half = (0.5 * angular_diameter_deg.to_radians()).tan();
             (0..count)
                 .map(|k| {

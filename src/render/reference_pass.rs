@@ -108,11 +108,10 @@ impl Renderer {
             &maps,
         );
         let view_group = shadow_view_group(&device, &self.layouts, &view_buffer);
-        let key = ShadowPipelineKey {
-            depth_bias_constant: scene.shadow.depth_bias_constant,
-            depth_bias_slope_bits: scene.shadow.depth_bias_slope.to_bits(),
-            cull_front_faces: scene.shadow.cull_front_faces,
-        };
+        // The reference's own shadow pass: no hardware bias and no culling, whatever the user
+        // set, so their effects show up as error rather than being copied into the truth.
+        let key =
+            ShadowPipelineKey { depth_bias_constant: 0, depth_bias_slope_bits: 0, cull_front_faces: false };
         let shadow_pipeline = self.pipelines.shadow(&device, key).clone();
         let scene_gpu =
             self.scene_gpu.as_ref().ok_or_else(|| RenderError::Usage("no scene uploaded".into()))?;

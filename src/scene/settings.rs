@@ -59,9 +59,11 @@ enum_names!(Kernel, Poisson => "poisson", Uniform => "uniform", Vogel => "vogel"
 pub struct ShadowSettings {
     pub technique: Technique,
     pub bias_mode: BiasMode,
-    /// Constant bias, NDC depth units (GAMES202 EPS is 1e-3). In adaptive mode: the factor `c`.
+    /// Constant bias, NDC depth units (GAMES202 EPS is 1e-3); the floor of the slope mode.
     pub bias: f32,
     /// Slope-scaled mode: `bias = max(slope_bias * (1 - N.L), bias)`, NDC depth units.
+    /// LearnOpenGL's 0.05 and 0.005 suit its 7.5-unit light frustum; NDC biases do not carry
+    /// over between depth ranges, so the defaults here are smaller.
     pub slope_bias: f32,
     /// Adaptive mode: `bias_world = adaptive_c * max(A, A * (1 - N.L))`, A = half a texel
     /// (grown with the filter radius), world units; dimensionless.
@@ -175,11 +177,5 @@ impl ShadowSettings {
 }
 
 pub fn effective_samples(kernel: Kernel, samples: u32) -> u32 {
-    match kernel {
-        Kernel::Grid => {
-            let side = (samples as f32).sqrt().floor().max(1.0) as u32;
-            side * side
-        }
-        _ => samples,
-    }
+    crate::shadow::kernels::filter_taps(kernel, samples)
 }

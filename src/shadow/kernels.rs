@@ -27,12 +27,25 @@ pub fn pixel_seed(pixel: (u32, u32), noise_seed: u32, rotate_per_pixel: bool) ->
     }
 }
 
+/// floor(sqrt(n)), computed as the shader does (rounded, then corrected) so both agree.
 pub fn grid_side(n: u32) -> u32 {
-    ((n as f32).sqrt().floor() as u32).max(1)
+    let mut side = ((n as f32).sqrt() + 0.5) as u32;
+    if side * side > n {
+        side -= 1;
+    }
+    side.max(1)
+}
+
+/// An angle brought into [-pi, pi] (the shader does the same before sin and cos).
+fn wrap_angle(a: f32) -> f32 {
+    a - TAU * (a / TAU + 0.5).floor()
 }
 
 pub fn filter_taps(kernel: Kernel, samples: u32) -> u32 {
-    crate::scene::effective_samples(kernel, samples)
+    match kernel {
+        Kernel::Grid => grid_side(samples) * grid_side(samples),
+        _ => samples,
+    }
 }
 
 fn rotate2(p: Vec2, angle: f32) -> Vec2 {
@@ -45,7 +58,7 @@ pub fn kernel_offset(kernel: Kernel, i: u32, n: u32, seed: u32) -> Vec2 {
     let rotation = TAU * unit_float(seed);
     match kernel {
         Kernel::Poisson => {
-            let angle = rotation + i as f32 * TAU * NUM_RINGS / n as f32;
+            let angle = wrap_angle(rotation + i as f32 * TAU * NUM_RINGS / n as f32);
             let r = ((i + 1) as f32 / n as f32).powf(0.75);
             Vec2::new(angle.cos(), angle.sin()) * r
         }
@@ -64,7 +77,7 @@ pub fn kernel_offset(kernel: Kernel, i: u32, n: u32, seed: u32) -> Vec2 {
             rotate2(g / (side - 1) as f32 * 2.0 - Vec2::ONE, rotation)
         }
         Kernel::Vogel | Kernel::Hardware => {
-            let angle = i as f32 * GOLDEN_ANGLE + rotation;
+            let angle = wrap_angle(i as f32 * GOLDEN_ANGLE + rotation);
             Vec2::new(angle.cos(), angle.sin()) * ((i as f32 + 0.5) / n as f32).sqrt()
         }
     }
@@ -74,4 +87,29 @@ pub fn kernel_offset(kernel: Kernel, i: u32, n: u32, seed: u32) -> Vec2 {
 pub fn kernel_points(kernel: Kernel, samples: u32, seed: u32) -> Vec<Vec2> {
     let n = filter_taps(kernel, samples);
     (0..n).map(|i| kernel_offset(kernel, i, n, seed)).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn grid_side_is_the_exact_integer_square_root() {
+        for (n, side) in
+            [(1, 1), (3, 1), (4, 2), (8, 2), (9, 3), (15, 3), (16, 4), (24, 4), (25, 5), (128, 11)]
+        {
+            assert_eq!(grid_side(n), side, "n = {n}");
+        }
+        assert_eq!(filter_taps(Kernel::Grid, 9), 9);
+        assert_eq!(filter_taps(Kernel::Vogel, 9), 9);
+    }
+
+    #[test]
+    fn wrapped_angles_stay_in_range_and_keep_their_direction() {
+        for a in [0.0f32, 3.0, 7.0, -7.0, 69.0, 311.0] {
+            let w = wrap_angle(a);
+            assert!((-std::f32::consts::PI..=std::f32::consts::PI).contains(&w), "{a} -> {w}");
+            assert!((w.cos() - a.cos()).abs() < 1e-3 && (w.sin() - a.sin()).abs() < 1e-3, "{a}");
+        }
+    }
 }

@@ -118,8 +118,18 @@ pub fn project_to_light(light: &LightGpu, world_pos: Vec3) -> Vec3 {
     Vec3::new(ndc.x * 0.5 + 0.5, ndc.y * -0.5 + 0.5, ndc.z)
 }
 
+/// Written as "not inside", like the shader, so NaN counts as outside.
 fn outside_map(uv: Vec2) -> bool {
-    uv.x < 0.0 || uv.y < 0.0 || uv.x > 1.0 || uv.y > 1.0
+    !(uv.x >= 0.0 && uv.y >= 0.0 && uv.x <= 1.0 && uv.y <= 1.0)
+}
+
+fn outside_depth(z: f32) -> bool {
+    !(0.0..=1.0).contains(&z)
+}
+
+/// The receiver has no shadow-map data: outside the map or past its depth range.
+pub fn outside_frustum(coord: &ShadowCoord) -> bool {
+    outside_map(coord.uv) || outside_depth(coord.depth_ndc)
 }
 
 /// WGSL `fract`: x - floor(x) (Rust's `f32::fract` truncates towards zero instead).
@@ -207,7 +217,7 @@ impl<'a> Twin<'a> {
 
     pub fn depth_test(&self, uv: Vec2, receiver_ndc: f32, bias_ndc: f32) -> f32 {
         let p = self.params;
-        if p.clamp_outside == 1 && (outside_map(uv) || !(0.0..=1.0).contains(&receiver_ndc)) {
+        if p.clamp_outside == 1 && (outside_map(uv) || outside_depth(receiver_ndc)) {
             return 1.0;
         }
         if kernel_from_id(p.kernel) == Kernel::Hardware && p.technique != TECHNIQUE_HARD {
@@ -220,8 +230,7 @@ impl<'a> Twin<'a> {
     pub fn visibility_hard(&mut self, coord: &ShadowCoord) -> f32 {
         let bias = self.receiver_bias_ndc(coord, 0.0);
         let p = self.params;
-        let outside =
-            p.clamp_outside == 1 && (outside_map(coord.uv) || !(0.0..=1.0).contains(&coord.depth_ndc));
+        let outside = p.clamp_outside == 1 && outside_frustum(coord);
         let lit = outside || coord.depth_ndc - bias <= self.stored_depth_ndc(coord.uv);
         let v = if lit { 1.0 } else { 0.0 };
         self.record(TapKind::Filter, coord.uv, v);
@@ -246,6 +255,9 @@ impl<'a> Twin<'a> {
     pub fn search_blockers(&mut self, coord: &ShadowCoord, seed: u32) -> BlockerSearch {
         let light = self.light;
         let mut out = BlockerSearch::default();
+        if self.params.clamp_outside == 1 && outside_frustum(coord) {
+            return out;
+        }
         let d_r = coord.depth_linear;
         let radius_world = if light.size_model == SIZE_MODEL_ANGULAR {
             (d_r - light.near) * light.tan_half_angle
@@ -334,5 +346,18 @@ impl<'a> Twin<'a> {
         let coord = self.light_space_lookup(world_pos, normal);
         let result = self.shadow_visibility(&coord, seed);
         (coord, result)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nan_counts_as_outside_the_map_as_in_the_shader() {
+        assert!(outside_map(Vec2::new(f32::NAN, 0.5)));
+        assert!(outside_depth(f32::NAN));
+        assert!(!outside_map(Vec2::new(0.0, 1.0)));
+        assert!(outside_map(Vec2::new(-1e-6, 0.5)));
     }
 }
