@@ -193,3 +193,34 @@ fn a_step_shows_only_the_panels_it_names() {
     h.run_steps(4);
     h.get_by_label("Shadow map");
 }
+
+#[test]
+fn the_ab_split_renders_its_second_technique_at_once() {
+    let mut h = harness();
+    h.get_by_label("A/B split against").click();
+    h.run_steps(4);
+    let a = h.state().camera_image().expect("A side");
+    let b = h.state().camera_image_b().expect("the B side is rendered as soon as the split is on");
+    assert_eq!(a.dimensions(), b.dimensions());
+    // PCSS against hard shadows: the soft edges differ.
+    let differing = a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
+    assert!(differing > 100, "A and B look the same ({differing} pixels differ)");
+}
+
+#[test]
+fn opening_an_obj_builds_a_scene_around_it() {
+    let mut h = harness();
+    let obj = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/obj/blender_export.obj");
+    h.get_by_label("file").click();
+    h.run_steps(1);
+    h.get_by_label("file").type_text(&obj.display().to_string());
+    h.run_steps(1);
+    h.get_by_label("Open").click();
+    h.run_steps(4);
+    let app = h.state();
+    assert!(app.error.is_none(), "{:?}", app.error);
+    assert_eq!(app.scene.objects.len(), 2, "a floor and the model");
+    assert_eq!(app.scene.objects[1].name, "blender_export.obj");
+    assert_eq!(app.scene.lights.len(), 1);
+    assert!(app.camera_image().is_some());
+}

@@ -328,6 +328,12 @@ impl ShadowlabApp {
         self.gpu.as_ref().and_then(|g| g.renderer.read_color().ok())
     }
 
+    /// The B side of the A/B split as last rendered, when the split is on.
+    pub fn camera_image_b(&self) -> Option<image::RgbaImage> {
+        self.ab.as_ref()?;
+        self.gpu_b.as_ref().and_then(|g| g.renderer.read_color().ok())
+    }
+
     fn handle_keys(&mut self, ctx: &egui::Context) {
         if ctx.egui_wants_keyboard_input() {
             return;
@@ -671,7 +677,11 @@ impl ShadowlabApp {
             && let Some(rs) = frame.wgpu_render_state()
         {
             match ViewGpu::new(rs) {
-                Ok(g) => self.gpu_b = Some(g),
+                Ok(g) => {
+                    self.gpu_b = Some(g);
+                    // The frame that turned the split on rendered before B existed.
+                    self.mark_dirty();
+                }
                 Err(e) => self.error = Some(e.to_string()),
             }
         }
