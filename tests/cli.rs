@@ -4,10 +4,11 @@
 //! that names the file or key at fault, never panic, and leave no output (nor a temporary
 //! file) behind. The positive tests render at small sizes with few reference samples.
 
+mod common;
+
+use common::Run;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
-use std::process::Command;
-use std::sync::OnceLock;
 use tempfile::TempDir;
 
 fn repo_path(relative: &str) -> PathBuf {
@@ -22,52 +23,8 @@ fn fixture(name: &str) -> String {
     repo_path("tests/data/scenes").join(name).display().to_string()
 }
 
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-impl std::fmt::Display for Run {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "exit code {:?}\n--- stdout\n{}--- stderr\n{}", self.code, self.stdout, self.stderr)
-    }
-}
-
-/// A private runtime folder for the child processes. Without `XDG_RUNTIME_DIR` the Vulkan
-/// driver's Wayland client library prints a complaint to stderr while the adapter is set up,
-/// which is the environment's noise, not shadowlab's; the one-line checks need a quiet stderr.
-fn runtime_dir() -> Option<PathBuf> {
-    static DIR: OnceLock<Option<PathBuf>> = OnceLock::new();
-    DIR.get_or_init(|| {
-        if std::env::var_os("XDG_RUNTIME_DIR").is_some() {
-            return None;
-        }
-        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("cli-runtime-dir");
-        std::fs::create_dir_all(&dir).expect("create runtime folder");
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700))
-                .expect("chmod runtime folder");
-        }
-        Some(dir)
-    })
-    .clone()
-}
-
 fn shadowlab<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Run {
-    let mut command = Command::new(env!("CARGO_BIN_EXE_shadowlab"));
-    command.args(args).current_dir(env!("CARGO_MANIFEST_DIR"));
-    if let Some(dir) = runtime_dir() {
-        command.env("XDG_RUNTIME_DIR", dir);
-    }
-    let output = command.output().expect("the shadowlab binary runs");
-    Run {
-        code: output.status.code(),
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
-    }
+    common::run(common::shadowlab_command().args(args))
 }
 
 /// A scratch folder for outputs and hand-written scenes.
@@ -544,18 +501,7 @@ fn bench_zero_frames_is_rejected() {
 #[test]
 fn no_arguments_without_a_display_exits_2_with_one_line() {
     // No arguments opens the app; with no display it must say so and point at the commands.
-    let output = Command::new(env!("CARGO_BIN_EXE_shadowlab"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env_remove("DISPLAY")
-        .env_remove("WAYLAND_DISPLAY")
-        .env("XDG_RUNTIME_DIR", runtime_dir().unwrap_or_else(std::env::temp_dir))
-        .output()
-        .expect("the shadowlab binary runs");
-    let run = Run {
-        code: output.status.code(),
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
-    };
+    let run = common::run(common::shadowlab_command().env_remove("DISPLAY").env_remove("WAYLAND_DISPLAY"));
     assert_eq!(run.code, Some(2), "{run}");
     assert!(!run.stderr.contains("panicked"), "{run}");
     let lines: Vec<&str> = run.stderr.lines().collect();

@@ -1,57 +1,20 @@
 //! `shadowlab export` run as a process: the files it writes, their sizes, the two languages,
 //! determinism, and the checks that stop it before anything is written.
 
+mod common;
+
+use common::Run;
 use shadowlab::export::slide::SlideLayout;
 use shadowlab::lessons;
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
-use std::process::Command;
 use std::sync::OnceLock;
 use tempfile::TempDir;
 
 const LESSON: &str = "hard-shadows";
 
-struct Run {
-    code: Option<i32>,
-    stdout: String,
-    stderr: String,
-}
-
-impl std::fmt::Display for Run {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "exit code {:?}\n--- stdout\n{}--- stderr\n{}", self.code, self.stdout, self.stderr)
-    }
-}
-
-/// A private, empty runtime folder for the children (the Vulkan loader's Wayland client
-/// complains on stderr without one).
-fn runtime_dir() -> &'static Path {
-    static DIR: OnceLock<TempDir> = OnceLock::new();
-    DIR.get_or_init(|| {
-        let dir = tempfile::tempdir().expect("runtime folder");
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::PermissionsExt;
-            std::fs::set_permissions(dir.path(), std::fs::Permissions::from_mode(0o700))
-                .expect("chmod runtime folder");
-        }
-        dir
-    })
-    .path()
-}
-
 fn shadowlab(args: &[&str]) -> Run {
-    let output = Command::new(env!("CARGO_BIN_EXE_shadowlab"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("XDG_RUNTIME_DIR", runtime_dir())
-        .output()
-        .expect("the shadowlab binary runs");
-    Run {
-        code: output.status.code(),
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
-    }
+    common::run(common::shadowlab_command().args(args))
 }
 
 /// Export `LESSON` in `lang` at `size` into a new temporary folder.

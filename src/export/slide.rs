@@ -274,14 +274,7 @@ impl Painter<'_> {
         // Opaque pixels: straight and premultiplied alpha are the same bytes.
         let data: Vec<u8> = img.pixels().flat_map(|p| [p[0], p[1], p[2], 255]).collect();
         if let Some(src) = Pixmap::from_vec(data, size) {
-            self.pm.draw_pixmap(
-                at.x as i32,
-                at.y as i32,
-                src.as_ref(),
-                &PixmapPaint::default(),
-                Transform::identity(),
-                None,
-            );
+            self.pixmap(&src, at);
         }
     }
 

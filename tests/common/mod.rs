@@ -28,3 +28,51 @@ pub fn scene(name: &str, overrides: &[(&str, &str)]) -> Scene {
 pub fn analysis_request(size: (u32, u32), light: usize) -> FrameRequest {
     FrameRequest { size, selected_light: light, final_color: false, analysis: true, ..Default::default() }
 }
+
+/// What a `shadowlab` process did.
+pub struct Run {
+    pub code: Option<i32>,
+    pub stdout: String,
+    pub stderr: String,
+}
+
+impl std::fmt::Display for Run {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "exit code {:?}\n--- stdout\n{}--- stderr\n{}", self.code, self.stdout, self.stderr)
+    }
+}
+
+/// A private runtime folder for child processes. Without `XDG_RUNTIME_DIR` the Vulkan driver's
+/// Wayland client library prints a complaint on stderr while the adapter is set up: the
+/// environment's noise, not shadowlab's, and the one-line error checks need a quiet stderr.
+pub fn runtime_dir() -> &'static Path {
+    static DIR: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("shadowlab-runtime-dir");
+        std::fs::create_dir_all(&dir).expect("create runtime folder");
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::PermissionsExt;
+            std::fs::set_permissions(&dir, std::fs::Permissions::from_mode(0o700))
+                .expect("chmod runtime folder");
+        }
+        dir
+    })
+}
+
+/// The `shadowlab` binary, run from the repository with a quiet runtime folder.
+pub fn shadowlab_command() -> std::process::Command {
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"));
+    command.current_dir(env!("CARGO_MANIFEST_DIR")).env("XDG_RUNTIME_DIR", runtime_dir());
+    command
+}
+
+/// Run a prepared command to completion.
+pub fn run(command: &mut std::process::Command) -> Run {
+    let output = command.output().expect("the shadowlab binary runs");
+    Run {
+        code: output.status.code(),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    }
+}
