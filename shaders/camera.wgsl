@@ -37,19 +37,32 @@ fn shading_normal(in: VertexOut, front_facing: bool) -> vec3<f32> {
     return select(-n, n, front_facing);
 }
 
+// The scene's light count, fixed per pipeline so the light loop unrolls (SPECIALISED only).
+override SPEC_LIGHT_COUNT: u32 = 4294967295u;
+
+fn light_count() -> u32 {
+    if SPECIALISED && SPEC_LIGHT_COUNT <= MAX_LIGHTS {
+        return SPEC_LIGHT_COUNT;
+    }
+    return frame.light_count;
+}
+
 fn noise_seed_at(frag: vec4<f32>) -> u32 {
     return pixel_seed(vec2<u32>(frag.xy), params.noise_seed, params.rotate_per_pixel == 1u);
 }
 
-fn linear_to_srgb(c: vec3<f32>) -> vec3<f32> {
-    let lo = c * 12.92;
-    let hi = 1.055 * pow(c, vec3<f32>(1.0 / 2.4)) - 0.055;
-    return select(hi, lo, c <= vec3<f32>(0.0031308));
+// x^48 by squaring (x^32 * x^16): five multiplies instead of pow's log2 and exp2 per pixel.
+fn pow48(x: f32) -> f32 {
+    let x2 = x * x;
+    let x4 = x2 * x2;
+    let x8 = x4 * x4;
+    let x16 = x8 * x8;
+    return x16 * x16 * x16;
 }
 
 // Spot lights light only inside their square frustum (soft 5% edge).
 fn spot_falloff(light: LightGpu, world_pos: vec3<f32>) -> f32 {
-    if light.orthographic == 1u {
+    if is_orthographic(light) {
         return 1.0;
     }
     let s = project_to_light(light, world_pos);
@@ -67,18 +80,19 @@ fn fs_final(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locati
     let v = normalize(frame.camera_position.xyz - in.world_position);
     let seed = noise_seed_at(in.clip_position);
     var color = frame.ambient.rgb * albedo;
-    for (var i = 0u; i < frame.light_count; i++) {
+    for (var i = 0u; i < light_count(); i++) {
         let light = lights[i];
         let l = light_dir_to(light, in.world_position);
         let n_dot_l = max(dot(n, l), 0.0);
         let h = normalize(l + v);
-        let specular = 0.25 * pow(max(dot(n, h), 0.0), 48.0) * select(0.0, 1.0, n_dot_l > 0.0);
+        let specular = 0.25 * pow48(max(dot(n, h), 0.0)) * select(0.0, 1.0, n_dot_l > 0.0);
         let coord = light_space_lookup(light, in.world_position, n);
         let shadow = shadow_visibility(light, coord, seed).visibility;
         let radiance = light.color.rgb * spot_falloff(light, in.world_position);
         color += shadow * radiance * (albedo * n_dot_l + vec3<f32>(specular));
     }
-    return vec4<f32>(linear_to_srgb(clamp(color, vec3<f32>(0.0), vec3<f32>(1.0))), 1.0);
+    // Linear: the target's sRGB view encodes on store.
+    return vec4<f32>(clamp(color, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);
 }
 
 struct AnalysisOut {
@@ -96,7 +110,7 @@ fn fs_analysis(in: VertexOut, @builtin(front_facing) front_facing: bool) -> Anal
     let n = shading_normal(in, front_facing);
     out.position = vec4<f32>(in.world_position, 1.0);
     out.normal = vec4<f32>(n, f32(object.object_index));
-    if frame.light_count == 0u {
+    if light_count() == 0u {
         out.shadow = vec4<f32>(1.0, 0.0, 0.0, 0.0);
         return out;
     }

@@ -3,8 +3,8 @@
 
 const PI: f32 = 3.14159265358979;
 const TAU: f32 = 6.28318530717959;
-const GOLDEN_ANGLE: f32 = 2.39996322972865; // radians, pi * (3 - sqrt 5)
 const MAX_LIGHTS: u32 = 4u;
+const MAX_TAPS: u32 = 128u;       // most filter or blocker-search taps (src/shadow/kernels.rs)
 
 // Bias modes, kernels and techniques: same numbering as src/shadow/mod.rs.
 const BIAS_NONE: u32 = 0u;
@@ -19,6 +19,7 @@ const KERNEL_HARDWARE: u32 = 4u;
 const TECHNIQUE_HARD: u32 = 0u;
 const TECHNIQUE_PCF: u32 = 1u;
 const TECHNIQUE_PCSS: u32 = 2u;
+const TECHNIQUE_NONE: u32 = 3u;
 const SIZE_MODEL_WIDTH: u32 = 0u;
 const SIZE_MODEL_ANGULAR: u32 = 1u;
 

@@ -8,9 +8,72 @@
 @group(1) @binding(1) var<uniform> params: ShadowParamsGpu;
 @group(1) @binding(2) var shadow_maps: texture_depth_2d_array;
 @group(1) @binding(3) var shadow_compare_sampler: sampler_comparison;
+// Unit-disk sample patterns, unrotated: tap i of the filter in .xy, of the blocker search in
+// .zw (filled from params by the renderer; see `kernel_offset`).
+@group(1) @binding(4) var<uniform> kernel_table: array<vec4<f32>, MAX_TAPS>;
+const FILTER_TABLE: u32 = 0u;
+const SEARCH_TABLE: u32 = 1u;
 
-// GAMES202's sample spiral winds this many times.
-const NUM_RINGS: f32 = 10.0;
+// ---------------------------------------------------------------- pipeline specialisation
+// The camera pipelines are built once per technique, kernel, bias mode and clamping, with these
+// override constants set (SPECIALISED = true): the shader compiler then drops every branch the
+// pipeline never takes. Without it a SIMD rasteriser (lavapipe) runs masked copies of every
+// technique's loops for every pixel. SPECIALISED = false (the ground-truth pass) reads `params`.
+override SPECIALISED: bool = false;
+override SPEC_TECHNIQUE: u32 = 0u;
+override SPEC_KERNEL: u32 = 0u;
+override SPEC_BIAS_MODE: u32 = 0u;
+override SPEC_CLAMP_OUTSIDE: u32 = 1u;
+// What every light of the scene shares: SPEC_ALL_* (or SPEC_MIXED: read it from the light).
+override SPEC_PROJECTION: u32 = 0u;
+override SPEC_SIZE_MODEL: u32 = 0u;
+const SPEC_MIXED: u32 = 0u;
+const SPEC_ALL_ORTHOGRAPHIC: u32 = 1u;
+const SPEC_ALL_PERSPECTIVE: u32 = 2u;
+const SPEC_ALL_WIDTH: u32 = 1u;
+const SPEC_ALL_ANGULAR: u32 = 2u;
+
+fn technique() -> u32 {
+    if SPECIALISED {
+        return SPEC_TECHNIQUE;
+    }
+    return params.technique;
+}
+
+fn kernel() -> u32 {
+    if SPECIALISED {
+        return SPEC_KERNEL;
+    }
+    return params.kernel;
+}
+
+fn bias_mode() -> u32 {
+    if SPECIALISED {
+        return SPEC_BIAS_MODE;
+    }
+    return params.bias_mode;
+}
+
+fn clamp_outside() -> u32 {
+    if SPECIALISED {
+        return SPEC_CLAMP_OUTSIDE;
+    }
+    return params.clamp_outside;
+}
+
+fn is_orthographic(light: LightGpu) -> bool {
+    if SPECIALISED && SPEC_PROJECTION != SPEC_MIXED {
+        return SPEC_PROJECTION == SPEC_ALL_ORTHOGRAPHIC;
+    }
+    return light.orthographic == 1u;
+}
+
+fn is_angular(light: LightGpu) -> bool {
+    if SPECIALISED && SPEC_SIZE_MODEL != SPEC_MIXED {
+        return SPEC_SIZE_MODEL == SPEC_ALL_ANGULAR;
+    }
+    return light.size_model == SIZE_MODEL_ANGULAR;
+}
 
 // ---------------------------------------------------------------- what to sample
 
@@ -22,7 +85,7 @@ struct ShadowCoord {
 }
 
 fn depth_linear_from_ndc(light: LightGpu, z: f32) -> f32 {
-    if light.orthographic == 1u {
+    if is_orthographic(light) {
         return light.near + z * (light.far - light.near);
     }
     return light.near * light.far / (light.far - z * (light.far - light.near));
@@ -30,7 +93,7 @@ fn depth_linear_from_ndc(light: LightGpu, z: f32) -> f32 {
 
 // dz/dd at distance d: turns a world-unit bias into NDC depth units.
 fn ndc_per_world(light: LightGpu, depth_linear: f32) -> f32 {
-    if light.orthographic == 1u {
+    if is_orthographic(light) {
         return 1.0 / (light.far - light.near);
     }
     return light.far * light.near / (depth_linear * depth_linear * (light.far - light.near));
@@ -38,14 +101,14 @@ fn ndc_per_world(light: LightGpu, depth_linear: f32) -> f32 {
 
 // One texel's footprint on a surface facing the light at distance d, world units.
 fn texel_world_at(light: LightGpu, depth_linear: f32) -> f32 {
-    if light.orthographic == 1u {
+    if is_orthographic(light) {
         return light.frustum_width_world / light.map_size_texels;
     }
     return 2.0 * depth_linear * light.tan_half_fov / light.map_size_texels;
 }
 
 fn light_dir_to(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
-    if light.orthographic == 1u {
+    if is_orthographic(light) {
         return -light.direction.xyz;
     }
     return normalize(light.position.xyz - world_pos);
@@ -76,7 +139,7 @@ fn light_space_lookup(light: LightGpu, world_pos: vec3<f32>, normal: vec3<f32>) 
 
 // Depth bias in NDC units (REFERENCES "Bias"). `filter_radius_texels` grows the adaptive bias.
 fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: f32) -> f32 {
-    switch params.bias_mode {
+    switch bias_mode() {
         case BIAS_CONSTANT: {
             return params.bias;
         }
@@ -117,7 +180,7 @@ fn outside_frustum(coord: ShadowCoord) -> bool {
 // Stored depth at a uv, point-sampled. Without clamping the lookup wraps, the classic bug.
 fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
     var lookup = uv;
-    if params.clamp_outside == 0u {
+    if clamp_outside() == 0u {
         lookup = fract(uv);
     }
     let size = i32(light.map_size_texels);
@@ -127,12 +190,12 @@ fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
 
 // 1 = lit, 0 = shadowed, for one tap. Outside the light frustum counts as lit when clamped.
 fn depth_test(light: LightGpu, uv: vec2<f32>, receiver_ndc: f32, bias_ndc: f32) -> f32 {
-    if params.clamp_outside == 1u && (outside_map(uv) || outside_depth(receiver_ndc)) {
+    if clamp_outside() == 1u && (outside_map(uv) || outside_depth(receiver_ndc)) {
         return 1.0;
     }
-    if params.kernel == KERNEL_HARDWARE && params.technique != TECHNIQUE_HARD {
+    if kernel() == KERNEL_HARDWARE && technique() != TECHNIQUE_HARD {
         var lookup = uv;
-        if params.clamp_outside == 0u {
+        if clamp_outside() == 0u {
             lookup = fract(uv);
         }
         // Bilinear 2x2 comparison in the sampler (LessEqual: lit where reference <= stored).
@@ -158,44 +221,35 @@ fn wrap_angle(a: f32) -> f32 {
     return a - TAU * floor(a / TAU + 0.5);
 }
 
-fn rotate2(p: vec2<f32>, angle: f32) -> vec2<f32> {
-    let c = cos(angle);
-    let s = sin(angle);
-    return vec2<f32>(c * p.x - s * p.y, s * p.x + c * p.y);
+// The pixel's rotation of the pattern, as (cos, sin) of TAU * unit_float(seed): one sin and
+// one cos per pixel, not per tap.
+fn pixel_rotation(seed: u32) -> vec2<f32> {
+    let angle = wrap_angle(TAU * unit_float(seed));
+    return vec2<f32>(cos(angle), sin(angle));
 }
 
-// Tap i of n in the unit disk. `seed` is the pixel's noise seed; `rotation` = TAU * unit_float(seed).
-fn kernel_offset(kernel: u32, i: u32, n: u32, seed: u32) -> vec2<f32> {
-    let rotation = TAU * unit_float(seed);
-    switch kernel {
-        case KERNEL_POISSON: {
-            // GAMES202 poissonDiskSamples: a spiral, radius ((i+1)/n)^0.75, NUM_RINGS turns.
-            let angle = wrap_angle(rotation + f32(i) * TAU * NUM_RINGS / f32(n));
-            let r = pow(f32(i + 1u) / f32(n), 0.75);
-            return vec2<f32>(cos(angle), sin(angle)) * r;
-        }
-        case KERNEL_UNIFORM: {
-            // GAMES202 uniformDiskSamples: (cos 2 pi x, sin 2 pi x) * sqrt(y), uniform over area.
-            let h = pcg_hash(seed ^ pcg_hash(i + 1u));
-            let x = unit_float(h);
-            let y = unit_float(pcg_hash(h));
-            return vec2<f32>(cos(TAU * x), sin(TAU * x)) * sqrt(y);
-        }
-        case KERNEL_GRID: {
-            // LearnOpenGL's 3x3 is side = 3, radius 1 texel: offsets -1, 0, 1.
-            let side = grid_side(n);
-            if side == 1u {
-                return vec2<f32>(0.0);
-            }
-            let g = vec2<f32>(f32(i % side), f32(i / side));
-            return rotate2(g / f32(side - 1u) * 2.0 - vec2<f32>(1.0), rotation);
-        }
-        default: {
-            // Vogel disk: golden-angle spiral, radius sqrt((i + 0.5) / n).
-            let angle = wrap_angle(f32(i) * GOLDEN_ANGLE + rotation);
-            return vec2<f32>(cos(angle), sin(angle)) * sqrt((f32(i) + 0.5) / f32(n));
-        }
+fn rotate_by(p: vec2<f32>, rotation: vec2<f32>) -> vec2<f32> {
+    return vec2<f32>(rotation.x * p.x - rotation.y * p.y, rotation.y * p.x + rotation.x * p.y);
+}
+
+// Tap i of n in the unit disk. The patterns are computed once on the CPU into `kernel_table`
+// (src/shadow/kernels.rs, `kernel_base`, which the CPU twin uses too) and turned by the pixel's
+// rotation here:
+//   poisson (GAMES202 poissonDiskSamples): angle i * TAU * 10 / n (NUM_RINGS = 10), radius ((i+1)/n)^0.75;
+//   vogel: angle i * GOLDEN_ANGLE, radius sqrt((i + 0.5) / n);
+//   grid: side x side points over [-1, 1]^2 (LearnOpenGL's 3x3 is side = 3: offsets -1, 0, 1).
+// `table_start` is FILTER_TABLE or SEARCH_TABLE.
+fn kernel_offset(kernel: u32, table_start: u32, i: u32, seed: u32, rotation: vec2<f32>) -> vec2<f32> {
+    if kernel == KERNEL_UNIFORM {
+        // GAMES202 uniformDiskSamples: (cos 2 pi x, sin 2 pi x) * sqrt(y), new random points per
+        // pixel, so there is no table to turn.
+        let h = pcg_hash(seed ^ pcg_hash(i + 1u));
+        let x = unit_float(h);
+        let y = unit_float(pcg_hash(h));
+        return vec2<f32>(cos(TAU * x), sin(TAU * x)) * sqrt(y);
     }
+    let taps = kernel_table[i];
+    return rotate_by(select(taps.xy, taps.zw, table_start == SEARCH_TABLE), rotation);
 }
 
 fn filter_taps(kernel: u32, samples: u32) -> u32 {
@@ -211,7 +265,7 @@ fn filter_taps(kernel: u32, samples: u32) -> u32 {
 // Hard shadow: one depth comparison.
 fn visibility_hard(light: LightGpu, coord: ShadowCoord) -> f32 {
     let bias = receiver_bias_ndc(light, coord, 0.0);
-    if params.clamp_outside == 1u && outside_frustum(coord) {
+    if clamp_outside() == 1u && outside_frustum(coord) {
         return 1.0;
     }
     return select(0.0, 1.0, coord.depth_ndc - bias <= stored_depth_ndc(light, coord.uv));
@@ -219,12 +273,13 @@ fn visibility_hard(light: LightGpu, coord: ShadowCoord) -> f32 {
 
 // PCF: V = (1/N) sum_i [d_receiver - bias <= map(uv + r * s_i)], r in uv = radius_texels / map_size.
 fn visibility_pcf(light: LightGpu, coord: ShadowCoord, radius_texels: f32, seed: u32) -> f32 {
-    let n = filter_taps(params.kernel, params.samples);
+    let n = filter_taps(kernel(), params.samples);
     let radius_uv = radius_texels / light.map_size_texels;
     let bias = receiver_bias_ndc(light, coord, radius_texels);
+    let rotation = pixel_rotation(seed);
     var lit = 0.0;
     for (var i = 0u; i < n; i++) {
-        let uv = coord.uv + kernel_offset(params.kernel, i, n, seed) * radius_uv;
+        let uv = coord.uv + kernel_offset(kernel(), FILTER_TABLE, i, seed, rotation) * radius_uv;
         lit += depth_test(light, uv, coord.depth_ndc, bias);
     }
     return lit / f32(n);
@@ -241,25 +296,26 @@ struct BlockerSearch {
 fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSearch {
     var out: BlockerSearch;
     // No map data for this receiver: nothing to search (and nothing to report).
-    if params.clamp_outside == 1u && outside_frustum(coord) {
+    if clamp_outside() == 1u && outside_frustum(coord) {
         return out;
     }
     let d_r = coord.depth_linear;
     var radius_world = 0.0;
-    if light.size_model == SIZE_MODEL_ANGULAR {
+    if is_angular(light) {
         radius_world = (d_r - light.near) * light.tan_half_angle;
     } else {
         radius_world = 0.5 * light.light_width_world * (d_r - light.near) / d_r;
     }
     let radius_uv = max(radius_world, 0.0) / light.frustum_width_world;
     out.radius_texels = radius_uv * light.map_size_texels;
-    let kernel = select(params.kernel, KERNEL_VOGEL, params.kernel == KERNEL_HARDWARE);
-    let n = filter_taps(kernel, params.blocker_samples);
+    let search_kernel = select(kernel(), KERNEL_VOGEL, kernel() == KERNEL_HARDWARE);
+    let n = filter_taps(search_kernel, params.blocker_samples);
     let bias = receiver_bias_ndc(light, coord, 0.0);
+    let rotation = pixel_rotation(seed);
     var sum = 0.0;
     for (var i = 0u; i < n; i++) {
-        let uv = coord.uv + kernel_offset(kernel, i, n, seed) * radius_uv;
-        if params.clamp_outside == 1u && outside_map(uv) {
+        let uv = coord.uv + kernel_offset(search_kernel, SEARCH_TABLE, i, seed, rotation) * radius_uv;
+        if clamp_outside() == 1u && outside_map(uv) {
             continue;
         }
         let z = stored_depth_ndc(light, uv);
@@ -287,13 +343,13 @@ fn estimate_penumbra(light: LightGpu, coord: ShadowCoord, d_blocker: f32) -> Pen
     var out: Penumbra;
     let d_r = coord.depth_linear;
     let gap = max(d_r - d_blocker, 0.0);
-    if light.size_model == SIZE_MODEL_ANGULAR {
+    if is_angular(light) {
         out.width_world = gap * 2.0 * light.tan_half_angle;
     } else {
         out.width_world = light.light_width_world * gap / max(d_blocker, 1e-6);
     }
     var radius_uv = 0.5 * out.width_world / light.frustum_width_world;
-    if light.orthographic == 0u {
+    if !is_orthographic(light) {
         radius_uv = radius_uv * light.near / d_r;
     }
     out.filter_radius_texels = max(radius_uv * light.map_size_texels, params.min_filter_radius_texels);
@@ -322,12 +378,15 @@ fn visibility_pcss(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult
 // The selected technique, with PCSS's intermediate values for the debug views.
 fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult {
     var out: PcssResult;
-    switch params.technique {
+    switch technique() {
         case TECHNIQUE_PCF: {
             out.visibility = visibility_pcf(light, coord, params.radius_texels, seed);
         }
         case TECHNIQUE_PCSS: {
             out = visibility_pcss(light, coord, seed);
+        }
+        case TECHNIQUE_NONE: {
+            out.visibility = 1.0;
         }
         default: {
             out.visibility = visibility_hard(light, coord);

@@ -111,7 +111,7 @@ pub fn probe(
         twin.trace = Some(Vec::new());
         let (coord, result) = twin.analysis_at(pixel, position, normal);
         let filter_radius_texels = match scene.shadow.technique {
-            Technique::Hard => 0.0,
+            Technique::None | Technique::Hard => 0.0,
             Technique::Pcf => scene.shadow.radius_texels,
             Technique::Pcss if result.search.found > 0 => result.penumbra.filter_radius_texels,
             Technique::Pcss => 0.0,
@@ -154,6 +154,7 @@ pub fn probe(
             filter_radius_texels,
             // Taps the filter really took: PCSS skips it where no blocker was found.
             filter_samples: match scene.shadow.technique {
+                Technique::None => 0,
                 Technique::Hard => 1,
                 Technique::Pcss if result.search.found == 0 => 0,
                 _ => scene.shadow.effective_samples(),

@@ -1,17 +1,35 @@
-//! `shadowlab bench`: median frame time per technique, and per-pass GPU times where the adapter
-//! has timestamp queries.
+//! `shadowlab bench`: frame time per technique on an animated scene (the GAMES202 homework
+//! workload by default), with per-pass GPU times where the adapter has timestamp queries.
+//!
+//! Each timed frame advances scene time by 1/30 s, so lights orbit and objects spin and every
+//! shadow map is redrawn as it would be in the app; `--still` keeps the time fixed.
 
 use super::{BenchArgs, CliError, gpu};
 use crate::render::FrameRequest;
-use crate::scene::{Technique, load_scene};
+use crate::scene::{Scene, Technique, load_scene};
 use serde::Serialize;
 use std::time::Instant;
+
+/// Scene time between two timed frames, seconds (a 30 frames/s playback).
+const FRAME_STEP_S: f32 = 1.0 / 30.0;
 
 #[derive(Serialize)]
 struct BenchRow {
     technique: String,
+    /// Wall-clock time of render + wait, per frame: median and minimum.
     median_frame_ms: f64,
     min_frame_ms: f64,
+    /// GPU time of all shadow passes and of the camera pass (medians), where timestamps exist.
+    shadow_pass_ms: Option<f64>,
+    camera_pass_ms: Option<f64>,
+    /// Every timed frame, in order.
+    frames: Vec<FrameTimes>,
+}
+
+#[derive(Serialize)]
+struct FrameTimes {
+    time_s: f32,
+    frame_ms: f64,
     shadow_pass_ms: Option<f64>,
     camera_pass_ms: Option<f64>,
 }
@@ -20,51 +38,110 @@ struct BenchRow {
 struct BenchReport {
     adapter: String,
     scene: String,
+    overrides: Vec<String>,
     size: [u32; 2],
     frames: u32,
+    start_time_s: f32,
+    animated: bool,
     rows: Vec<BenchRow>,
 }
 
-fn median(values: &mut [f64]) -> f64 {
-    values.sort_by(f64::total_cmp);
-    values[values.len() / 2]
+fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    sorted[sorted.len() / 2]
 }
 
-/// (label, technique, filter samples, blocker samples)
-const CASES: [(&str, Technique, u32, u32); 6] = [
-    ("hard", Technique::Hard, 1, 1),
-    ("pcf 16", Technique::Pcf, 16, 1),
-    ("pcf 32", Technique::Pcf, 32, 1),
-    ("pcf 64", Technique::Pcf, 64, 1),
-    ("pcss 16+16", Technique::Pcss, 16, 16),
-    ("pcss 32+32", Technique::Pcss, 32, 32),
-];
+/// One row: a label, a technique and its sample counts (`None` keeps the scene's value).
+struct Case {
+    label: String,
+    technique: Technique,
+    samples: Option<u32>,
+    blocker_samples: Option<u32>,
+}
+
+/// The rows: `none` (shading without any shadow lookup: the per-pixel floor), hard, PCF and PCSS
+/// at 16 and 32 samples, and both at the scene's own sample counts (50 + 50 on the homework).
+fn cases(scene: &Scene) -> Vec<Case> {
+    let case = |label: String, technique, samples, blocker_samples| Case {
+        label,
+        technique,
+        samples,
+        blocker_samples,
+    };
+    let (n, nb) = (scene.shadow.samples, scene.shadow.blocker_samples);
+    let mut out = vec![
+        case("none".into(), Technique::None, None, None),
+        case("hard".into(), Technique::Hard, None, None),
+    ];
+    let mut pcf_counts = vec![16, 32];
+    if !pcf_counts.contains(&n) {
+        pcf_counts.push(n);
+    }
+    for s in &pcf_counts {
+        out.push(case(format!("pcf {s}"), Technique::Pcf, Some(*s), None));
+    }
+    let mut pcss_counts = vec![(16, 16), (32, 32)];
+    if !pcss_counts.contains(&(n, nb)) {
+        pcss_counts.push((n, nb));
+    }
+    for (s, b) in pcss_counts {
+        out.push(case(format!("pcss {b}+{s}"), Technique::Pcss, Some(s), Some(b)));
+    }
+    out
+}
+
+/// `--only` picks rows by label ("pcss 50+50") or by technique name ("pcss": all its rows).
+fn selected(case: &Case, only: &[String]) -> bool {
+    only.is_empty()
+        || only.iter().any(|o| {
+            let o = o.trim();
+            case.label == o || case.label.split(' ').next() == Some(o)
+        })
+}
 
 pub fn run(args: BenchArgs) -> Result<(), CliError> {
-    let base = load_scene(&args.scene, &[])?;
+    let scene_path = args.scene.clone().unwrap_or_else(|| crate::shipped_path(super::DEFAULT_BENCH_SCENE));
+    let base = load_scene(&scene_path, &args.set)?;
+    let cases: Vec<Case> = cases(&base).into_iter().filter(|c| selected(c, &args.only)).collect();
+    if cases.is_empty() {
+        return Err(CliError::input(format!(
+            "--only {}: no such row (rows: {})",
+            args.only.join(","),
+            self::cases(&base).iter().map(|c| c.label.as_str()).collect::<Vec<_>>().join(", ")
+        )));
+    }
     let (ctx, mut renderer) = gpu()?;
     let adapter = ctx.describe();
+    let animated = !args.still;
+    let start_time_s = args.time.unwrap_or(0.0);
     if !args.json {
         println!("adapter: {adapter}");
         println!(
-            "scene: {}  size: {}x{}  frames: {}",
-            args.scene.display(),
+            "scene: {}  size: {}x{}  frames: {}  time: {start_time_s} s{}",
+            scene_path.display(),
             args.size.0,
             args.size.1,
-            args.frames
+            args.frames,
+            if animated { " (+1/30 s per frame)" } else { " (still)" }
         );
         println!(
-            "{:<12} {:>12} {:>10} {:>12} {:>12}",
+            "{:<14} {:>12} {:>10} {:>12} {:>12}",
             "technique", "median ms", "min ms", "shadow ms", "camera ms"
         );
     }
     let mut rows = Vec::new();
-    for (label, technique, samples, blocker_samples) in CASES {
+    for case in cases {
         let mut scene = base.clone();
-        scene.shadow.technique = technique;
-        scene.shadow.samples = samples;
-        scene.shadow.blocker_samples = blocker_samples;
-        let request = FrameRequest {
+        scene.shadow.technique = case.technique;
+        if let Some(s) = case.samples {
+            scene.shadow.samples = s;
+        }
+        if let Some(b) = case.blocker_samples {
+            scene.shadow.blocker_samples = b;
+        }
+        let request_at = |time_s| FrameRequest {
+            time_s,
             size: args.size,
             final_color: true,
             analysis: false,
@@ -72,31 +149,39 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
             ..Default::default()
         };
         for _ in 0..2 {
-            renderer.render(&scene, &request)?;
+            renderer.render(&scene, &request_at(start_time_s))?;
             renderer.wait_idle()?;
         }
-        let (mut frame_ms, mut shadow_ms, mut camera_ms) = (Vec::new(), Vec::new(), Vec::new());
-        for _ in 0..args.frames {
+        let mut frames = Vec::new();
+        for i in 0..args.frames {
+            let time_s = if animated { start_time_s + i as f32 * FRAME_STEP_S } else { start_time_s };
             let start = Instant::now();
-            renderer.render(&scene, &request)?;
+            renderer.render(&scene, &request_at(time_s))?;
             renderer.wait_idle()?;
-            frame_ms.push(start.elapsed().as_secs_f64() * 1e3);
-            if let Some(times) = renderer.last_pass_times()? {
-                shadow_ms.push(times.shadow_ms);
-                camera_ms.push(times.camera_ms);
-            }
+            let frame_ms = start.elapsed().as_secs_f64() * 1e3;
+            let times = renderer.last_pass_times()?;
+            frames.push(FrameTimes {
+                time_s,
+                frame_ms,
+                shadow_pass_ms: times.map(|t| t.shadow_ms),
+                camera_pass_ms: times.map(|t| t.camera_ms),
+            });
         }
+        let frame_ms: Vec<f64> = frames.iter().map(|f| f.frame_ms).collect();
+        let shadow_ms: Vec<f64> = frames.iter().filter_map(|f| f.shadow_pass_ms).collect();
+        let camera_ms: Vec<f64> = frames.iter().filter_map(|f| f.camera_pass_ms).collect();
         let row = BenchRow {
-            technique: label.to_string(),
+            technique: case.label,
             min_frame_ms: frame_ms.iter().copied().fold(f64::INFINITY, f64::min),
-            median_frame_ms: median(&mut frame_ms),
-            shadow_pass_ms: (!shadow_ms.is_empty()).then(|| median(&mut shadow_ms)),
-            camera_pass_ms: (!camera_ms.is_empty()).then(|| median(&mut camera_ms)),
+            median_frame_ms: median(&frame_ms),
+            shadow_pass_ms: (!shadow_ms.is_empty()).then(|| median(&shadow_ms)),
+            camera_pass_ms: (!camera_ms.is_empty()).then(|| median(&camera_ms)),
+            frames,
         };
         if !args.json {
             let opt = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.2}"));
             println!(
-                "{:<12} {:>12.2} {:>10.2} {:>12} {:>12}",
+                "{:<14} {:>12.2} {:>10.2} {:>12} {:>12}",
                 row.technique,
                 row.median_frame_ms,
                 row.min_frame_ms,
@@ -109,9 +194,12 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
     if args.json {
         let report = BenchReport {
             adapter,
-            scene: args.scene.display().to_string(),
+            scene: scene_path.display().to_string(),
+            overrides: args.set.iter().map(|(k, v)| format!("{k}={v}")).collect(),
             size: [args.size.0, args.size.1],
             frames: args.frames,
+            start_time_s,
+            animated,
             rows,
         };
         let json = serde_json::to_string_pretty(&report)

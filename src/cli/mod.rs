@@ -90,17 +90,33 @@ pub struct ProbeArgs {
 
 #[derive(Args, Debug)]
 pub struct BenchArgs {
-    #[arg(long, default_value = "assets/scenes/games202.toml")]
-    pub scene: PathBuf,
-    #[arg(long, default_value = "960x540", value_parser = parse_size)]
+    /// Scene file (default: the GAMES202 homework workload, assets/scenes/homework.toml).
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
+    /// Override a scene value, as for `render`.
+    #[arg(long = "set", value_name = "KEY=VALUE", value_parser = parse_key_value)]
+    pub set: Vec<(String, String)>,
+    /// Scene time of the first frame, seconds.
+    #[arg(long, value_parser = parse_time)]
+    pub time: Option<f32>,
+    /// Keep the scene time fixed (by default each frame advances it by 1/30 s).
+    #[arg(long)]
+    pub still: bool,
+    /// Only these rows: a label ("pcss 50+50") or a technique (none, hard, pcf, pcss); comma-separated.
+    #[arg(long, value_delimiter = ',')]
+    pub only: Vec<String>,
+    #[arg(long, default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Timed frames per technique (after two warm-up frames).
-    #[arg(long, default_value_t = 30, value_parser = clap::value_parser!(u32).range(1..=10_000))]
+    /// Timed frames per row (after two warm-up frames).
+    #[arg(long, default_value_t = 15, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub frames: u32,
-    /// Print JSON instead of a table.
+    /// Print JSON (every frame's times) instead of a table.
     #[arg(long)]
     pub json: bool,
 }
+
+/// The scene `bench` measures when none is given.
+pub const DEFAULT_BENCH_SCENE: &str = "assets/scenes/homework.toml";
 
 #[derive(Args, Debug)]
 pub struct ExportArgs {

@@ -474,6 +474,7 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
     let title = tr(lang, "Probe", "探针");
     p.text(title, r.x as f32 + pad + u(30.0), y, head, pal::INK, true);
     let technique_name = match technique {
+        Technique::None => tr(lang, "no shadows", "无阴影"),
         Technique::Hard => tr(lang, "hard shadows", "硬阴影"),
         Technique::Pcf => "PCF",
         Technique::Pcss => "PCSS",
@@ -515,7 +516,7 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
             rows.push((tr(lang, "bias", "偏移"), format!("{} NDC", bias_num(l.bias_ndc))));
             let texels = tr(lang, "texels", "纹素");
             match technique {
-                Technique::Hard => {}
+                Technique::None | Technique::Hard => {}
                 Technique::Pcf => {
                     rows.push((
                         tr(lang, "filter radius", "滤波半径"),

@@ -96,6 +96,7 @@ impl ShadowParamsGpu {
         Self {
             technique: match s.technique {
                 Technique::Hard => 0,
+                Technique::None => 3,
                 Technique::Pcf => 1,
                 Technique::Pcss => 2,
             },

@@ -16,9 +16,10 @@ pub use gpu_types::{LightGpu, ShadowParamsGpu};
 pub use pipelines::COLOR_FORMAT;
 pub use timing::PassTimes;
 
-use crate::scene::{MAX_LIGHTS, Scene};
+use crate::scene::{Kernel, MAX_LIGHTS, Scene, ShadowSettings};
+use crate::shadow::kernels::{MAX_TAPS, filter_taps, kernel_table};
 use gpu_types::{DYNAMIC_STRIDE, FrameGpu, ShadowViewGpu};
-use pipelines::{Layouts, Pipelines, ShadowPipelineKey};
+use pipelines::{CameraPipelineKey, Layouts, Pipelines, ShadowPipelineKey};
 use scene_gpu::SceneGpu;
 use targets::{ShadowMaps, ViewTargets};
 
@@ -103,6 +104,8 @@ pub struct Renderer {
     lights_buffer: wgpu::Buffer,
     params_buffer: wgpu::Buffer,
     shadow_view_buffer: wgpu::Buffer,
+    /// Unit-disk patterns, unrotated: tap i of the filter in xy, of the blocker search in zw.
+    kernel_table_buffer: wgpu::Buffer,
     frame_bind_group: wgpu::BindGroup,
     shadow_view_bind_group: wgpu::BindGroup,
     compare_sampler: wgpu::Sampler,
@@ -156,6 +159,12 @@ impl Renderer {
         let params_buffer =
             uniform_buffer(device, "shadow params", std::mem::size_of::<ShadowParamsGpu>() as u64);
         let shadow_view_buffer = uniform_buffer(device, "shadow views", DYNAMIC_STRIDE * MAX_LIGHTS as u64);
+        let kernel_table_buffer = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("kernel table"),
+            size: u64::from(MAX_TAPS) * 16,
+            usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+            mapped_at_creation: false,
+        });
         let frame_bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("frame"),
             layout: &layouts.frame,
@@ -176,6 +185,7 @@ impl Renderer {
             lights_buffer,
             params_buffer,
             shadow_view_buffer,
+            kernel_table_buffer,
             frame_bind_group,
             shadow_view_bind_group,
             shadow_maps: None,
@@ -266,6 +276,15 @@ impl Renderer {
             cull_front_faces: scene.shadow.cull_front_faces,
         };
         let shadow_pipeline = self.pipelines.shadow(&self.device, key).clone();
+        let final_pipeline = self
+            .pipelines
+            .camera(&self.device, CameraPipelineKey::new(&self.frame_params, &self.frame_lights, false))
+            .clone();
+        let analysis_pipeline = request.analysis.then(|| {
+            self.pipelines
+                .camera(&self.device, CameraPipelineKey::new(&self.frame_params, &self.frame_lights, true))
+                .clone()
+        });
         let timer = self.timer.as_ref().filter(|_| request.timestamps);
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
@@ -304,24 +323,42 @@ impl Renderer {
             }
         }
 
-        // Pass 2: the camera view, and the float analysis targets for the selected light.
-        let depth_clear = || {
+        // Pass 2: the camera view, and the float analysis targets for the selected light. A depth
+        // pre-pass first, so that the shading below runs once per visible pixel.
+        let passes = [(request.final_color, true), (request.analysis, false)];
+        let last_camera = passes.iter().rposition(|p| p.0);
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("camera depth pre-pass"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: timer.and_then(|t| t.span_writes(1, true, last_camera.is_none())),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(&self.pipelines.camera_depth);
+            pass.set_bind_group(0, &self.frame_bind_group, &[]);
+            pass.set_bind_group(1, lights_group, &[]);
+            scene_gpu.draw(&mut pass, 2);
+        }
+        let depth_load = || {
             Some(wgpu::RenderPassDepthStencilAttachment {
                 view: &targets.depth_view,
-                depth_ops: Some(wgpu::Operations {
-                    load: wgpu::LoadOp::Clear(1.0),
-                    store: wgpu::StoreOp::Discard,
-                }),
+                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
                 stencil_ops: None,
             })
         };
-        let passes = [(request.final_color, true), (request.analysis, false)];
-        let last_camera = passes.iter().rposition(|p| p.0);
         for (index, (wanted, is_final)) in passes.into_iter().enumerate() {
             if !wanted {
                 continue;
             }
-            let first = passes.iter().position(|p| p.0) == Some(index);
             let color_attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = if is_final {
                 vec![Some(wgpu::RenderPassColorAttachment {
                     view: &targets.color_view,
@@ -352,16 +389,14 @@ impl Renderer {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(if is_final { "camera pass" } else { "analysis pass" }),
                 color_attachments: &color_attachments,
-                depth_stencil_attachment: depth_clear(),
-                timestamp_writes: timer.and_then(|t| t.span_writes(1, first, Some(index) == last_camera)),
+                depth_stencil_attachment: depth_load(),
+                timestamp_writes: timer.and_then(|t| t.span_writes(1, false, Some(index) == last_camera)),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
-            pass.set_pipeline(if is_final {
-                &self.pipelines.camera_final
-            } else {
-                &self.pipelines.camera_analysis
-            });
+            let pipeline = if is_final { Some(&final_pipeline) } else { analysis_pipeline.as_ref() };
+            let Some(pipeline) = pipeline else { continue };
+            pass.set_pipeline(pipeline);
             pass.set_bind_group(0, &self.frame_bind_group, &[]);
             pass.set_bind_group(1, lights_group, &[]);
             scene_gpu.draw(&mut pass, 2);
@@ -427,6 +462,7 @@ impl Renderer {
         }
         self.frame_params = ShadowParamsGpu::new(&scene.shadow);
         self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.frame_params));
+        self.write_kernel_table(&scene.shadow);
         let aspect = request.size.0 as f32 / request.size.1 as f32;
         let frame = FrameGpu {
             clip_from_world: scene.camera.clip_from_world(aspect).to_cols_array_2d(),
@@ -442,7 +478,26 @@ impl Renderer {
         }
     }
 
-    /// Group 1 of the camera and reference shaders: light(s), parameters, maps, compare sampler.
+    /// The filter's and the blocker search's patterns for these settings (what `kernel_offset`
+    /// in shaders/shadow_sampling.wgsl turns per pixel).
+    fn write_kernel_table(&self, shadow: &ShadowSettings) {
+        let search_kernel =
+            if shadow.pcf_kernel == Kernel::Hardware { Kernel::Vogel } else { shadow.pcf_kernel };
+        let filter = kernel_table(shadow.pcf_kernel, filter_taps(shadow.pcf_kernel, shadow.samples));
+        let search = kernel_table(search_kernel, filter_taps(search_kernel, shadow.blocker_samples));
+        // Tap i: filter in xy, search in zw.
+        let mut table = vec![[0.0f32; 4]; MAX_TAPS as usize];
+        for (slot, tap) in table.iter_mut().zip(&filter) {
+            slot[..2].copy_from_slice(&tap.to_array());
+        }
+        for (slot, tap) in table.iter_mut().zip(&search) {
+            slot[2..].copy_from_slice(&tap.to_array());
+        }
+        self.queue.write_buffer(&self.kernel_table_buffer, 0, bytemuck::cast_slice(&table));
+    }
+
+    /// Group 1 of the camera and reference shaders: light(s), parameters, maps, compare sampler,
+    /// kernel table.
     fn shadow_inputs_group(
         &self,
         layout: &wgpu::BindGroupLayout,
@@ -464,6 +519,7 @@ impl Renderer {
                     binding: 3,
                     resource: wgpu::BindingResource::Sampler(&self.compare_sampler),
                 },
+                wgpu::BindGroupEntry { binding: 4, resource: self.kernel_table_buffer.as_entire_binding() },
             ],
         })
     }
@@ -562,8 +618,9 @@ fn first_cause(e: &wgpu::Error) -> String {
     }
 }
 
-/// Background of the camera view, already sRGB-encoded (the target stores sRGB bytes).
-const BACKGROUND: wgpu::Color = wgpu::Color { r: 0.16, g: 0.17, b: 0.20, a: 1.0 };
+/// Background of the camera view, linear: the sRGB view stores it as the bytes of sRGB
+/// (0.16, 0.17, 0.20).
+const BACKGROUND: wgpu::Color = wgpu::Color { r: 0.021_981, g: 0.024_515, b: 0.033_105, a: 1.0 };
 
 fn shadow_view_group(device: &wgpu::Device, layouts: &Layouts, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {

@@ -1,11 +1,17 @@
 //! Bind group layouts and pipelines. Bind groups by update rate: 0 per frame, 1 lights and
 //! shadow maps, 2 per object (the shadow pass uses 0 = light view, 1 = object).
 
+use super::gpu_types::{LightGpu, ShadowParamsGpu};
 use super::shaders;
 use crate::scene::Vertex;
 use std::collections::HashMap;
 
+/// The camera view's texture: sRGB-encoded bytes in an Rgba8Unorm texture (what egui's native
+/// textures expect and what is read back to PNG)...
 pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// ...written through an sRGB view, so the encoding happens at the store and the shader
+/// returns linear colour (no per-pixel `pow`).
+pub const COLOR_TARGET_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 pub const ANALYSIS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Number of float targets of the analysis pass: shadow terms, position, normal.
@@ -55,7 +61,8 @@ fn sampler_entry(
     wgpu::BindGroupLayoutEntry { binding, visibility, ty: wgpu::BindingType::Sampler(ty), count: None }
 }
 
-/// Group 1 of the camera and reference shaders: light(s), params, shadow maps, compare sampler.
+/// Group 1 of the camera and reference shaders: light(s), params, shadow maps, compare sampler,
+/// kernel table.
 fn shadow_inputs_layout(device: &wgpu::Device, label: &str, dynamic_light: bool) -> wgpu::BindGroupLayout {
     let all = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
@@ -65,6 +72,16 @@ fn shadow_inputs_layout(device: &wgpu::Device, label: &str, dynamic_light: bool)
             uniform_entry(1, all, false),
             texture_entry(2, all, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
             sampler_entry(3, all, wgpu::SamplerBindingType::Comparison),
+            wgpu::BindGroupLayoutEntry {
+                binding: 4,
+                visibility: all,
+                ty: wgpu::BindingType::Buffer {
+                    ty: wgpu::BufferBindingType::Uniform,
+                    has_dynamic_offset: false,
+                    min_binding_size: None,
+                },
+                count: None,
+            },
         ],
     })
 }
@@ -132,12 +149,53 @@ pub struct ShadowPipelineKey {
     pub cull_front_faces: bool,
 }
 
+/// What a camera pipeline is specialised for: the switch values of shaders/shadow_sampling.wgsl
+/// (as `ShadowParamsGpu` numbers them) and which fragment entry point it runs.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct CameraPipelineKey {
+    pub technique: u32,
+    pub kernel: u32,
+    pub bias_mode: u32,
+    pub clamp_outside: u32,
+    /// What all lights share (SPEC_* in the shader; 0 = mixed).
+    pub projection: u32,
+    pub size_model: u32,
+    pub light_count: u32,
+    /// `fs_analysis` (float targets) rather than `fs_final` (colour).
+    pub analysis: bool,
+}
+
+impl CameraPipelineKey {
+    pub fn new(params: &ShadowParamsGpu, lights: &[LightGpu], analysis: bool) -> Self {
+        // 1 or 2 where every light agrees (SPEC_ALL_*), 0 where they differ or there are none.
+        let shared = |value: fn(&LightGpu) -> u32| match lights.split_first() {
+            Some((first, rest)) if rest.iter().all(|l| value(l) == value(first)) => value(first) + 1,
+            _ => 0,
+        };
+        Self {
+            technique: params.technique,
+            kernel: params.kernel,
+            bias_mode: params.bias_mode,
+            clamp_outside: params.clamp_outside,
+            // SPEC_ALL_ORTHOGRAPHIC = 1, SPEC_ALL_PERSPECTIVE = 2.
+            projection: shared(|l| 1 - l.orthographic.min(1)),
+            // SPEC_ALL_WIDTH = 1, SPEC_ALL_ANGULAR = 2.
+            size_model: shared(|l| l.size_model.min(1)),
+            light_count: lights.len() as u32,
+            analysis,
+        }
+    }
+}
+
 pub struct Pipelines {
     shadow_module: wgpu::ShaderModule,
     shadow_layout: wgpu::PipelineLayout,
     shadow: HashMap<ShadowPipelineKey, wgpu::RenderPipeline>,
-    pub camera_final: wgpu::RenderPipeline,
-    pub camera_analysis: wgpu::RenderPipeline,
+    camera_module: wgpu::ShaderModule,
+    camera_layout: wgpu::PipelineLayout,
+    camera: HashMap<CameraPipelineKey, wgpu::RenderPipeline>,
+    /// The camera's depth pre-pass: depth only, no fragment shader.
+    pub camera_depth: wgpu::RenderPipeline,
     pub reference: wgpu::ComputePipeline,
 }
 
@@ -156,6 +214,18 @@ fn module(device: &wgpu::Device, source: shaders::ShaderSource) -> wgpu::ShaderM
         label: Some(source.name),
         source: wgpu::ShaderSource::Wgsl(source.source.into()),
     })
+}
+
+/// The camera passes after the depth pre-pass: only the nearest surface (already in the depth
+/// buffer) passes, so each pixel is shaded once however much geometry overlaps it.
+fn depth_state_after_prepass() -> wgpu::DepthStencilState {
+    wgpu::DepthStencilState {
+        format: DEPTH_FORMAT,
+        depth_write_enabled: Some(false),
+        depth_compare: Some(wgpu::CompareFunction::LessEqual),
+        stencil: wgpu::StencilState::default(),
+        bias: wgpu::DepthBiasState::default(),
+    }
 }
 
 fn depth_state(bias: wgpu::DepthBiasState) -> wgpu::DepthStencilState {
@@ -188,36 +258,6 @@ impl Pipelines {
             bind_group_layouts: &[Some(&layouts.reference_io), Some(&layouts.reference_light)],
             immediate_size: 0,
         });
-        let camera_pipeline = |label: &str, entry: &str, targets: &[Option<wgpu::ColorTargetState>]| {
-            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-                label: Some(label),
-                layout: Some(&camera_layout),
-                vertex: wgpu::VertexState {
-                    module: &camera_module,
-                    entry_point: Some("vs_camera"),
-                    compilation_options: Default::default(),
-                    buffers: &[Some(vertex_layout())],
-                },
-                primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-                depth_stencil: Some(depth_state(wgpu::DepthBiasState::default())),
-                multisample: wgpu::MultisampleState::default(),
-                fragment: Some(wgpu::FragmentState {
-                    module: &camera_module,
-                    entry_point: Some(entry),
-                    compilation_options: Default::default(),
-                    targets,
-                }),
-                multiview_mask: None,
-                cache: None,
-            })
-        };
-        let camera_final = camera_pipeline("camera final", "fs_final", &[Some(COLOR_FORMAT.into())]);
-        let analysis_target = Some(wgpu::ColorTargetState::from(ANALYSIS_FORMAT));
-        let camera_analysis = camera_pipeline(
-            "camera analysis",
-            "fs_analysis",
-            &[analysis_target.clone(), analysis_target.clone(), analysis_target],
-        );
         let reference = device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
             label: Some("reference"),
             layout: Some(&reference_layout),
@@ -226,14 +266,85 @@ impl Pipelines {
             compilation_options: Default::default(),
             cache: None,
         });
-        Self {
+        let camera_depth = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("camera depth pre-pass"),
+            layout: Some(&camera_layout),
+            vertex: wgpu::VertexState {
+                module: &camera_module,
+                entry_point: Some("vs_camera"),
+                compilation_options: Default::default(),
+                buffers: &[Some(vertex_layout())],
+            },
+            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            depth_stencil: Some(depth_state(wgpu::DepthBiasState::default())),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: None,
+            multiview_mask: None,
+            cache: None,
+        });
+        let mut pipelines = Self {
             shadow_module,
             shadow_layout,
             shadow: HashMap::new(),
-            camera_final,
-            camera_analysis,
+            camera_module,
+            camera_layout,
+            camera: HashMap::new(),
+            camera_depth,
             reference,
+        };
+        // Build the default variants now, so that a device that cannot compile them fails here.
+        let defaults = ShadowParamsGpu::new(&Default::default());
+        for analysis in [false, true] {
+            pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], analysis));
         }
+        pipelines
+    }
+
+    /// The camera pipeline specialised for `key`, built on first use.
+    pub fn camera(&mut self, device: &wgpu::Device, key: CameraPipelineKey) -> &wgpu::RenderPipeline {
+        let (module, layout) = (&self.camera_module, &self.camera_layout);
+        self.camera.entry(key).or_insert_with(|| {
+            let constants = [
+                ("SPECIALISED", 1.0),
+                ("SPEC_TECHNIQUE", f64::from(key.technique)),
+                ("SPEC_KERNEL", f64::from(key.kernel)),
+                ("SPEC_BIAS_MODE", f64::from(key.bias_mode)),
+                ("SPEC_CLAMP_OUTSIDE", f64::from(key.clamp_outside)),
+                ("SPEC_PROJECTION", f64::from(key.projection)),
+                ("SPEC_SIZE_MODEL", f64::from(key.size_model)),
+                ("SPEC_LIGHT_COUNT", f64::from(key.light_count)),
+            ];
+            let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
+            let analysis_target = Some(wgpu::ColorTargetState::from(ANALYSIS_FORMAT));
+            let final_targets = [Some(COLOR_TARGET_FORMAT.into())];
+            let analysis_targets = [analysis_target.clone(), analysis_target.clone(), analysis_target];
+            let (label, entry, targets): (_, _, &[Option<wgpu::ColorTargetState>]) = if key.analysis {
+                ("camera analysis", "fs_analysis", &analysis_targets)
+            } else {
+                ("camera final", "fs_final", &final_targets)
+            };
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(layout),
+                vertex: wgpu::VertexState {
+                    module,
+                    entry_point: Some("vs_camera"),
+                    compilation_options: options.clone(),
+                    buffers: &[Some(vertex_layout())],
+                },
+                primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+                depth_stencil: Some(depth_state_after_prepass()),
+                multisample: wgpu::MultisampleState::default(),
+                fragment: Some(wgpu::FragmentState {
+                    module,
+                    entry_point: Some(entry),
+                    compilation_options: options,
+                    targets,
+                }),
+                multiview_mask: None,
+                cache: None,
+            })
+        })
     }
 
     /// The shadow-pass pipeline for these settings, built on first use.

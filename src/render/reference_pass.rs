@@ -11,20 +11,43 @@ use crate::scene::Scene;
 /// Samples recorded per command buffer (keeps a submission's size bounded).
 const BATCH: usize = 32;
 
+/// Called after each batch of a progressive ground truth with (samples done, samples in all,
+/// the average so far); returning false stops the accumulation.
+pub type ReferenceProgress<'a> = &'a mut dyn FnMut(u32, u32, &[f32]) -> bool;
+
 impl Renderer {
     /// Ground-truth visibility of light `light_index` at every pixel of the last frame (which
     /// must have rendered the analysis targets), averaged over `scene.shadow.reference_samples`
     /// hard shadows from points (width model) or directions (angular model) over the light.
     /// Pixels with no surface get 1.
     pub fn render_reference(&mut self, scene: &Scene, light_index: usize) -> Result<Vec<f32>, RenderError> {
-        self.guarded(|r| r.render_reference_unguarded(scene, light_index))
+        let done = self.guarded(|r| r.render_reference_unguarded(scene, light_index, BATCH, BATCH, None))?;
+        done.ok_or_else(|| RenderError::Usage("the ground truth was stopped".into()))
+    }
+
+    /// The same ground truth, read back after every batch (`first_batch` samples, doubling up to
+    /// `max_batch`) and handed to `progress`; None where `progress` stopped it.
+    pub fn render_reference_progressive(
+        &mut self,
+        scene: &Scene,
+        light_index: usize,
+        first_batch: usize,
+        max_batch: usize,
+        progress: ReferenceProgress<'_>,
+    ) -> Result<Option<Vec<f32>>, RenderError> {
+        self.guarded(|r| {
+            r.render_reference_unguarded(scene, light_index, first_batch, max_batch, Some(progress))
+        })
     }
 
     fn render_reference_unguarded(
         &mut self,
         scene: &Scene,
         light_index: usize,
-    ) -> Result<Vec<f32>, RenderError> {
+        first_batch: usize,
+        max_batch: usize,
+        mut progress: Option<ReferenceProgress<'_>>,
+    ) -> Result<Option<Vec<f32>>, RenderError> {
         let request = self
             .last_request
             .filter(|r| r.analysis)
@@ -116,8 +139,35 @@ impl Renderer {
         let scene_gpu =
             self.scene_gpu.as_ref().ok_or_else(|| RenderError::Usage("no scene uploaded".into()))?;
 
+        let readback = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("reference readback"),
+            size: pixels * 4,
+            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
+            mapped_at_creation: false,
+        });
+        let hit: Vec<bool> = {
+            let analysis = self.read_analysis()?;
+            (0..analysis.position.len()).map(|i| analysis.hit(i)).collect()
+        };
+        // Sums hold weight 1/N per sample: after k of N samples the average is sum * N / k.
+        let finish = |sums: &[f32], done: usize| -> Vec<f32> {
+            let scale = samples.len() as f32 / done.max(1) as f32;
+            sums.iter()
+                .zip(&hit)
+                .map(|(&v, &hit)| if hit { (v * scale).clamp(0.0, 1.0) } else { 1.0 })
+                .collect()
+        };
+        let read_sums = |encoder: wgpu::CommandEncoder| -> Result<Vec<f32>, RenderError> {
+            let mut encoder = encoder;
+            encoder.copy_buffer_to_buffer(&accumulated, 0, &readback, 0, pixels * 4);
+            self.queue.submit([encoder.finish()]);
+            Ok(readback::f32s_from_bytes(&readback::read_buffer(&device, &readback, pixels * 4)?))
+        };
+
         let mut encoder = device.create_command_encoder(&Default::default());
         encoder.clear_buffer(&accumulated, 0, None);
+        let mut batch = if progress.is_some() { first_batch.max(1) } else { max_batch.max(1) };
+        let mut batch_end = batch;
         for (i, _) in samples.iter().enumerate() {
             let offset = (i as u64 * DYNAMIC_STRIDE) as u32;
             {
@@ -150,25 +200,29 @@ impl Renderer {
                 pass.set_bind_group(1, &light_group, &[offset]);
                 pass.dispatch_workgroups(width.div_ceil(8), height.div_ceil(8), 1);
             }
-            if (i + 1) % BATCH == 0 {
-                self.queue.submit([encoder.finish()]);
-                encoder = device.create_command_encoder(&Default::default());
+            let done = i + 1;
+            if done == batch_end && done < samples.len() {
+                let finished =
+                    std::mem::replace(&mut encoder, device.create_command_encoder(&Default::default()));
+                match progress.as_mut() {
+                    Some(report) => {
+                        let sums = read_sums(finished)?;
+                        if !report(done as u32, samples.len() as u32, &finish(&sums, done)) {
+                            return Ok(None);
+                        }
+                    }
+                    None => {
+                        self.queue.submit([finished.finish()]);
+                    }
+                }
+                batch = (batch * 2).min(max_batch.max(1));
+                batch_end = done + batch;
             }
         }
-        let readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("reference readback"),
-            size: pixels * 4,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        encoder.copy_buffer_to_buffer(&accumulated, 0, &readback, 0, pixels * 4);
-        self.queue.submit([encoder.finish()]);
-        let sums = readback::f32s_from_bytes(&readback::read_buffer(&device, &readback, pixels * 4)?);
-        let analysis_hit = self.read_analysis()?;
-        Ok(sums
-            .iter()
-            .enumerate()
-            .map(|(i, &v)| if analysis_hit.hit(i) { v.clamp(0.0, 1.0) } else { 1.0 })
-            .collect())
+        let result = finish(&read_sums(encoder)?, samples.len());
+        if let Some(report) = progress.as_mut() {
+            report(samples.len() as u32, samples.len() as u32, &result);
+        }
+        Ok(Some(result))
     }
 }

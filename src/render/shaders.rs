@@ -12,20 +12,37 @@ pub struct ShaderSource {
     pub source: String,
 }
 
-fn compose(name: &'static str, parts: &[&str]) -> ShaderSource {
-    ShaderSource { name, source: parts.join("\n") }
+fn compose(name: &'static str, parts: &[(&str, &'static str)]) -> ShaderSource {
+    let dir = std::env::var_os(SHADER_DIR_VAR);
+    let text = |(file, built_in): &(&str, &'static str)| match &dir {
+        // Shader work without a rebuild: read the files from disk, the built-in copy where one is missing.
+        Some(dir) => std::fs::read_to_string(std::path::Path::new(dir).join(file))
+            .unwrap_or_else(|_| built_in.to_string()),
+        None => built_in.to_string(),
+    };
+    ShaderSource { name, source: parts.iter().map(text).collect::<Vec<_>>().join("\n") }
 }
 
+/// Set to a folder (such as `shaders`) to load the WGSL files from there instead of the copies
+/// built into the binary.
+pub const SHADER_DIR_VAR: &str = "SHADOWLAB_SHADER_DIR";
+
 pub fn shadow_pass() -> ShaderSource {
-    compose("shadow_pass", &[COMMON, SHADOW_PASS])
+    compose("shadow_pass", &[("common.wgsl", COMMON), ("shadow_pass.wgsl", SHADOW_PASS)])
 }
 
 pub fn camera() -> ShaderSource {
-    compose("camera", &[COMMON, SHADOW_SAMPLING, CAMERA])
+    compose(
+        "camera",
+        &[("common.wgsl", COMMON), ("shadow_sampling.wgsl", SHADOW_SAMPLING), ("camera.wgsl", CAMERA)],
+    )
 }
 
 pub fn reference() -> ShaderSource {
-    compose("reference", &[COMMON, SHADOW_SAMPLING, REFERENCE])
+    compose(
+        "reference",
+        &[("common.wgsl", COMMON), ("shadow_sampling.wgsl", SHADOW_SAMPLING), ("reference.wgsl", REFERENCE)],
+    )
 }
 
 /// Every module the renderer builds (the naga validation test walks this list).

@@ -1,7 +1,7 @@
 //! Offscreen targets the renderer owns: the camera view (colour, depth, analysis floats) and
 //! the shadow-map array (one layer per light).
 
-use super::pipelines::{ANALYSIS_FORMAT, ANALYSIS_TARGETS, COLOR_FORMAT, DEPTH_FORMAT};
+use super::pipelines::{ANALYSIS_FORMAT, ANALYSIS_TARGETS, COLOR_FORMAT, COLOR_TARGET_FORMAT, DEPTH_FORMAT};
 
 fn texture(
     device: &wgpu::Device,
@@ -10,6 +10,7 @@ fn texture(
     layers: u32,
     format: wgpu::TextureFormat,
     usage: wgpu::TextureUsages,
+    view_formats: &[wgpu::TextureFormat],
 ) -> wgpu::Texture {
     device.create_texture(&wgpu::TextureDescriptor {
         label: Some(label),
@@ -19,13 +20,14 @@ fn texture(
         dimension: wgpu::TextureDimension::D2,
         format,
         usage,
-        view_formats: &[],
+        view_formats,
     })
 }
 
 pub struct ViewTargets {
     pub size: (u32, u32),
-    /// sRGB-encoded bytes in an Rgba8Unorm texture (what egui's native textures expect).
+    /// sRGB-encoded bytes in an Rgba8Unorm texture (what egui's native textures expect),
+    /// rendered through `color_view`, an sRGB view that encodes on store.
     pub color: wgpu::Texture,
     pub color_view: wgpu::TextureView,
     pub depth_view: wgpu::TextureView,
@@ -38,15 +40,25 @@ impl ViewTargets {
         let rw = wgpu::TextureUsages::RENDER_ATTACHMENT
             | wgpu::TextureUsages::COPY_SRC
             | wgpu::TextureUsages::TEXTURE_BINDING;
-        let color = texture(device, "camera color", size, 1, COLOR_FORMAT, rw);
-        let depth =
-            texture(device, "camera depth", size, 1, DEPTH_FORMAT, wgpu::TextureUsages::RENDER_ATTACHMENT);
+        let color = texture(device, "camera color", size, 1, COLOR_FORMAT, rw, &[COLOR_TARGET_FORMAT]);
+        let depth = texture(
+            device,
+            "camera depth",
+            size,
+            1,
+            DEPTH_FORMAT,
+            wgpu::TextureUsages::RENDER_ATTACHMENT,
+            &[],
+        );
         let analysis: Vec<_> = (0..ANALYSIS_TARGETS)
-            .map(|_| texture(device, "camera analysis", size, 1, ANALYSIS_FORMAT, rw))
+            .map(|_| texture(device, "camera analysis", size, 1, ANALYSIS_FORMAT, rw, &[]))
             .collect();
         Self {
             size,
-            color_view: color.create_view(&Default::default()),
+            color_view: color.create_view(&wgpu::TextureViewDescriptor {
+                format: Some(COLOR_TARGET_FORMAT),
+                ..Default::default()
+            }),
             color,
             depth_view: depth.create_view(&Default::default()),
             analysis_views: analysis.iter().map(|t| t.create_view(&Default::default())).collect(),
@@ -75,6 +87,7 @@ impl ShadowMaps {
             wgpu::TextureUsages::RENDER_ATTACHMENT
                 | wgpu::TextureUsages::TEXTURE_BINDING
                 | wgpu::TextureUsages::COPY_SRC,
+            &[],
         );
         let array_view = texture.create_view(&wgpu::TextureViewDescriptor {
             dimension: Some(wgpu::TextureViewDimension::D2Array),

@@ -6,6 +6,8 @@ use serde::{Deserialize, Serialize};
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Technique {
+    /// No shadow lookup: every light reaches every surface (what shadows add, and the cost floor).
+    None,
     Hard,
     Pcf,
     Pcss,
@@ -50,7 +52,7 @@ macro_rules! enum_names {
         }
     };
 }
-enum_names!(Technique, Hard => "hard", Pcf => "pcf", Pcss => "pcss");
+enum_names!(Technique, None => "none", Hard => "hard", Pcf => "pcf", Pcss => "pcss");
 enum_names!(BiasMode, None => "none", Constant => "constant", Slope => "slope", Adaptive => "adaptive");
 enum_names!(Kernel, Poisson => "poisson", Uniform => "uniform", Vogel => "vogel", Grid => "grid", Hardware => "hardware");
 
@@ -157,8 +159,8 @@ impl ShadowSettings {
             }
         }
         let counts = [
-            ("samples", self.samples, 1, 128),
-            ("blocker_samples", self.blocker_samples, 1, 128),
+            ("samples", self.samples, 1, crate::shadow::kernels::MAX_TAPS),
+            ("blocker_samples", self.blocker_samples, 1, crate::shadow::kernels::MAX_TAPS),
             ("reference_samples", self.reference_samples, 1, 1024),
         ];
         for (key, v, lo, hi) in counts {

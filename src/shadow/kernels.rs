@@ -48,38 +48,64 @@ pub fn filter_taps(kernel: Kernel, samples: u32) -> u32 {
     }
 }
 
-fn rotate2(p: Vec2, angle: f32) -> Vec2 {
-    let (s, c) = angle.sin_cos();
-    Vec2::new(c * p.x - s * p.y, s * p.x + c * p.y)
-}
+/// Most filter or blocker-search taps (the `samples` and `blocker_samples` limit); the GPU's
+/// kernel table holds this many of each (MAX_TAPS in shaders/common.wgsl).
+pub const MAX_TAPS: u32 = 128;
 
-/// Tap `i` of `n` in the unit disk for a pixel with noise `seed`.
-pub fn kernel_offset(kernel: Kernel, i: u32, n: u32, seed: u32) -> Vec2 {
-    let rotation = TAU * unit_float(seed);
+/// Tap `i` of `n` before the pixel's rotation: what the renderer writes into the GPU's
+/// `kernel_table`, and what the twin turns the same way. The uniform kernel has no table
+/// (its points are new random ones per pixel): zero.
+pub fn kernel_base(kernel: Kernel, i: u32, n: u32) -> Vec2 {
     match kernel {
         Kernel::Poisson => {
-            let angle = wrap_angle(rotation + i as f32 * TAU * NUM_RINGS / n as f32);
+            // GAMES202 poissonDiskSamples: a spiral, radius ((i+1)/n)^0.75, NUM_RINGS turns.
+            let angle = wrap_angle(i as f32 * TAU * NUM_RINGS / n as f32);
             let r = ((i + 1) as f32 / n as f32).powf(0.75);
             Vec2::new(angle.cos(), angle.sin()) * r
         }
-        Kernel::Uniform => {
-            let h = pcg_hash(seed ^ pcg_hash(i + 1));
-            let x = unit_float(h);
-            let y = unit_float(pcg_hash(h));
-            Vec2::new((TAU * x).cos(), (TAU * x).sin()) * y.sqrt()
-        }
+        Kernel::Uniform => Vec2::ZERO,
         Kernel::Grid => {
             let side = grid_side(n);
             if side == 1 {
                 return Vec2::ZERO;
             }
             let g = Vec2::new((i % side) as f32, (i / side) as f32);
-            rotate2(g / (side - 1) as f32 * 2.0 - Vec2::ONE, rotation)
+            g / (side - 1) as f32 * 2.0 - Vec2::ONE
         }
         Kernel::Vogel | Kernel::Hardware => {
-            let angle = wrap_angle(i as f32 * GOLDEN_ANGLE + rotation);
+            // Golden-angle spiral, radius sqrt((i + 0.5) / n).
+            let angle = wrap_angle(i as f32 * GOLDEN_ANGLE);
             Vec2::new(angle.cos(), angle.sin()) * ((i as f32 + 0.5) / n as f32).sqrt()
         }
+    }
+}
+
+/// The `n` taps of a kernel before rotation (n <= MAX_TAPS), as the GPU table holds them.
+pub fn kernel_table(kernel: Kernel, n: u32) -> Vec<Vec2> {
+    (0..n.min(MAX_TAPS)).map(|i| kernel_base(kernel, i, n)).collect()
+}
+
+/// The pixel's rotation of the pattern: (cos, sin) of TAU * unit_float(seed).
+pub fn pixel_rotation(seed: u32) -> Vec2 {
+    let angle = wrap_angle(TAU * unit_float(seed));
+    Vec2::new(angle.cos(), angle.sin())
+}
+
+fn rotate_by(p: Vec2, rotation: Vec2) -> Vec2 {
+    Vec2::new(rotation.x * p.x - rotation.y * p.y, rotation.y * p.x + rotation.x * p.y)
+}
+
+/// Tap `i` of `n` in the unit disk for a pixel with noise `seed`.
+pub fn kernel_offset(kernel: Kernel, i: u32, n: u32, seed: u32) -> Vec2 {
+    match kernel {
+        Kernel::Uniform => {
+            // GAMES202 uniformDiskSamples: (cos 2 pi x, sin 2 pi x) * sqrt(y), uniform over area.
+            let h = pcg_hash(seed ^ pcg_hash(i + 1));
+            let x = unit_float(h);
+            let y = unit_float(pcg_hash(h));
+            Vec2::new((TAU * x).cos(), (TAU * x).sin()) * y.sqrt()
+        }
+        _ => rotate_by(kernel_base(kernel, i, n), pixel_rotation(seed)),
     }
 }
 

@@ -15,6 +15,7 @@ pub const BIAS_ADAPTIVE: u32 = 3;
 pub const TECHNIQUE_HARD: u32 = 0;
 pub const TECHNIQUE_PCF: u32 = 1;
 pub const TECHNIQUE_PCSS: u32 = 2;
+pub const TECHNIQUE_NONE: u32 = 3;
 pub const SIZE_MODEL_ANGULAR: u32 = 1;
 
 pub fn kernel_from_id(id: u32) -> Kernel {
@@ -331,6 +332,7 @@ impl<'a> Twin<'a> {
                 ..Default::default()
             },
             TECHNIQUE_PCSS => self.visibility_pcss(coord, seed),
+            TECHNIQUE_NONE => PcssResult { visibility: 1.0, ..Default::default() },
             _ => PcssResult { visibility: self.visibility_hard(coord), ..Default::default() },
         }
     }
