@@ -16,13 +16,33 @@ fn harness() -> Harness<'static, ShadowlabApp> {
         .with_size([1400.0, 820.0])
         .wgpu_setup(setup)
         .build_eframe(|cc| app_for_test(cc, Settings { show_timings: false, ..Settings::default() }));
-    harness.run_steps(4);
+    settle(&mut harness);
     assert!(
         harness.state().camera_image().is_some(),
         "the app has no GPU view ({:?}): these tests need a Vulkan adapter (apt-get install mesa-vulkan-drivers)",
         harness.state().gpu_problem()
     );
     harness
+}
+
+/// Step frames until the render worker has delivered everything asked for (the app never waits
+/// for the GPU itself, so a test waits here instead).
+fn settle(h: &mut Harness<'_, ShadowlabApp>) {
+    let start = std::time::Instant::now();
+    loop {
+        h.step();
+        if !h.state().render_pending() {
+            // One more frame shows what arrived.
+            h.step();
+            return;
+        }
+        assert!(
+            start.elapsed() < std::time::Duration::from_secs(300),
+            "the render worker did not finish ({:?})",
+            h.state().gpu_problem()
+        );
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
 }
 
 fn snapshot_options() -> SnapshotOptions {
@@ -38,7 +58,7 @@ fn layout_snapshots_per_technique() {
         h.state_mut().scene.shadow.technique =
             shadowlab::scene::Technique::from_name(technique).expect("technique");
         h.state_mut().mark_dirty();
-        h.run_steps(3);
+        settle(&mut h);
         h.snapshot_options(format!("app_games202_{technique}"), &snapshot_options());
         results.extend(h.take_snapshot_results());
     }
@@ -75,7 +95,7 @@ fn clicking_the_camera_view_pins_a_probe_matching_the_cli() {
         pressed: false,
         modifiers: Default::default(),
     });
-    h.run_steps(4);
+    settle(&mut h);
     let report = h.state().probe_report().cloned().expect("a click pins the probe");
     assert!(report.hit, "the probe should land on the floor or a model");
     // The inspector shows the probe's numbers.
@@ -110,7 +130,7 @@ fn changing_a_parameter_changes_the_image() {
     let mut h = harness();
     let before = h.state().camera_image().expect("image");
     h.get_by_label("rotate the pattern per pixel").click();
-    h.run_steps(4);
+    settle(&mut h);
     assert!(!h.state().scene.shadow.rotate_per_pixel, "the checkbox should turn rotation off");
     let after = h.state().camera_image().expect("image");
     assert_eq!(before.dimensions(), after.dimensions());
@@ -131,7 +151,7 @@ fn a_malformed_scene_shows_the_error_and_keeps_the_old_scene() {
     h.get_by_label("file").type_text(&bad.display().to_string());
     h.run_steps(1);
     h.get_by_label("Open").click();
-    h.run_steps(3);
+    settle(&mut h);
     let error = h.state().error.clone().expect("an error is shown");
     assert!(error.contains("broken.toml") && error.contains("technique"), "{error}");
     h.get_by_label_contains("broken.toml");
@@ -143,7 +163,7 @@ fn a_malformed_scene_shows_the_error_and_keeps_the_old_scene() {
 fn arrow_keys_step_through_a_lesson_and_the_panels_follow() {
     let mut h = harness();
     h.key_press(egui::Key::ArrowRight);
-    h.run_steps(4);
+    settle(&mut h);
     let first = h
         .state()
         .current_step()
@@ -153,7 +173,7 @@ fn arrow_keys_step_through_a_lesson_and_the_panels_follow() {
     h.get_by_label(&first.1);
     assert!(matches!(h.state().source, Source::Lesson { lesson: 0, step: 0 }));
     h.key_press(egui::Key::ArrowRight);
-    h.run_steps(4);
+    settle(&mut h);
     let second = h.state().current_step().map(|(_, s, i)| (s.clone(), i)).expect("step 2");
     assert_eq!(second.1, 1);
     h.get_by_label(&second.0.title.en);
@@ -162,7 +182,7 @@ fn arrow_keys_step_through_a_lesson_and_the_panels_follow() {
         assert_eq!(h.state().diagram, diagram, "the step's diagram is drawn");
     }
     h.key_press(egui::Key::ArrowLeft);
-    h.run_steps(4);
+    settle(&mut h);
     assert!(matches!(h.state().source, Source::Lesson { lesson: 0, step: 0 }));
     h.get_by_label(&first.1);
 }
@@ -181,16 +201,16 @@ fn a_step_shows_only_the_panels_it_names() {
         .position(|s| s.panels.contains(&shadowlab::lessons::Panel::ShadowMap))
         .expect("a pcss step with the shadow map");
     h.state_mut().go_to_step(pcss, without_map);
-    h.run_steps(4);
+    settle(&mut h);
     assert!(h.query_by_label("Shadow map").is_none(), "step {} names no shadow map", without_map + 1);
     h.state_mut().go_to_step(pcss, with_map);
-    h.run_steps(4);
+    settle(&mut h);
     h.get_by_label("Shadow map");
     // "show every panel" brings the map back on any step.
     h.state_mut().go_to_step(pcss, without_map);
-    h.run_steps(2);
+    settle(&mut h);
     h.get_by_label("show every panel").click();
-    h.run_steps(4);
+    settle(&mut h);
     h.get_by_label("Shadow map");
 }
 
@@ -198,7 +218,7 @@ fn a_step_shows_only_the_panels_it_names() {
 fn the_ab_split_renders_its_second_technique_at_once() {
     let mut h = harness();
     h.get_by_label("A/B split against").click();
-    h.run_steps(4);
+    settle(&mut h);
     let a = h.state().camera_image().expect("A side");
     let b = h.state().camera_image_b().expect("the B side is rendered as soon as the split is on");
     assert_eq!(a.dimensions(), b.dimensions());
@@ -216,7 +236,7 @@ fn opening_an_obj_builds_a_scene_around_it() {
     h.get_by_label("file").type_text(&obj.display().to_string());
     h.run_steps(1);
     h.get_by_label("Open").click();
-    h.run_steps(4);
+    settle(&mut h);
     let app = h.state();
     assert!(app.error.is_none(), "{:?}", app.error);
     assert_eq!(app.scene.objects.len(), 2, "a floor and the model");

@@ -1,23 +1,25 @@
 //! The inspector app: the camera view beside the light's shadow map, live parameters, the pixel
 //! probe with its samples drawn on the map, overlays, lessons and diagrams.
 
-mod gpu;
 mod inspector;
 mod lesson_panel;
 mod overlays;
 mod panels;
+mod rendering;
 mod settings;
 mod view_panels;
+mod worker;
 
 pub use settings::Settings;
 
 use crate::lessons::{self, Lang, Lesson, Overlay};
 use crate::probe::ProbeReport;
-use crate::render::{Analysis, FrameRequest};
+use crate::render::Analysis;
 use crate::scene::{Camera, Scene, Technique, load_scene, parse_scene_str};
-use gpu::ViewGpu;
+use rendering::{Shown, Submitted};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
+use worker::RenderWorker;
 
 /// Where the current scene came from.
 #[derive(Clone, Debug, PartialEq)]
@@ -35,8 +37,15 @@ pub struct AbSplit {
 }
 
 pub struct ShadowlabApp {
-    gpu: Option<ViewGpu>,
-    gpu_b: Option<ViewGpu>,
+    /// Renders off the UI thread (None where no GPU device could be had).
+    worker: Option<RenderWorker>,
+    /// What the views show: the last finished render.
+    shown: Shown,
+    /// The job the views wait for, and the newest one shown.
+    submitted: Submitted,
+    shown_job: u64,
+    /// Wall-clock time of the last UI frame (playback advances by it).
+    last_tick: Option<std::time::Instant>,
     /// Why there is no GPU view (shown in place of the views).
     gpu_error: Option<String>,
     pub scene: Scene,
@@ -66,9 +75,8 @@ pub struct ShadowlabApp {
     focus_on_probe: bool,
     /// Something changed: render again.
     dirty: bool,
-    /// The user is dragging: render at reduced resolution.
+    /// The user is dragging in a view: render previews.
     interacting: bool,
-    last_render_ms: f64,
     analysis: Option<Analysis>,
     reference: Option<Vec<f32>>,
     view_state: view_panels::ViewState,
@@ -80,11 +88,7 @@ pub struct ShadowlabApp {
 
 const DEFAULT_SCENE: &str = "assets/scenes/games202.toml";
 
-/// Resolve a path shipped with shadowlab (scenes, lessons) from the working folder or the crate.
-pub fn shipped_path(relative: &str) -> PathBuf {
-    let local = PathBuf::from(relative);
-    if local.exists() { local } else { Path::new(env!("CARGO_MANIFEST_DIR")).join(relative) }
-}
+pub use crate::shipped_path;
 
 /// A scene around one OBJ file: the model on a floor under a directional light, scaled to fit.
 pub fn scene_for_obj(path: &Path) -> Result<Scene, String> {
@@ -126,17 +130,11 @@ impl ShadowlabApp {
             cc.storage.and_then(|s| eframe::get_value(s, settings::STORAGE_KEY)).unwrap_or_default();
         install_cjk_font(&cc.egui_ctx);
         cc.egui_ctx.set_visuals(egui::Visuals::dark());
-        let (gpu, gpu_error) = match cc.wgpu_render_state.as_ref() {
-            Some(rs) => match ViewGpu::new(rs) {
-                Ok(g) => (Some(g), None),
-                Err(e) => (None, Some(e.to_string())),
-            },
-            None => (None, Some("no wgpu renderer: shadowlab needs eframe's wgpu backend".to_string())),
-        };
-        Self::with_settings(gpu, gpu_error, settings)
+        let (worker, gpu_error) = spawn_worker(cc);
+        Self::with_settings(worker, gpu_error, settings)
     }
 
-    fn with_settings(gpu: Option<ViewGpu>, gpu_error: Option<String>, settings: Settings) -> Self {
+    fn with_settings(worker: Option<RenderWorker>, gpu_error: Option<String>, settings: Settings) -> Self {
         let (lessons, lesson_error) = match lessons::load_all(&shipped_path("lessons")) {
             Ok(l) => (l, None),
             Err(e) => (Vec::new(), Some(e.to_string())),
@@ -156,8 +154,11 @@ impl ShadowlabApp {
         };
         let source = Source::Scene(scene.path.clone().unwrap_or(default_path));
         let mut app = Self {
-            gpu,
-            gpu_b: None,
+            worker,
+            shown: Shown::default(),
+            submitted: Submitted::default(),
+            shown_job: 0,
+            last_tick: None,
             gpu_error,
             base_scene: scene.clone(),
             scene,
@@ -181,7 +182,6 @@ impl ShadowlabApp {
             focus_on_probe: false,
             dirty: true,
             interacting: false,
-            last_render_ms: 0.0,
             analysis: None,
             reference: None,
             view_state: Default::default(),
@@ -325,13 +325,13 @@ impl ShadowlabApp {
 
     /// The camera view as last rendered (for screenshots and tests).
     pub fn camera_image(&self) -> Option<image::RgbaImage> {
-        self.gpu.as_ref().and_then(|g| g.renderer.read_color().ok())
+        self.shown.color.clone()
     }
 
     /// The B side of the A/B split as last rendered, when the split is on.
     pub fn camera_image_b(&self) -> Option<image::RgbaImage> {
         self.ab.as_ref()?;
-        self.gpu_b.as_ref().and_then(|g| g.renderer.read_color().ok())
+        self.shown.color_b.clone()
     }
 
     fn handle_keys(&mut self, ctx: &egui::Context) {
@@ -415,16 +415,11 @@ impl ShadowlabApp {
         if let Some(img) = image::RgbaImage::from_raw(w as u32, h as u32, bytes) {
             images.push(("window", img));
         }
-        if let Some(gpu) = &self.gpu {
-            if let Ok(img) = gpu.renderer.read_color() {
-                images.push(("camera", img));
-            }
-            if let (Ok(map), Some(light)) = (
-                gpu.renderer.read_shadow_map(self.selected_light),
-                gpu.renderer.frame_lights.get(self.selected_light),
-            ) {
-                images.push(("shadow-map", crate::views::shadow_map_image(&map, light).0));
-            }
+        if let Some(img) = &self.shown.color {
+            images.push(("camera", img.clone()));
+        }
+        if let Some((map, light)) = self.view_state.map() {
+            images.push(("shadow-map", crate::views::shadow_map_image(map, light).0));
         }
         for (what, img) in images {
             let path = dir.join(format!("shot-{n:03}-{what}.png"));
@@ -546,16 +541,7 @@ impl ShadowlabApp {
                 return;
             }
             ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                let mut text = format!("frame {:.1} ms", self.last_render_ms);
-                if let Some(gpu) = &self.gpu
-                    && let Ok(Some(t)) = gpu.renderer.last_pass_times()
-                {
-                    text += &format!(" (GPU shadow {:.2} ms, camera {:.2} ms)", t.shadow_ms, t.camera_ms);
-                }
-                if self.interacting {
-                    text += " · preview resolution";
-                }
-                ui.label(text);
+                ui.label(self.timing_text(ui.ctx()));
             });
         });
     }
@@ -587,104 +573,34 @@ impl ShadowlabApp {
         self.show_help = open;
     }
 
-    /// Render what changed; called once per frame before the views are drawn.
-    fn render_if_needed(&mut self, view_size_px: (u32, u32)) {
-        let Some(gpu) = self.gpu.as_mut() else { return };
-        let wanted = if self.interacting {
-            ((view_size_px.0 / 2).max(1), (view_size_px.1 / 2).max(1))
-        } else {
-            view_size_px
-        };
-        let size_changed = gpu.texture().is_none_or(|(_, s)| s != wanted);
-        if !(self.dirty || size_changed || self.playing) {
-            return;
+    /// The status bar's timings: the UI's own frame time, the last render per pass and the
+    /// resolution it was rendered at.
+    fn timing_text(&self, ctx: &egui::Context) -> String {
+        let ui_ms = ctx.input(|i| i.unstable_dt) * 1e3;
+        let shown = &self.shown;
+        let mut text = format!("UI {ui_ms:.0} ms · render {:.0} ms", shown.render_ms);
+        if let Some(t) = shown.pass_times {
+            text += &format!(" (GPU shadow {:.1} ms, camera {:.1} ms)", t.shadow_ms, t.camera_ms);
         }
-        let start = std::time::Instant::now();
-        if self.scene.lights.is_empty() {
-            self.selected_light = 0;
+        text += &format!(" at {}x{}", shown.size.0, shown.size.1);
+        if shown.preview {
+            text += " · preview";
         }
-        let request = FrameRequest {
-            time_s: self.time_s,
-            size: wanted,
-            selected_light: self.selected_light,
-            final_color: true,
-            analysis: false,
-            timestamps: true,
-        };
-        let full_detail = !self.interacting && !self.playing;
-        // The probe renders the analysis pass per light; the final render below restores the
-        // selected light's analysis for the overlays.
-        if full_detail && !self.scene.lights.is_empty() {
-            self.probe = match self.probe_at {
-                Some((fx, fy)) => {
-                    let px = ((fx * wanted.0 as f32) as u32).min(wanted.0 - 1);
-                    let py = ((fy * wanted.1 as f32) as u32).min(wanted.1 - 1);
-                    match crate::probe::probe(&mut gpu.renderer, &self.scene, &request, (px, py), false) {
-                        Ok(report) => Some(report),
-                        Err(e) => {
-                            self.error = Some(e.to_string());
-                            None
-                        }
-                    }
-                }
-                None => None,
-            };
+        if let Some(waited) = self.render_is_slow() {
+            text += &format!(" · rendering {:.1} s", waited.as_secs_f32());
         }
-        if self.focus_on_probe
-            && let Some(p) = self.probe.as_ref().and_then(|p| p.world_position)
-        {
-            self.scene.camera.target = glam::Vec3::from(p);
-            // The focused point now projects to the centre of the view, and so does the probe.
-            self.probe_at = Some((0.5, 0.5));
-            self.focus_on_probe = false;
-            self.dirty = true;
-            return;
-        }
-        // The analysis pass feeds the overlays only: skip it when none is on.
-        let overlays_need_analysis = self.overlays.iter().any(|o| *o != Overlay::LightFrustum);
-        let with_analysis = FrameRequest {
-            analysis: full_detail && overlays_need_analysis && !self.scene.lights.is_empty(),
-            ..request
-        };
-        match gpu.render(&self.scene, &with_analysis) {
-            Ok(()) => {
-                self.analysis = if with_analysis.analysis { gpu.renderer.read_analysis().ok() } else { None };
-                if with_analysis.analysis
-                    && self.overlays.contains(&Overlay::Error)
-                    && self.reference.is_none()
-                {
-                    self.reference = gpu.renderer.render_reference(&self.scene, self.selected_light).ok();
-                }
-            }
-            Err(e) => self.error = Some(e.to_string()),
-        }
-        if let (Some(ab), Some(gpu_b)) = (&self.ab, self.gpu_b.as_mut()) {
-            let mut scene_b = self.scene.clone();
-            scene_b.shadow.technique = ab.b;
-            if let Err(e) = gpu_b.render(&scene_b, &request) {
-                self.error = Some(e.to_string());
-            }
-        }
-        self.last_render_ms = start.elapsed().as_secs_f64() * 1e3;
-        self.dirty = false;
-        self.view_state.invalidate();
+        text
     }
+}
 
-    /// Make sure the second renderer exists when the A/B split is on.
-    fn ensure_ab_gpu(&mut self, frame: &eframe::Frame) {
-        if self.ab.is_some()
-            && self.gpu_b.is_none()
-            && let Some(rs) = frame.wgpu_render_state()
-        {
-            match ViewGpu::new(rs) {
-                Ok(g) => {
-                    self.gpu_b = Some(g);
-                    // The frame that turned the split on rendered before B existed.
-                    self.mark_dirty();
-                }
-                Err(e) => self.error = Some(e.to_string()),
-            }
+/// The render worker on a device of eframe's adapter; waking egui whenever it has news.
+fn spawn_worker(cc: &eframe::CreationContext<'_>) -> (Option<RenderWorker>, Option<String>) {
+    match cc.wgpu_render_state.as_ref() {
+        Some(rs) => {
+            let ctx = cc.egui_ctx.clone();
+            (Some(RenderWorker::spawn(rs.adapter.clone(), move || ctx.request_repaint())), None)
         }
+        None => (None, Some("no wgpu renderer: shadowlab needs eframe's wgpu backend".to_string())),
     }
 }
 
@@ -708,16 +624,17 @@ fn install_cjk_font(ctx: &egui::Context) {
 }
 
 impl eframe::App for ShadowlabApp {
-    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+    fn ui(&mut self, ui: &mut egui::Ui, _frame: &mut eframe::Frame) {
         let ctx = ui.ctx().clone();
         self.handle_keys(&ctx);
         self.handle_dropped_files(&ctx);
         self.save_screenshot_if_ready();
-        self.ensure_ab_gpu(frame);
-        if self.playing {
-            let dt = ctx.input(|i| i.stable_dt).min(0.1);
-            self.time_s = (self.time_s + dt * self.speed) % 3600.0;
-            self.reference = None;
+        self.advance_time(std::time::Instant::now());
+        self.receive_renders(&ctx);
+        // Dragging a slider (or anything else) asks for previews until it is let go.
+        self.interacting = ctx.dragged_id().is_some();
+        if self.playing || self.render_pending() {
+            // Repaint at the display rate while frames are in flight: the views stay live.
             ctx.request_repaint();
         }
         if self.screenshot_pending {
@@ -803,11 +720,6 @@ pub fn run() -> Result<(), String> {
 /// Build the app for tests and tools, with explicit settings (no storage).
 pub fn app_for_test(cc: &eframe::CreationContext<'_>, settings: Settings) -> ShadowlabApp {
     install_cjk_font(&cc.egui_ctx);
-    let gpu = cc.wgpu_render_state.as_ref().map(ViewGpu::new);
-    let (gpu, err) = match gpu {
-        Some(Ok(g)) => (Some(g), None),
-        Some(Err(e)) => (None, Some(e.to_string())),
-        None => (None, Some("no wgpu renderer".to_string())),
-    };
-    ShadowlabApp::with_settings(gpu, err, settings)
+    let (worker, gpu_error) = spawn_worker(cc);
+    ShadowlabApp::with_settings(worker, gpu_error, settings)
 }

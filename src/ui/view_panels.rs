@@ -4,6 +4,7 @@
 //! circles and every tap at its real size; drag to move the light.
 
 use super::ShadowlabApp;
+use super::worker::MapView;
 use crate::render::{DepthImage, LightGpu};
 use crate::shadow::depth_linear_from_ndc;
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
@@ -29,12 +30,12 @@ impl ViewState {
     pub fn invalidate(&mut self) {
         self.stale = true;
     }
-}
 
-/// Most texels per side of the shadow map as shown (larger maps are subsampled for display).
-const MAP_DISPLAY_TEXELS: u32 = 2048;
-/// Texels per side of a light's thumbnail.
-const THUMBNAIL_TEXELS: u32 = 96;
+    /// The shadow map shown: its depths and the light it was rendered for.
+    pub fn map(&self) -> Option<(&DepthImage, &LightGpu)> {
+        self.map.as_ref().map(|(_, depth, light)| (depth, light))
+    }
+}
 
 fn color_image(image: &image::RgbaImage) -> egui::ColorImage {
     egui::ColorImage::from_rgba_unmultiplied(
@@ -48,8 +49,7 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
         return;
     }
     app.view_state.stale = false;
-    let Some(gpu) = app.gpu.as_ref() else { return };
-    let light = gpu.renderer.frame_lights.get(app.selected_light).copied();
+    let light = app.shown.lights.get(app.selected_light).copied();
     // Overlays from the analysis pass.
     app.view_state.overlay = None;
     app.view_state.legends.clear();
@@ -62,49 +62,30 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
                 Some(ctx.load_texture("overlay", color_image(&image), egui::TextureOptions::NEAREST));
         }
     }
-    // The selected light's shadow map.
-    if let Some(light) = light
-        && let Ok(map) = gpu.renderer.read_shadow_map(app.selected_light)
-    {
-        let (image, legend) = crate::views::shadow_map_image(&map, &light);
-        let step = (map.size / MAP_DISPLAY_TEXELS).max(1);
-        let shown = if step > 1 {
-            image::imageops::resize(
-                &image,
-                map.size / step,
-                map.size / step,
-                image::imageops::FilterType::Nearest,
-            )
-        } else {
-            image
-        };
-        app.view_state.map_range = (legend.min, legend.max);
-        let texture = ctx.load_texture("shadow map", color_image(&shown), egui::TextureOptions::NEAREST);
-        app.view_state.map = Some((texture, map, light));
+}
+
+impl ViewState {
+    /// Show a new shadow-map picture (from the render worker).
+    pub fn set_map(&mut self, ctx: &egui::Context, map: MapView) {
+        self.map_range = map.range;
+        let texture = ctx.load_texture("shadow map", color_image(&map.image), egui::TextureOptions::NEAREST);
+        self.map = Some((texture, map.depth, map.light));
     }
-    // Thumbnails of every light's map, while nothing moves (each is a full read-back).
-    app.view_state.thumbnails.clear();
-    if gpu.renderer.frame_lights.len() > 1 && !app.playing && !app.interacting {
-        for (i, light) in gpu.renderer.frame_lights.iter().enumerate() {
-            let Ok(map) = gpu.renderer.read_shadow_map(i) else { continue };
-            let (image, _) = crate::views::shadow_map_image(&map, light);
-            let small = image::imageops::resize(
-                &image,
-                THUMBNAIL_TEXELS,
-                THUMBNAIL_TEXELS,
-                image::imageops::FilterType::Triangle,
-            );
-            app.view_state.thumbnails.push(ctx.load_texture(
-                format!("thumbnail {i}"),
-                color_image(&small),
-                egui::TextureOptions::LINEAR,
-            ));
-        }
+
+    /// Thumbnails of every light's map (several lights only).
+    pub fn set_thumbnails(&mut self, ctx: &egui::Context, images: &[image::RgbaImage]) {
+        self.thumbnails = images
+            .iter()
+            .enumerate()
+            .map(|(i, image)| {
+                ctx.load_texture(format!("thumbnail {i}"), color_image(image), egui::TextureOptions::LINEAR)
+            })
+            .collect();
     }
 }
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
-    if app.gpu.is_none() {
+    if app.worker.is_none() {
         ui.centered_and_justified(|ui| {
             ui.label(format!(
                 "No GPU view: {}",
@@ -137,7 +118,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let ppp = ui.ctx().pixels_per_point();
     let size_px =
         ((camera_rect.width() * ppp).max(16.0) as u32, (camera_rect.height() * ppp).max(16.0) as u32);
-    app.render_if_needed(size_px);
+    app.schedule_render(size_px);
     refresh(app, ui.ctx());
 
     camera_view(app, ui, camera_rect);
@@ -163,10 +144,10 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let response = ui.interact(rect, ui.scope_id().with("camera view"), Sense::click_and_drag());
     let painter = ui.painter_at(rect);
     let uv = Rect::from_min_max(Pos2::ZERO, pos2(1.0, 1.0));
-    if let Some((id, _)) = app.gpu.as_ref().and_then(|g| g.texture()) {
-        painter.image(id, rect, uv, Color32::WHITE);
+    if let Some(texture) = &app.shown.camera {
+        painter.image(texture.id(), rect, uv, Color32::WHITE);
     }
-    if let (Some(ab), Some((id_b, _))) = (&app.ab, app.gpu_b.as_ref().and_then(|g| g.texture())) {
+    if let (Some(ab), Some(id_b)) = (&app.ab, app.shown.camera_b.as_ref().map(|t| t.id())) {
         let x = rect.left() + rect.width() * ab.divider;
         let right = Rect::from_min_max(pos2(x, rect.top()), rect.max);
         let uv_right = Rect::from_min_max(pos2(ab.divider, 0.0), pos2(1.0, 1.0));
@@ -271,9 +252,8 @@ fn to_screen(clip_from_world: &Mat4, p: glam::Vec3, rect: Rect) -> Option<Pos2> 
 }
 
 fn draw_light_frusta(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
-    let Some(gpu) = &app.gpu else { return };
     let camera = app.scene.camera.clip_from_world(rect.width() / rect.height().max(1.0));
-    for (i, light) in gpu.renderer.frame_lights.iter().enumerate() {
+    for (i, light) in app.shown.lights.iter().enumerate() {
         let world_from_clip = Mat4::from_cols_array_2d(&light.clip_from_world).inverse();
         let corner = |x: f32, y: f32, z: f32| {
             let w = world_from_clip * Vec4::new(x, y, z, 1.0);

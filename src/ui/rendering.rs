@@ -1,0 +1,214 @@
+//! Render scheduling: what the app asks the render worker for, and what it does with the answers.
+//! The views always show the last finished frame; while a value is being dragged they ask for
+//! previews (half resolution, PCSS with fewer taps) and refine once it is let go.
+
+use super::ShadowlabApp;
+use super::worker::{RenderJob, RenderOutput, WorkerEvent};
+use crate::lessons::Overlay;
+use crate::render::{FrameRequest, LightGpu, PassTimes};
+use crate::scene::Technique;
+use std::time::{Duration, Instant};
+
+/// Show "rendering..." over a view that has waited this long for its frame.
+pub const SLOW_RENDER: Duration = Duration::from_millis(150);
+/// PCSS taps (blocker search and filter, each) at most while dragging.
+const PREVIEW_PCSS_SAMPLES: u32 = 16;
+
+/// What the views show: the last finished render, as textures, with what it was rendered from.
+#[derive(Default)]
+pub struct Shown {
+    pub camera: Option<egui::TextureHandle>,
+    pub camera_b: Option<egui::TextureHandle>,
+    pub color: Option<image::RgbaImage>,
+    pub color_b: Option<image::RgbaImage>,
+    /// The lights as the GPU saw them in that frame.
+    pub lights: Vec<LightGpu>,
+    /// Resolution it was rendered at, pixels.
+    pub size: (u32, u32),
+    pub preview: bool,
+    pub pass_times: Option<PassTimes>,
+    /// Wall-clock time of the job (renders, read-backs, probe), milliseconds.
+    pub render_ms: f64,
+    /// Ground truth in progress or done: (samples averaged, samples in all).
+    pub reference_progress: Option<(u32, u32)>,
+    /// The adapter the worker renders on.
+    pub adapter: Option<String>,
+}
+
+/// What the last submitted job was, so that a preview is followed by a full-quality frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Submitted {
+    pub job: u64,
+    pub preview: bool,
+    pub size: (u32, u32),
+}
+
+impl ShadowlabApp {
+    /// Take what the worker has finished; called once per UI frame.
+    pub(super) fn receive_renders(&mut self, ctx: &egui::Context) {
+        let Some(worker) = self.worker.as_mut() else { return };
+        for event in worker.poll() {
+            match event {
+                WorkerEvent::Ready(Ok(adapter)) => self.shown.adapter = Some(adapter),
+                WorkerEvent::Ready(Err(e)) => {
+                    self.gpu_error = Some(e);
+                    self.worker = None;
+                    return;
+                }
+                WorkerEvent::Frame(output) => self.show_output(ctx, *output),
+                WorkerEvent::Reference { job, done, total, values } => {
+                    if job == self.submitted.job {
+                        self.reference = Some(values);
+                        self.shown.reference_progress = Some((done, total));
+                        self.view_state.invalidate();
+                    }
+                }
+                WorkerEvent::Failed { job, message } => {
+                    if job == self.submitted.job {
+                        self.error = Some(message);
+                    }
+                }
+            }
+        }
+    }
+
+    fn show_output(&mut self, ctx: &egui::Context, out: RenderOutput) {
+        // A frame older than the one shown (possible only across a worker restart) is dropped.
+        if out.job < self.shown_job {
+            return;
+        }
+        self.shown_job = out.job;
+        let upload = |slot: &mut Option<egui::TextureHandle>, name: &str, image: &image::RgbaImage| {
+            let pixels = egui::ColorImage::from_rgba_unmultiplied(
+                [image.width() as usize, image.height() as usize],
+                image.as_raw(),
+            );
+            match slot {
+                Some(handle) => handle.set(pixels, egui::TextureOptions::LINEAR),
+                None => *slot = Some(ctx.load_texture(name, pixels, egui::TextureOptions::LINEAR)),
+            }
+        };
+        upload(&mut self.shown.camera, "camera view", &out.color);
+        match &out.color_b {
+            Some(b) => upload(&mut self.shown.camera_b, "camera view B", b),
+            None => self.shown.camera_b = None,
+        }
+        self.shown.color = Some(out.color);
+        self.shown.color_b = out.color_b;
+        self.shown.lights = out.lights;
+        self.shown.size = out.size;
+        self.shown.preview = out.preview;
+        self.shown.pass_times = out.pass_times;
+        self.shown.render_ms = out.render_ms;
+        if out.job == self.submitted.job {
+            self.shown.reference_progress = None;
+        }
+        if !out.preview {
+            self.analysis = out.analysis;
+        }
+        match out.probe {
+            Some(Ok(report)) => self.probe = Some(report),
+            Some(Err(e)) => {
+                self.probe = None;
+                self.error = Some(e);
+            }
+            None if self.probe_at.is_none() => self.probe = None,
+            None => {}
+        }
+        if self.focus_on_probe
+            && !out.preview
+            && let Some(p) = self.probe.as_ref().and_then(|p| p.world_position)
+        {
+            self.scene.camera.target = glam::Vec3::from(p);
+            // The focused point now projects to the centre of the view, and so does the probe.
+            self.probe_at = Some((0.5, 0.5));
+            self.focus_on_probe = false;
+            self.mark_dirty();
+        }
+        if let Some(map) = out.map {
+            self.view_state.set_map(ctx, map);
+        }
+        if !out.thumbnails.is_empty() || self.shown.lights.len() < 2 {
+            self.view_state.set_thumbnails(ctx, &out.thumbnails);
+        }
+        self.view_state.invalidate();
+    }
+
+    /// Ask for a new frame where something changed; called once per frame with the camera
+    /// view's size in pixels. Never waits for the GPU.
+    pub(super) fn schedule_render(&mut self, view_size_px: (u32, u32)) {
+        let Some(worker) = self.worker.as_mut() else { return };
+        let preview = self.interacting;
+        let size =
+            if preview { ((view_size_px.0 / 2).max(1), (view_size_px.1 / 2).max(1)) } else { view_size_px };
+        // A preview is followed by the full-quality frame once the drag ends.
+        let refine = self.submitted.preview && !preview;
+        let resized = self.submitted.size != size;
+        if !(self.dirty || resized || refine || self.playing) {
+            return;
+        }
+        if self.scene.lights.is_empty() {
+            self.selected_light = 0;
+        }
+        let has_lights = !self.scene.lights.is_empty();
+        let full_detail = !preview && !self.playing;
+        let probe_pixel = self.probe_at.filter(|_| full_detail).map(|(fx, fy)| {
+            (((fx * size.0 as f32) as u32).min(size.0 - 1), ((fy * size.1 as f32) as u32).min(size.1 - 1))
+        });
+        // The analysis pass feeds the overlays only: skip it when none is on.
+        let overlays_need_analysis = self.overlays.iter().any(|o| *o != Overlay::LightFrustum);
+        let analysis = full_detail && overlays_need_analysis && has_lights;
+        let mut scene = self.scene.clone();
+        if preview && scene.shadow.technique == Technique::Pcss {
+            scene.shadow.samples = scene.shadow.samples.min(PREVIEW_PCSS_SAMPLES);
+            scene.shadow.blocker_samples = scene.shadow.blocker_samples.min(PREVIEW_PCSS_SAMPLES);
+        }
+        let job = RenderJob {
+            scene,
+            request: FrameRequest {
+                time_s: self.time_s,
+                size,
+                selected_light: self.selected_light,
+                final_color: true,
+                analysis: false,
+                timestamps: true,
+            },
+            probe_pixel,
+            analysis,
+            reference: analysis && self.overlays.contains(&Overlay::Error),
+            technique_b: self.ab.as_ref().map(|ab| ab.b),
+            thumbnails: full_detail,
+            preview,
+        };
+        if job.reference {
+            self.shown.reference_progress = Some((0, self.scene.shadow.reference_samples));
+        }
+        let id = worker.submit(job);
+        self.submitted = Submitted { job: id, preview, size };
+        self.dirty = false;
+    }
+
+    /// A render is waiting or in progress (or a ground truth is still accumulating).
+    pub fn render_pending(&self) -> bool {
+        let Some(worker) = self.worker.as_ref() else { return false };
+        let reference_running = self.shown.reference_progress.is_some_and(|(done, total)| done < total);
+        self.dirty || worker.busy() || reference_running || self.shown_job < self.submitted.job
+    }
+
+    /// The worker has been busy long enough to say so.
+    pub fn render_is_slow(&self) -> Option<Duration> {
+        self.worker.as_ref()?.waiting_for().filter(|d| *d >= SLOW_RENDER)
+    }
+
+    /// Scene time advances at wall-clock rate times the speed, however long frames take.
+    pub(super) fn advance_time(&mut self, now: Instant) {
+        let dt = self.last_tick.map_or(0.0, |t| now.duration_since(t).as_secs_f32());
+        self.last_tick = Some(now);
+        if self.playing {
+            // A stall (window dragged, machine asleep) should not jump the scene.
+            self.time_s = (self.time_s + dt.min(0.5) * self.speed) % 3600.0;
+            self.reference = None;
+            self.dirty = true;
+        }
+    }
+}

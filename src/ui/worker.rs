@@ -1,0 +1,325 @@
+//! The render worker: a thread that owns the app's renderers, on a GPU device of its own, so that
+//! a slow render never holds up the window (on a software rasteriser each device has its own
+//! queue; egui's frames do not wait behind a 300 ms PCSS frame). It knows nothing of egui.
+//!
+//! Newest request wins: requests still waiting when a render ends are dropped, all but the last;
+//! a ground truth in progress stops at its next batch when a newer request arrives, and reports
+//! its partial average after every batch so the view can show it filling in.
+
+use crate::probe::{self, ProbeReport};
+use crate::render::{Analysis, DepthImage, FrameRequest, LightGpu, PassTimes, RenderError, Renderer};
+use crate::scene::{Scene, Technique};
+use crate::views;
+use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::mpsc;
+use std::time::Instant;
+
+/// What the app wants rendered.
+#[derive(Clone)]
+pub struct RenderJob {
+    pub scene: Scene,
+    /// Time, size (the resolution rendered at) and the light the analysis describes.
+    pub request: FrameRequest,
+    /// Probe this pixel of the frame (full-quality renders only).
+    pub probe_pixel: Option<(u32, u32)>,
+    /// Render the analysis targets of the selected light (the overlays need them).
+    pub analysis: bool,
+    /// Accumulate the ground truth of the selected light (needs `analysis`).
+    pub reference: bool,
+    /// The A/B split's right side: the same frame with this technique.
+    pub technique_b: Option<Technique>,
+    /// A small picture of every light's map (several lights, full quality).
+    pub thumbnails: bool,
+    /// A reduced-quality render while a value is being dragged.
+    pub preview: bool,
+}
+
+/// The selected light's shadow map: the depths (for the hover readout and the probe picture)
+/// and the picture shown, with the depth range of its colour bar (world units).
+pub struct MapView {
+    pub depth: DepthImage,
+    pub light: LightGpu,
+    pub image: image::RgbaImage,
+    pub range: (f32, f32),
+}
+
+/// One finished render.
+pub struct RenderOutput {
+    pub job: u64,
+    pub preview: bool,
+    /// The resolution the camera view was rendered at, pixels.
+    pub size: (u32, u32),
+    pub color: image::RgbaImage,
+    pub color_b: Option<image::RgbaImage>,
+    /// The lights as the GPU saw them.
+    pub lights: Vec<LightGpu>,
+    pub analysis: Option<Analysis>,
+    /// None where no probe was asked for; Some(Err) where it failed.
+    pub probe: Option<Result<ProbeReport, String>>,
+    pub map: Option<MapView>,
+    pub thumbnails: Vec<image::RgbaImage>,
+    /// GPU time of the last frame's passes (where the adapter has timestamps).
+    pub pass_times: Option<PassTimes>,
+    /// Wall-clock time of the whole job (renders, read-backs, probe), milliseconds.
+    pub render_ms: f64,
+}
+
+pub enum WorkerEvent {
+    /// The worker's device is ready (adapter description) or could not be opened.
+    Ready(Result<String, String>),
+    Frame(Box<RenderOutput>),
+    /// The ground truth so far: `done` of `total` light samples averaged.
+    Reference {
+        job: u64,
+        done: u32,
+        total: u32,
+        values: Vec<f32>,
+    },
+    Failed {
+        job: u64,
+        message: String,
+    },
+}
+
+pub struct RenderWorker {
+    jobs: mpsc::Sender<(u64, RenderJob)>,
+    events: mpsc::Receiver<WorkerEvent>,
+    /// The newest job submitted: the worker cancels anything older.
+    latest: Arc<AtomicU64>,
+    /// The newest job whose frame has come back.
+    finished: u64,
+    submitted_at: Option<Instant>,
+}
+
+/// Most texels per side of the shadow map as shown (larger maps are subsampled for display).
+pub const MAP_DISPLAY_TEXELS: u32 = 2048;
+/// While dragging the map picture is built at this size at most.
+const MAP_PREVIEW_TEXELS: u32 = 512;
+/// Texels per side of a light's thumbnail.
+pub const THUMBNAIL_TEXELS: u32 = 96;
+/// Ground-truth samples in the first batch; each later batch doubles, up to `REFERENCE_BATCH_MAX`.
+const REFERENCE_BATCH_FIRST: usize = 4;
+const REFERENCE_BATCH_MAX: usize = 32;
+
+impl RenderWorker {
+    /// Start the worker on a new device of `adapter`. `wake` is called after every event
+    /// (the app asks egui for a repaint there).
+    pub fn spawn(adapter: wgpu::Adapter, wake: impl Fn() + Send + 'static) -> Self {
+        let (job_tx, job_rx) = mpsc::channel::<(u64, RenderJob)>();
+        let (event_tx, event_rx) = mpsc::channel();
+        let latest = Arc::new(AtomicU64::new(0));
+        let latest_in_worker = latest.clone();
+        let spawned = std::thread::Builder::new().name("shadowlab render".into()).spawn(move || {
+            let send = |event| {
+                let _ = event_tx.send(event);
+                wake();
+            };
+            let mut renderers = match open(&adapter) {
+                Ok(r) => {
+                    send(WorkerEvent::Ready(Ok(crate::render::describe_adapter(&adapter.get_info()))));
+                    r
+                }
+                Err(e) => {
+                    send(WorkerEvent::Ready(Err(e.to_string())));
+                    return;
+                }
+            };
+            while let Ok(mut next) = job_rx.recv() {
+                // Newest request wins.
+                while let Ok(newer) = job_rx.try_recv() {
+                    next = newer;
+                }
+                let (id, job) = next;
+                let cancelled = || latest_in_worker.load(Ordering::Acquire) > id;
+                match renderers.run(id, &job) {
+                    Ok(output) => send(WorkerEvent::Frame(Box::new(output))),
+                    Err(e) => {
+                        send(WorkerEvent::Failed { job: id, message: e.to_string() });
+                        continue;
+                    }
+                }
+                if job.reference && job.analysis && !cancelled() {
+                    let result = renderers.a.render_reference_progressive(
+                        &job.scene,
+                        job.request.selected_light,
+                        REFERENCE_BATCH_FIRST,
+                        REFERENCE_BATCH_MAX,
+                        &mut |done, total, values| {
+                            send(WorkerEvent::Reference { job: id, done, total, values: values.to_vec() });
+                            !cancelled()
+                        },
+                    );
+                    if let Err(e) = result {
+                        send(WorkerEvent::Failed { job: id, message: e.to_string() });
+                    }
+                }
+            }
+        });
+        if let Err(e) = spawned {
+            // No thread: report it the way a device failure is reported.
+            let (tx, rx) = mpsc::channel();
+            let _ = tx.send(WorkerEvent::Ready(Err(format!("could not start the render thread: {e}"))));
+            return Self { jobs: mpsc::channel().0, events: rx, latest, finished: 0, submitted_at: None };
+        }
+        Self { jobs: job_tx, events: event_rx, latest, finished: 0, submitted_at: None }
+    }
+
+    /// Queue a render; anything older that has not started is dropped. Returns the job's id.
+    pub fn submit(&mut self, job: RenderJob) -> u64 {
+        let id = self.latest.load(Ordering::Acquire) + 1;
+        self.latest.store(id, Ordering::Release);
+        let _ = self.jobs.send((id, job));
+        self.submitted_at.get_or_insert_with(Instant::now);
+        id
+    }
+
+    /// Events that have arrived since the last call.
+    pub fn poll(&mut self) -> Vec<WorkerEvent> {
+        let events: Vec<WorkerEvent> = self.events.try_iter().collect();
+        for event in &events {
+            if let WorkerEvent::Frame(out) = event {
+                self.finished = self.finished.max(out.job);
+            }
+            if let WorkerEvent::Failed { job, .. } = event {
+                self.finished = self.finished.max(*job);
+            }
+        }
+        if !self.busy() {
+            self.submitted_at = None;
+        }
+        events
+    }
+
+    /// A frame is being rendered (or waits to be).
+    pub fn busy(&self) -> bool {
+        self.finished < self.latest.load(Ordering::Acquire)
+    }
+
+    /// How long the views have been waiting for a frame.
+    pub fn waiting_for(&self) -> Option<std::time::Duration> {
+        self.submitted_at.filter(|_| self.busy()).map(|t| t.elapsed())
+    }
+}
+
+/// The worker's renderers: `a` for the view, `b` for the A/B split's right side (made on first use).
+struct Renderers {
+    device: wgpu::Device,
+    queue: wgpu::Queue,
+    a: Renderer,
+    b: Option<Renderer>,
+}
+
+fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
+    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
+        label: Some("shadowlab render worker"),
+        required_features: adapter.features() & crate::render::optional_features(),
+        required_limits: adapter.limits(),
+        ..Default::default()
+    }))
+    .map_err(|e| RenderError::Device(e.to_string()))?;
+    let a = Renderer::new(&device, &queue)?;
+    Ok(Renderers { device, queue, a, b: None })
+}
+
+impl Renderers {
+    fn run(&mut self, id: u64, job: &RenderJob) -> Result<RenderOutput, RenderError> {
+        let start = Instant::now();
+        let scene = &job.scene;
+        let has_lights = !scene.lights.is_empty();
+        let request = FrameRequest { final_color: true, analysis: false, timestamps: true, ..job.request };
+        // The probe renders the analysis pass once per light; the frame below then restores the
+        // selected light's analysis for the overlays.
+        let probe = match job.probe_pixel {
+            Some(pixel) if has_lights => {
+                Some(probe::probe(&mut self.a, scene, &request, pixel, false).map_err(|e| e.to_string()))
+            }
+            _ => None,
+        };
+        let frame = FrameRequest { analysis: job.analysis && has_lights, ..request };
+        self.a.render(scene, &frame)?;
+        let pass_times = self.a.last_pass_times()?;
+        let color = self.a.read_color()?;
+        let analysis = if frame.analysis { Some(self.a.read_analysis()?) } else { None };
+        let lights = self.a.frame_lights.clone();
+        let map = match lights.get(job.request.selected_light) {
+            Some(light) => {
+                let depth = self.a.read_shadow_map(job.request.selected_light)?;
+                let limit = if job.preview { MAP_PREVIEW_TEXELS } else { MAP_DISPLAY_TEXELS };
+                let (image, legend) = views::shadow_map_image(&subsample(&depth, limit), light);
+                Some(MapView { depth, light: *light, image, range: (legend.min, legend.max) })
+            }
+            None => None,
+        };
+        let mut thumbnails = Vec::new();
+        if job.thumbnails && lights.len() > 1 {
+            for (i, light) in lights.iter().enumerate() {
+                let depth = self.a.read_shadow_map(i)?;
+                let (image, _) = views::shadow_map_image(&subsample(&depth, 4 * THUMBNAIL_TEXELS), light);
+                thumbnails.push(image::imageops::resize(
+                    &image,
+                    THUMBNAIL_TEXELS,
+                    THUMBNAIL_TEXELS,
+                    image::imageops::FilterType::Triangle,
+                ));
+            }
+        }
+        let color_b = match job.technique_b {
+            Some(technique) => {
+                if self.b.is_none() {
+                    self.b = Some(Renderer::new(&self.device, &self.queue)?);
+                }
+                let b = self.b.as_mut().ok_or_else(|| RenderError::Usage("no B renderer".into()))?;
+                let mut scene_b = scene.clone();
+                scene_b.shadow.technique = technique;
+                b.render(&scene_b, &request)?;
+                Some(b.read_color()?)
+            }
+            None => None,
+        };
+        Ok(RenderOutput {
+            job: id,
+            preview: job.preview,
+            size: request.size,
+            color,
+            color_b,
+            lights,
+            analysis,
+            probe,
+            map,
+            thumbnails,
+            pass_times,
+            render_ms: start.elapsed().as_secs_f64() * 1e3,
+        })
+    }
+}
+
+/// Every `step`-th texel of a map, so that its picture is at most `limit` texels a side.
+fn subsample(map: &DepthImage, limit: u32) -> DepthImage {
+    let step = map.size.div_ceil(limit.max(1)).max(1);
+    if step == 1 {
+        return map.clone();
+    }
+    let size = map.size / step;
+    let mut depth_ndc = Vec::with_capacity((size * size) as usize);
+    for y in 0..size {
+        let row = (y * step * map.size) as usize;
+        depth_ndc.extend((0..size).map(|x| map.depth_ndc[row + (x * step) as usize]));
+    }
+    DepthImage { size, depth_ndc }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subsampling_keeps_every_nth_texel() {
+        let map = DepthImage { size: 8, depth_ndc: (0..64).map(|i| i as f32).collect() };
+        let small = subsample(&map, 4);
+        assert_eq!(small.size, 4);
+        assert_eq!(small.depth_ndc[..4], [0.0, 2.0, 4.0, 6.0]);
+        assert_eq!(small.depth_ndc[4], 16.0);
+        assert_eq!(subsample(&map, 8).depth_ndc, map.depth_ndc);
+    }
+}
