@@ -244,3 +244,84 @@ fn opening_an_obj_builds_a_scene_around_it() {
     assert_eq!(app.scene.lights.len(), 1);
     assert!(app.camera_image().is_some());
 }
+
+#[test]
+fn the_ui_does_not_wait_for_a_render() {
+    let mut h = harness();
+    let before = h.state().camera_image().expect("image");
+    h.state_mut().scene.shadow.technique = shadowlab::scene::Technique::Hard;
+    h.state_mut().mark_dirty();
+    // One UI frame: the render is asked for, not waited for; the last image stays on screen.
+    h.step();
+    assert!(h.state().render_pending(), "the new frame should still be rendering");
+    assert_eq!(h.state().camera_image().as_ref(), Some(&before), "the last finished image stays shown");
+    settle(&mut h);
+    let after = h.state().camera_image().expect("image");
+    let changed = before.pixels().zip(after.pixels()).filter(|(a, b)| a != b).count();
+    assert!(changed > 100, "hard shadows should look different from PCSS ({changed} pixels)");
+}
+
+#[test]
+fn dragging_a_slider_previews_at_half_resolution_and_refines_on_release() {
+    let mut h = harness();
+    let full = h.state().shown_size();
+    let label = "light width (world units)";
+    let slider = egui::accesskit::Role::Slider;
+    let slider_node =
+        |h: &Harness<'_, ShadowlabApp>| h.query_all_by_role_and_label(slider, label).next().map(|n| n.rect());
+    assert!(slider_node(&h).is_some(), "the inspector shows the '{label}' slider");
+    if let Some(node) = h.query_all_by_role_and_label(slider, label).next() {
+        node.scroll_to_me();
+    }
+    // Scrolling animates over a few frames.
+    h.run_steps(30);
+    settle(&mut h);
+    let slider = slider_node(&h).expect("slider");
+    let from = slider.left_center() + egui::vec2(10.0, 0.0);
+    h.hover_at(from);
+    h.run_steps(1);
+    h.drag_at(from);
+    h.run_steps(1);
+    let mut saw_preview = false;
+    for i in 0..600 {
+        h.hover_at(from + egui::vec2(20.0 + (i % 40) as f32, 0.0));
+        h.step();
+        if h.state().showing_preview() {
+            saw_preview = true;
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    assert!(saw_preview, "a preview should arrive while the slider is dragged");
+    let preview = h.state().shown_size();
+    assert_eq!(preview, ((full.0 / 2).max(1), (full.1 / 2).max(1)), "previews render at half resolution");
+    h.drop_at(from + egui::vec2(30.0, 0.0));
+    settle(&mut h);
+    assert!(!h.state().showing_preview(), "the full-quality frame replaces the preview on release");
+    assert_eq!(h.state().shown_size(), full);
+}
+
+#[test]
+fn the_ground_truth_fills_in_batch_by_batch() {
+    let mut h = harness();
+    h.state_mut().scene.shadow.reference_samples = 256;
+    h.state_mut().overlays = vec![shadowlab::lessons::Overlay::Error];
+    h.state_mut().mark_dirty();
+    let mut partial = None;
+    for _ in 0..6000 {
+        h.step();
+        if let Some((done, total)) = h.state().reference_progress()
+            && done > 0
+            && done < total
+        {
+            partial = Some((done, total));
+            break;
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let (done, total) = partial.expect("the ground truth should show partial progress");
+    assert_eq!(total, 256);
+    assert!(done < total);
+    settle(&mut h);
+    assert_eq!(h.state().reference_progress(), Some((256, 256)));
+}

@@ -72,6 +72,43 @@ fn the_reference_converges_as_samples_grow() {
     assert!(errors[3] < 0.25 * errors[0], "256 samples should be far closer than 4: {errors:?}");
 }
 
+#[test]
+fn the_progressive_reference_reports_each_batch_and_ends_where_the_whole_one_does() {
+    let (_ctx, mut renderer) = common::gpu();
+    let scene =
+        common::scene("contact", &[("reference_samples", "100"), ("light.0.shadow_map_size", "1024")]);
+    renderer.render(&scene, &common::analysis_request((160, 90), 0)).expect("render");
+    let whole = renderer.render_reference(&scene, 0).expect("reference");
+    let mut reports: Vec<(u32, u32, Vec<f32>)> = Vec::new();
+    let last = renderer
+        .render_reference_progressive(&scene, 0, 4, 32, &mut |done, total, values| {
+            reports.push((done, total, values.to_vec()));
+            true
+        })
+        .expect("progressive reference")
+        .expect("not stopped");
+    let done: Vec<u32> = reports.iter().map(|r| r.0).collect();
+    // Batches of 4, 8, 16, 32, then what is left.
+    assert_eq!(done, [4, 12, 28, 60, 92, 100]);
+    assert!(reports.iter().all(|r| r.1 == 100));
+    assert_eq!(last, whole, "the finished average is the one-shot ground truth");
+    assert_eq!(reports.last().map(|r| &r.2), Some(&whole));
+    // Partial averages are averages (in 0..1), and they approach the whole.
+    let errors: Vec<f64> = reports.iter().map(|r| mean_abs(&r.2, &whole)).collect();
+    assert!(reports.iter().all(|r| r.2.iter().all(|v| (0.0..=1.0).contains(v))));
+    assert!(errors[3] < errors[0], "{errors:?}");
+    // Stopping after the first batch ends it there.
+    let mut calls = 0;
+    let stopped = renderer
+        .render_reference_progressive(&scene, 0, 4, 32, &mut |_, _, _| {
+            calls += 1;
+            false
+        })
+        .expect("stopped reference");
+    assert!(stopped.is_none());
+    assert_eq!(calls, 1);
+}
+
 /// Fraction of a unit disk's area with x below `u` (-1..1): the profile of a straight shadow
 /// edge under a disk light, and under a disk filter.
 fn disk_fraction(u: f64) -> f64 {

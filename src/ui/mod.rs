@@ -44,6 +44,7 @@ pub struct ShadowlabApp {
     /// The job the views wait for, and the newest one shown.
     submitted: Submitted,
     shown_job: u64,
+    frames_shown: u64,
     /// Wall-clock time of the last UI frame (playback advances by it).
     last_tick: Option<std::time::Instant>,
     /// Why there is no GPU view (shown in place of the views).
@@ -158,6 +159,7 @@ impl ShadowlabApp {
             shown: Shown::default(),
             submitted: Submitted::default(),
             shown_job: 0,
+            frames_shown: 0,
             last_tick: None,
             gpu_error,
             base_scene: scene.clone(),
@@ -633,9 +635,12 @@ impl eframe::App for ShadowlabApp {
         self.receive_renders(&ctx);
         // Dragging a slider (or anything else) asks for previews until it is let go.
         self.interacting = ctx.dragged_id().is_some();
-        if self.playing || self.render_pending() {
-            // Repaint at the display rate while frames are in flight: the views stay live.
+        if self.playing {
             ctx.request_repaint();
+        } else if self.render_pending() {
+            // Finished frames wake the UI themselves; this only keeps "rendering..." counting.
+            // (Repainting flat out would take the CPU a software rasteriser renders with.)
+            ctx.request_repaint_after(std::time::Duration::from_millis(250));
         }
         if self.screenshot_pending {
             ctx.request_repaint();

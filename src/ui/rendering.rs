@@ -13,6 +13,9 @@ use std::time::{Duration, Instant};
 pub const SLOW_RENDER: Duration = Duration::from_millis(150);
 /// PCSS taps (blocker search and filter, each) at most while dragging.
 const PREVIEW_PCSS_SAMPLES: u32 = 16;
+/// Texels per side of the shadow-map picture: enough for the panel, and every texel once zoomed.
+const MAP_PICTURE_TEXELS: u32 = 1024;
+const MAP_PICTURE_TEXELS_ZOOMED: u32 = 2048;
 
 /// What the views show: the last finished render, as textures, with what it was rendered from.
 #[derive(Default)]
@@ -78,14 +81,16 @@ impl ShadowlabApp {
             return;
         }
         self.shown_job = out.job;
+        self.frames_shown += 1;
+        let filter = egui::TextureOptions::LINEAR;
         let upload = |slot: &mut Option<egui::TextureHandle>, name: &str, image: &image::RgbaImage| {
             let pixels = egui::ColorImage::from_rgba_unmultiplied(
                 [image.width() as usize, image.height() as usize],
                 image.as_raw(),
             );
             match slot {
-                Some(handle) => handle.set(pixels, egui::TextureOptions::LINEAR),
-                None => *slot = Some(ctx.load_texture(name, pixels, egui::TextureOptions::LINEAR)),
+                Some(handle) => handle.set(pixels, filter),
+                None => *slot = Some(ctx.load_texture(name, pixels, filter)),
             }
         };
         upload(&mut self.shown.camera, "camera view", &out.color);
@@ -179,6 +184,7 @@ impl ShadowlabApp {
             technique_b: self.ab.as_ref().map(|ab| ab.b),
             thumbnails: full_detail,
             preview,
+            map_texels: if self.view_state.zoomed() { MAP_PICTURE_TEXELS_ZOOMED } else { MAP_PICTURE_TEXELS },
         };
         if job.reference {
             self.shown.reference_progress = Some((0, self.scene.shadow.reference_samples));
@@ -193,6 +199,26 @@ impl ShadowlabApp {
         let Some(worker) = self.worker.as_ref() else { return false };
         let reference_running = self.shown.reference_progress.is_some_and(|(done, total)| done < total);
         self.dirty || worker.busy() || reference_running || self.shown_job < self.submitted.job
+    }
+
+    /// How many frames have reached the views (each a new image on screen).
+    pub fn frames_shown(&self) -> u64 {
+        self.frames_shown
+    }
+
+    /// The resolution the shown camera view was rendered at, pixels.
+    pub fn shown_size(&self) -> (u32, u32) {
+        self.shown.size
+    }
+
+    /// The ground truth shown so far: (samples averaged, samples in all).
+    pub fn reference_progress(&self) -> Option<(u32, u32)> {
+        self.shown.reference_progress
+    }
+
+    /// The views show a reduced-quality preview.
+    pub fn showing_preview(&self) -> bool {
+        self.shown.preview
     }
 
     /// The worker has been busy long enough to say so.

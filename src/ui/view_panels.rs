@@ -31,6 +31,11 @@ impl ViewState {
         self.stale = true;
     }
 
+    /// The map panel is zoomed in (its picture then needs every texel).
+    pub fn zoomed(&self) -> bool {
+        self.zoom > 1.0
+    }
+
     /// The shadow map shown: its depths and the light it was rendered for.
     pub fn map(&self) -> Option<(&DepthImage, &LightGpu)> {
         self.map.as_ref().map(|(_, depth, light)| (depth, light))
@@ -165,6 +170,7 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     if app.overlays.contains(&crate::lessons::Overlay::LightFrustum) {
         draw_light_frusta(app, &painter, rect);
     }
+    render_progress(app, &painter, rect);
     if let Some((fx, fy)) = app.probe_at {
         let p = pos2(rect.left() + fx * rect.width(), rect.top() + fy * rect.height());
         painter.circle_stroke(p, 7.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
@@ -237,6 +243,40 @@ fn legend_bar(ui: &mut Ui, (lo, hi): (f32, f32)) {
         }
         ui.small(format!("{hi:.1} world units from the light · white: nothing stored · wheel: zoom"));
     });
+}
+
+/// "rendering..." over a view whose frame is slow (or not there yet), and the ground truth's
+/// progress while it accumulates.
+fn render_progress(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
+    let label = |text: String, pos: Pos2, align: egui::Align2| {
+        let font = egui::FontId::proportional(14.0);
+        let galley = painter.layout_no_wrap(text, font, Color32::WHITE);
+        let r = align.anchor_size(pos, galley.size()).expand(4.0);
+        painter.rect_filled(r, 3.0, Color32::from_black_alpha(170));
+        painter.galley(r.min + vec2(4.0, 4.0), galley, Color32::WHITE);
+    };
+    if app.shown.camera.is_none() || app.render_is_slow().is_some() {
+        let waited = app.render_is_slow().map_or(0.0, |d| d.as_secs_f32());
+        label(
+            format!("rendering... {waited:.1} s"),
+            rect.right_top() + vec2(-8.0, 8.0),
+            egui::Align2::RIGHT_TOP,
+        );
+    }
+    if let Some((done, total)) = app.shown.reference_progress
+        && done < total
+    {
+        let bar = Rect::from_min_size(rect.left_bottom() + vec2(8.0, -14.0), vec2(rect.width() - 16.0, 6.0));
+        painter.rect_filled(bar, 2.0, Color32::from_black_alpha(160));
+        let filled =
+            Rect::from_min_size(bar.min, vec2(bar.width() * done as f32 / total.max(1) as f32, bar.height()));
+        painter.rect_filled(filled, 2.0, Color32::from_rgb(255, 210, 0));
+        label(
+            format!("ground truth {done} / {total} samples"),
+            bar.left_top() + vec2(0.0, -6.0),
+            egui::Align2::LEFT_BOTTOM,
+        );
+    }
 }
 
 /// Project a world point with `clip_from_world` into `rect`; None behind the eye.
@@ -409,7 +449,12 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         let scroll = ui.input(|i| i.smooth_scroll_delta.y);
         if scroll != 0.0 {
             let max_zoom = (map_size as f32 / 16.0).max(1.0);
+            let was_zoomed = app.view_state.zoomed();
             app.view_state.zoom = (zoom * (scroll * 0.004).exp()).clamp(1.0, max_zoom);
+            if app.view_state.zoomed() != was_zoomed {
+                // The picture's resolution follows the zoom.
+                app.dirty = true;
+            }
             let pointer = response.hover_pos().map(|p| {
                 (shown.left() + (p.x - map_rect.left()) / side, shown.top() + (p.y - map_rect.top()) / side)
             });

@@ -33,6 +33,8 @@ pub struct RenderJob {
     pub thumbnails: bool,
     /// A reduced-quality render while a value is being dragged.
     pub preview: bool,
+    /// Texels per side of the shadow-map picture at most (the map is subsampled beyond).
+    pub map_texels: u32,
 }
 
 /// The selected light's shadow map: the depths (for the hover readout and the probe picture)
@@ -92,8 +94,6 @@ pub struct RenderWorker {
     submitted_at: Option<Instant>,
 }
 
-/// Most texels per side of the shadow map as shown (larger maps are subsampled for display).
-pub const MAP_DISPLAY_TEXELS: u32 = 2048;
 /// While dragging the map picture is built at this size at most.
 const MAP_PREVIEW_TEXELS: u32 = 512;
 /// Texels per side of a light's thumbnail.
@@ -180,6 +180,8 @@ impl RenderWorker {
         for event in &events {
             if let WorkerEvent::Frame(out) = event {
                 self.finished = self.finished.max(out.job);
+                // A frame arrived: the views are waiting only for the newer ones from now on.
+                self.submitted_at = Some(Instant::now());
             }
             if let WorkerEvent::Failed { job, .. } = event {
                 self.finished = self.finished.max(*job);
@@ -245,7 +247,7 @@ impl Renderers {
         let map = match lights.get(job.request.selected_light) {
             Some(light) => {
                 let depth = self.a.read_shadow_map(job.request.selected_light)?;
-                let limit = if job.preview { MAP_PREVIEW_TEXELS } else { MAP_DISPLAY_TEXELS };
+                let limit = if job.preview { MAP_PREVIEW_TEXELS.min(job.map_texels) } else { job.map_texels };
                 let (image, legend) = views::shadow_map_image(&subsample(&depth, limit), light);
                 Some(MapView { depth, light: *light, image, range: (legend.min, legend.max) })
             }
