@@ -668,7 +668,7 @@ fn probe_at_the_sky_reports_no_hit() {
 }
 
 #[test]
-fn bench_json_has_six_rows_positive_times_and_the_adapter() {
+fn bench_json_has_a_row_per_technique_with_every_frame_and_the_adapter() {
     let scene = contact();
     let run = shadowlab(&["bench", "--scene", &scene, "--frames", "2", "--size", "160x90", "--json"]);
     assert_eq!(run.code, Some(0), "{run}");
@@ -678,10 +678,12 @@ fn bench_json_has_six_rows_positive_times_and_the_adapter() {
     assert!(!adapter.trim().is_empty());
     assert_eq!(json["frames"], serde_json::json!(2));
     assert_eq!(json["size"], serde_json::json!([160, 90]));
+    assert_eq!(json["animated"], Value::Bool(true));
     let rows = json["rows"].as_array().expect("rows is an array");
-    assert_eq!(rows.len(), 6, "{json:#}");
+    let labels: Vec<&str> = rows.iter().filter_map(|r| r["technique"].as_str()).collect();
+    // contact.toml filters with 16 + 16 taps: no extra row for the scene's own counts.
+    assert_eq!(labels, ["none", "hard", "pcf 16", "pcf 32", "pcss 16+16", "pcss 32+32"], "{json:#}");
     for row in rows {
-        assert!(row["technique"].is_string(), "{row}");
         for key in ["median_frame_ms", "min_frame_ms"] {
             let ms = row[key].as_f64().unwrap_or_else(|| panic!("`{key}` is not a number: {row}"));
             assert!(ms > 0.0 && ms.is_finite(), "{row}");
@@ -690,6 +692,83 @@ fn bench_json_has_six_rows_positive_times_and_the_adapter() {
         for key in ["shadow_pass_ms", "camera_pass_ms"] {
             let value = &row[key];
             assert!(value.is_null() || value.as_f64().is_some_and(|ms| ms >= 0.0), "{row}");
+        }
+        // Every timed frame, each 1/30 s of scene time after the one before.
+        let frames = row["frames"].as_array().expect("frames is an array");
+        assert_eq!(frames.len(), 2, "{row}");
+        let t0 = frames[0]["time_s"].as_f64().expect("time_s");
+        let t1 = frames[1]["time_s"].as_f64().expect("time_s");
+        assert!((t1 - t0 - 1.0 / 30.0).abs() < 1e-4, "{row}");
+    }
+}
+
+#[test]
+fn bench_defaults_to_the_homework_workload_from_any_folder() {
+    let scratch = Scratch::new();
+    let run = common::run(
+        common::shadowlab_command()
+            .current_dir(scratch.dir.path())
+            .args(["bench", "--only", "none", "--frames", "1", "--size", "64x36", "--json"]),
+    );
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
+    assert!(json["scene"].as_str().is_some_and(|s| s.ends_with("homework.toml")), "{json:#}");
+    let labels: Vec<&str> =
+        json["rows"].as_array().expect("rows").iter().filter_map(|r| r["technique"].as_str()).collect();
+    assert_eq!(labels, ["none"]);
+}
+
+#[test]
+fn bench_takes_overrides_a_fixed_time_and_picks_rows() {
+    let run = shadowlab(&[
+        "bench",
+        "--set",
+        "light.0.width=2",
+        "--only",
+        "pcss 50+50",
+        "--time",
+        "2",
+        "--still",
+        "--frames",
+        "2",
+        "--size",
+        "64x36",
+        "--json",
+    ]);
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
+    assert_eq!(json["overrides"], serde_json::json!(["light.0.width=2"]));
+    assert_eq!(json["animated"], Value::Bool(false));
+    let rows = json["rows"].as_array().expect("rows");
+    assert_eq!(rows.len(), 1, "{json:#}");
+    assert_eq!(rows[0]["technique"], "pcss 50+50");
+    for frame in rows[0]["frames"].as_array().expect("frames") {
+        assert_eq!(frame["time_s"].as_f64(), Some(2.0), "{frame}");
+    }
+}
+
+#[test]
+fn bench_unknown_row_and_bad_override_are_refused() {
+    let run = shadowlab(&["bench", "--only", "blurry", "--frames", "1"]);
+    assert_bad_input(&run, &["--only blurry", "no such row", "pcss 50+50"]);
+    let run = shadowlab(&["bench", "--set", "light.7.width=2", "--frames", "1"]);
+    assert_bad_input(&run, &["light.7"]);
+}
+
+#[test]
+fn bench_app_drives_the_app_and_reports_what_a_student_feels() {
+    let run = shadowlab(&["bench", "--app", "--seconds", "0.5", "--json"]);
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
+    assert_eq!(json["lesson"], "pcss");
+    let phases = json["phases"].as_array().expect("phases");
+    assert_eq!(phases.len(), 2, "{json:#}");
+    for phase in phases {
+        assert!(phase["ui_frames"].as_u64().is_some_and(|n| n > 0), "{phase}");
+        for key in
+            ["ui_frames_per_s", "view_refreshes_per_s", "release_to_full_quality_s", "slowest_ui_frame_ms"]
+        {
+            assert!(phase[key].as_f64().is_some_and(|v| v >= 0.0 && v.is_finite()), "{key}: {phase}");
         }
     }
 }

@@ -2,6 +2,7 @@
 //! values, no adapter), 1 for a rendering failure. Errors are one line naming what and where.
 
 mod bench;
+mod bench_app;
 #[path = "export.rs"]
 mod export_cmd;
 
@@ -113,6 +114,14 @@ pub struct BenchArgs {
     /// Print JSON (every frame's times) instead of a table.
     #[arg(long)]
     pub json: bool,
+    /// Drive the app instead (offscreen, 1600x900): drag the light-width slider, then the light
+    /// on the shadow map, in the PCSS lesson with a probe pinned; report UI frames per second,
+    /// view refreshes per second and the time from release to the full-quality frame.
+    #[arg(long, conflicts_with_all = ["scene", "set", "time", "still", "only", "frames"])]
+    pub app: bool,
+    /// With --app: seconds of dragging per phase.
+    #[arg(long, default_value_t = 5.0, requires = "app")]
+    pub seconds: f32,
 }
 
 /// The scene `bench` measures when none is given.
@@ -283,6 +292,7 @@ pub fn run(command: Command) -> Result<(), CliError> {
     match command {
         Command::Render(args) => render(args),
         Command::Probe(args) => probe(args),
+        Command::Bench(args) if args.app => bench_app::run(&args),
         Command::Bench(args) => bench::run(args),
         Command::Lessons => list_lessons(),
         Command::Export(args) => export_cmd::run(args),

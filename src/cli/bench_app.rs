@@ -1,0 +1,240 @@
+//! `shadowlab bench --app`: the real app, driven offscreen (egui_kittest on the wgpu renderer)
+//! through a scripted classroom session: the PCSS lesson with a probe pinned, then seconds of
+//! dragging the light-width slider, then of dragging the light on the shadow map. It reports
+//! what a student feels: UI frames per second (logic and painting of each frame), how often
+//! the views show a new image, and how long after the release the full-quality frame arrives.
+
+use super::{BenchArgs, CliError};
+use crate::lessons::Panel;
+use crate::ui::{Settings, ShadowlabApp, app_for_test, configure_wgpu};
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use serde::Serialize;
+use std::time::{Duration, Instant};
+
+const WINDOW: [f32; 2] = [1600.0, 900.0];
+/// Longest wait for the app to settle (first frame, release to full quality).
+const SETTLE_LIMIT: Duration = Duration::from_secs(300);
+/// UI frames timed with nothing rendering.
+const IDLE_FRAMES: u32 = 20;
+
+#[derive(Serialize)]
+struct Phase {
+    what: &'static str,
+    seconds: f64,
+    ui_frames: u32,
+    ui_frames_per_s: f64,
+    /// Slowest UI frame while dragging, milliseconds.
+    slowest_ui_frame_ms: f64,
+    /// Mean time per UI frame of the app's own code and egui's layout, and of painting the
+    /// frame (tessellation, texture uploads, the GPU draw and its read-back), milliseconds.
+    ui_logic_ms: f64,
+    ui_paint_ms: f64,
+    view_refreshes: u64,
+    view_refreshes_per_s: f64,
+    /// From the release to the full-quality frame (probe included) on screen, seconds.
+    release_to_full_quality_s: f64,
+}
+
+#[derive(Serialize)]
+struct AppReport {
+    window: [f32; 2],
+    lesson: String,
+    step: usize,
+    startup_to_first_frame_s: f64,
+    /// A UI frame with nothing rendering, milliseconds.
+    idle_ui_frame_ms: f64,
+    phases: Vec<Phase>,
+}
+
+fn fail(message: impl Into<String>) -> CliError {
+    CliError { code: 1, message: message.into() }
+}
+
+/// Step frames until the app has nothing in flight; returns how long that took.
+fn settle(h: &mut Harness<'_, ShadowlabApp>) -> Result<Duration, CliError> {
+    let start = Instant::now();
+    loop {
+        step(h)?;
+        if !h.state().render_pending() {
+            return Ok(start.elapsed());
+        }
+        if start.elapsed() > SETTLE_LIMIT {
+            return Err(fail(format!("the app did not settle in {} s", SETTLE_LIMIT.as_secs())));
+        }
+        std::thread::sleep(Duration::from_millis(2));
+    }
+}
+
+/// One UI frame: the app's logic, then painting it (as a window would each frame). Returns the
+/// time of each part.
+fn step(h: &mut Harness<'_, ShadowlabApp>) -> Result<(Duration, Duration), CliError> {
+    let start = Instant::now();
+    h.step();
+    let logic = start.elapsed();
+    h.render().map_err(|e| fail(format!("painting the UI failed: {e}")))?;
+    Ok((logic, start.elapsed() - logic))
+}
+
+/// Drag from `from` along `path(t)` (t in seconds) for `seconds`, then release and wait for the
+/// full-quality frame.
+fn drag_phase(
+    h: &mut Harness<'_, ShadowlabApp>,
+    what: &'static str,
+    from: egui::Pos2,
+    seconds: f32,
+    path: impl Fn(f32) -> egui::Pos2,
+) -> Result<Phase, CliError> {
+    h.hover_at(from);
+    step(h)?;
+    h.drag_at(from);
+    step(h)?;
+    let shown_before = h.state().frames_shown();
+    let start = Instant::now();
+    let (mut frames, mut slowest) = (0u32, Duration::ZERO);
+    let (mut logic, mut paint) = (Duration::ZERO, Duration::ZERO);
+    while start.elapsed().as_secs_f32() < seconds {
+        let frame_start = Instant::now();
+        h.hover_at(path(start.elapsed().as_secs_f32()));
+        let (l, p) = step(h)?;
+        logic += l;
+        paint += p;
+        slowest = slowest.max(frame_start.elapsed());
+        frames += 1;
+    }
+    let elapsed = start.elapsed().as_secs_f64();
+    let refreshes = h.state().frames_shown() - shown_before;
+    h.drop_at(path(seconds));
+    let released = Instant::now();
+    settle(h)?;
+    if h.state().showing_preview() {
+        return Err(fail(format!("{what}: still showing a preview after the release")));
+    }
+    Ok(Phase {
+        what,
+        seconds: elapsed,
+        ui_frames: frames,
+        ui_frames_per_s: f64::from(frames) / elapsed,
+        slowest_ui_frame_ms: slowest.as_secs_f64() * 1e3,
+        ui_logic_ms: logic.as_secs_f64() * 1e3 / f64::from(frames.max(1)),
+        ui_paint_ms: paint.as_secs_f64() * 1e3 / f64::from(frames.max(1)),
+        view_refreshes: refreshes,
+        view_refreshes_per_s: refreshes as f64 / elapsed,
+        release_to_full_quality_s: released.elapsed().as_secs_f64(),
+    })
+}
+
+/// Where the first widget with this label is on screen.
+fn widget_rect(h: &Harness<'_, ShadowlabApp>, label: &str) -> Result<egui::Rect, CliError> {
+    h.query_all_by_label(label)
+        .next()
+        .map(|node| node.rect())
+        .ok_or_else(|| fail(format!("the app shows no '{label}'")))
+}
+
+pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+    if !(0.5..=600.0).contains(&args.seconds) {
+        return Err(CliError::input(format!("--seconds {} is out of range 0.5..=600", args.seconds)));
+    }
+    let mut setup = egui_kittest::wgpu::default_wgpu_setup();
+    if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
+        setup = eframe::egui_wgpu::WgpuSetup::CreateNew(configure_wgpu(create));
+    }
+    let started = Instant::now();
+    let mut h = Harness::builder()
+        .with_size(WINDOW)
+        .wgpu_setup(setup)
+        .build_eframe(|cc| app_for_test(cc, Settings::default()));
+    let pcss = h.state().lessons.iter().position(|l| l.id == "pcss").ok_or_else(|| fail("no pcss lesson"))?;
+    let step_index = h.state().lessons[pcss]
+        .steps
+        .iter()
+        .position(|s| s.panels.contains(&Panel::ShadowMap))
+        .ok_or_else(|| fail("no pcss step shows the shadow map"))?;
+    h.state_mut().go_to_step(pcss, step_index);
+    if h.state().probe_at.is_none() {
+        h.state_mut().probe_at = Some((0.5, 0.6));
+    }
+    settle(&mut h)?;
+    if let Some(problem) = h.state().gpu_problem().filter(|_| h.state().camera_image().is_none()) {
+        return Err(CliError { code: 2, message: format!("the app has no GPU view: {problem}") });
+    }
+    let startup = started.elapsed().as_secs_f64();
+    // The UI alone, nothing rendering: what painting a frame costs here.
+    let idle_start = Instant::now();
+    for _ in 0..IDLE_FRAMES {
+        step(&mut h)?;
+    }
+    let idle_ui_frame_ms = idle_start.elapsed().as_secs_f64() * 1e3 / f64::from(IDLE_FRAMES);
+    let lesson = h.state().lessons[pcss].id.clone();
+
+    let slider_label = "light width (world units)";
+    let slider_role = egui::accesskit::Role::Slider;
+    match h.query_all_by_role_and_label(slider_role, slider_label).next() {
+        Some(node) => node.scroll_to_me(),
+        None => return Err(fail(format!("the app shows no '{slider_label}' slider"))),
+    }
+    // Scrolling animates over a few frames.
+    for _ in 0..30 {
+        h.step();
+    }
+    settle(&mut h)?;
+    let slider = h
+        .query_all_by_role_and_label(slider_role, slider_label)
+        .next()
+        .map(|node| node.rect())
+        .ok_or_else(|| fail(format!("the app shows no '{slider_label}' slider")))?;
+    let (left, width, y) = (slider.left() + 4.0, (slider.width() * 0.5).max(40.0), slider.center().y);
+    let slider_phase =
+        drag_phase(&mut h, "drag the light-width slider", slider.left_center(), args.seconds, |t| {
+            egui::pos2(left + width * (0.3 + 0.25 * (t * 2.0).sin()), y)
+        })?;
+
+    // The map panel's heading (the first widget of that name: the panel toggle comes later).
+    let map = widget_rect(&h, "Shadow map")?;
+    // Inside the map's picture, below its heading.
+    let centre = map.left_bottom() + egui::vec2(150.0, 160.0);
+    let map_phase = drag_phase(&mut h, "drag the light on the shadow map", centre, args.seconds, |t| {
+        centre + egui::vec2(30.0 * (t * 1.5).sin(), 20.0 * (t * 1.1).cos() - 20.0)
+    })?;
+
+    let report = AppReport {
+        window: WINDOW,
+        lesson,
+        step: step_index + 1,
+        startup_to_first_frame_s: startup,
+        idle_ui_frame_ms,
+        phases: vec![slider_phase, map_phase],
+    };
+    if args.json {
+        let json = serde_json::to_string_pretty(&report).map_err(|e| fail(e.to_string()))?;
+        println!("{json}");
+        return Ok(());
+    }
+    println!(
+        "app: {}x{} window, lesson {} step {}, probe pinned; first frame after {:.1} s; idle UI frame {:.1} ms",
+        WINDOW[0],
+        WINDOW[1],
+        report.lesson,
+        report.step,
+        report.startup_to_first_frame_s,
+        report.idle_ui_frame_ms
+    );
+    println!(
+        "{:<34} {:>8} {:>9} {:>9} {:>10} {:>15} {:>18}",
+        "phase", "UI fps", "logic ms", "paint ms", "slowest ms", "view refresh/s", "release to full s"
+    );
+    for p in &report.phases {
+        println!(
+            "{:<34} {:>8.1} {:>9.1} {:>9.1} {:>10.0} {:>15.1} {:>18.2}",
+            p.what,
+            p.ui_frames_per_s,
+            p.ui_logic_ms,
+            p.ui_paint_ms,
+            p.slowest_ui_frame_ms,
+            p.view_refreshes_per_s,
+            p.release_to_full_quality_s
+        );
+    }
+    Ok(())
+}
