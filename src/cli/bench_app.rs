@@ -144,6 +144,9 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     let mut h = Harness::builder()
         .with_size(WINDOW)
         .wgpu_setup(setup)
+        // Paint as the app's window does (kittest's default filters textures in the shader,
+        // for snapshots that match across machines, which is far slower).
+        .with_render_options(crate::ui::window_render_options())
         .build_eframe(|cc| app_for_test(cc, Settings::default()));
     let pcss = h.state().lessons.iter().position(|l| l.id == "pcss").ok_or_else(|| fail("no pcss lesson"))?;
     let step_index = h.state().lessons[pcss]

@@ -14,29 +14,9 @@ pub fn optional_features() -> wgpu::Features {
 }
 
 impl GpuContext {
-    /// An adapter on the backends named by `WGPU_BACKEND` (`vulkan`, `gl`, ...); by default
-    /// Vulkan, and OpenGL only where Vulkan has none (GL probing prints noise on headless machines).
+    /// A device on the adapter `headless_adapter` picks.
     pub fn new_headless() -> Result<Self, RenderError> {
-        let attempts = match wgpu::Backends::from_env() {
-            Some(backends) => vec![backends],
-            None => vec![wgpu::Backends::VULKAN, wgpu::Backends::GL],
-        };
-        let mut failure = String::new();
-        for backends in attempts {
-            let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
-            desc.backends = backends;
-            let instance = wgpu::Instance::new(desc);
-            match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
-                power_preference: wgpu::PowerPreference::HighPerformance,
-                force_fallback_adapter: false,
-                compatible_surface: None,
-                apply_limit_buckets: false,
-            })) {
-                Ok(adapter) => return Self::from_adapter(&adapter),
-                Err(e) => failure = format!("{backends:?}: {e}"),
-            }
-        }
-        Err(RenderError::NoAdapter(failure))
+        Self::from_adapter(&headless_adapter()?)
     }
 
     fn from_adapter(adapter: &wgpu::Adapter) -> Result<Self, RenderError> {
@@ -61,4 +41,29 @@ impl GpuContext {
 
 pub fn describe_adapter(info: &wgpu::AdapterInfo) -> String {
     format!("{} via {:?} ({:?})", info.name, info.backend, info.device_type)
+}
+
+/// An adapter on the backends named by `WGPU_BACKEND` (`vulkan`, `gl`, ...); by default Vulkan,
+/// and OpenGL only where Vulkan has none (GL probing prints noise on headless machines).
+pub fn headless_adapter() -> Result<wgpu::Adapter, RenderError> {
+    let attempts = match wgpu::Backends::from_env() {
+        Some(backends) => vec![backends],
+        None => vec![wgpu::Backends::VULKAN, wgpu::Backends::GL],
+    };
+    let mut failure = String::new();
+    for backends in attempts {
+        let mut desc = wgpu::InstanceDescriptor::new_without_display_handle();
+        desc.backends = backends;
+        let instance = wgpu::Instance::new(desc);
+        match pollster::block_on(instance.request_adapter(&wgpu::RequestAdapterOptions {
+            power_preference: wgpu::PowerPreference::HighPerformance,
+            force_fallback_adapter: false,
+            compatible_surface: None,
+            apply_limit_buckets: false,
+        })) {
+            Ok(adapter) => return Ok(adapter),
+            Err(e) => failure = format!("{backends:?}: {e}"),
+        }
+    }
+    Err(RenderError::NoAdapter(failure))
 }

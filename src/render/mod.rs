@@ -11,7 +11,7 @@ pub mod shaders;
 mod targets;
 mod timing;
 
-pub use context::{GpuContext, describe_adapter, optional_features};
+pub use context::{GpuContext, describe_adapter, headless_adapter, optional_features};
 pub use gpu_types::{LightGpu, ShadowParamsGpu};
 pub use pipelines::COLOR_FORMAT;
 pub use timing::PassTimes;

@@ -595,14 +595,18 @@ impl ShadowlabApp {
     }
 }
 
-/// The render worker on a device of eframe's adapter; waking egui whenever it has news.
+/// The render worker, waking egui whenever it has news: on a device of eframe's adapter where
+/// the window paints with wgpu, on one of its own where it paints with OpenGL.
 fn spawn_worker(cc: &eframe::CreationContext<'_>) -> (Option<RenderWorker>, Option<String>) {
-    match cc.wgpu_render_state.as_ref() {
-        Some(rs) => {
-            let ctx = cc.egui_ctx.clone();
-            (Some(RenderWorker::spawn(rs.adapter.clone(), move || ctx.request_repaint())), None)
-        }
-        None => (None, Some("no wgpu renderer: shadowlab needs eframe's wgpu backend".to_string())),
+    let ctx = cc.egui_ctx.clone();
+    let wake = move || ctx.request_repaint();
+    let adapter = match cc.wgpu_render_state.as_ref() {
+        Some(rs) => Ok(rs.adapter.clone()),
+        None => crate::render::headless_adapter().map_err(|e| e.to_string()),
+    };
+    match adapter {
+        Ok(adapter) => (Some(RenderWorker::spawn(adapter, wake)), None),
+        Err(e) => (None, Some(e)),
     }
 }
 
@@ -696,6 +700,28 @@ pub fn configure_wgpu(
     setup
 }
 
+/// How the window paints: egui's defaults (hardware texture filtering) with one sample per pixel.
+pub fn window_render_options() -> eframe::egui_wgpu::RendererOptions {
+    eframe::egui_wgpu::RendererOptions { msaa_samples: 1, ..Default::default() }
+}
+
+/// What paints the window: `SHADOWLAB_UI_PAINTER=glow|wgpu`, or by default OpenGL where the
+/// GPU is a software rasteriser and wgpu elsewhere. On Mesa's llvmpipe egui's OpenGL shader costs
+/// about a sixth of its wgpu shader per pixel (a 1600x900 window: ~25 ms a frame against ~140 ms),
+/// and the window's frames compete with the renders for the same cores. Rendering itself is
+/// wgpu either way, on the render worker's own device.
+fn ui_painter() -> eframe::Renderer {
+    match std::env::var("SHADOWLAB_UI_PAINTER").as_deref() {
+        Ok("glow") => eframe::Renderer::Glow,
+        Ok("wgpu") => eframe::Renderer::Wgpu,
+        _ => {
+            let software = crate::render::headless_adapter()
+                .is_ok_and(|adapter| adapter.get_info().device_type == wgpu::DeviceType::Cpu);
+            if software { eframe::Renderer::Glow } else { eframe::Renderer::Wgpu }
+        }
+    }
+}
+
 /// Open the app. Returns a one-line reason where no window can be opened.
 pub fn run() -> Result<(), String> {
     let has_display =
@@ -705,7 +731,27 @@ pub fn run() -> Result<(), String> {
                     `xvfb-run -a`, or use `shadowlab render`/`shadowlab export`, which need no display"
             .into());
     }
+    let first = ui_painter();
+    let second = match first {
+        eframe::Renderer::Glow => eframe::Renderer::Wgpu,
+        eframe::Renderer::Wgpu => eframe::Renderer::Glow,
+    };
+    // Where the chosen painter cannot open a window (no OpenGL, no Vulkan surface), the other may.
+    let first_error = match open_window(first) {
+        Ok(()) => return Ok(()),
+        Err(e) => e,
+    };
+    open_window(second).map_err(|second_error| {
+        format!(
+            "could not open the window ({first}: {first_error}; {second}: {second_error}); install a \
+             Vulkan driver (apt-get install mesa-vulkan-drivers) or use `shadowlab render`"
+        )
+    })
+}
+
+fn open_window(painter: eframe::Renderer) -> Result<(), String> {
     let options = eframe::NativeOptions {
+        renderer: painter,
         viewport: egui::ViewportBuilder::default()
             .with_title("shadowlab")
             .with_inner_size([1560.0, 880.0])
@@ -719,7 +765,7 @@ pub fn run() -> Result<(), String> {
         ..Default::default()
     };
     eframe::run_native("shadowlab", options, Box::new(|cc| Ok(Box::new(ShadowlabApp::new(cc)))))
-        .map_err(|e| format!("could not open the window: {e}; install a Vulkan driver (apt-get install mesa-vulkan-drivers) or use `shadowlab render`"))
+        .map_err(|e| e.to_string())
 }
 
 /// Build the app for tests and tools, with explicit settings (no storage).
