@@ -756,6 +756,45 @@ fn bench_unknown_row_and_bad_override_are_refused() {
 }
 
 #[test]
+fn bench_app_window_drives_the_real_window() {
+    // A real window needs a display: Xvfb stands in for one (the CI script installs it).
+    let mut command = std::process::Command::new("xvfb-run");
+    command
+        .args(["-a", "-s", "-screen 0 1600x900x24", env!("CARGO_BIN_EXE_shadowlab")])
+        .args(["bench", "--app", "--window", "--seconds", "0.5", "--json"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("XDG_RUNTIME_DIR", common::runtime_dir());
+    let output = command.output().expect("xvfb-run runs (apt-get install xvfb xauth)");
+    let run = Run {
+        code: output.status.code(),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    };
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
+    assert!(json["painter"].as_str().is_some_and(|p| p.ends_with("(window)")), "{json:#}");
+    let phases = json["phases"].as_array().expect("phases");
+    assert_eq!(phases.len(), 2, "{json:#}");
+    for phase in phases {
+        assert!(phase["ui_frames"].as_u64().is_some_and(|n| n > 0), "{phase}");
+        assert!(phase["release_to_full_quality_s"].as_f64().is_some_and(|s| s >= 0.0), "{phase}");
+    }
+}
+
+#[test]
+fn bench_app_window_without_a_display_says_so() {
+    let run =
+        common::run(common::shadowlab_command().env_remove("DISPLAY").env_remove("WAYLAND_DISPLAY").args([
+            "bench",
+            "--app",
+            "--window",
+            "--seconds",
+            "0.5",
+        ]));
+    assert_bad_input(&run, &["no display", "xvfb-run"]);
+}
+
+#[test]
 fn bench_app_drives_the_app_and_reports_what_a_student_feels() {
     let run = shadowlab(&["bench", "--app", "--seconds", "0.5", "--json"]);
     assert_eq!(run.code, Some(0), "{run}");

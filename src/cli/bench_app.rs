@@ -12,39 +12,56 @@ use egui_kittest::kittest::Queryable;
 use serde::Serialize;
 use std::time::{Duration, Instant};
 
-const WINDOW: [f32; 2] = [1600.0, 900.0];
+pub(super) const WINDOW: [f32; 2] = [1600.0, 900.0];
 /// Longest wait for the app to settle (first frame, release to full quality).
 const SETTLE_LIMIT: Duration = Duration::from_secs(300);
 /// UI frames timed with nothing rendering.
 const IDLE_FRAMES: u32 = 20;
 
 #[derive(Serialize)]
-struct Phase {
-    what: &'static str,
-    seconds: f64,
-    ui_frames: u32,
-    ui_frames_per_s: f64,
+pub(super) struct Phase {
+    pub what: &'static str,
+    pub seconds: f64,
+    pub ui_frames: u32,
+    pub ui_frames_per_s: f64,
     /// Slowest UI frame while dragging, milliseconds.
-    slowest_ui_frame_ms: f64,
+    pub slowest_ui_frame_ms: f64,
     /// Mean time per UI frame of the app's own code and egui's layout, and of painting the
-    /// frame (tessellation, texture uploads, the GPU draw and its read-back), milliseconds.
-    ui_logic_ms: f64,
-    ui_paint_ms: f64,
-    view_refreshes: u64,
-    view_refreshes_per_s: f64,
+    /// frame (tessellation, texture uploads, the GPU draw and its read-back), milliseconds
+    /// (offscreen only: a window paints after the app's frame, out of its sight).
+    pub ui_logic_ms: Option<f64>,
+    pub ui_paint_ms: Option<f64>,
+    pub view_refreshes: u64,
+    pub view_refreshes_per_s: f64,
     /// From the release to the full-quality frame (probe included) on screen, seconds.
-    release_to_full_quality_s: f64,
+    pub release_to_full_quality_s: f64,
 }
 
 #[derive(Serialize)]
-struct AppReport {
-    window: [f32; 2],
-    lesson: String,
-    step: usize,
-    startup_to_first_frame_s: f64,
+pub(super) struct AppReport {
+    pub window: [f32; 2],
+    /// What painted the UI: kittest's offscreen wgpu painter, or the window's own.
+    pub painter: String,
+    pub lesson: String,
+    pub step: usize,
+    pub startup_to_first_frame_s: f64,
     /// A UI frame with nothing rendering, milliseconds.
-    idle_ui_frame_ms: f64,
-    phases: Vec<Phase>,
+    pub idle_ui_frame_ms: f64,
+    pub phases: Vec<Phase>,
+}
+
+impl AppReport {
+    pub fn empty() -> Self {
+        Self {
+            window: WINDOW,
+            painter: String::new(),
+            lesson: String::new(),
+            step: 0,
+            startup_to_first_frame_s: 0.0,
+            idle_ui_frame_ms: 0.0,
+            phases: Vec::new(),
+        }
+    }
 }
 
 fn fail(message: impl Into<String>) -> CliError {
@@ -116,8 +133,8 @@ fn drag_phase(
         ui_frames: frames,
         ui_frames_per_s: f64::from(frames) / elapsed,
         slowest_ui_frame_ms: slowest.as_secs_f64() * 1e3,
-        ui_logic_ms: logic.as_secs_f64() * 1e3 / f64::from(frames.max(1)),
-        ui_paint_ms: paint.as_secs_f64() * 1e3 / f64::from(frames.max(1)),
+        ui_logic_ms: Some(logic.as_secs_f64() * 1e3 / f64::from(frames.max(1))),
+        ui_paint_ms: Some(paint.as_secs_f64() * 1e3 / f64::from(frames.max(1))),
         view_refreshes: refreshes,
         view_refreshes_per_s: refreshes as f64 / elapsed,
         release_to_full_quality_s: released.elapsed().as_secs_f64(),
@@ -136,6 +153,12 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     if !(0.5..=600.0).contains(&args.seconds) {
         return Err(CliError::input(format!("--seconds {} is out of range 0.5..=600", args.seconds)));
     }
+    let report = if args.window { super::bench_window::run(args)? } else { offscreen(args)? };
+    print_report(&report, args.json)
+}
+
+/// The session offscreen: egui_kittest steps the app and paints each frame with wgpu.
+fn offscreen(args: &BenchArgs) -> Result<AppReport, CliError> {
     let mut setup = egui_kittest::wgpu::default_wgpu_setup();
     if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
         setup = eframe::egui_wgpu::WgpuSetup::CreateNew(configure_wgpu(create));
@@ -201,23 +224,28 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         centre + egui::vec2(30.0 * (t * 1.5).sin(), 20.0 * (t * 1.1).cos() - 20.0)
     })?;
 
-    let report = AppReport {
+    Ok(AppReport {
         window: WINDOW,
+        painter: "wgpu (offscreen, egui_kittest)".into(),
         lesson,
         step: step_index + 1,
         startup_to_first_frame_s: startup,
         idle_ui_frame_ms,
         phases: vec![slider_phase, map_phase],
-    };
-    if args.json {
-        let json = serde_json::to_string_pretty(&report).map_err(|e| fail(e.to_string()))?;
+    })
+}
+
+fn print_report(report: &AppReport, json: bool) -> Result<(), CliError> {
+    if json {
+        let json = serde_json::to_string_pretty(report).map_err(|e| fail(e.to_string()))?;
         println!("{json}");
         return Ok(());
     }
     println!(
-        "app: {}x{} window, lesson {} step {}, probe pinned; first frame after {:.1} s; idle UI frame {:.1} ms",
-        WINDOW[0],
-        WINDOW[1],
+        "app: {}x{} window painted by {}, lesson {} step {}, probe pinned; first frame after {:.1} s; idle UI frame {:.1} ms",
+        report.window[0],
+        report.window[1],
+        report.painter,
         report.lesson,
         report.step,
         report.startup_to_first_frame_s,
@@ -227,13 +255,14 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
         "{:<34} {:>8} {:>9} {:>9} {:>10} {:>15} {:>18}",
         "phase", "UI fps", "logic ms", "paint ms", "slowest ms", "view refresh/s", "release to full s"
     );
+    let opt = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.1}"));
     for p in &report.phases {
         println!(
-            "{:<34} {:>8.1} {:>9.1} {:>9.1} {:>10.0} {:>15.1} {:>18.2}",
+            "{:<34} {:>8.1} {:>9} {:>9} {:>10.0} {:>15.1} {:>18.2}",
             p.what,
             p.ui_frames_per_s,
-            p.ui_logic_ms,
-            p.ui_paint_ms,
+            opt(p.ui_logic_ms),
+            opt(p.ui_paint_ms),
             p.slowest_ui_frame_ms,
             p.view_refreshes_per_s,
             p.release_to_full_quality_s

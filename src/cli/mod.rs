@@ -3,6 +3,7 @@
 
 mod bench;
 mod bench_app;
+mod bench_window;
 #[path = "export.rs"]
 mod export_cmd;
 
@@ -119,6 +120,10 @@ pub struct BenchArgs {
     /// view refreshes per second and the time from release to the full-quality frame.
     #[arg(long, conflicts_with_all = ["scene", "set", "time", "still", "only", "frames"])]
     pub app: bool,
+    /// With --app: run the session in a real window (needs a display; `xvfb-run -a` where there
+    /// is none), painted as the app paints here.
+    #[arg(long, requires = "app")]
+    pub window: bool,
     /// With --app: seconds of dragging per phase.
     #[arg(long, default_value_t = 5.0, requires = "app")]
     pub seconds: f32,

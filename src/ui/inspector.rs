@@ -218,10 +218,11 @@ fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
     let directional = light.is_orthographic();
     match &mut light.size {
         LightSize::Width { width_world } => {
-            changed |= ui
+            let slider = ui
                 .add(Slider::new(width_world, 0.0..=40.0).text("light width (world units)"))
-                .on_hover_text(key_hint("light.N.width"))
-                .changed();
+                .on_hover_text(key_hint("light.N.width"));
+            super::set_landmark(ui.ctx(), super::LANDMARK_LIGHT_WIDTH, slider.rect);
+            changed |= slider.changed();
             if directional && ui.small_button("use an angular diameter instead").clicked() {
                 light.size = LightSize::AngularDiameter { angular_diameter_deg: 0.53 };
                 changed = true;

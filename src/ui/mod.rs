@@ -610,6 +610,19 @@ fn spawn_worker(cc: &eframe::CreationContext<'_>) -> (Option<RenderWorker>, Opti
     }
 }
 
+/// Where some widgets were last drawn, for tools that drive the app (`bench --app --window`).
+pub const LANDMARK_LIGHT_WIDTH: &str = "light-width slider";
+pub const LANDMARK_SHADOW_MAP: &str = "shadow-map picture";
+
+fn set_landmark(ctx: &egui::Context, name: &'static str, rect: egui::Rect) {
+    ctx.data_mut(|d| d.insert_temp(egui::Id::NULL.with(("landmark", name)), rect));
+}
+
+/// The rectangle a landmark widget occupied in the last frame that drew it.
+pub fn landmark(ctx: &egui::Context, name: &'static str) -> Option<egui::Rect> {
+    ctx.data(|d| d.get_temp::<egui::Rect>(egui::Id::NULL.with(("landmark", name))))
+}
+
 /// A minimal scene for when even the shipped scene is missing.
 fn fallback_scene(why: &str) -> Scene {
     let text = "[camera]\nposition = [4.0, 3.0, 4.0]\n[[object]]\nmesh = \"cube\"\n[[light]]\nkind = \"directional\"\nposition = [2.0, 6.0, 3.0]\nextent = 4.0\nfar = 20.0\n";
@@ -710,7 +723,7 @@ pub fn window_render_options() -> eframe::egui_wgpu::RendererOptions {
 /// about a sixth of its wgpu shader per pixel (a 1600x900 window: ~25 ms a frame against ~140 ms),
 /// and the window's frames compete with the renders for the same cores. Rendering itself is
 /// wgpu either way, on the render worker's own device.
-fn ui_painter() -> eframe::Renderer {
+pub fn ui_painter() -> eframe::Renderer {
     match std::env::var("SHADOWLAB_UI_PAINTER").as_deref() {
         Ok("glow") => eframe::Renderer::Glow,
         Ok("wgpu") => eframe::Renderer::Wgpu,
@@ -750,7 +763,17 @@ pub fn run() -> Result<(), String> {
 }
 
 fn open_window(painter: eframe::Renderer) -> Result<(), String> {
-    let options = eframe::NativeOptions {
+    eframe::run_native(
+        "shadowlab",
+        window_options(painter),
+        Box::new(|cc| Ok(Box::new(ShadowlabApp::new(cc)))),
+    )
+    .map_err(|e| e.to_string())
+}
+
+/// The window the app opens, painted by `painter`.
+pub fn window_options(painter: eframe::Renderer) -> eframe::NativeOptions {
+    eframe::NativeOptions {
         renderer: painter,
         viewport: egui::ViewportBuilder::default()
             .with_title("shadowlab")
@@ -763,9 +786,7 @@ fn open_window(painter: eframe::Renderer) -> Result<(), String> {
             ..Default::default()
         },
         ..Default::default()
-    };
-    eframe::run_native("shadowlab", options, Box::new(|cc| Ok(Box::new(ShadowlabApp::new(cc)))))
-        .map_err(|e| e.to_string())
+    }
 }
 
 /// Build the app for tests and tools, with explicit settings (no storage).

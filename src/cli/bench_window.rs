@@ -1,0 +1,262 @@
+//! `shadowlab bench --app --window`: the same classroom session as `bench --app`, in the real
+//! window with the painter the app would use here (OpenGL on a software rasteriser), the input
+//! injected frame by frame. Needs a display (`xvfb-run -a` where there is none).
+
+use super::bench_app::{AppReport, Phase, WINDOW};
+use super::{BenchArgs, CliError};
+use crate::lessons::Panel;
+use crate::ui::{LANDMARK_LIGHT_WIDTH, LANDMARK_SHADOW_MAP, Settings, ShadowlabApp, app_for_test, landmark};
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// Longest wait for the app to settle (first frame, release to full quality).
+const SETTLE_LIMIT: Duration = Duration::from_secs(300);
+/// UI frames timed with nothing rendering.
+const IDLE_FRAMES: u32 = 20;
+
+type Outcome = Arc<Mutex<Option<Result<AppReport, String>>>>;
+
+enum Stage {
+    /// Wait for the first full frame of the lesson step.
+    Starting,
+    /// Time UI frames with nothing rendering.
+    Idle {
+        frames: u32,
+        since: Instant,
+    },
+    /// Press on the widget, then move along the phase's path.
+    Dragging {
+        phase: usize,
+        from: egui::Pos2,
+        since: Instant,
+        frames: u32,
+        slowest: Duration,
+        shown_before: u64,
+    },
+    /// Released: wait for the full-quality frame.
+    Released {
+        phase: usize,
+        at: Instant,
+    },
+    Done,
+}
+
+struct Session {
+    app: ShadowlabApp,
+    stage: Stage,
+    seconds: f32,
+    started: Instant,
+    last_frame: Option<Instant>,
+    /// Pointer events for the next frame.
+    pending: Vec<egui::Event>,
+    report: AppReport,
+    outcome: Outcome,
+    /// Half-finished phase figures: (ui frames, elapsed s, slowest, refreshes).
+    measured: Option<(u32, f64, Duration, u64)>,
+}
+
+const PHASES: [&str; 2] = ["drag the light-width slider", "drag the light on the shadow map"];
+
+impl Session {
+    fn pointer_path(&self, phase: usize, from: egui::Pos2, t: f32) -> egui::Pos2 {
+        match phase {
+            0 => egui::pos2(from.x + 40.0 + 30.0 * (t * 2.0).sin(), from.y),
+            _ => from + egui::vec2(30.0 * (t * 1.5).sin(), 20.0 * (t * 1.1).cos() - 20.0),
+        }
+    }
+
+    fn start_phase(&mut self, ctx: &egui::Context, phase: usize) -> Result<(), String> {
+        let (name, offset): (_, fn(egui::Rect) -> egui::Pos2) = match phase {
+            0 => (LANDMARK_LIGHT_WIDTH, |r| r.left_center() + egui::vec2(8.0, 0.0)),
+            _ => (LANDMARK_SHADOW_MAP, |r| r.center()),
+        };
+        let rect = landmark(ctx, name).ok_or_else(|| format!("the app shows no {name}"))?;
+        if !ctx.content_rect().contains(offset(rect)) {
+            return Err(format!("the {name} is outside the window ({rect:?})"));
+        }
+        let from = offset(rect);
+        self.pending.push(egui::Event::PointerMoved(from));
+        self.pending.push(egui::Event::PointerButton {
+            pos: from,
+            button: egui::PointerButton::Primary,
+            pressed: true,
+            modifiers: Default::default(),
+        });
+        self.stage = Stage::Dragging {
+            phase,
+            from,
+            since: Instant::now(),
+            frames: 0,
+            slowest: Duration::ZERO,
+            shown_before: self.app.frames_shown(),
+        };
+        Ok(())
+    }
+
+    /// Advance the script after a frame that took `dt`.
+    fn advance(&mut self, ctx: &egui::Context, dt: Duration) -> Result<(), String> {
+        match &mut self.stage {
+            Stage::Starting => {
+                if self.app.camera_image().is_some() && !self.app.render_pending() {
+                    self.report.startup_to_first_frame_s = self.started.elapsed().as_secs_f64();
+                    self.stage = Stage::Idle { frames: 0, since: Instant::now() };
+                } else if self.started.elapsed() > SETTLE_LIMIT {
+                    return Err(self.app.gpu_problem().unwrap_or_else(|| "no first frame".into()));
+                }
+            }
+            Stage::Idle { frames, since } => {
+                *frames += 1;
+                if *frames == IDLE_FRAMES {
+                    self.report.idle_ui_frame_ms =
+                        since.elapsed().as_secs_f64() * 1e3 / f64::from(IDLE_FRAMES);
+                    self.start_phase(ctx, 0)?;
+                }
+            }
+            Stage::Dragging { phase, from, since, frames, slowest, shown_before } => {
+                *frames += 1;
+                *slowest = (*slowest).max(dt);
+                let t = since.elapsed().as_secs_f32();
+                let (phase, from) = (*phase, *from);
+                if t < self.seconds {
+                    let pos = self.pointer_path(phase, from, t);
+                    self.pending.push(egui::Event::PointerMoved(pos));
+                } else {
+                    let elapsed = since.elapsed().as_secs_f64();
+                    self.measured =
+                        Some((*frames, elapsed, *slowest, self.app.frames_shown() - *shown_before));
+                    let pos = self.pointer_path(phase, from, self.seconds);
+                    self.pending.push(egui::Event::PointerButton {
+                        pos,
+                        button: egui::PointerButton::Primary,
+                        pressed: false,
+                        modifiers: Default::default(),
+                    });
+                    self.stage = Stage::Released { phase, at: Instant::now() };
+                }
+            }
+            Stage::Released { phase, at } => {
+                let phase = *phase;
+                if at.elapsed() > Duration::from_millis(50) && !self.app.render_pending() {
+                    if self.app.showing_preview() {
+                        return Err(format!("{}: still showing a preview after the release", PHASES[phase]));
+                    }
+                    let (frames, elapsed, slowest, refreshes) = self.measured.take().unwrap_or_default();
+                    self.report.phases.push(Phase {
+                        what: PHASES[phase],
+                        seconds: elapsed,
+                        ui_frames: frames,
+                        ui_frames_per_s: f64::from(frames) / elapsed.max(1e-9),
+                        slowest_ui_frame_ms: slowest.as_secs_f64() * 1e3,
+                        ui_logic_ms: None,
+                        ui_paint_ms: None,
+                        view_refreshes: refreshes,
+                        view_refreshes_per_s: refreshes as f64 / elapsed.max(1e-9),
+                        release_to_full_quality_s: at.elapsed().as_secs_f64(),
+                    });
+                    if phase + 1 < PHASES.len() {
+                        self.start_phase(ctx, phase + 1)?;
+                    } else {
+                        self.stage = Stage::Done;
+                    }
+                } else if at.elapsed() > SETTLE_LIMIT {
+                    return Err("the app did not settle after the release".into());
+                }
+            }
+            Stage::Done => {}
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, ctx: &egui::Context, result: Result<AppReport, String>) {
+        if let Ok(mut slot) = self.outcome.lock() {
+            slot.get_or_insert(result);
+        }
+        self.stage = Stage::Done;
+        ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+    }
+}
+
+impl eframe::App for Session {
+    fn raw_input_hook(&mut self, _ctx: &egui::Context, raw_input: &mut egui::RawInput) {
+        raw_input.events.append(&mut self.pending);
+    }
+
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        let now = Instant::now();
+        let dt = self.last_frame.map_or(Duration::ZERO, |t| now.duration_since(t));
+        self.last_frame = Some(now);
+        self.app.ui(ui, frame);
+        if matches!(self.stage, Stage::Done) {
+            return;
+        }
+        match self.advance(&ctx, dt) {
+            Ok(()) if matches!(self.stage, Stage::Done) => {
+                let report = std::mem::replace(&mut self.report, AppReport::empty());
+                self.finish(&ctx, Ok(report));
+            }
+            Ok(()) => ctx.request_repaint(),
+            Err(e) => self.finish(&ctx, Err(e)),
+        }
+    }
+}
+
+pub fn run(args: &BenchArgs) -> Result<AppReport, CliError> {
+    let fail = |message: String| CliError { code: 1, message };
+    let has_display =
+        ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()));
+    if cfg!(target_os = "linux") && !has_display {
+        return Err(CliError::input(
+            "bench --app --window: no display found (DISPLAY and WAYLAND_DISPLAY are unset); run it under \
+             `xvfb-run -a`, or drop --window to drive the app offscreen",
+        ));
+    }
+    let painter = crate::ui::ui_painter();
+    let outcome: Outcome = Arc::new(Mutex::new(None));
+    let sink = outcome.clone();
+    let seconds = args.seconds;
+    let mut options = crate::ui::window_options(painter);
+    options.viewport = options.viewport.with_inner_size(WINDOW);
+    options.persist_window = false;
+    let result = eframe::run_native(
+        "shadowlab-bench",
+        options,
+        Box::new(move |cc| {
+            let mut app = app_for_test(cc, Settings::default());
+            let pcss = app.lessons.iter().position(|l| l.id == "pcss");
+            let step = pcss
+                .and_then(|i| app.lessons[i].steps.iter().position(|s| s.panels.contains(&Panel::ShadowMap)));
+            let (Some(pcss), Some(step)) = (pcss, step) else {
+                return Err("no pcss lesson step with the shadow map".into());
+            };
+            app.go_to_step(pcss, step);
+            if app.probe_at.is_none() {
+                app.probe_at = Some((0.5, 0.6));
+            }
+            let mut report = AppReport::empty();
+            report.lesson = app.lessons[pcss].id.clone();
+            report.step = step + 1;
+            report.painter = format!("{painter} (window)");
+            Ok(Box::new(Session {
+                app,
+                stage: Stage::Starting,
+                seconds,
+                started: Instant::now(),
+                last_frame: None,
+                pending: Vec::new(),
+                report,
+                outcome: sink,
+                measured: None,
+            }))
+        }),
+    );
+    if let Err(e) = result {
+        return Err(CliError { code: 2, message: format!("could not open the window: {e}") });
+    }
+    let taken = outcome.lock().ok().and_then(|mut slot| slot.take());
+    match taken {
+        Some(Ok(report)) => Ok(report),
+        Some(Err(e)) => Err(fail(e)),
+        None => Err(fail("the window closed before the session ended".into())),
+    }
+}
