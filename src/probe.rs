@@ -87,20 +87,25 @@ pub fn probe(
         lights: Vec::new(),
     };
     for light_index in 0..scene.lights.len().max(1) {
-        let frame =
-            FrameRequest { selected_light: light_index, final_color: false, analysis: true, ..*request };
+        // The analysis pass at this one pixel: what the GPU computed there, nothing else shaded.
+        let frame = FrameRequest {
+            selected_light: light_index,
+            final_color: false,
+            analysis: true,
+            only_pixel: Some(pixel),
+            ..*request
+        };
         renderer.render(scene, &frame)?;
-        let analysis = renderer.read_analysis()?;
-        let i = analysis.index(pixel.0, pixel.1);
-        if !analysis.hit(i) {
+        let here = renderer.read_analysis_pixel(pixel.0, pixel.1)?;
+        if here.position[3] <= 0.5 {
             return Ok(report);
         }
-        let position = Vec3::from_slice(&analysis.position[i][..3]);
-        let normal = Vec3::from_slice(&analysis.normal[i][..3]);
+        let position = Vec3::from_slice(&here.position[..3]);
+        let normal = Vec3::from_slice(&here.normal[..3]);
         report.hit = true;
         report.world_position = Some(position.to_array());
         report.normal = Some(normal.to_array());
-        report.object = scene.objects.get(analysis.normal[i][3] as usize).map(|o| o.name.clone());
+        report.object = scene.objects.get(here.normal[3] as usize).map(|o| o.name.clone());
         if scene.lights.is_empty() {
             break;
         }
@@ -119,8 +124,12 @@ pub fn probe(
         let map_size = light_gpu.map_size_texels;
         let stored = twin.stored_depth_ndc(coord.uv);
         let taps = twin.trace.take().unwrap_or_default();
-        let reference =
-            if with_reference { Some(renderer.render_reference(scene, light_index)?[i]) } else { None };
+        let reference = if with_reference {
+            let i = (pixel.1 * w + pixel.0) as usize;
+            Some(renderer.render_reference(scene, light_index)?[i])
+        } else {
+            None
+        };
         let inside = (0.0..=1.0).contains(&coord.uv.x)
             && (0.0..=1.0).contains(&coord.uv.y)
             && (0.0..=1.0).contains(&coord.depth_ndc);
@@ -159,7 +168,7 @@ pub fn probe(
                 Technique::Pcss if result.search.found == 0 => 0,
                 _ => scene.shadow.effective_samples(),
             },
-            visibility_gpu: analysis.shadow[i][0],
+            visibility_gpu: here.shadow[0],
             visibility_twin: result.visibility,
             visibility_reference: reference,
             taps: taps

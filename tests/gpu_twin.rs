@@ -160,3 +160,25 @@ fn twin_disagrees_when_its_parameters_differ() {
     }
     assert!(differing > 100, "a radius change went unnoticed ({differing} pixels differ)");
 }
+
+#[test]
+fn a_one_pixel_analysis_pass_gives_that_pixels_full_frame_values() {
+    // The probe shades only its own pixel (a scissor); the numbers must be the full frame's.
+    let (_ctx, mut renderer) = common::gpu();
+    let scene = common::scene("contact", &[("technique", "pcss")]);
+    let request = common::analysis_request((240, 136), 0);
+    renderer.render(&scene, &request).expect("render");
+    let full = renderer.read_analysis().expect("analysis");
+    let mut compared = 0;
+    for (x, y) in [(120, 68), (30, 100), (200, 20), (239, 135), (0, 0), (150, 90)] {
+        let alone = shadowlab::render::FrameRequest { only_pixel: Some((x, y)), ..request };
+        renderer.render(&scene, &alone).expect("render one pixel");
+        let here = renderer.read_analysis_pixel(x, y).expect("pixel");
+        let i = full.index(x, y);
+        assert_eq!(here.shadow, full.shadow[i], "shadow terms at {x},{y}");
+        assert_eq!(here.position, full.position[i], "position at {x},{y}");
+        assert_eq!(here.normal, full.normal[i], "normal at {x},{y}");
+        compared += usize::from(full.hit(i));
+    }
+    assert!(compared >= 4, "most of the chosen pixels should be on a surface ({compared})");
+}

@@ -203,9 +203,7 @@ impl eframe::App for Session {
 
 pub fn run(args: &BenchArgs) -> Result<AppReport, CliError> {
     let fail = |message: String| CliError { code: 1, message };
-    let has_display =
-        ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()));
-    if cfg!(target_os = "linux") && !has_display {
+    if !crate::ui::display_available() {
         return Err(CliError::input(
             "bench --app --window: no display found (DISPLAY and WAYLAND_DISPLAY are unset); run it under \
              `xvfb-run -a`, or drop --window to drive the app offscreen",

@@ -115,7 +115,7 @@ pub fn render_step(
         selected_light: light,
         final_color: false,
         analysis: true,
-        timestamps: false,
+        ..Default::default()
     };
     let (probe_pixel, probe_from_lesson) = match step.probe {
         Some([x, y]) => (Some((x.min(PROBE_FRAME.0 - 1), y.min(PROBE_FRAME.1 - 1))), true),

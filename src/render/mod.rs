@@ -51,6 +51,9 @@ pub struct FrameRequest {
     pub analysis: bool,
     /// Record GPU timestamps (where the adapter supports them).
     pub timestamps: bool,
+    /// Shade only this pixel of the camera passes (a scissor): the probe reads no other, and a
+    /// full PCSS analysis pass to read one pixel would cost as much as the frame.
+    pub only_pixel: Option<(u32, u32)>,
 }
 
 impl Default for FrameRequest {
@@ -62,8 +65,20 @@ impl Default for FrameRequest {
             final_color: true,
             analysis: true,
             timestamps: false,
+            only_pixel: None,
         }
     }
+}
+
+/// The analysis pass at one pixel: the three targets' values there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AnalysisPixel {
+    /// visibility, blocker-search radius (texels), penumbra width (texels), blockers found.
+    pub shadow: [f32; 4],
+    /// World position; w = 1 where a surface was hit.
+    pub position: [f32; 4],
+    /// Shading normal; w = object index.
+    pub normal: [f32; 4],
 }
 
 /// The analysis pass read back: per pixel, row-major, top row first.
@@ -343,6 +358,9 @@ impl Renderer {
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
+            if let Some((x, y)) = request.only_pixel {
+                pass.set_scissor_rect(x.min(width - 1), y.min(height - 1), 1, 1);
+            }
             pass.set_pipeline(&self.pipelines.camera_depth);
             pass.set_bind_group(0, &self.frame_bind_group, &[]);
             pass.set_bind_group(1, lights_group, &[]);
@@ -396,6 +414,9 @@ impl Renderer {
             });
             let pipeline = if is_final { Some(&final_pipeline) } else { analysis_pipeline.as_ref() };
             let Some(pipeline) = pipeline else { continue };
+            if let Some((x, y)) = request.only_pixel {
+                pass.set_scissor_rect(x.min(width - 1), y.min(height - 1), 1, 1);
+            }
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, &self.frame_bind_group, &[]);
             pass.set_bind_group(1, lights_group, &[]);
@@ -571,6 +592,32 @@ impl Renderer {
         let position = planes.pop().unwrap_or_default();
         let shadow = planes.pop().unwrap_or_default();
         Ok(Analysis { width, height, shadow, position, normal })
+    }
+
+    /// The analysis targets at one pixel of the last frame (a 1x1 read-back each).
+    pub fn read_analysis_pixel(&self, x: u32, y: u32) -> Result<AnalysisPixel, RenderError> {
+        let targets = self.targets()?;
+        let (width, height) = targets.size;
+        if x >= width || y >= height {
+            return Err(RenderError::Usage(format!("pixel {x},{y} is outside the {width}x{height} image")));
+        }
+        let mut values = [[0.0f32; 4]; 3];
+        for (value, texture) in values.iter_mut().zip(&targets.analysis) {
+            let bytes = readback::read_texture_region(
+                &self.device,
+                &self.queue,
+                texture,
+                0,
+                (x, y),
+                (1, 1),
+                16,
+                wgpu::TextureAspect::All,
+            )?;
+            let floats = readback::f32s_from_bytes(&bytes);
+            value.copy_from_slice(&floats[..4]);
+        }
+        let [shadow, position, normal] = values;
+        Ok(AnalysisPixel { shadow, position, normal })
     }
 
     /// The shadow map of light `index` as rendered in the last frame.

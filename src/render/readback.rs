@@ -12,6 +12,21 @@ pub fn read_texture(
     bytes_per_texel: u32,
     aspect: wgpu::TextureAspect,
 ) -> Result<Vec<u8>, RenderError> {
+    read_texture_region(device, queue, texture, layer, (0, 0), size, bytes_per_texel, aspect)
+}
+
+/// Read the `size` texels from `origin` of a 2D texture (or one array layer), tightly packed.
+#[allow(clippy::too_many_arguments)]
+pub fn read_texture_region(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    layer: u32,
+    origin: (u32, u32),
+    size: (u32, u32),
+    bytes_per_texel: u32,
+    aspect: wgpu::TextureAspect,
+) -> Result<Vec<u8>, RenderError> {
     let (width, height) = size;
     let unpadded = width * bytes_per_texel;
     let padded = unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
@@ -27,7 +42,7 @@ pub fn read_texture(
         wgpu::TexelCopyTextureInfo {
             texture,
             mip_level: 0,
-            origin: wgpu::Origin3d { x: 0, y: 0, z: layer },
+            origin: wgpu::Origin3d { x: origin.0, y: origin.1, z: layer },
             aspect,
         },
         wgpu::TexelCopyBufferInfo {

@@ -735,11 +735,15 @@ pub fn ui_painter() -> eframe::Renderer {
     }
 }
 
+/// Whether a window can be opened here (on Linux: an X11 or Wayland display is named).
+pub fn display_available() -> bool {
+    !cfg!(target_os = "linux")
+        || ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()))
+}
+
 /// Open the app. Returns a one-line reason where no window can be opened.
 pub fn run() -> Result<(), String> {
-    let has_display =
-        ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()));
-    if cfg!(target_os = "linux") && !has_display {
+    if !display_available() {
         return Err("no display found (DISPLAY and WAYLAND_DISPLAY are unset): run it on a desktop, under \
                     `xvfb-run -a`, or use `shadowlab render`/`shadowlab export`, which need no display"
             .into());

@@ -177,6 +177,7 @@ impl ShadowlabApp {
                 final_color: true,
                 analysis: false,
                 timestamps: true,
+                ..Default::default()
             },
             probe_pixel,
             analysis,

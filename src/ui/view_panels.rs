@@ -129,7 +129,13 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     camera_view(app, ui, camera_rect);
     let painter = ui.painter_at(legend_rect);
     let mut y = legend_rect.top() + 4.0;
-    for legend in &app.view_state.legends {
+    let waiting = [String::from("(overlays refresh when you let go)")];
+    let legends = if app.shown.preview && app.view_state.overlay.is_some() {
+        &waiting[..]
+    } else {
+        &app.view_state.legends[..]
+    };
+    for legend in legends {
         painter.text(
             pos2(legend_rect.left() + 4.0, y),
             egui::Align2::LEFT_TOP,
@@ -164,7 +170,9 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         label(app.scene.shadow.technique.name(), pos2(x - 8.0, rect.top() + 8.0), egui::Align2::RIGHT_TOP);
         label(ab.b.name(), pos2(x + 8.0, rect.top() + 8.0), egui::Align2::LEFT_TOP);
     }
-    if let Some(overlay) = &app.view_state.overlay {
+    // Overlays come from the last full-quality frame: over a preview of other settings they
+    // would show the old numbers, so they wait for the release.
+    if let Some(overlay) = app.view_state.overlay.as_ref().filter(|_| !app.shown.preview) {
         painter.image(overlay.id(), rect, uv, Color32::WHITE);
     }
     if app.overlays.contains(&crate::lessons::Overlay::LightFrustum) {

@@ -184,7 +184,7 @@ pub fn render_view(
         selected_light: light,
         final_color: view == View::Final,
         analysis: view != View::Final,
-        timestamps: false,
+        ..Default::default()
     };
     renderer.render(scene, &request)?;
     Ok(match view {
