@@ -59,6 +59,8 @@ pub struct RenderOutput {
     pub analysis: Option<Analysis>,
     /// None where no probe was asked for; Some(Err) where it failed.
     pub probe: Option<Result<ProbeReport, String>>,
+    /// The selected light's map; None where it is the same as in the last frame sent (the views
+    /// keep the picture they have).
     pub map: Option<MapView>,
     pub thumbnails: Vec<image::RgbaImage>,
     /// GPU time of the last frame's passes (where the adapter has timestamps).
@@ -135,6 +137,8 @@ impl RenderWorker {
                 match renderers.run(id, &job) {
                     Ok(output) => send(WorkerEvent::Frame(Box::new(output))),
                     Err(e) => {
+                        // The views may not have what was last read back: read it all next time.
+                        renderers.last_map = None;
                         send(WorkerEvent::Failed { job: id, message: e.to_string() });
                         continue;
                     }
@@ -210,6 +214,49 @@ struct Renderers {
     queue: wgpu::Queue,
     a: Renderer,
     b: Option<Renderer>,
+    /// What the last map picture sent was drawn from.
+    last_map: Option<MapKey>,
+}
+
+/// Everything the selected light's shadow map and its picture depend on. Dragging a value that
+/// leaves the map alone (the light's width, a filter setting) then skips its read-back.
+#[derive(Clone, Debug, PartialEq)]
+struct MapKey {
+    /// The light's view and depth range (not its colour or size, which the map does not see).
+    light_clip_from_world: [[f32; 4]; 4],
+    light_depth: (f32, f32, u32, f32),
+    time_bits: u32,
+    depth_bias: (i32, u32, bool),
+    /// Per object: the mesh and its placement and spin.
+    objects: Vec<(usize, [f32; 12])>,
+    picture_texels: u32,
+}
+
+impl MapKey {
+    fn new(scene: &Scene, light: &LightGpu, time_s: f32, picture_texels: u32) -> Self {
+        let objects = scene
+            .objects
+            .iter()
+            .map(|o| {
+                let mut placement = [0.0; 12];
+                for (chunk, v) in
+                    placement.chunks_mut(3).zip([o.translate, o.rotate_deg, o.scale, o.spin_deg_per_s])
+                {
+                    chunk.copy_from_slice(&v.to_array());
+                }
+                (std::sync::Arc::as_ptr(&o.mesh) as usize, placement)
+            })
+            .collect();
+        let s = &scene.shadow;
+        Self {
+            light_clip_from_world: light.clip_from_world,
+            light_depth: (light.near, light.far, light.orthographic, light.map_size_texels),
+            time_bits: time_s.to_bits(),
+            depth_bias: (s.depth_bias_constant, s.depth_bias_slope.to_bits(), s.cull_front_faces),
+            objects,
+            picture_texels,
+        }
+    }
 }
 
 fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
@@ -221,7 +268,7 @@ fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
     }))
     .map_err(|e| RenderError::Device(e.to_string()))?;
     let a = Renderer::new(&device, &queue)?;
-    Ok(Renderers { device, queue, a, b: None })
+    Ok(Renderers { device, queue, a, b: None, last_map: None })
 }
 
 impl Renderers {
@@ -244,10 +291,14 @@ impl Renderers {
         let color = self.a.read_color()?;
         let analysis = if frame.analysis { Some(self.a.read_analysis()?) } else { None };
         let lights = self.a.frame_lights.clone();
-        let map = match lights.get(job.request.selected_light) {
+        let limit = if job.preview { MAP_PREVIEW_TEXELS.min(job.map_texels) } else { job.map_texels };
+        let map_key =
+            lights.get(job.request.selected_light).map(|l| MapKey::new(scene, l, request.time_s, limit));
+        let map_unchanged = map_key.is_some() && map_key == self.last_map;
+        self.last_map = map_key;
+        let map = match lights.get(job.request.selected_light).filter(|_| !map_unchanged) {
             Some(light) => {
                 let depth = self.a.read_shadow_map(job.request.selected_light)?;
-                let limit = if job.preview { MAP_PREVIEW_TEXELS.min(job.map_texels) } else { job.map_texels };
                 let (image, legend) = views::shadow_map_image(&subsample(&depth, limit), light);
                 Some(MapView { depth, light: *light, image, range: (legend.min, legend.max) })
             }
@@ -314,6 +365,33 @@ fn subsample(map: &DepthImage, limit: u32) -> DepthImage {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_map_key_follows_what_the_map_depends_on() {
+        let path = crate::shipped_path("assets/scenes/games202.toml");
+        let scene = crate::scene::load_scene(&path, &[]).expect("scene");
+        let key = |scene: &Scene, time_s: f32| {
+            let light = LightGpu::new(&scene.lights[0], time_s, 0, scene.lights[0].shadow_map_size);
+            MapKey::new(scene, &light, time_s, 1024)
+        };
+        let base = key(&scene, 0.0);
+        // The light's width and the filter do not change the map: no new read-back.
+        let mut wider = scene.clone();
+        wider.lights[0].size = crate::scene::LightSize::Width { width_world: 20.0 };
+        wider.shadow.samples = 7;
+        assert_eq!(key(&wider, 0.0), base);
+        // Moving the light, an object, the time or the hardware bias does.
+        let mut moved = scene.clone();
+        moved.lights[0].position.x += 1.0;
+        assert_ne!(key(&moved, 0.0), base);
+        let mut shifted = scene.clone();
+        shifted.objects[1].translate.y += 0.5;
+        assert_ne!(key(&shifted, 0.0), base);
+        assert_ne!(key(&scene, 1.0), base);
+        let mut biased = scene.clone();
+        biased.shadow.depth_bias_constant = 4;
+        assert_ne!(key(&biased, 0.0), base);
+    }
 
     #[test]
     fn subsampling_keeps_every_nth_texel() {
