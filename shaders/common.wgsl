@@ -1,12 +1,13 @@
 // Shared structs, constants and noise. Composed in front of the other shader files.
-// Keep the structs in sync with src/render/gpu_types.rs (sizes are asserted there).
+// Keep the structs in sync with src/shadow/gpu.rs (lights, parameters) and
+// src/render/gpu_types.rs (the rest); sizes are asserted there.
 
 const PI: f32 = 3.14159265358979;
 const TAU: f32 = 6.28318530717959;
 const MAX_LIGHTS: u32 = 4u;
 const MAX_TAPS: u32 = 128u;       // most filter or blocker-search taps (src/shadow/kernels.rs)
 
-// Bias modes, kernels and techniques: same numbering as src/shadow/mod.rs.
+// Bias modes, kernels, techniques and size models: numbered in src/shadow/gpu.rs (tests/shaders.rs checks).
 const BIAS_NONE: u32 = 0u;
 const BIAS_CONSTANT: u32 = 1u;
 const BIAS_SLOPE: u32 = 2u;

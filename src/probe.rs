@@ -95,7 +95,7 @@ pub fn probe(
             only_pixel: Some(pixel),
             ..*request
         };
-        renderer.render(scene, &frame)?;
+        let rendered = renderer.render(scene, &frame)?;
         let here = renderer.read_analysis_pixel(pixel.0, pixel.1)?;
         if here.position[3] <= 0.5 {
             return Ok(report);
@@ -110,8 +110,8 @@ pub fn probe(
             break;
         }
         let map = renderer.read_shadow_map(light_index)?;
-        let light_gpu = renderer.frame_lights[light_index];
-        let params = renderer.frame_params;
+        let light_gpu = rendered.lights[light_index];
+        let params = rendered.params;
         let mut twin = Twin::new(&light_gpu, &params, &map);
         twin.trace = Some(Vec::new());
         let (coord, result) = twin.analysis_at(pixel, position, normal);

@@ -19,11 +19,11 @@ fn compare(scene_name: &str, overrides: &[(&str, &str)], tolerance: f32) -> Agre
     let (_ctx, mut renderer) = common::gpu();
     let scene = common::scene(scene_name, overrides);
     let request = common::analysis_request((240, 136), 0);
-    renderer.render(&scene, &request).expect("render");
+    let frame = renderer.render(&scene, &request).expect("render");
     let analysis = renderer.read_analysis().expect("analysis");
     let map = renderer.read_shadow_map(0).expect("shadow map");
-    let light = renderer.frame_lights[0];
-    let params = renderer.frame_params;
+    let light = frame.lights[0];
+    let params = frame.params;
     let mut twin = Twin::new(&light, &params, &map);
     let mut out = Agreement { compared: 0, within: 0, max_diff: 0.0, shadowed: 0, partial: 0 };
     // Every 3rd pixel in both directions: ~3600 pixels, edges included.
@@ -141,11 +141,11 @@ fn twin_disagrees_when_its_parameters_differ() {
     // A negative control: the comparison must notice a wrong radius.
     let (_ctx, mut renderer) = common::gpu();
     let scene = common::scene("games202", &[("technique", "pcf"), ("radius_texels", "6")]);
-    renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
+    let frame = renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
     let analysis = renderer.read_analysis().expect("analysis");
     let map = renderer.read_shadow_map(0).expect("shadow map");
-    let light = renderer.frame_lights[0];
-    let mut params = renderer.frame_params;
+    let light = frame.lights[0];
+    let mut params = frame.params;
     params.radius_texels = 2.0;
     let mut twin = Twin::new(&light, &params, &map);
     let mut differing = 0;

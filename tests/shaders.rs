@@ -55,3 +55,22 @@ fn visibility_functions_have_their_lesson_names() {
         assert!(source.contains(name), "shaders/shadow_sampling.wgsl lost `{name}`");
     }
 }
+
+#[test]
+fn wgsl_numbering_matches_the_shadow_models() {
+    // Techniques, bias modes, kernels and light-size models are numbered once, in
+    // src/shadow/gpu.rs; shaders/common.wgsl must say the same numbers.
+    let (module, _) = validate(&shaders::camera());
+    for (name, value) in shadowlab::shadow::gpu::SHARED_CONSTANTS {
+        let (_, constant) = module
+            .constants
+            .iter()
+            .find(|(_, c)| c.name.as_deref() == Some(name))
+            .unwrap_or_else(|| panic!("shaders/common.wgsl has no `{name}`"));
+        let wgsl = match module.global_expressions[constant.init] {
+            naga::Expression::Literal(naga::Literal::U32(v)) => v,
+            ref other => panic!("`{name}` is not a u32 literal: {other:?}"),
+        };
+        assert_eq!(wgsl, value, "`{name}`: WGSL says {wgsl}, the shadow model {value}");
+    }
+}

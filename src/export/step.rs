@@ -138,8 +138,8 @@ pub fn render_step(
     let shadow_map = if has_lights {
         let map = renderer.read_shadow_map(light)?;
         let light_gpu = renderer
-            .frame_lights
-            .get(light)
+            .last_frame()
+            .and_then(|f| f.lights.get(light))
             .copied()
             .ok_or_else(|| RenderError::Usage(format!("light {light} was not rendered")))?;
         Some(views::shadow_map_image(&map, &light_gpu))

@@ -1,6 +1,7 @@
 //! The renderer: offscreen, into textures it owns. It knows nothing of windows, egui or files;
 //! the app shows its textures, the CLI and the tests read them back.
 
+mod camera_pass;
 mod context;
 pub mod gpu_types;
 mod pipelines;
@@ -8,9 +9,11 @@ pub mod readback;
 mod reference_pass;
 mod scene_gpu;
 pub mod shaders;
+mod shadow_pass;
 mod targets;
 mod timing;
 
+pub use crate::shadow::DepthImage;
 pub use context::{GpuContext, describe_adapter, headless_adapter, optional_features};
 pub use gpu_types::{LightGpu, ShadowParamsGpu};
 pub use pipelines::COLOR_FORMAT;
@@ -103,13 +106,6 @@ impl Analysis {
     }
 }
 
-/// One light's shadow map read back: NDC depth per texel, row-major, top row first (uv.y = 0).
-#[derive(Clone, Debug)]
-pub struct DepthImage {
-    pub size: u32,
-    pub depth_ndc: Vec<f32>,
-}
-
 pub struct Renderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
@@ -129,10 +125,17 @@ pub struct Renderer {
     scene_gpu: Option<SceneGpu>,
     targets: Option<ViewTargets>,
     timer: Option<timing::Timer>,
-    /// The lights and parameters of the last frame, exactly as the GPU saw them (the CPU twin uses these).
-    pub frame_lights: Vec<LightGpu>,
-    pub frame_params: ShadowParamsGpu,
-    pub last_request: Option<FrameRequest>,
+    /// The last frame rendered: its targets are the ones the read-backs and the ground truth use.
+    last_frame: Option<Frame>,
+}
+
+/// What one `render` drew: the request, and the lights and parameters exactly as the GPU saw
+/// them (the CPU twin and the probe use these).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    pub request: FrameRequest,
+    pub lights: Vec<LightGpu>,
+    pub params: ShadowParamsGpu,
 }
 
 fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
@@ -208,9 +211,7 @@ impl Renderer {
             scene_gpu: None,
             targets: None,
             timer,
-            frame_lights: Vec::new(),
-            frame_params: ShadowParamsGpu::new(&Default::default()),
-            last_request: None,
+            last_frame: None,
         })
     }
 
@@ -257,12 +258,18 @@ impl Renderer {
         }
     }
 
-    /// Render one frame into the renderer's own targets.
-    pub fn render(&mut self, scene: &Scene, request: &FrameRequest) -> Result<(), RenderError> {
+    /// Render one frame into the renderer's own targets (read them back with `read_*` until the
+    /// next render).
+    pub fn render(&mut self, scene: &Scene, request: &FrameRequest) -> Result<Frame, RenderError> {
         self.guarded(|r| r.render_unguarded(scene, request))
     }
 
-    fn render_unguarded(&mut self, scene: &Scene, request: &FrameRequest) -> Result<(), RenderError> {
+    /// The last frame rendered.
+    pub fn last_frame(&self) -> Option<&Frame> {
+        self.last_frame.as_ref()
+    }
+
+    fn render_unguarded(&mut self, scene: &Scene, request: &FrameRequest) -> Result<Frame, RenderError> {
         self.check_scene(scene)?;
         let (width, height) = request.size;
         let max_dim = self.device.limits().max_texture_dimension_2d;
@@ -278,12 +285,13 @@ impl Renderer {
                 scene.lights.len()
             )));
         }
-        self.prepare(scene, request);
-        let Some(scene_gpu) = self.scene_gpu.as_ref() else { return Ok(()) };
+        let (lights, params) = self.prepare(scene, request);
+        let unprepared = || RenderError::Usage("the renderer's resources were not made".into());
+        let scene_gpu = self.scene_gpu.as_ref().ok_or_else(unprepared)?;
         let (Some(maps), Some(targets), Some(lights_group)) =
             (&self.shadow_maps, &self.targets, &self.lights_bind_group)
         else {
-            return Ok(());
+            return Err(unprepared());
         };
         let key = ShadowPipelineKey {
             depth_bias_constant: scene.shadow.depth_bias_constant,
@@ -291,143 +299,38 @@ impl Renderer {
             cull_front_faces: scene.shadow.cull_front_faces,
         };
         let shadow_pipeline = self.pipelines.shadow(&self.device, key).clone();
-        let final_pipeline = self
-            .pipelines
-            .camera(&self.device, CameraPipelineKey::new(&self.frame_params, &self.frame_lights, false))
-            .clone();
+        let final_pipeline =
+            self.pipelines.camera(&self.device, CameraPipelineKey::new(&params, &lights, false)).clone();
         let analysis_pipeline = request.analysis.then(|| {
-            self.pipelines
-                .camera(&self.device, CameraPipelineKey::new(&self.frame_params, &self.frame_lights, true))
-                .clone()
+            self.pipelines.camera(&self.device, CameraPipelineKey::new(&params, &lights, true)).clone()
         });
         let timer = self.timer.as_ref().filter(|_| request.timestamps);
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
-
-        // Pass 1 per light: clear to far (1.0) and render depth. Re-rendered every frame, since
-        // lights orbit and objects spin.
-        let light_count = scene.lights.len().max(1);
-        for layer in 0..light_count {
-            let first = layer == 0;
-            let last = layer + 1 == light_count;
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("shadow pass"),
-                color_attachments: &[],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &maps.layer_views[layer],
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: timer.and_then(|t| t.span_writes(0, first, last)),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            if layer < scene.lights.len() {
-                let size = scene.lights[layer].shadow_map_size as f32;
-                pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
-                pass.set_pipeline(&shadow_pipeline);
-                pass.set_bind_group(
-                    0,
-                    &self.shadow_view_bind_group,
-                    &[(layer as u64 * DYNAMIC_STRIDE) as u32],
-                );
-                scene_gpu.draw(&mut pass, 1);
-            }
-        }
-
-        // Pass 2: the camera view, and the float analysis targets for the selected light. A depth
-        // pre-pass first, so that the shading below runs once per visible pixel.
-        let passes = [(request.final_color, true), (request.analysis, false)];
-        let last_camera = passes.iter().rposition(|p| p.0);
-        {
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some("camera depth pre-pass"),
-                color_attachments: &[],
-                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                    view: &targets.depth_view,
-                    depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(1.0),
-                        store: wgpu::StoreOp::Store,
-                    }),
-                    stencil_ops: None,
-                }),
-                timestamp_writes: timer.and_then(|t| t.span_writes(1, true, last_camera.is_none())),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            if let Some((x, y)) = request.only_pixel {
-                pass.set_scissor_rect(x.min(width - 1), y.min(height - 1), 1, 1);
-            }
-            pass.set_pipeline(&self.pipelines.camera_depth);
-            pass.set_bind_group(0, &self.frame_bind_group, &[]);
-            pass.set_bind_group(1, lights_group, &[]);
-            scene_gpu.draw(&mut pass, 2);
-        }
-        let depth_load = || {
-            Some(wgpu::RenderPassDepthStencilAttachment {
-                view: &targets.depth_view,
-                depth_ops: Some(wgpu::Operations { load: wgpu::LoadOp::Load, store: wgpu::StoreOp::Store }),
-                stencil_ops: None,
-            })
+        shadow_pass::encode(
+            &mut encoder,
+            scene,
+            scene_gpu,
+            maps,
+            &shadow_pipeline,
+            &self.shadow_view_bind_group,
+            timer,
+        );
+        let camera = camera_pass::CameraPasses {
+            depth_only: &self.pipelines.camera_depth,
+            shaded: &final_pipeline,
+            analysis: analysis_pipeline.as_ref(),
+            frame_group: &self.frame_bind_group,
+            lights_group,
         };
-        for (index, (wanted, is_final)) in passes.into_iter().enumerate() {
-            if !wanted {
-                continue;
-            }
-            let color_attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = if is_final {
-                vec![Some(wgpu::RenderPassColorAttachment {
-                    view: &targets.color_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(BACKGROUND),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })]
-            } else {
-                targets
-                    .analysis_views
-                    .iter()
-                    .map(|view| {
-                        Some(wgpu::RenderPassColorAttachment {
-                            view,
-                            depth_slice: None,
-                            resolve_target: None,
-                            ops: wgpu::Operations {
-                                load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
-                                store: wgpu::StoreOp::Store,
-                            },
-                        })
-                    })
-                    .collect()
-            };
-            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
-                label: Some(if is_final { "camera pass" } else { "analysis pass" }),
-                color_attachments: &color_attachments,
-                depth_stencil_attachment: depth_load(),
-                timestamp_writes: timer.and_then(|t| t.span_writes(1, false, Some(index) == last_camera)),
-                occlusion_query_set: None,
-                multiview_mask: None,
-            });
-            let pipeline = if is_final { Some(&final_pipeline) } else { analysis_pipeline.as_ref() };
-            let Some(pipeline) = pipeline else { continue };
-            if let Some((x, y)) = request.only_pixel {
-                pass.set_scissor_rect(x.min(width - 1), y.min(height - 1), 1, 1);
-            }
-            pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, &self.frame_bind_group, &[]);
-            pass.set_bind_group(1, lights_group, &[]);
-            scene_gpu.draw(&mut pass, 2);
-        }
+        camera.encode(&mut encoder, request, targets, scene_gpu, timer);
         if let Some(t) = timer {
             t.resolve(&mut encoder);
         }
         self.queue.submit([encoder.finish()]);
-        self.last_request = Some(*request);
-        Ok(())
+        let frame = Frame { request: *request, lights, params };
+        self.last_frame = Some(frame.clone());
+        Ok(frame)
     }
 
     /// GPU time of the shadow passes and the camera passes of the last frame rendered with
@@ -447,7 +350,8 @@ impl Renderer {
             .map_err(|e| RenderError::Readback(e.to_string()))
     }
 
-    fn prepare(&mut self, scene: &Scene, request: &FrameRequest) {
+    /// Upload what this frame needs; returns its lights and parameters as the GPU will see them.
+    fn prepare(&mut self, scene: &Scene, request: &FrameRequest) -> (Vec<LightGpu>, ShadowParamsGpu) {
         let device = &self.device;
         if !self.scene_gpu.as_ref().is_some_and(|s| s.matches(scene)) {
             self.scene_gpu = Some(SceneGpu::new(device, &self.queue, &self.layouts, scene));
@@ -468,12 +372,12 @@ impl Renderer {
             self.targets = Some(ViewTargets::new(device, request.size));
         }
         let t = request.time_s;
-        self.frame_lights =
+        let frame_lights: Vec<LightGpu> =
             scene.lights.iter().enumerate().map(|(i, l)| LightGpu::new(l, t, i as u32, atlas_size)).collect();
         let mut lights = [bytemuck::Zeroable::zeroed(); MAX_LIGHTS];
-        lights[..self.frame_lights.len()].copy_from_slice(&self.frame_lights);
+        lights[..frame_lights.len()].copy_from_slice(&frame_lights);
         self.queue.write_buffer(&self.lights_buffer, 0, bytemuck::cast_slice(&lights));
-        for (i, light) in self.frame_lights.iter().enumerate() {
+        for (i, light) in frame_lights.iter().enumerate() {
             let view = ShadowViewGpu { clip_from_world: light.clip_from_world };
             self.queue.write_buffer(
                 &self.shadow_view_buffer,
@@ -481,8 +385,8 @@ impl Renderer {
                 bytemuck::bytes_of(&view),
             );
         }
-        self.frame_params = ShadowParamsGpu::new(&scene.shadow);
-        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&self.frame_params));
+        let params = ShadowParamsGpu::new(&scene.shadow);
+        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
         self.write_kernel_table(&scene.shadow);
         let aspect = request.size.0 as f32 / request.size.1 as f32;
         let frame = FrameGpu {
@@ -497,6 +401,7 @@ impl Renderer {
         if let Some(scene_gpu) = &self.scene_gpu {
             scene_gpu.update(&self.queue, scene, t);
         }
+        (frame_lights, params)
     }
 
     /// The filter's and the blocker search's patterns for these settings (what `kernel_offset`
@@ -624,11 +529,9 @@ impl Renderer {
     pub fn read_shadow_map(&self, index: usize) -> Result<DepthImage, RenderError> {
         let maps =
             self.shadow_maps.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
-        let light = self.frame_lights.get(index).ok_or_else(|| {
-            RenderError::Usage(format!(
-                "light {index} does not exist (the scene has {})",
-                self.frame_lights.len()
-            ))
+        let lights = self.last_frame.as_ref().map_or(&[][..], |f| &f.lights[..]);
+        let light = lights.get(index).ok_or_else(|| {
+            RenderError::Usage(format!("light {index} does not exist (the scene has {})", lights.len()))
         })?;
         let atlas = maps.atlas_size;
         let bytes = readback::read_texture(
@@ -667,7 +570,7 @@ fn first_cause(e: &wgpu::Error) -> String {
 
 /// Background of the camera view, linear: the sRGB view stores it as the bytes of sRGB
 /// (0.16, 0.17, 0.20).
-const BACKGROUND: wgpu::Color = wgpu::Color { r: 0.021_981, g: 0.024_515, b: 0.033_105, a: 1.0 };
+pub(crate) const BACKGROUND: wgpu::Color = wgpu::Color { r: 0.021_981, g: 0.024_515, b: 0.033_105, a: 1.0 };
 
 fn shadow_view_group(device: &wgpu::Device, layouts: &Layouts, buffer: &wgpu::Buffer) -> wgpu::BindGroup {
     device.create_bind_group(&wgpu::BindGroupDescriptor {

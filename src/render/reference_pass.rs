@@ -49,7 +49,9 @@ impl Renderer {
         mut progress: Option<ReferenceProgress<'_>>,
     ) -> Result<Option<Vec<f32>>, RenderError> {
         let request = self
-            .last_request
+            .last_frame
+            .as_ref()
+            .map(|f| f.request)
             .filter(|r| r.analysis)
             .ok_or_else(|| RenderError::Usage("render the analysis pass before the reference".into()))?;
         let light = scene.lights.get(light_index).ok_or_else(|| {

@@ -159,8 +159,8 @@ impl ShadowSettings {
             }
         }
         let counts = [
-            ("samples", self.samples, 1, crate::shadow::kernels::MAX_TAPS),
-            ("blocker_samples", self.blocker_samples, 1, crate::shadow::kernels::MAX_TAPS),
+            ("samples", self.samples, 1, MAX_TAPS),
+            ("blocker_samples", self.blocker_samples, 1, MAX_TAPS),
             ("reference_samples", self.reference_samples, 1, 1024),
         ];
         for (key, v, lo, hi) in counts {
@@ -179,5 +179,26 @@ impl ShadowSettings {
 }
 
 pub fn effective_samples(kernel: Kernel, samples: u32) -> u32 {
-    crate::shadow::kernels::filter_taps(kernel, samples)
+    filter_taps(kernel, samples)
+}
+
+/// Most filter or blocker-search taps (the `samples` and `blocker_samples` limit); the GPU's
+/// kernel table holds this many of each (MAX_TAPS in shaders/common.wgsl).
+pub const MAX_TAPS: u32 = 128;
+
+/// floor(sqrt(n)), computed as the shader does (rounded, then corrected) so both agree.
+pub fn grid_side(n: u32) -> u32 {
+    let mut side = ((n as f32).sqrt() + 0.5) as u32;
+    if side * side > n {
+        side -= 1;
+    }
+    side.max(1)
+}
+
+/// Taps a kernel takes for `samples`: the grid rounds down to a square.
+pub fn filter_taps(kernel: Kernel, samples: u32) -> u32 {
+    match kernel {
+        Kernel::Grid => grid_side(samples) * grid_side(samples),
+        _ => samples,
+    }
 }

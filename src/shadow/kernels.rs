@@ -2,6 +2,7 @@
 //! shaders/shadow_sampling.wgsl and the hash in shaders/common.wgsl (same names, same bits).
 
 use crate::scene::Kernel;
+pub use crate::scene::{MAX_TAPS, filter_taps, grid_side};
 use glam::Vec2;
 
 pub const TAU: f32 = std::f32::consts::TAU;
@@ -27,30 +28,10 @@ pub fn pixel_seed(pixel: (u32, u32), noise_seed: u32, rotate_per_pixel: bool) ->
     }
 }
 
-/// floor(sqrt(n)), computed as the shader does (rounded, then corrected) so both agree.
-pub fn grid_side(n: u32) -> u32 {
-    let mut side = ((n as f32).sqrt() + 0.5) as u32;
-    if side * side > n {
-        side -= 1;
-    }
-    side.max(1)
-}
-
 /// An angle brought into [-pi, pi] (the shader does the same before sin and cos).
 fn wrap_angle(a: f32) -> f32 {
     a - TAU * (a / TAU + 0.5).floor()
 }
-
-pub fn filter_taps(kernel: Kernel, samples: u32) -> u32 {
-    match kernel {
-        Kernel::Grid => grid_side(samples) * grid_side(samples),
-        _ => samples,
-    }
-}
-
-/// Most filter or blocker-search taps (the `samples` and `blocker_samples` limit); the GPU's
-/// kernel table holds this many of each (MAX_TAPS in shaders/common.wgsl).
-pub const MAX_TAPS: u32 = 128;
 
 /// Tap `i` of `n` before the pixel's rotation: what the renderer writes into the GPU's
 /// `kernel_table`, and what the twin turns the same way. The uniform kernel has no table

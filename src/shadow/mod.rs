@@ -2,30 +2,22 @@
 //! units, run on a read-back shadow map. It powers the pixel probe and the tests that hold the
 //! GPU to the maths. A formula is fixed in both places or in neither.
 
+pub mod gpu;
 pub mod kernels;
 
-use crate::render::{DepthImage, LightGpu, ShadowParamsGpu};
 use crate::scene::Kernel;
 use glam::{Vec2, Vec3, Vec4};
+pub use gpu::{
+    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_SLOPE, LightGpu, SIZE_MODEL_ANGULAR, ShadowParamsGpu, TECHNIQUE_HARD,
+    TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS, kernel_from_id,
+};
 use kernels::{filter_taps, kernel_offset};
 
-pub const BIAS_CONSTANT: u32 = 1;
-pub const BIAS_SLOPE: u32 = 2;
-pub const BIAS_ADAPTIVE: u32 = 3;
-pub const TECHNIQUE_HARD: u32 = 0;
-pub const TECHNIQUE_PCF: u32 = 1;
-pub const TECHNIQUE_PCSS: u32 = 2;
-pub const TECHNIQUE_NONE: u32 = 3;
-pub const SIZE_MODEL_ANGULAR: u32 = 1;
-
-pub fn kernel_from_id(id: u32) -> Kernel {
-    match id {
-        0 => Kernel::Poisson,
-        1 => Kernel::Uniform,
-        2 => Kernel::Vogel,
-        3 => Kernel::Grid,
-        _ => Kernel::Hardware,
-    }
+/// One light's shadow map read back: NDC depth per texel, row-major, top row first (uv.y = 0).
+#[derive(Clone, Debug)]
+pub struct DepthImage {
+    pub size: u32,
+    pub depth_ndc: Vec<f32>,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

@@ -286,11 +286,11 @@ impl Renderers {
             _ => None,
         };
         let frame = FrameRequest { analysis: job.analysis && has_lights, ..request };
-        self.a.render(scene, &frame)?;
+        let rendered = self.a.render(scene, &frame)?;
         let pass_times = self.a.last_pass_times()?;
         let color = self.a.read_color()?;
         let analysis = if frame.analysis { Some(self.a.read_analysis()?) } else { None };
-        let lights = self.a.frame_lights.clone();
+        let lights = rendered.lights;
         let limit = if job.preview { MAP_PREVIEW_TEXELS.min(job.map_texels) } else { job.map_texels };
         let map_key =
             lights.get(job.request.selected_light).map(|l| MapKey::new(scene, l, request.time_s, limit));

@@ -186,12 +186,12 @@ pub fn render_view(
         analysis: view != View::Final,
         ..Default::default()
     };
-    renderer.render(scene, &request)?;
+    let frame = renderer.render(scene, &request)?;
     Ok(match view {
         View::Final => (renderer.read_color()?, None),
         View::ShadowMap => {
             let map = renderer.read_shadow_map(light)?;
-            let (image, legend) = shadow_map_image(&map, &renderer.frame_lights[light]);
+            let (image, legend) = shadow_map_image(&map, &frame.lights[light]);
             (image, Some(legend.to_string()))
         }
         View::Visibility => {

@@ -1,0 +1,102 @@
+//! Pass 2 (shaders/camera.wgsl): the camera view. A depth pre-pass first, so that the shading
+//! runs once per visible pixel however much geometry overlaps it; then the shaded colour and,
+//! when asked, the float analysis targets of the selected light.
+
+use super::scene_gpu::SceneGpu;
+use super::targets::ViewTargets;
+use super::timing::Timer;
+use super::{BACKGROUND, FrameRequest};
+
+/// The pipelines and bind groups the camera passes draw with.
+pub struct CameraPasses<'a> {
+    pub depth_only: &'a wgpu::RenderPipeline,
+    pub shaded: &'a wgpu::RenderPipeline,
+    /// Present when the request asks for the analysis targets.
+    pub analysis: Option<&'a wgpu::RenderPipeline>,
+    pub frame_group: &'a wgpu::BindGroup,
+    pub lights_group: &'a wgpu::BindGroup,
+}
+
+impl CameraPasses<'_> {
+    /// Record the passes `request` asks for; they make span 1 of `timer`.
+    pub fn encode(
+        &self,
+        encoder: &mut wgpu::CommandEncoder,
+        request: &FrameRequest,
+        targets: &ViewTargets,
+        scene_gpu: &SceneGpu,
+        timer: Option<&Timer>,
+    ) {
+        let (width, height) = targets.size;
+        // A probe reads one pixel: shade only that one.
+        let scissor = |pass: &mut wgpu::RenderPass<'_>| {
+            if let Some((x, y)) = request.only_pixel {
+                pass.set_scissor_rect(x.min(width - 1), y.min(height - 1), 1, 1);
+            }
+        };
+        let shaded: Vec<(&wgpu::RenderPipeline, bool)> = [
+            request.final_color.then_some((self.shaded, true)),
+            self.analysis.filter(|_| request.analysis).map(|p| (p, false)),
+        ]
+        .into_iter()
+        .flatten()
+        .collect();
+        {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("camera depth pre-pass"),
+                color_attachments: &[],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: timer.and_then(|t| t.span_writes(1, true, shaded.is_empty())),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            scissor(&mut pass);
+            pass.set_pipeline(self.depth_only);
+            pass.set_bind_group(0, self.frame_group, &[]);
+            pass.set_bind_group(1, self.lights_group, &[]);
+            scene_gpu.draw(&mut pass, 2);
+        }
+        for (index, (pipeline, is_final)) in shaded.iter().enumerate() {
+            let attachment = |view, clear| {
+                Some(wgpu::RenderPassColorAttachment {
+                    view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(clear), store: wgpu::StoreOp::Store },
+                })
+            };
+            let color_attachments: Vec<_> = if *is_final {
+                vec![attachment(&targets.color_view, BACKGROUND)]
+            } else {
+                targets.analysis_views.iter().map(|view| attachment(view, wgpu::Color::TRANSPARENT)).collect()
+            };
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some(if *is_final { "camera pass" } else { "analysis pass" }),
+                color_attachments: &color_attachments,
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Load,
+                        store: wgpu::StoreOp::Store,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: timer.and_then(|t| t.span_writes(1, false, index + 1 == shaded.len())),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            scissor(&mut pass);
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, self.frame_group, &[]);
+            pass.set_bind_group(1, self.lights_group, &[]);
+            scene_gpu.draw(&mut pass, 2);
+        }
+    }
+}
