@@ -1,16 +1,20 @@
 //! The inspector app: the camera view beside the light's shadow map, live parameters, the pixel
 //! probe with its samples drawn on the map, overlays, lessons and diagrams.
 
+mod bars;
 mod inspector;
 mod lesson_panel;
 mod overlays;
 mod panels;
 mod rendering;
+mod screenshots;
 mod settings;
 mod view_panels;
+mod window;
 mod worker;
 
 pub use settings::Settings;
+pub use window::{configure_wgpu, display_available, run, ui_painter, window_options, window_render_options};
 
 use crate::lessons::{self, Lang, Lesson, Overlay};
 use crate::probe::ProbeReport;
@@ -377,222 +381,6 @@ impl ShadowlabApp {
             self.open(path);
         }
     }
-
-    pub fn request_screenshot(&mut self, ctx: &egui::Context) {
-        let slot = self.screenshot.clone();
-        ctx.request_screenshot(move |image| {
-            if let Ok(mut s) = slot.lock() {
-                *s = Some(image);
-            }
-        });
-        self.screenshot_pending = true;
-        self.status = "taking a screenshot...".into();
-    }
-
-    /// Save a finished window screenshot and each viewport as PNGs.
-    fn save_screenshot_if_ready(&mut self) {
-        let image = match self.screenshot.lock() {
-            Ok(mut slot) => slot.take(),
-            Err(_) => None,
-        };
-        let Some(window) = image else { return };
-        self.screenshot_pending = false;
-        match self.save_screenshot(&window) {
-            Ok(paths) => {
-                let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
-                self.status = format!("saved {}", names.join(", "));
-            }
-            Err(e) => self.error = Some(e),
-        }
-    }
-
-    fn save_screenshot(&mut self, window: &egui::ColorImage) -> Result<Vec<PathBuf>, String> {
-        let dir = self.settings.screenshot_dir.clone();
-        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        let n = (1..10_000).find(|n| !dir.join(format!("shot-{n:03}-window.png")).exists()).unwrap_or(0);
-        let mut written = Vec::new();
-        let [w, h] = window.size;
-        let bytes: Vec<u8> = window.pixels.iter().flat_map(|c| c.to_srgba_unmultiplied()).collect();
-        let mut images = Vec::new();
-        if let Some(img) = image::RgbaImage::from_raw(w as u32, h as u32, bytes) {
-            images.push(("window", img));
-        }
-        if let Some(img) = &self.shown.color {
-            images.push(("camera", img.clone()));
-        }
-        if let Some((map, light)) = self.view_state.map() {
-            images.push(("shadow-map", crate::views::shadow_map_image(map, light).0));
-        }
-        for (what, img) in images {
-            let path = dir.join(format!("shot-{n:03}-{what}.png"));
-            crate::export::write_png(&path, &img).map_err(|e| e.to_string())?;
-            written.push(path);
-        }
-        Ok(written)
-    }
-
-    fn top_bar(&mut self, ui: &mut egui::Ui) {
-        ui.horizontal_wrapped(|ui| {
-            ui.strong("shadowlab");
-            ui.separator();
-            self.source_selector(ui);
-            let file_label = ui.label("file");
-            let field = ui
-                .add(
-                    egui::TextEdit::singleline(&mut self.open_path)
-                        .hint_text("scene .toml or .obj path")
-                        .desired_width(180.0),
-                )
-                .labelled_by(file_label.id);
-            let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-            if (ui.button("Open").clicked() || entered) && !self.open_path.trim().is_empty() {
-                let path = PathBuf::from(self.open_path.trim());
-                self.open(&path);
-            }
-            ui.separator();
-            let play_label = if self.playing { "Pause" } else { "Play" };
-            if ui.button(play_label).on_hover_text("Space").clicked() {
-                self.playing = !self.playing;
-            }
-            let time_label = ui.label("time (s)");
-            let time = ui.add(egui::Slider::new(&mut self.time_s, 0.0..=60.0).max_decimals(2));
-            if time.labelled_by(time_label.id).changed() {
-                self.mark_dirty();
-            }
-            let speed_label = ui.label("speed");
-            ui.add(egui::DragValue::new(&mut self.speed).speed(0.05).range(0.0..=10.0).suffix("×"))
-                .labelled_by(speed_label.id);
-            ui.separator();
-            if ui.button("Screenshot").on_hover_text("S: window and each view as PNGs").clicked() {
-                self.request_screenshot(ui.ctx());
-            }
-            let lang_label = ui.label("language");
-            egui::ComboBox::from_id_salt("lang")
-                .selected_text(match self.lang {
-                    Lang::En => "English",
-                    Lang::Zh => "中文",
-                })
-                .show_ui(ui, |ui| {
-                    ui.selectable_value(&mut self.lang, Lang::En, "English");
-                    ui.selectable_value(&mut self.lang, Lang::Zh, "中文");
-                })
-                .response
-                .labelled_by(lang_label.id);
-            if ui.button("F1 Help").clicked() {
-                self.show_help = !self.show_help;
-            }
-        });
-    }
-
-    fn source_selector(&mut self, ui: &mut egui::Ui) {
-        let current = match &self.source {
-            Source::Scene(p) => p.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default(),
-            Source::Lesson { lesson, step } => self
-                .lessons
-                .get(*lesson)
-                .map(|l| format!("{} · {}/{}", l.title.get(self.lang), step + 1, l.steps.len()))
-                .unwrap_or_default(),
-        };
-        let mut choice: Option<Result<PathBuf, usize>> = None;
-        let label = ui.label("scene");
-        let combo =
-            egui::ComboBox::from_id_salt("source").selected_text(current).width(240.0).show_ui(ui, |ui| {
-                ui.label("Scenes");
-                let mut scenes: Vec<PathBuf> = std::fs::read_dir(shipped_path("assets/scenes"))
-                    .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
-                    .unwrap_or_default();
-                scenes.retain(|p| p.extension().is_some_and(|e| e == "toml"));
-                scenes.sort();
-                for path in scenes {
-                    let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-                    if ui.selectable_label(self.source == Source::Scene(path.clone()), name).clicked() {
-                        choice = Some(Ok(path));
-                    }
-                }
-                ui.separator();
-                ui.label("Lessons");
-                for (i, lesson) in self.lessons.iter().enumerate() {
-                    let selected = matches!(self.source, Source::Lesson { lesson, .. } if lesson == i);
-                    if ui
-                        .selectable_label(selected, format!("{}. {}", i + 1, lesson.title.get(self.lang)))
-                        .clicked()
-                    {
-                        choice = Some(Err(i));
-                    }
-                }
-            });
-        combo.response.labelled_by(label.id);
-        match choice {
-            Some(Ok(path)) => self.open(&path),
-            Some(Err(lesson)) => self.go_to_step(lesson, 0),
-            None => {}
-        }
-    }
-
-    fn status_bar(&mut self, ui: &mut egui::Ui) {
-        ui.horizontal(|ui| {
-            if let Some(error) = self.error.clone() {
-                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), format!("Error: {error}"));
-                if ui.small_button("dismiss").clicked() {
-                    self.error = None;
-                }
-                ui.separator();
-            }
-            ui.label(&self.status);
-            if !self.settings.show_timings {
-                return;
-            }
-            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                ui.label(self.timing_text(ui.ctx()));
-            });
-        });
-    }
-
-    fn help_window(&mut self, ctx: &egui::Context) {
-        let mut open = self.show_help;
-        egui::Window::new("Shortcuts").open(&mut open).collapsible(false).show(ctx, |ui| {
-            egui::Grid::new("keys").striped(true).show(ui, |ui| {
-                for (key, what) in [
-                    ("Left / Right", "previous / next lesson step"),
-                    ("Space", "play / pause"),
-                    ("S", "screenshot (window and each view)"),
-                    ("F1", "this help"),
-                    ("R", "reset the camera"),
-                    ("Left-drag (camera view)", "orbit"),
-                    ("Right- or middle-drag", "pan"),
-                    ("Wheel", "zoom"),
-                    ("Click", "pin the probe"),
-                    ("Double-click", "focus the camera on a point"),
-                    ("Drag (shadow map)", "move the light"),
-                    ("Drop a .toml or .obj", "open it"),
-                ] {
-                    ui.strong(key);
-                    ui.label(what);
-                    ui.end_row();
-                }
-            });
-        });
-        self.show_help = open;
-    }
-
-    /// The status bar's timings: the UI's own frame time, the last render per pass and the
-    /// resolution it was rendered at.
-    fn timing_text(&self, ctx: &egui::Context) -> String {
-        let ui_ms = ctx.input(|i| i.unstable_dt) * 1e3;
-        let shown = &self.shown;
-        let mut text = format!("UI {ui_ms:.0} ms · render {:.0} ms", shown.render_ms);
-        if let Some(t) = shown.pass_times {
-            text += &format!(" (GPU shadow {:.1} ms, camera {:.1} ms)", t.shadow_ms, t.camera_ms);
-        }
-        text += &format!(" at {}x{}", shown.size.0, shown.size.1);
-        if shown.preview {
-            text += " · preview";
-        }
-        if let Some(waited) = self.render_is_slow() {
-            text += &format!(" · rendering {:.1} s", waited.as_secs_f32());
-        }
-        text
-    }
 }
 
 /// The render worker, waking egui whenever it has news: on a device of eframe's adapter where
@@ -694,102 +482,6 @@ impl eframe::App for ShadowlabApp {
         self.settings.overlays = self.overlays.clone();
         self.settings.lang = self.lang;
         eframe::set_value(storage, settings::STORAGE_KEY, &self.settings);
-    }
-}
-
-/// The device shadowlab needs: Vulkan unless `WGPU_BACKEND` says otherwise, the adapter's own
-/// limits (the analysis pass writes 48 bytes per pixel, over WebGPU's default 32), timestamps
-/// where available.
-pub fn configure_wgpu(
-    mut setup: eframe::egui_wgpu::WgpuSetupCreateNew,
-) -> eframe::egui_wgpu::WgpuSetupCreateNew {
-    setup.instance_descriptor.backends = wgpu::Backends::from_env().unwrap_or(wgpu::Backends::VULKAN);
-    setup.device_descriptor = Arc::new(|adapter: &wgpu::Adapter| wgpu::DeviceDescriptor {
-        label: Some("shadowlab"),
-        required_features: adapter.features() & crate::render::optional_features(),
-        required_limits: adapter.limits(),
-        ..Default::default()
-    });
-    setup
-}
-
-/// How the window paints: egui's defaults (hardware texture filtering) with one sample per pixel.
-pub fn window_render_options() -> eframe::egui_wgpu::RendererOptions {
-    eframe::egui_wgpu::RendererOptions { msaa_samples: 1, ..Default::default() }
-}
-
-/// What paints the window: `SHADOWLAB_UI_PAINTER=glow|wgpu`, or by default OpenGL where the
-/// GPU is a software rasteriser and wgpu elsewhere. On Mesa's llvmpipe egui's OpenGL shader costs
-/// about a sixth of its wgpu shader per pixel (a 1600x900 window: ~25 ms a frame against ~140 ms),
-/// and the window's frames compete with the renders for the same cores. Rendering itself is
-/// wgpu either way, on the render worker's own device.
-pub fn ui_painter() -> eframe::Renderer {
-    match std::env::var("SHADOWLAB_UI_PAINTER").as_deref() {
-        Ok("glow") => eframe::Renderer::Glow,
-        Ok("wgpu") => eframe::Renderer::Wgpu,
-        _ => {
-            let software = crate::render::headless_adapter()
-                .is_ok_and(|adapter| adapter.get_info().device_type == wgpu::DeviceType::Cpu);
-            if software { eframe::Renderer::Glow } else { eframe::Renderer::Wgpu }
-        }
-    }
-}
-
-/// Whether a window can be opened here (on Linux: an X11 or Wayland display is named).
-pub fn display_available() -> bool {
-    !cfg!(target_os = "linux")
-        || ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()))
-}
-
-/// Open the app. Returns a one-line reason where no window can be opened.
-pub fn run() -> Result<(), String> {
-    if !display_available() {
-        return Err("no display found (DISPLAY and WAYLAND_DISPLAY are unset): run it on a desktop, under \
-                    `xvfb-run -a`, or use `shadowlab render`/`shadowlab export`, which need no display"
-            .into());
-    }
-    let first = ui_painter();
-    let second = match first {
-        eframe::Renderer::Glow => eframe::Renderer::Wgpu,
-        eframe::Renderer::Wgpu => eframe::Renderer::Glow,
-    };
-    // Where the chosen painter cannot open a window (no OpenGL, no Vulkan surface), the other may.
-    let first_error = match open_window(first) {
-        Ok(()) => return Ok(()),
-        Err(e) => e,
-    };
-    open_window(second).map_err(|second_error| {
-        format!(
-            "could not open the window ({first}: {first_error}; {second}: {second_error}); install a \
-             Vulkan driver (apt-get install mesa-vulkan-drivers) or use `shadowlab render`"
-        )
-    })
-}
-
-fn open_window(painter: eframe::Renderer) -> Result<(), String> {
-    eframe::run_native(
-        "shadowlab",
-        window_options(painter),
-        Box::new(|cc| Ok(Box::new(ShadowlabApp::new(cc)))),
-    )
-    .map_err(|e| e.to_string())
-}
-
-/// The window the app opens, painted by `painter`.
-pub fn window_options(painter: eframe::Renderer) -> eframe::NativeOptions {
-    eframe::NativeOptions {
-        renderer: painter,
-        viewport: egui::ViewportBuilder::default()
-            .with_title("shadowlab")
-            .with_inner_size([1560.0, 880.0])
-            .with_drag_and_drop(true),
-        wgpu_options: eframe::egui_wgpu::WgpuConfiguration {
-            wgpu_setup: eframe::egui_wgpu::WgpuSetup::CreateNew(configure_wgpu(
-                eframe::egui_wgpu::WgpuSetupCreateNew::without_display_handle(),
-            )),
-            ..Default::default()
-        },
-        ..Default::default()
     }
 }
 

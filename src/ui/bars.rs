@@ -1,0 +1,171 @@
+//! The top bar (scene and lesson picker, file box, playback, screenshot, language), the status
+//! bar (errors, timings) and the shortcut help.
+
+use super::{ShadowlabApp, Source, shipped_path};
+use crate::lessons::Lang;
+use std::path::PathBuf;
+
+impl ShadowlabApp {
+    pub(super) fn top_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal_wrapped(|ui| {
+            ui.strong("shadowlab");
+            ui.separator();
+            self.source_selector(ui);
+            let file_label = ui.label("file");
+            let field = ui
+                .add(
+                    egui::TextEdit::singleline(&mut self.open_path)
+                        .hint_text("scene .toml or .obj path")
+                        .desired_width(180.0),
+                )
+                .labelled_by(file_label.id);
+            let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
+            if (ui.button("Open").clicked() || entered) && !self.open_path.trim().is_empty() {
+                let path = PathBuf::from(self.open_path.trim());
+                self.open(&path);
+            }
+            ui.separator();
+            let play_label = if self.playing { "Pause" } else { "Play" };
+            if ui.button(play_label).on_hover_text("Space").clicked() {
+                self.playing = !self.playing;
+            }
+            let time_label = ui.label("time (s)");
+            let time = ui.add(egui::Slider::new(&mut self.time_s, 0.0..=60.0).max_decimals(2));
+            if time.labelled_by(time_label.id).changed() {
+                self.mark_dirty();
+            }
+            let speed_label = ui.label("speed");
+            ui.add(egui::DragValue::new(&mut self.speed).speed(0.05).range(0.0..=10.0).suffix("×"))
+                .labelled_by(speed_label.id);
+            ui.separator();
+            if ui.button("Screenshot").on_hover_text("S: window and each view as PNGs").clicked() {
+                self.request_screenshot(ui.ctx());
+            }
+            let lang_label = ui.label("language");
+            egui::ComboBox::from_id_salt("lang")
+                .selected_text(match self.lang {
+                    Lang::En => "English",
+                    Lang::Zh => "中文",
+                })
+                .show_ui(ui, |ui| {
+                    ui.selectable_value(&mut self.lang, Lang::En, "English");
+                    ui.selectable_value(&mut self.lang, Lang::Zh, "中文");
+                })
+                .response
+                .labelled_by(lang_label.id);
+            if ui.button("F1 Help").clicked() {
+                self.show_help = !self.show_help;
+            }
+        });
+    }
+
+    pub(super) fn source_selector(&mut self, ui: &mut egui::Ui) {
+        let current = match &self.source {
+            Source::Scene(p) => p.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default(),
+            Source::Lesson { lesson, step } => self
+                .lessons
+                .get(*lesson)
+                .map(|l| format!("{} · {}/{}", l.title.get(self.lang), step + 1, l.steps.len()))
+                .unwrap_or_default(),
+        };
+        let mut choice: Option<Result<PathBuf, usize>> = None;
+        let label = ui.label("scene");
+        let combo =
+            egui::ComboBox::from_id_salt("source").selected_text(current).width(240.0).show_ui(ui, |ui| {
+                ui.label("Scenes");
+                let mut scenes: Vec<PathBuf> = std::fs::read_dir(shipped_path("assets/scenes"))
+                    .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
+                    .unwrap_or_default();
+                scenes.retain(|p| p.extension().is_some_and(|e| e == "toml"));
+                scenes.sort();
+                for path in scenes {
+                    let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+                    if ui.selectable_label(self.source == Source::Scene(path.clone()), name).clicked() {
+                        choice = Some(Ok(path));
+                    }
+                }
+                ui.separator();
+                ui.label("Lessons");
+                for (i, lesson) in self.lessons.iter().enumerate() {
+                    let selected = matches!(self.source, Source::Lesson { lesson, .. } if lesson == i);
+                    if ui
+                        .selectable_label(selected, format!("{}. {}", i + 1, lesson.title.get(self.lang)))
+                        .clicked()
+                    {
+                        choice = Some(Err(i));
+                    }
+                }
+            });
+        combo.response.labelled_by(label.id);
+        match choice {
+            Some(Ok(path)) => self.open(&path),
+            Some(Err(lesson)) => self.go_to_step(lesson, 0),
+            None => {}
+        }
+    }
+
+    pub(super) fn status_bar(&mut self, ui: &mut egui::Ui) {
+        ui.horizontal(|ui| {
+            if let Some(error) = self.error.clone() {
+                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), format!("Error: {error}"));
+                if ui.small_button("dismiss").clicked() {
+                    self.error = None;
+                }
+                ui.separator();
+            }
+            ui.label(&self.status);
+            if !self.settings.show_timings {
+                return;
+            }
+            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
+                ui.label(self.timing_text(ui.ctx()));
+            });
+        });
+    }
+
+    pub(super) fn help_window(&mut self, ctx: &egui::Context) {
+        let mut open = self.show_help;
+        egui::Window::new("Shortcuts").open(&mut open).collapsible(false).show(ctx, |ui| {
+            egui::Grid::new("keys").striped(true).show(ui, |ui| {
+                for (key, what) in [
+                    ("Left / Right", "previous / next lesson step"),
+                    ("Space", "play / pause"),
+                    ("S", "screenshot (window and each view)"),
+                    ("F1", "this help"),
+                    ("R", "reset the camera"),
+                    ("Left-drag (camera view)", "orbit"),
+                    ("Right- or middle-drag", "pan"),
+                    ("Wheel", "zoom"),
+                    ("Click", "pin the probe"),
+                    ("Double-click", "focus the camera on a point"),
+                    ("Drag (shadow map)", "move the light"),
+                    ("Drop a .toml or .obj", "open it"),
+                ] {
+                    ui.strong(key);
+                    ui.label(what);
+                    ui.end_row();
+                }
+            });
+        });
+        self.show_help = open;
+    }
+
+    /// The status bar's timings: the UI's own frame time, the last render per pass and the
+    /// resolution it was rendered at.
+    pub(super) fn timing_text(&self, ctx: &egui::Context) -> String {
+        let ui_ms = ctx.input(|i| i.unstable_dt) * 1e3;
+        let shown = &self.shown;
+        let mut text = format!("UI {ui_ms:.0} ms · render {:.0} ms", shown.render_ms);
+        if let Some(t) = shown.pass_times {
+            text += &format!(" (GPU shadow {:.1} ms, camera {:.1} ms)", t.shadow_ms, t.camera_ms);
+        }
+        text += &format!(" at {}x{}", shown.size.0, shown.size.1);
+        if shown.preview {
+            text += " · preview";
+        }
+        if let Some(waited) = self.render_is_slow() {
+            text += &format!(" · rendering {:.1} s", waited.as_secs_f32());
+        }
+        text
+    }
+}
