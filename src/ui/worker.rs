@@ -113,6 +113,7 @@ impl RenderWorker {
         let latest = Arc::new(AtomicU64::new(0));
         let latest_in_worker = latest.clone();
         let spawned = std::thread::Builder::new().name("shadowlab render".into()).spawn(move || {
+            lower_priority();
             let send = |event| {
                 let _ = event_tx.send(event);
                 wake();
@@ -207,6 +208,22 @@ impl RenderWorker {
         self.submitted_at.filter(|_| self.busy()).map(|t| t.elapsed())
     }
 }
+
+/// Renders yield the CPU to the window: on a software rasteriser both compete for the same
+/// cores, and a UI frame matters more than a render finishing a few milliseconds sooner. Linux
+/// keeps a nice value per thread, and the rasteriser's threads, made when the device is opened
+/// from this thread, inherit it.
+fn lower_priority() {
+    #[cfg(target_os = "linux")]
+    // SAFETY: setpriority only changes this thread's scheduling priority (who 0 = the caller).
+    unsafe {
+        libc::setpriority(libc::PRIO_PROCESS, 0, RENDER_NICE);
+    }
+}
+
+/// The render threads' nice value (0 is normal, 19 the lowest priority).
+#[cfg(target_os = "linux")]
+const RENDER_NICE: libc::c_int = 4;
 
 /// The worker's renderers: `a` for the view, `b` for the A/B split's right side (made on first use).
 struct Renderers {
