@@ -33,10 +33,12 @@ enum Stage {
         slowest: Duration,
         shown_before: u64,
     },
-    /// Released: wait for the full-quality frame.
+    /// Released: wait for the full-resolution image, then for everything (probe, overlays).
     Released {
         phase: usize,
         at: Instant,
+        shown_at_release: u64,
+        full_image: Option<Duration>,
     },
     Done,
 }
@@ -131,12 +133,24 @@ impl Session {
                         pressed: false,
                         modifiers: Default::default(),
                     });
-                    self.stage = Stage::Released { phase, at: Instant::now() };
+                    self.stage = Stage::Released {
+                        phase,
+                        at: Instant::now(),
+                        shown_at_release: self.app.frames_shown(),
+                        full_image: None,
+                    };
                 }
             }
-            Stage::Released { phase, at } => {
+            Stage::Released { phase, at, shown_at_release, full_image } => {
                 let phase = *phase;
+                if full_image.is_none()
+                    && self.app.frames_shown() > *shown_at_release
+                    && !self.app.showing_preview()
+                {
+                    *full_image = Some(at.elapsed());
+                }
                 if at.elapsed() > Duration::from_millis(50) && !self.app.render_pending() {
+                    let settled = at.elapsed();
                     if self.app.showing_preview() {
                         return Err(format!("{}: still showing a preview after the release", PHASES[phase]));
                     }
@@ -151,7 +165,8 @@ impl Session {
                         ui_paint_ms: None,
                         view_refreshes: refreshes,
                         view_refreshes_per_s: refreshes as f64 / elapsed.max(1e-9),
-                        release_to_full_quality_s: at.elapsed().as_secs_f64(),
+                        release_to_full_image_s: full_image.unwrap_or(settled).as_secs_f64(),
+                        release_to_full_quality_s: settled.as_secs_f64(),
                     });
                     if phase + 1 < PHASES.len() {
                         self.start_phase(ctx, phase + 1)?;

@@ -34,6 +34,8 @@ pub struct Shown {
     pub render_ms: f64,
     /// Ground truth in progress or done: (samples averaged, samples in all).
     pub reference_progress: Option<(u32, u32)>,
+    /// The job whose probe and analysis are still to come.
+    pub details_pending: Option<u64>,
     /// The adapter the worker renders on.
     pub adapter: Option<String>,
 }
@@ -59,6 +61,7 @@ impl ShadowlabApp {
                     return;
                 }
                 WorkerEvent::Frame(output) => self.show_output(ctx, *output),
+                WorkerEvent::Details(details) => self.show_details(*details),
                 WorkerEvent::Reference { job, done, total, values } => {
                     if job == self.submitted.job {
                         self.reference = Some(values);
@@ -108,10 +111,33 @@ impl ShadowlabApp {
         if out.job == self.submitted.job {
             self.shown.reference_progress = None;
         }
-        if !out.preview {
-            self.analysis = out.analysis;
+        // The probe and the overlays' analysis follow in a `Details` event; until then the old
+        // ones stay (and the overlays hide, being about other settings).
+        self.shown.details_pending = out.details_follow.then_some(out.job);
+        if !out.preview && !out.details_follow {
+            // A full frame with no overlays on and no probe pinned.
+            self.analysis = None;
+            if self.probe_at.is_none() {
+                self.probe = None;
+            }
         }
-        match out.probe {
+        if let Some(map) = out.map {
+            self.view_state.set_map(ctx, map);
+        }
+        if !out.thumbnails.is_empty() || self.shown.lights.len() < 2 {
+            self.view_state.set_thumbnails(ctx, &out.thumbnails);
+        }
+        self.view_state.invalidate();
+    }
+
+    fn show_details(&mut self, details: super::worker::Details) {
+        if self.shown.details_pending != Some(details.job) {
+            return;
+        }
+        self.shown.details_pending = None;
+        self.shown.render_ms = details.render_ms;
+        self.analysis = details.analysis;
+        match details.probe {
             Some(Ok(report)) => self.probe = Some(report),
             Some(Err(e)) => {
                 self.probe = None;
@@ -121,7 +147,6 @@ impl ShadowlabApp {
             None => {}
         }
         if self.focus_on_probe
-            && !out.preview
             && let Some(p) = self.probe.as_ref().and_then(|p| p.world_position)
         {
             self.scene.camera.target = glam::Vec3::from(p);
@@ -130,13 +155,13 @@ impl ShadowlabApp {
             self.focus_on_probe = false;
             self.mark_dirty();
         }
-        if let Some(map) = out.map {
-            self.view_state.set_map(ctx, map);
-        }
-        if !out.thumbnails.is_empty() || self.shown.lights.len() < 2 {
-            self.view_state.set_thumbnails(ctx, &out.thumbnails);
-        }
         self.view_state.invalidate();
+    }
+
+    /// The view shows an image whose overlays are not worked out yet (a preview, or a full frame
+    /// waiting for its details): they would be about other settings.
+    pub fn overlays_stale(&self) -> bool {
+        self.shown.preview || self.shown.details_pending.is_some()
     }
 
     /// Ask for a new frame where something changed; called once per frame with the camera
@@ -199,7 +224,11 @@ impl ShadowlabApp {
     pub fn render_pending(&self) -> bool {
         let Some(worker) = self.worker.as_ref() else { return false };
         let reference_running = self.shown.reference_progress.is_some_and(|(done, total)| done < total);
-        self.dirty || worker.busy() || reference_running || self.shown_job < self.submitted.job
+        self.dirty
+            || worker.busy()
+            || reference_running
+            || self.shown_job < self.submitted.job
+            || self.shown.details_pending.is_some()
     }
 
     /// How many frames have reached the views (each a new image on screen).

@@ -129,8 +129,12 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     camera_view(app, ui, camera_rect);
     let painter = ui.painter_at(legend_rect);
     let mut y = legend_rect.top() + 4.0;
-    let waiting = [String::from("(overlays refresh when you let go)")];
-    let legends = if app.shown.preview && app.view_state.overlay.is_some() {
+    let waiting = [String::from(if app.interacting {
+        "(overlays refresh when you let go)"
+    } else {
+        "(working out the overlays...)"
+    })];
+    let legends = if app.overlays_stale() && app.view_state.overlay.is_some() {
         &waiting[..]
     } else {
         &app.view_state.legends[..]
@@ -172,7 +176,7 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     }
     // Overlays come from the last full-quality frame: over a preview of other settings they
     // would show the old numbers, so they wait for the release.
-    if let Some(overlay) = app.view_state.overlay.as_ref().filter(|_| !app.shown.preview) {
+    if let Some(overlay) = app.view_state.overlay.as_ref().filter(|_| !app.overlays_stale()) {
         painter.image(overlay.id(), rect, uv, Color32::WHITE);
     }
     if app.overlays.contains(&crate::lessons::Overlay::LightFrustum) {

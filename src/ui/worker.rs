@@ -56,9 +56,8 @@ pub struct RenderOutput {
     pub color_b: Option<image::RgbaImage>,
     /// The lights as the GPU saw them.
     pub lights: Vec<LightGpu>,
-    pub analysis: Option<Analysis>,
-    /// None where no probe was asked for; Some(Err) where it failed.
-    pub probe: Option<Result<ProbeReport, String>>,
+    /// A `Details` event for this job follows (the probe, the overlays' analysis).
+    pub details_follow: bool,
     /// The selected light's map; None where it is the same as in the last frame sent (the views
     /// keep the picture they have).
     pub map: Option<MapView>,
@@ -69,10 +68,24 @@ pub struct RenderOutput {
     pub render_ms: f64,
 }
 
+/// The probe's report: None where no probe was asked for, Some(Err) where it failed.
+pub type ProbeOutcome = Option<Result<ProbeReport, String>>;
+
+/// What a full-quality frame adds after its image: the probe and the analysis the overlays draw.
+pub struct Details {
+    pub job: u64,
+    pub probe: ProbeOutcome,
+    pub analysis: Option<Analysis>,
+    /// Wall-clock time of the whole job so far, milliseconds.
+    pub render_ms: f64,
+}
+
 pub enum WorkerEvent {
     /// The worker's device is ready (adapter description) or could not be opened.
     Ready(Result<String, String>),
+    /// The image first: it goes on screen while the details are worked out.
     Frame(Box<RenderOutput>),
+    Details(Box<Details>),
     /// The ground truth so far: `done` of `total` light samples averaged.
     Reference {
         job: u64,
@@ -135,13 +148,32 @@ impl RenderWorker {
                 }
                 let (id, job) = next;
                 let cancelled = || latest_in_worker.load(Ordering::Acquire) > id;
-                match renderers.run(id, &job) {
+                let started = Instant::now();
+                match renderers.image(id, &job) {
                     Ok(output) => send(WorkerEvent::Frame(Box::new(output))),
                     Err(e) => {
                         // The views may not have what was last read back: read it all next time.
                         renderers.last_map = None;
                         send(WorkerEvent::Failed { job: id, message: e.to_string() });
                         continue;
+                    }
+                }
+                if job.wants_details() {
+                    // A newer request makes these details moot: it brings its own.
+                    if cancelled() {
+                        continue;
+                    }
+                    match renderers.details(&job) {
+                        Ok((probe, analysis)) => send(WorkerEvent::Details(Box::new(Details {
+                            job: id,
+                            probe,
+                            analysis,
+                            render_ms: started.elapsed().as_secs_f64() * 1e3,
+                        }))),
+                        Err(e) => {
+                            send(WorkerEvent::Failed { job: id, message: e.to_string() });
+                            continue;
+                        }
                     }
                 }
                 if job.reference && job.analysis && !cancelled() {
@@ -187,6 +219,9 @@ impl RenderWorker {
                 self.finished = self.finished.max(out.job);
                 // A frame arrived: the views are waiting only for the newer ones from now on.
                 self.submitted_at = Some(Instant::now());
+            }
+            if let WorkerEvent::Details(details) = event {
+                self.finished = self.finished.max(details.job);
             }
             if let WorkerEvent::Failed { job, .. } = event {
                 self.finished = self.finished.max(*job);
@@ -289,24 +324,14 @@ fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
 }
 
 impl Renderers {
-    fn run(&mut self, id: u64, job: &RenderJob) -> Result<RenderOutput, RenderError> {
+    /// The job's image (and the map, thumbnails, the A/B side): what goes on screen first.
+    fn image(&mut self, id: u64, job: &RenderJob) -> Result<RenderOutput, RenderError> {
         let start = Instant::now();
         let scene = &job.scene;
-        let has_lights = !scene.lights.is_empty();
         let request = FrameRequest { final_color: true, analysis: false, timestamps: true, ..job.request };
-        // The probe renders the analysis pass once per light; the frame below then restores the
-        // selected light's analysis for the overlays.
-        let probe = match job.probe_pixel {
-            Some(pixel) if has_lights => {
-                Some(probe::probe(&mut self.a, scene, &request, pixel, false).map_err(|e| e.to_string()))
-            }
-            _ => None,
-        };
-        let frame = FrameRequest { analysis: job.analysis && has_lights, ..request };
-        let rendered = self.a.render(scene, &frame)?;
+        let rendered = self.a.render(scene, &request)?;
         let pass_times = self.a.last_pass_times()?;
         let color = self.a.read_color()?;
-        let analysis = if frame.analysis { Some(self.a.read_analysis()?) } else { None };
         let lights = rendered.lights;
         let limit = if job.preview { MAP_PREVIEW_TEXELS.min(job.map_texels) } else { job.map_texels };
         let map_key =
@@ -354,13 +379,38 @@ impl Renderers {
             color,
             color_b,
             lights,
-            analysis,
-            probe,
+            details_follow: job.wants_details(),
             map,
             thumbnails,
             pass_times,
             render_ms: start.elapsed().as_secs_f64() * 1e3,
         })
+    }
+}
+
+impl Renderers {
+    /// The probe (one pixel of the analysis pass per light), then the selected light's analysis
+    /// pass for the overlays (left in the targets for the ground truth after it).
+    fn details(&mut self, job: &RenderJob) -> Result<(ProbeOutcome, Option<Analysis>), RenderError> {
+        let scene = &job.scene;
+        let request = FrameRequest { final_color: false, analysis: true, timestamps: false, ..job.request };
+        let probe = job
+            .probe_pixel
+            .map(|pixel| probe::probe(&mut self.a, scene, &request, pixel, false).map_err(|e| e.to_string()));
+        let analysis = if job.analysis {
+            self.a.render(scene, &request)?;
+            Some(self.a.read_analysis()?)
+        } else {
+            None
+        };
+        Ok((probe, analysis))
+    }
+}
+
+impl RenderJob {
+    /// A probe or overlays to work out after the image.
+    fn wants_details(&self) -> bool {
+        !self.scene.lights.is_empty() && (self.probe_pixel.is_some() || self.analysis)
     }
 }
 
