@@ -294,7 +294,9 @@ fn dragging_a_slider_previews_at_half_resolution_and_refines_on_release() {
     }
     assert!(saw_preview, "a preview should arrive while the slider is dragged");
     let preview = h.state().shown_size();
-    assert_eq!(preview, ((full.0 / 2).max(1), (full.1 / 2).max(1)), "previews render at half resolution");
+    // Half the width and height, or less where previews are slow (down to a quarter).
+    let fits = |d: u32| preview == ((full.0 / d).max(1), (full.1 / d).max(1));
+    assert!(fits(2) || fits(3) || fits(4), "previews render at 1/2..1/4 resolution: {preview:?} of {full:?}");
     h.drop_at(from + egui::vec2(30.0, 0.0));
     settle(&mut h);
     assert!(!h.state().showing_preview(), "the full-quality frame replaces the preview on release");

@@ -82,6 +82,9 @@ pub struct ShadowlabApp {
     dirty: bool,
     /// The user is dragging in a view: render previews.
     interacting: bool,
+    /// Previews render at 1/preview_divisor of the view's width and height (2..=4, adapted to
+    /// how long they take).
+    preview_divisor: u32,
     analysis: Option<Analysis>,
     reference: Option<Vec<f32>>,
     view_state: view_panels::ViewState,
@@ -188,6 +191,7 @@ impl ShadowlabApp {
             focus_on_probe: false,
             dirty: true,
             interacting: false,
+            preview_divisor: 2,
             analysis: None,
             reference: None,
             view_state: Default::default(),

@@ -1,6 +1,6 @@
 //! Render scheduling: what the app asks the render worker for, and what it does with the answers.
 //! The views always show the last finished frame; while a value is being dragged they ask for
-//! previews (half resolution, PCSS with fewer taps) and refine once it is let go.
+//! previews (half resolution or less, PCSS with fewer taps) and refine once it is let go.
 
 use super::ShadowlabApp;
 use super::worker::{RenderJob, RenderOutput, WorkerEvent};
@@ -11,6 +11,11 @@ use std::time::{Duration, Instant};
 
 /// Show "rendering..." over a view that has waited this long for its frame.
 pub const SLOW_RENDER: Duration = Duration::from_millis(150);
+/// What a preview may take, milliseconds: the preview resolution adapts to keep views refreshing
+/// about ten times a second (half the view's width and height, down to a quarter).
+const PREVIEW_BUDGET_MS: f64 = 100.0;
+const PREVIEW_DIVISOR_MIN: u32 = 2;
+const PREVIEW_DIVISOR_MAX: u32 = 4;
 /// PCSS taps (blocker search and filter, each) at most while dragging.
 const PREVIEW_PCSS_SAMPLES: u32 = 16;
 /// Texels per side of the shadow-map picture: enough for the panel, and every texel once zoomed.
@@ -106,6 +111,9 @@ impl ShadowlabApp {
         self.shown.lights = out.lights;
         self.shown.size = out.size;
         self.shown.preview = out.preview;
+        if out.preview {
+            self.adapt_preview_size(out.render_ms);
+        }
         self.shown.pass_times = out.pass_times;
         self.shown.render_ms = out.render_ms;
         if out.job == self.submitted.job {
@@ -158,6 +166,16 @@ impl ShadowlabApp {
         self.view_state.invalidate();
     }
 
+    /// Dynamic resolution for previews: a step smaller when one took well over the budget, a step
+    /// larger when well under it (the gap between keeps it from hunting).
+    fn adapt_preview_size(&mut self, render_ms: f64) {
+        if render_ms > 1.4 * PREVIEW_BUDGET_MS && self.preview_divisor < PREVIEW_DIVISOR_MAX {
+            self.preview_divisor += 1;
+        } else if render_ms < 0.6 * PREVIEW_BUDGET_MS && self.preview_divisor > PREVIEW_DIVISOR_MIN {
+            self.preview_divisor -= 1;
+        }
+    }
+
     /// The view shows an image whose overlays are not worked out yet (a preview, or a full frame
     /// waiting for its details): they would be about other settings.
     pub fn overlays_stale(&self) -> bool {
@@ -169,8 +187,9 @@ impl ShadowlabApp {
     pub(super) fn schedule_render(&mut self, view_size_px: (u32, u32)) {
         let Some(worker) = self.worker.as_mut() else { return };
         let preview = self.interacting;
+        let d = self.preview_divisor;
         let size =
-            if preview { ((view_size_px.0 / 2).max(1), (view_size_px.1 / 2).max(1)) } else { view_size_px };
+            if preview { ((view_size_px.0 / d).max(1), (view_size_px.1 / d).max(1)) } else { view_size_px };
         // A preview is followed by the full-quality frame once the drag ends.
         let refine = self.submitted.preview && !preview;
         let resized = self.submitted.size != size;
