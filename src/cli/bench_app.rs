@@ -14,9 +14,27 @@ use std::time::{Duration, Instant};
 
 pub(super) const WINDOW: [f32; 2] = [1600.0, 900.0];
 /// Longest wait for the app to settle (first frame, release to full quality).
-const SETTLE_LIMIT: Duration = Duration::from_secs(300);
+pub(super) const SETTLE_LIMIT: Duration = Duration::from_secs(300);
 /// UI frames timed with nothing rendering.
-const IDLE_FRAMES: u32 = 20;
+pub(super) const IDLE_FRAMES: u32 = 20;
+/// The session's two phases.
+pub(super) const PHASES: [&str; 2] = ["drag the light-width slider", "drag the light on the shadow map"];
+
+/// Put the app where the session starts: the PCSS lesson's first step that shows the shadow map,
+/// with a probe pinned. Returns the lesson's id and the step (from 1).
+pub(super) fn start_session(app: &mut ShadowlabApp) -> Result<(String, usize), String> {
+    let pcss = app.lessons.iter().position(|l| l.id == "pcss").ok_or("no pcss lesson")?;
+    let step = app.lessons[pcss]
+        .steps
+        .iter()
+        .position(|s| s.panels.contains(&Panel::ShadowMap))
+        .ok_or("no pcss step shows the shadow map")?;
+    app.go_to_step(pcss, step);
+    if app.probe_at.is_none() {
+        app.probe_at = Some((0.5, 0.6));
+    }
+    Ok((app.lessons[pcss].id.clone(), step + 1))
+}
 
 #[derive(Serialize)]
 pub(super) struct Phase {
@@ -190,16 +208,7 @@ fn offscreen(args: &BenchArgs) -> Result<AppReport, CliError> {
         // for snapshots that match across machines, which is far slower).
         .with_render_options(crate::ui::window_render_options())
         .build_eframe(|cc| app_for_test(cc, Settings::default()));
-    let pcss = h.state().lessons.iter().position(|l| l.id == "pcss").ok_or_else(|| fail("no pcss lesson"))?;
-    let step_index = h.state().lessons[pcss]
-        .steps
-        .iter()
-        .position(|s| s.panels.contains(&Panel::ShadowMap))
-        .ok_or_else(|| fail("no pcss step shows the shadow map"))?;
-    h.state_mut().go_to_step(pcss, step_index);
-    if h.state().probe_at.is_none() {
-        h.state_mut().probe_at = Some((0.5, 0.6));
-    }
+    let (lesson, step_number) = start_session(h.state_mut()).map_err(fail)?;
     settle(&mut h)?;
     if let Some(problem) = h.state().gpu_problem().filter(|_| h.state().camera_image().is_none()) {
         return Err(CliError { code: 2, message: format!("the app has no GPU view: {problem}") });
@@ -211,7 +220,6 @@ fn offscreen(args: &BenchArgs) -> Result<AppReport, CliError> {
         step(&mut h)?;
     }
     let idle_ui_frame_ms = idle_start.elapsed().as_secs_f64() * 1e3 / f64::from(IDLE_FRAMES);
-    let lesson = h.state().lessons[pcss].id.clone();
 
     let slider_label = "light width (world units)";
     let slider_role = egui::accesskit::Role::Slider;
@@ -230,16 +238,15 @@ fn offscreen(args: &BenchArgs) -> Result<AppReport, CliError> {
         .map(|node| node.rect())
         .ok_or_else(|| fail(format!("the app shows no '{slider_label}' slider")))?;
     let (left, width, y) = (slider.left() + 4.0, (slider.width() * 0.5).max(40.0), slider.center().y);
-    let slider_phase =
-        drag_phase(&mut h, "drag the light-width slider", slider.left_center(), args.seconds, |t| {
-            egui::pos2(left + width * (0.3 + 0.25 * (t * 2.0).sin()), y)
-        })?;
+    let slider_phase = drag_phase(&mut h, PHASES[0], slider.left_center(), args.seconds, |t| {
+        egui::pos2(left + width * (0.3 + 0.25 * (t * 2.0).sin()), y)
+    })?;
 
     // The map panel's heading (the first widget of that name: the panel toggle comes later).
     let map = widget_rect(&h, "Shadow map")?;
     // Inside the map's picture, below its heading.
     let centre = map.left_bottom() + egui::vec2(150.0, 160.0);
-    let map_phase = drag_phase(&mut h, "drag the light on the shadow map", centre, args.seconds, |t| {
+    let map_phase = drag_phase(&mut h, PHASES[1], centre, args.seconds, |t| {
         centre + egui::vec2(30.0 * (t * 1.5).sin(), 20.0 * (t * 1.1).cos() - 20.0)
     })?;
 
@@ -247,7 +254,7 @@ fn offscreen(args: &BenchArgs) -> Result<AppReport, CliError> {
         window: WINDOW,
         painter: "wgpu (offscreen, egui_kittest)".into(),
         lesson,
-        step: step_index + 1,
+        step: step_number,
         startup_to_first_frame_s: startup,
         idle_ui_frame_ms,
         phases: vec![slider_phase, map_phase],

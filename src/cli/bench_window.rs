@@ -2,17 +2,11 @@
 //! window with the painter the app would use here (OpenGL on a software rasteriser), the input
 //! injected frame by frame. Needs a display (`xvfb-run -a` where there is none).
 
-use super::bench_app::{AppReport, Phase, WINDOW};
+use super::bench_app::{AppReport, IDLE_FRAMES, PHASES, Phase, SETTLE_LIMIT, WINDOW, start_session};
 use super::{BenchArgs, CliError};
-use crate::lessons::Panel;
 use crate::ui::{LANDMARK_LIGHT_WIDTH, LANDMARK_SHADOW_MAP, Settings, ShadowlabApp, app_for_test, landmark};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
-
-/// Longest wait for the app to settle (first frame, release to full quality).
-const SETTLE_LIMIT: Duration = Duration::from_secs(300);
-/// UI frames timed with nothing rendering.
-const IDLE_FRAMES: u32 = 20;
 
 type Outcome = Arc<Mutex<Option<Result<AppReport, String>>>>;
 
@@ -56,8 +50,6 @@ struct Session {
     /// Half-finished phase figures: (ui frames, elapsed s, slowest, refreshes).
     measured: Option<(u32, f64, Duration, u64)>,
 }
-
-const PHASES: [&str; 2] = ["drag the light-width slider", "drag the light on the shadow map"];
 
 impl Session {
     fn pointer_path(&self, phase: usize, from: egui::Pos2, t: f32) -> egui::Pos2 {
@@ -236,19 +228,10 @@ pub fn run(args: &BenchArgs) -> Result<AppReport, CliError> {
         options,
         Box::new(move |cc| {
             let mut app = app_for_test(cc, Settings::default());
-            let pcss = app.lessons.iter().position(|l| l.id == "pcss");
-            let step = pcss
-                .and_then(|i| app.lessons[i].steps.iter().position(|s| s.panels.contains(&Panel::ShadowMap)));
-            let (Some(pcss), Some(step)) = (pcss, step) else {
-                return Err("no pcss lesson step with the shadow map".into());
-            };
-            app.go_to_step(pcss, step);
-            if app.probe_at.is_none() {
-                app.probe_at = Some((0.5, 0.6));
-            }
+            let (lesson, step) = start_session(&mut app)?;
             let mut report = AppReport::empty();
-            report.lesson = app.lessons[pcss].id.clone();
-            report.step = step + 1;
+            report.lesson = lesson;
+            report.step = step;
             report.painter = format!("{painter} (window)");
             Ok(Box::new(Session {
                 app,
