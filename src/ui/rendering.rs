@@ -41,8 +41,6 @@ pub struct Shown {
     pub reference_progress: Option<(u32, u32)>,
     /// The job whose probe and analysis are still to come.
     pub details_pending: Option<u64>,
-    /// The adapter the worker renders on.
-    pub adapter: Option<String>,
 }
 
 /// What the last submitted job was, so that a preview is followed by a full-quality frame.
@@ -59,7 +57,7 @@ impl ShadowlabApp {
         let Some(worker) = self.worker.as_mut() else { return };
         for event in worker.poll() {
             match event {
-                WorkerEvent::Ready(Ok(adapter)) => self.shown.adapter = Some(adapter),
+                WorkerEvent::Ready(Ok(_)) => {}
                 WorkerEvent::Ready(Err(e)) => {
                     self.gpu_error = Some(e);
                     self.worker = None;

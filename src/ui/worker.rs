@@ -112,7 +112,7 @@ pub struct RenderWorker {
 /// While dragging the map picture is built at this size at most.
 const MAP_PREVIEW_TEXELS: u32 = 512;
 /// Texels per side of a light's thumbnail.
-pub const THUMBNAIL_TEXELS: u32 = 96;
+const THUMBNAIL_TEXELS: u32 = 96;
 /// Ground-truth samples in the first batch; each later batch doubles, up to `REFERENCE_BATCH_MAX`.
 const REFERENCE_BATCH_FIRST: usize = 4;
 const REFERENCE_BATCH_MAX: usize = 32;
