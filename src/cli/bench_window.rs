@@ -184,6 +184,10 @@ impl Session {
 }
 
 impl eframe::App for Session {
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        self.app.clear_color(visuals)
+    }
+
     fn raw_input_hook(&mut self, _ctx: &egui::Context, raw_input: &mut egui::RawInput) {
         raw_input.events.append(&mut self.pending);
     }
@@ -228,6 +232,7 @@ pub fn run(args: &BenchArgs) -> Result<AppReport, CliError> {
         options,
         Box::new(move |cc| {
             let mut app = app_for_test(cc, Settings::default());
+            crate::ui::clear_paints_panels(&cc.egui_ctx);
             let (lesson, step) = start_session(&mut app)?;
             let mut report = AppReport::empty();
             report.lesson = lesson;

@@ -14,7 +14,10 @@ mod window;
 mod worker;
 
 pub use settings::Settings;
-pub use window::{configure_wgpu, display_available, run, ui_painter, window_options, window_render_options};
+pub use window::{
+    clear_paints_panels, configure_wgpu, display_available, run, ui_painter, window_options,
+    window_render_options,
+};
 
 use crate::lessons::{self, Lang, Lesson, Overlay};
 use crate::probe::ProbeReport;
@@ -480,6 +483,10 @@ impl eframe::App for ShadowlabApp {
         if self.dirty {
             ctx.request_repaint();
         }
+    }
+
+    fn clear_color(&self, _visuals: &egui::Visuals) -> [f32; 4] {
+        window::window_clear_color()
     }
 
     fn save(&mut self, storage: &mut dyn eframe::Storage) {
