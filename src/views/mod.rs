@@ -82,9 +82,8 @@ pub fn heat_color(t: f32) -> Rgba<u8> {
     let x = t * (STOPS.len() - 1) as f32;
     let i = (x.floor() as usize).min(STOPS.len() - 2);
     let f = x - i as f32;
-    let c: Vec<u8> =
-        (0..3).map(|k| ((STOPS[i][k] * (1.0 - f) + STOPS[i + 1][k] * f) * 255.0).round() as u8).collect();
-    Rgba([c[0], c[1], c[2], 255])
+    let channel = |k: usize| ((STOPS[i][k] * (1.0 - f) + STOPS[i + 1][k] * f) * 255.0).round() as u8;
+    Rgba([channel(0), channel(1), channel(2), 255])
 }
 
 pub fn gray(v: f32) -> Rgba<u8> {
