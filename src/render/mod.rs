@@ -481,17 +481,21 @@ impl Renderer {
         let (width, height) = targets.size;
         let mut planes = Vec::with_capacity(targets.analysis.len());
         for texture in &targets.analysis {
-            let bytes = readback::read_texture(
-                &self.device,
-                &self.queue,
-                texture,
-                0,
-                targets.size,
-                16,
-                wgpu::TextureAspect::All,
-            )?;
-            let floats = readback::f32s_from_bytes(&bytes);
-            planes.push(floats.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect::<Vec<_>>());
+            let mut plane = Vec::with_capacity((width * height) as usize);
+            let region = readback::Region {
+                layer: 0,
+                origin: (0, 0),
+                size: targets.size,
+                bytes_per_texel: 16,
+                aspect: wgpu::TextureAspect::All,
+            };
+            readback::for_each_row(&self.device, &self.queue, texture, region, |row| {
+                plane.extend(row.chunks_exact(16).map(|t| {
+                    let mut texel = readback::f32s(t);
+                    std::array::from_fn(|_| texel.next().unwrap_or_default())
+                }));
+            })?;
+            planes.push(plane);
         }
         let normal = planes.pop().unwrap_or_default();
         let position = planes.pop().unwrap_or_default();
@@ -533,22 +537,25 @@ impl Renderer {
         let light = lights.get(index).ok_or_else(|| {
             RenderError::Usage(format!("light {index} does not exist (the scene has {})", lights.len()))
         })?;
-        let atlas = maps.atlas_size;
-        let bytes = readback::read_texture(
-            &self.device,
-            &self.queue,
-            &maps.texture,
-            index as u32,
-            (atlas, atlas),
-            4,
-            wgpu::TextureAspect::DepthOnly,
-        )?;
-        let all = readback::f32s_from_bytes(&bytes);
+        // A light with a smaller map uses the top-left corner of its layer. Depth textures are
+        // copied whole (wgpu allows no partial depth copy), the corner is kept.
         let size = light.map_size_texels as u32;
+        let atlas = maps.atlas_size;
+        let region = readback::Region {
+            layer: index as u32,
+            origin: (0, 0),
+            size: (atlas, atlas),
+            bytes_per_texel: 4,
+            aspect: wgpu::TextureAspect::DepthOnly,
+        };
         let mut depth_ndc = Vec::with_capacity((size * size) as usize);
-        for row in all.chunks_exact(atlas as usize).take(size as usize) {
-            depth_ndc.extend_from_slice(&row[..size as usize]);
-        }
+        let mut rows_left = size;
+        readback::for_each_row(&self.device, &self.queue, &maps.texture, region, |row| {
+            if rows_left > 0 {
+                rows_left -= 1;
+                depth_ndc.extend(readback::f32s(&row[..4 * size as usize]));
+            }
+        })?;
         Ok(DepthImage { size, depth_ndc })
     }
 }

@@ -27,12 +27,54 @@ pub fn read_texture_region(
     bytes_per_texel: u32,
     aspect: wgpu::TextureAspect,
 ) -> Result<Vec<u8>, RenderError> {
-    let (width, height) = size;
-    let unpadded = width * bytes_per_texel;
+    let mut out = Vec::with_capacity((size.0 * size.1 * bytes_per_texel) as usize);
+    let region = Region { layer, origin, size, bytes_per_texel, aspect };
+    for_each_row(device, queue, texture, region, |row| out.extend_from_slice(row))?;
+    Ok(out)
+}
+
+/// A texture of 32-bit floats (`channels` per texel), read straight into floats.
+pub fn read_texture_f32s(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    layer: u32,
+    size: (u32, u32),
+    channels: u32,
+    aspect: wgpu::TextureAspect,
+) -> Result<Vec<f32>, RenderError> {
+    let mut out = Vec::with_capacity((size.0 * size.1 * channels) as usize);
+    let region = Region { layer, origin: (0, 0), size, bytes_per_texel: 4 * channels, aspect };
+    for_each_row(device, queue, texture, region, |row| out.extend(f32s(row)))?;
+    Ok(out)
+}
+
+/// Which texels of a texture to read.
+#[derive(Clone, Copy)]
+pub struct Region {
+    pub layer: u32,
+    pub origin: (u32, u32),
+    pub size: (u32, u32),
+    pub bytes_per_texel: u32,
+    pub aspect: wgpu::TextureAspect,
+}
+
+/// Copy `region` to a buffer and hand each row, unpadded, to `row`, straight from the mapped
+/// buffer: one copy on the CPU, whatever the caller makes of the rows (a depth map is 16 MB).
+pub fn for_each_row(
+    device: &wgpu::Device,
+    queue: &wgpu::Queue,
+    texture: &wgpu::Texture,
+    region: Region,
+    mut row: impl FnMut(&[u8]),
+) -> Result<(), RenderError> {
+    let (width, height) = region.size;
+    let unpadded = width * region.bytes_per_texel;
     let padded = unpadded.div_ceil(wgpu::COPY_BYTES_PER_ROW_ALIGNMENT) * wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
+    let len = u64::from(padded) * u64::from(height);
     let buffer = device.create_buffer(&wgpu::BufferDescriptor {
         label: Some("readback"),
-        size: u64::from(padded) * u64::from(height),
+        size: len,
         usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
         mapped_at_creation: false,
     });
@@ -42,8 +84,8 @@ pub fn read_texture_region(
         wgpu::TexelCopyTextureInfo {
             texture,
             mip_level: 0,
-            origin: wgpu::Origin3d { x: origin.0, y: origin.1, z: layer },
-            aspect,
+            origin: wgpu::Origin3d { x: region.origin.0, y: region.origin.1, z: region.layer },
+            aspect: region.aspect,
         },
         wgpu::TexelCopyBufferInfo {
             buffer: &buffer,
@@ -56,17 +98,20 @@ pub fn read_texture_region(
         wgpu::Extent3d { width, height, depth_or_array_layers: 1 },
     );
     queue.submit([encoder.finish()]);
-    read_buffer(device, &buffer, u64::from(padded) * u64::from(height)).map(|bytes| {
-        let mut out = Vec::with_capacity((unpadded * height) as usize);
-        for row in bytes.chunks_exact(padded as usize) {
-            out.extend_from_slice(&row[..unpadded as usize]);
+    with_mapped(device, &buffer, len, |bytes| {
+        for padded_row in bytes.chunks_exact(padded as usize) {
+            row(&padded_row[..unpadded as usize]);
         }
-        out
     })
 }
 
-/// Map a MAP_READ buffer and copy out its first `len` bytes.
-pub fn read_buffer(device: &wgpu::Device, buffer: &wgpu::Buffer, len: u64) -> Result<Vec<u8>, RenderError> {
+/// Map a MAP_READ buffer and let `read` see its first `len` bytes.
+fn with_mapped<T>(
+    device: &wgpu::Device,
+    buffer: &wgpu::Buffer,
+    len: u64,
+    read: impl FnOnce(&[u8]) -> T,
+) -> Result<T, RenderError> {
     let slice = buffer.slice(..len);
     let (sender, receiver) = std::sync::mpsc::channel();
     slice.map_async(wgpu::MapMode::Read, move |result| {
@@ -77,11 +122,21 @@ pub fn read_buffer(device: &wgpu::Device, buffer: &wgpu::Buffer, len: u64) -> Re
         .recv()
         .map_err(|e| RenderError::Readback(e.to_string()))?
         .map_err(|e| RenderError::Readback(e.to_string()))?;
-    let bytes = slice.get_mapped_range().map_err(|e| RenderError::Readback(e.to_string()))?.to_vec();
+    let out = read(&slice.get_mapped_range().map_err(|e| RenderError::Readback(e.to_string()))?);
     buffer.unmap();
-    Ok(bytes)
+    Ok(out)
+}
+
+/// Map a MAP_READ buffer and copy out its first `len` bytes.
+pub fn read_buffer(device: &wgpu::Device, buffer: &wgpu::Buffer, len: u64) -> Result<Vec<u8>, RenderError> {
+    with_mapped(device, buffer, len, <[u8]>::to_vec)
+}
+
+/// Little-endian 32-bit floats.
+pub fn f32s(bytes: &[u8]) -> impl Iterator<Item = f32> + '_ {
+    bytes.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]]))
 }
 
 pub fn f32s_from_bytes(bytes: &[u8]) -> Vec<f32> {
-    bytes.chunks_exact(4).map(|c| f32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
+    f32s(bytes).collect()
 }
