@@ -64,6 +64,7 @@ impl ShadowlabApp {
                     return;
                 }
                 WorkerEvent::Frame(output) => self.show_output(ctx, *output),
+                WorkerEvent::Maps(maps) => self.show_maps(ctx, *maps),
                 WorkerEvent::Details(details) => self.show_details(*details),
                 WorkerEvent::Reference { job, done, total, values } => {
                     if job == self.submitted.job {
@@ -127,11 +128,19 @@ impl ShadowlabApp {
                 self.probe = None;
             }
         }
-        if let Some(map) = out.map {
+        self.view_state.invalidate();
+    }
+
+    /// The shadow-map pictures of the frame just shown.
+    fn show_maps(&mut self, ctx: &egui::Context, maps: super::worker::Maps) {
+        if maps.job < self.shown_job {
+            return;
+        }
+        if let Some(map) = maps.map {
             self.view_state.set_map(ctx, map);
         }
-        if !out.thumbnails.is_empty() || self.shown.lights.len() < 2 {
-            self.view_state.set_thumbnails(ctx, &out.thumbnails);
+        if !maps.thumbnails.is_empty() || self.shown.lights.len() < 2 {
+            self.view_state.set_thumbnails(ctx, &maps.thumbnails);
         }
         self.view_state.invalidate();
     }

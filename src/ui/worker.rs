@@ -58,14 +58,19 @@ pub struct RenderOutput {
     pub lights: Vec<LightGpu>,
     /// A `Details` event for this job follows (the probe, the overlays' analysis).
     pub details_follow: bool,
-    /// The selected light's map; None where it is the same as in the last frame sent (the views
-    /// keep the picture they have).
-    pub map: Option<MapView>,
-    pub thumbnails: Vec<image::RgbaImage>,
     /// GPU time of the last frame's passes (where the adapter has timestamps).
     pub pass_times: Option<PassTimes>,
     /// Wall-clock time of the whole job (renders, read-backs, probe), milliseconds.
     pub render_ms: f64,
+}
+
+/// The shadow-map pictures of one frame, sent after its image.
+pub struct Maps {
+    pub job: u64,
+    /// The selected light's map; None where it is the same as in the last frame sent (the views
+    /// keep the picture they have).
+    pub map: Option<MapView>,
+    pub thumbnails: Vec<image::RgbaImage>,
 }
 
 /// The probe's report: None where no probe was asked for, Some(Err) where it failed.
@@ -83,8 +88,9 @@ pub struct Details {
 pub enum WorkerEvent {
     /// The worker's device is ready (adapter description) or could not be opened.
     Ready(Result<String, String>),
-    /// The image first: it goes on screen while the details are worked out.
+    /// The image first: it goes on screen while the maps and the details are worked out.
     Frame(Box<RenderOutput>),
+    Maps(Box<Maps>),
     Details(Box<Details>),
     /// The ground truth so far: `done` of `total` light samples averaged.
     Reference {
@@ -149,8 +155,12 @@ impl RenderWorker {
                 let (id, job) = next;
                 let cancelled = || latest_in_worker.load(Ordering::Acquire) > id;
                 let started = Instant::now();
-                match renderers.image(id, &job) {
-                    Ok(output) => send(WorkerEvent::Frame(Box::new(output))),
+                let maps = renderers.image(id, &job).and_then(|output| {
+                    send(WorkerEvent::Frame(Box::new(output)));
+                    renderers.maps(id, &job)
+                });
+                match maps {
+                    Ok(maps) => send(WorkerEvent::Maps(Box::new(maps))),
                     Err(e) => {
                         // The views may not have what was last read back: read it all next time.
                         renderers.last_map = None;
@@ -215,10 +225,13 @@ impl RenderWorker {
     pub fn poll(&mut self) -> Vec<WorkerEvent> {
         let events: Vec<WorkerEvent> = self.events.try_iter().collect();
         for event in &events {
-            if let WorkerEvent::Frame(out) = event {
-                self.finished = self.finished.max(out.job);
+            if let WorkerEvent::Frame(_) = event {
                 // A frame arrived: the views are waiting only for the newer ones from now on.
                 self.submitted_at = Some(Instant::now());
+            }
+            // The maps complete a job (its details, if any, follow).
+            if let WorkerEvent::Maps(maps) = event {
+                self.finished = self.finished.max(maps.job);
             }
             if let WorkerEvent::Details(details) = event {
                 self.finished = self.finished.max(details.job);
@@ -324,7 +337,7 @@ fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
 }
 
 impl Renderers {
-    /// The job's image (and the map, thumbnails, the A/B side): what goes on screen first.
+    /// The job's image (and the A/B side): what goes on screen first.
     fn image(&mut self, id: u64, job: &RenderJob) -> Result<RenderOutput, RenderError> {
         let start = Instant::now();
         let scene = &job.scene;
@@ -332,10 +345,40 @@ impl Renderers {
         let rendered = self.a.render(scene, &request)?;
         let pass_times = self.a.last_pass_times()?;
         let color = self.a.read_color()?;
-        let lights = rendered.lights;
+        let color_b = match job.technique_b {
+            Some(technique) => {
+                if self.b.is_none() {
+                    self.b = Some(Renderer::new(&self.device, &self.queue)?);
+                }
+                let b = self.b.as_mut().ok_or_else(|| RenderError::Usage("no B renderer".into()))?;
+                let mut scene_b = scene.clone();
+                scene_b.shadow.technique = technique;
+                b.render(&scene_b, &request)?;
+                Some(b.read_color()?)
+            }
+            None => None,
+        };
+        Ok(RenderOutput {
+            job: id,
+            preview: job.preview,
+            size: request.size,
+            color,
+            color_b,
+            lights: rendered.lights,
+            details_follow: job.wants_details(),
+            pass_times,
+            render_ms: start.elapsed().as_secs_f64() * 1e3,
+        })
+    }
+
+    /// The maps of the frame `image` just rendered: the selected light's picture (unless it is
+    /// the one sent last) and the thumbnails.
+    fn maps(&mut self, id: u64, job: &RenderJob) -> Result<Maps, RenderError> {
+        let scene = &job.scene;
+        let lights = self.a.last_frame().map(|f| f.lights.clone()).unwrap_or_default();
         let limit = if job.preview { MAP_PREVIEW_TEXELS.min(job.map_texels) } else { job.map_texels };
         let map_key =
-            lights.get(job.request.selected_light).map(|l| MapKey::new(scene, l, request.time_s, limit));
+            lights.get(job.request.selected_light).map(|l| MapKey::new(scene, l, job.request.time_s, limit));
         let map_unchanged = map_key.is_some() && map_key == self.last_map;
         self.last_map = map_key;
         let map = match lights.get(job.request.selected_light).filter(|_| !map_unchanged) {
@@ -359,32 +402,7 @@ impl Renderers {
                 ));
             }
         }
-        let color_b = match job.technique_b {
-            Some(technique) => {
-                if self.b.is_none() {
-                    self.b = Some(Renderer::new(&self.device, &self.queue)?);
-                }
-                let b = self.b.as_mut().ok_or_else(|| RenderError::Usage("no B renderer".into()))?;
-                let mut scene_b = scene.clone();
-                scene_b.shadow.technique = technique;
-                b.render(&scene_b, &request)?;
-                Some(b.read_color()?)
-            }
-            None => None,
-        };
-        Ok(RenderOutput {
-            job: id,
-            preview: job.preview,
-            size: request.size,
-            color,
-            color_b,
-            lights,
-            details_follow: job.wants_details(),
-            map,
-            thumbnails,
-            pass_times,
-            render_ms: start.elapsed().as_secs_f64() * 1e3,
-        })
+        Ok(Maps { job: id, map, thumbnails })
     }
 }
 
