@@ -82,9 +82,10 @@ pub struct RenderArgs {
 pub struct ProbeArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
-    /// Pixel to probe, x,y from the top-left corner.
+    /// Pixel to probe, x,y from the top-left corner (default with --lesson: the step's own probe,
+    /// a pixel of its 960x540 frame: the numbers the lesson text quotes).
     #[arg(long, value_parser = parse_pixel)]
-    pub pixel: (u32, u32),
+    pub pixel: Option<(u32, u32)>,
     /// Skip the ground truth (faster).
     #[arg(long)]
     pub no_reference: bool,
@@ -236,6 +237,8 @@ struct Resolved {
     time_s: f32,
     view: View,
     light: usize,
+    /// The lesson step's probe pixel (in `lessons::PROBE_FRAME`).
+    probe: Option<(u32, u32)>,
 }
 
 /// The checks every command makes before touching the GPU.
@@ -260,6 +263,7 @@ fn load(frame: &FrameArgs) -> Result<Resolved, CliError> {
             time_s: frame.time.unwrap_or(step.time_s),
             view: step.view,
             light: step.light,
+            probe: step.probe.map(|[x, y]| (x, y)),
         });
     }
     let path = frame.scene.as_deref().ok_or_else(|| CliError::input("give --scene FILE or --lesson ID"))?;
@@ -269,6 +273,7 @@ fn load(frame: &FrameArgs) -> Result<Resolved, CliError> {
         time_s: frame.time.unwrap_or(0.0),
         view: View::Final,
         light: 0,
+        probe: None,
     })
 }
 
@@ -356,15 +361,22 @@ fn probe(args: ProbeArgs) -> Result<(), CliError> {
     let resolved = load(&args.frame)?;
     let scene = resolved.scene;
     let (w, h) = args.frame.size;
-    if args.pixel.0 >= w || args.pixel.1 >= h {
-        return Err(CliError::input(format!(
-            "--pixel {},{} is outside the {w}x{h} image",
-            args.pixel.0, args.pixel.1
-        )));
+    let pixel = match (args.pixel, resolved.probe) {
+        (Some(pixel), _) => pixel,
+        (None, Some(pixel)) => pixel,
+        (None, None) => {
+            return Err(CliError::input(format!(
+                "--pixel X,Y is needed: {} names no probe pixel",
+                resolved.label
+            )));
+        }
+    };
+    if pixel.0 >= w || pixel.1 >= h {
+        return Err(CliError::input(format!("--pixel {},{} is outside the {w}x{h} image", pixel.0, pixel.1)));
     }
     let (_ctx, mut renderer) = gpu()?;
     let request = FrameRequest { time_s: resolved.time_s, size: args.frame.size, ..Default::default() };
-    let report = crate::probe::probe(&mut renderer, &scene, &request, args.pixel, !args.no_reference)?;
+    let report = crate::probe::probe(&mut renderer, &scene, &request, pixel, !args.no_reference)?;
     let json =
         serde_json::to_string_pretty(&report).map_err(|e| CliError { code: 1, message: e.to_string() })?;
     println!("{json}");
