@@ -5,18 +5,18 @@ use crate::render::{FrameRequest, RenderError, Renderer};
 use crate::scene::{Scene, Technique};
 use crate::shadow::{TapKind, Twin, kernels};
 use glam::Vec3;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
-#[derive(Clone, Debug, Serialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct TapReport {
     /// "blocker-search" or "filter".
-    pub kind: &'static str,
+    pub kind: String,
     pub uv: [f32; 2],
     /// Blocker search: 1 = blocker. Filter: lit fraction of the tap.
     pub value: f32,
 }
 
-#[derive(Clone, Debug, Serialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct LightProbe {
     pub light: usize,
     pub shadow_map_uv: [f32; 2],
@@ -44,7 +44,7 @@ pub struct LightProbe {
     pub taps: Vec<TapReport>,
 }
 
-#[derive(Clone, Debug, Serialize, PartialEq)]
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct ProbeReport {
     pub pixel: [u32; 2],
     pub size: [u32; 2],
@@ -177,7 +177,8 @@ pub fn probe(
                     kind: match t.kind {
                         TapKind::BlockerSearch => "blocker-search",
                         TapKind::Filter => "filter",
-                    },
+                    }
+                    .into(),
                     uv: t.uv.to_array(),
                     value: t.value,
                 })

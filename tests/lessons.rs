@@ -3,7 +3,9 @@
 
 mod common;
 
-use shadowlab::lessons::{self, Lesson, LessonError, Text};
+use shadowlab::lessons::live::{self, Verdict};
+use shadowlab::lessons::{self, Lang, Lesson, LessonError, Text};
+use shadowlab::probe::ProbeReport;
 use shadowlab::views::{View, render_view};
 use std::collections::HashSet;
 use std::path::PathBuf;
@@ -212,4 +214,56 @@ fn malformed_lessons_are_not_picked_up_with_the_shipped_ones() {
         .err()
         .unwrap_or_else(|| panic!("loading the malformed lessons as a folder must fail"));
     assert!(error.to_string().contains("tests/data/lessons"), "{error}");
+}
+
+#[test]
+fn unknown_probe_placeholder_names_file_line_and_placeholder() {
+    // Text carries no span of its own either: the error points at the step.
+    let line = line_of(&data_file("unknown_placeholder.toml"), "[[step]]");
+    let message = error_of("unknown_placeholder.toml", line);
+    assert!(message.contains("{probe.receiver_distance:.2}"), "{message}");
+    assert!(message.contains("receiver_depth_world"), "the error lists the names there are: {message}");
+}
+
+#[test]
+fn every_claimed_verdict_and_quoted_number_holds_at_the_cli_probe() {
+    // `shadowlab probe --lesson ID --step N` (the lesson's own frame) must find what the text says.
+    for lesson in shipped() {
+        for (i, step) in lesson.steps.iter().enumerate() {
+            let quotes = [&step.text].into_iter().chain(&step.try_this).any(|t| t.en.contains("{probe."));
+            if step.expect.is_none() && !quotes {
+                continue;
+            }
+            let output = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"))
+                .args(["probe", "--lesson", &lesson.id, "--step", &(i + 1).to_string(), "--no-reference"])
+                .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+                .output()
+                .expect("run shadowlab probe");
+            let what = format!("{} step {}", lesson.id, i + 1);
+            assert!(output.status.success(), "{what}: {}", String::from_utf8_lossy(&output.stderr));
+            let report: ProbeReport = serde_json::from_slice(&output.stdout).expect("probe JSON");
+            assert!(report.hit, "{what}: the lesson's probe finds no surface");
+            if let Some(expected) = step.expect {
+                let visibility = report.lights[step.light].visibility_gpu;
+                assert_eq!(Verdict::of(visibility), expected, "{what}: visibility {visibility}");
+            }
+            // Every quoted number has a value there (no "…" on a slide or in the app), and each
+            // is the report's value as rounded in the text.
+            for lang in [Lang::En, Lang::Zh] {
+                let texts = [&step.text].into_iter().chain(&step.try_this);
+                for text in texts.map(|t| t.get(lang)) {
+                    let (filled_text, filled) = live::fill(text, Some(&report), step.light, lang);
+                    for f in &filled {
+                        assert_ne!(
+                            f.text,
+                            live::NO_VALUE,
+                            "{what} ({lang:?}): {} has no value",
+                            f.placeholder.name
+                        );
+                        assert!(filled_text.contains(&f.text));
+                    }
+                }
+            }
+        }
+    }
 }

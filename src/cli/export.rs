@@ -158,14 +158,17 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
                 let d = layout.diagram;
                 let diagram = diagrams::draw(pictures.diagram, &pictures.inputs, d.w, d.h)
                     .map_err(|e| failed("diagram", e))?;
+                // The text's live numbers, from the probe this slide shows.
+                let body = step.text_filled(args.lang, pictures.probe.as_ref());
+                let try_this = step.try_this_filled(args.lang, pictures.probe.as_ref());
                 let text = SlideText {
                     lang: args.lang,
                     lesson_title: lesson.title.get(args.lang),
                     step_number: i + 1,
                     step_count: lesson.steps.len(),
                     step_title: step.title.get(args.lang),
-                    body: step.text.get(args.lang),
-                    try_this: step.try_this.iter().map(|t| t.get(args.lang)).collect(),
+                    body: &body,
+                    try_this: try_this.iter().map(String::as_str).collect(),
                 };
                 let slide = compose(&layout, &text, &pictures, map_panel.as_ref(), &diagram, fonts)
                     .ok_or_else(|| failed("slide", format!("cannot allocate a {w}x{h} image")))?;
@@ -205,8 +208,8 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
                 let rel = |what: &str| format!("{}/{}", lesson.id, name(what));
                 slides.push(SlideEntry {
                     title: step.title.get(args.lang).to_string(),
-                    body: step.text.get(args.lang).to_string(),
-                    try_this: step.try_this.iter().map(|t| t.get(args.lang).to_string()).collect(),
+                    body: body.clone(),
+                    try_this: try_this.clone(),
                     slide: rel("slide"),
                     camera: rel("camera"),
                     shadow_map: rel("shadow-map"),

@@ -285,9 +285,9 @@ normal_offset_texels = 0.5
             visibility_twin: 0.5,
             visibility_reference: None,
             taps: vec![
-                TapReport { kind: "blocker-search", uv: [0.1, 0.1], value: 1.0 },
-                TapReport { kind: "filter", uv: [0.5 + r, 0.5], value: 1.0 },
-                TapReport { kind: "filter", uv: [0.5, 0.5 - 0.5 * r], value: 0.0 },
+                TapReport { kind: "blocker-search".into(), uv: [0.1, 0.1], value: 1.0 },
+                TapReport { kind: "filter".into(), uv: [0.5 + r, 0.5], value: 1.0 },
+                TapReport { kind: "filter".into(), uv: [0.5, 0.5 - 0.5 * r], value: 0.0 },
             ],
         }
     }

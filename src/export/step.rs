@@ -10,8 +10,7 @@ use crate::scene::{Scene, Technique};
 use crate::views::{self, Legend, View};
 use image::RgbaImage;
 
-/// The frame lesson probe pixels are given in.
-pub const PROBE_FRAME: (u32, u32) = (960, 540);
+pub use crate::lessons::PROBE_FRAME;
 
 /// Everything a slide shows of a step, except its text.
 pub struct StepPictures {

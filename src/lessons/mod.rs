@@ -3,6 +3,8 @@
 //! to read, in English and Simplified Chinese. Parsed with `deny_unknown_fields`, so a typo is an
 //! error naming the file, the line and the key.
 
+pub mod live;
+
 use crate::diagrams::DiagramKind;
 use crate::scene::{Scene, SceneError, load_scene};
 use crate::views::View;
@@ -61,6 +63,10 @@ impl Text {
         }
     }
 }
+
+/// The frame a step's `probe` pixel is given in: the lesson's own frame. The app, the CLI and the
+/// slides all probe in it, so they all quote the same numbers, whatever their views' sizes.
+pub const PROBE_FRAME: (u32, u32) = (960, 540);
 
 /// Panels a step can show.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
@@ -141,12 +147,14 @@ struct StepFile {
     panels: Vec<Panel>,
     #[serde(default)]
     overlays: Vec<Overlay>,
-    /// Probe pixel in a 960x540 frame (scaled to the view's size).
+    /// Probe pixel in the lesson's 960x540 frame (`PROBE_FRAME`).
     probe: Option<[u32; 2]>,
     diagram: Option<Spanned<String>>,
     view: Option<Spanned<String>>,
     #[serde(default)]
     light: usize,
+    /// What the probe must find on the step's light, where the text claims it.
+    expect: Option<live::Verdict>,
 }
 
 /// One step of a lesson, checked: its scene loads with its overrides.
@@ -166,6 +174,8 @@ pub struct Step {
     pub diagram: Option<DiagramKind>,
     pub view: View,
     pub light: usize,
+    /// The verdict the text claims for the probe on `light` (the tests hold the probe to it).
+    pub expect: Option<live::Verdict>,
 }
 
 impl Step {
@@ -204,6 +214,25 @@ fn flatten(prefix: &str, table: &toml::Table, out: &mut Vec<(String, String)>) {
             toml::Value::String(s) => out.push((full, s.clone())),
             other => out.push((full, other.to_string())),
         }
+    }
+}
+
+/// The step's text quotes the probe (`{probe...}`) somewhere.
+fn step_quotes_probe(step: &Step) -> bool {
+    std::iter::once(&step.text)
+        .chain(&step.try_this)
+        .any(|t| t.en.contains("{probe.") || t.zh.contains("{probe."))
+}
+
+impl Step {
+    /// The step's explanation in `lang` with the probe's numbers filled in (see [`live`]).
+    pub fn text_filled(&self, lang: Lang, probe: Option<&crate::probe::ProbeReport>) -> String {
+        live::fill(self.text.get(lang), probe, self.light, lang).0
+    }
+
+    /// The try-this prompts in `lang`, filled in.
+    pub fn try_this_filled(&self, lang: Lang, probe: Option<&crate::probe::ProbeReport>) -> Vec<String> {
+        self.try_this.iter().map(|t| live::fill(t.get(lang), probe, self.light, lang).0).collect()
     }
 }
 
@@ -271,7 +300,19 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
             diagram,
             view,
             light: s.light,
+            expect: s.expect,
         };
+        // Live numbers: every `{probe.NAME}` must name a probe value, in both languages.
+        for text in std::iter::once(&step.text).chain(&step.try_this) {
+            for lang_text in [&text.en, &text.zh] {
+                if let Err(message) = live::placeholders(lang_text) {
+                    return Err(error(0..0, message));
+                }
+            }
+        }
+        if (step.expect.is_some() || step_quotes_probe(&step)) && step.probe.is_none() {
+            return Err(error(0..0, "the text quotes the probe but the step sets no `probe` pixel".into()));
+        }
         // A lesson that cannot render is caught here, before anything is shown or written.
         let scene = step.scene().map_err(|e| match e {
             SceneError::Override { .. } => error(set_span.clone(), e.to_string()),

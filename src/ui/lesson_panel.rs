@@ -11,8 +11,9 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let count = lesson.steps.len();
     let lesson_title = lesson.title.get(lang).to_string();
     let title = step.title.get(lang).to_string();
-    let text = step.text.get(lang).to_string();
-    let tries: Vec<String> = step.try_this.iter().map(|t| t.get(lang).to_string()).collect();
+    // Live numbers from the probe on screen (or "…" while it is worked out).
+    let text = step.text_filled(lang, app.probe.as_ref());
+    let tries = step.try_this_filled(lang, app.probe.as_ref());
     // Navigation first, so it stays in reach however long the text is.
     ui.horizontal(|ui| {
         if ui.button("Previous").on_hover_text("Left arrow").clicked() {

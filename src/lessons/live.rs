@@ -1,0 +1,342 @@
+//! Live numbers in lesson text. A step quotes the probe by name, `{probe.penumbra_width_world:.2}`,
+//! and whoever shows the step (the app, `shadowlab lessons`, the slides) fills it from the probe it
+//! has, so the text stays true after a student moves a slider. `{probe.light1.visibility}` reads
+//! light 1 instead of the step's own light. The loader rejects a name that is not listed here.
+
+use super::Lang;
+use crate::probe::{LightProbe, ProbeReport};
+
+/// What a placeholder names, and the probe value behind it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Quantity {
+    /// Receiver depth as the map would store it (NDC, 0..1).
+    ReceiverDepthNdc,
+    StoredDepthNdc,
+    /// Receiver distance from the light along its axis, world units.
+    ReceiverDepthWorld,
+    StoredDepthWorld,
+    /// Receiver minus stored depth, world units (> 0: the stored surface is nearer the light).
+    DepthGapWorld,
+    BiasNdc,
+    NDotL,
+    UvX,
+    UvY,
+    TexelX,
+    TexelY,
+    SearchRadiusTexels,
+    BlockersFound,
+    BlockerSamples,
+    /// d_blocker, world units.
+    AvgBlockerDepthWorld,
+    /// d_receiver - d_blocker, world units: the gap the penumbra grows with.
+    BlockerGapWorld,
+    PenumbraWidthWorld,
+    FilterRadiusTexels,
+    FilterSamples,
+    /// The GPU's visibility, 0 (shadowed) .. 1 (lit).
+    Visibility,
+    VisibilityReference,
+    /// "lit", "shadowed" or "partly lit", in the text's language.
+    Verdict,
+    /// The object under the probe.
+    Object,
+}
+
+const QUANTITIES: [(&str, Quantity); 23] = [
+    ("receiver_depth_ndc", Quantity::ReceiverDepthNdc),
+    ("stored_depth_ndc", Quantity::StoredDepthNdc),
+    ("receiver_depth_world", Quantity::ReceiverDepthWorld),
+    ("stored_depth_world", Quantity::StoredDepthWorld),
+    ("depth_gap_world", Quantity::DepthGapWorld),
+    ("bias_ndc", Quantity::BiasNdc),
+    ("n_dot_l", Quantity::NDotL),
+    ("uv_x", Quantity::UvX),
+    ("uv_y", Quantity::UvY),
+    ("texel_x", Quantity::TexelX),
+    ("texel_y", Quantity::TexelY),
+    ("search_radius_texels", Quantity::SearchRadiusTexels),
+    ("blockers_found", Quantity::BlockersFound),
+    ("blocker_samples", Quantity::BlockerSamples),
+    ("avg_blocker_depth_world", Quantity::AvgBlockerDepthWorld),
+    ("blocker_gap_world", Quantity::BlockerGapWorld),
+    ("penumbra_width_world", Quantity::PenumbraWidthWorld),
+    ("filter_radius_texels", Quantity::FilterRadiusTexels),
+    ("filter_samples", Quantity::FilterSamples),
+    ("visibility", Quantity::Visibility),
+    ("visibility_reference", Quantity::VisibilityReference),
+    ("verdict", Quantity::Verdict),
+    ("object", Quantity::Object),
+];
+
+/// The probe's verdict on one light: what the text may claim about the probed point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Verdict {
+    Lit,
+    Shadowed,
+    PartlyLit,
+}
+
+impl Verdict {
+    /// From a visibility in 0..1 (exactly 0 or 1 for a hard test; anything between is partial).
+    pub fn of(visibility: f32) -> Verdict {
+        if visibility >= 1.0 {
+            Verdict::Lit
+        } else if visibility <= 0.0 {
+            Verdict::Shadowed
+        } else {
+            Verdict::PartlyLit
+        }
+    }
+
+    pub fn name(self, lang: Lang) -> &'static str {
+        match (self, lang) {
+            (Verdict::Lit, Lang::En) => "lit",
+            (Verdict::Shadowed, Lang::En) => "shadowed",
+            (Verdict::PartlyLit, Lang::En) => "partly lit",
+            (Verdict::Lit, Lang::Zh) => "受光",
+            (Verdict::Shadowed, Lang::Zh) => "处于阴影中",
+            (Verdict::PartlyLit, Lang::Zh) => "部分受光",
+        }
+    }
+}
+
+/// One `{probe...}` placeholder, parsed.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Placeholder {
+    /// Byte range of the whole `{...}` in the text.
+    pub span: std::ops::Range<usize>,
+    /// The light it reads; None: the step's own light.
+    pub light: Option<usize>,
+    pub name: String,
+    quantity: Quantity,
+    /// Digits after the point (floats only; default 2).
+    pub decimals: Option<usize>,
+}
+
+/// A filled-in value: what the placeholder shows, and the number behind it where it is one.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Filled {
+    pub placeholder: Placeholder,
+    pub text: String,
+    pub value: Option<f64>,
+}
+
+/// Shown where the probe has no value yet (still rendering, or nothing under the probe).
+pub const NO_VALUE: &str = "…";
+
+/// Every placeholder in `text`, or a one-line reason naming the first bad one.
+pub fn placeholders(text: &str) -> Result<Vec<Placeholder>, String> {
+    let mut out = Vec::new();
+    let mut rest = 0;
+    while let Some(open) = text[rest..].find('{').map(|i| rest + i) {
+        let close = text[open..]
+            .find('}')
+            .map(|i| open + i)
+            .ok_or_else(|| format!("unclosed `{{` in `{}`", excerpt(&text[open..])))?;
+        let inner = &text[open + 1..close];
+        out.push(parse(inner, open..close + 1)?);
+        rest = close + 1;
+    }
+    Ok(out)
+}
+
+fn excerpt(s: &str) -> String {
+    s.chars().take(40).collect()
+}
+
+fn parse(inner: &str, span: std::ops::Range<usize>) -> Result<Placeholder, String> {
+    let names: Vec<&str> = QUANTITIES.iter().map(|(n, _)| *n).collect();
+    let bad = |why: String| format!("`{{{inner}}}`: {why}");
+    let (path, format) = match inner.split_once(':') {
+        Some((p, f)) => (p, Some(f)),
+        None => (inner, None),
+    };
+    let Some(path) = path.strip_prefix("probe.") else {
+        return Err(bad("only `{probe.NAME}` or `{probe.NAME:.N}` may stand in braces".into()));
+    };
+    let (light, name) = match path.split_once('.') {
+        Some((l, name)) => {
+            let index = l.strip_prefix("light").and_then(|n| n.parse::<usize>().ok());
+            match index {
+                Some(i) => (Some(i), name),
+                None => return Err(bad(format!("`{l}` is not `lightN`"))),
+            }
+        }
+        None => (None, path),
+    };
+    let quantity = QUANTITIES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, q)| *q)
+        .ok_or_else(|| bad(format!("the probe has no `{name}` (it has {})", names.join(", "))))?;
+    let decimals = match format {
+        None => None,
+        Some(f) => Some(
+            f.strip_prefix('.')
+                .and_then(|d| d.parse::<usize>().ok())
+                .filter(|d| *d <= 6)
+                .ok_or_else(|| bad(format!("format `{f}` is not `.N` (N = 0..6 decimals)")))?,
+        ),
+    };
+    Ok(Placeholder { span, light, name: name.to_string(), quantity, decimals })
+}
+
+enum Value {
+    Number(f64, bool),
+    Text(String),
+}
+
+fn value(q: Quantity, report: &ProbeReport, l: &LightProbe, lang: Lang) -> Option<Value> {
+    let float = |v: f32| Some(Value::Number(f64::from(v), false));
+    let int = |v: f64| Some(Value::Number(v, true));
+    match q {
+        Quantity::ReceiverDepthNdc => float(l.receiver_depth_ndc),
+        Quantity::StoredDepthNdc => float(l.stored_depth_ndc),
+        Quantity::ReceiverDepthWorld => float(l.receiver_depth_linear),
+        Quantity::StoredDepthWorld => float(l.stored_depth_linear),
+        Quantity::DepthGapWorld => float(l.receiver_depth_linear - l.stored_depth_linear),
+        Quantity::BiasNdc => float(l.bias_ndc),
+        Quantity::NDotL => float(l.n_dot_l),
+        Quantity::UvX => float(l.shadow_map_uv[0]),
+        Quantity::UvY => float(l.shadow_map_uv[1]),
+        Quantity::TexelX => int(f64::from(l.shadow_map_texel[0])),
+        Quantity::TexelY => int(f64::from(l.shadow_map_texel[1])),
+        Quantity::SearchRadiusTexels => float(l.blocker_search_radius_texels),
+        Quantity::BlockersFound => int(f64::from(l.blockers_found)),
+        Quantity::BlockerSamples => int(f64::from(l.blocker_samples)),
+        Quantity::AvgBlockerDepthWorld => l.avg_blocker_depth_linear.and_then(float),
+        Quantity::BlockerGapWorld => {
+            l.avg_blocker_depth_linear.and_then(|d| float(l.receiver_depth_linear - d))
+        }
+        Quantity::PenumbraWidthWorld => float(l.penumbra_width_world),
+        Quantity::FilterRadiusTexels => float(l.filter_radius_texels),
+        Quantity::FilterSamples => int(f64::from(l.filter_samples)),
+        Quantity::Visibility => float(l.visibility_gpu),
+        Quantity::VisibilityReference => l.visibility_reference.and_then(float),
+        Quantity::Verdict => Some(Value::Text(Verdict::of(l.visibility_gpu).name(lang).into())),
+        Quantity::Object => report.object.clone().map(Value::Text),
+    }
+}
+
+/// `text` with every placeholder filled from `report` (light `light` unless the placeholder names
+/// one), and what each one became. Without a report, or without a surface under the probe, the
+/// placeholders show [`NO_VALUE`]. Text that fails [`placeholders`] is returned as it is.
+pub fn fill(text: &str, report: Option<&ProbeReport>, light: usize, lang: Lang) -> (String, Vec<Filled>) {
+    let Ok(found) = placeholders(text) else { return (text.to_string(), Vec::new()) };
+    let mut out = String::with_capacity(text.len());
+    let mut filled = Vec::with_capacity(found.len());
+    let mut at = 0;
+    for p in found {
+        out.push_str(&text[at..p.span.start]);
+        at = p.span.end;
+        let wanted = p.light.unwrap_or(light);
+        let v = report
+            .filter(|r| r.hit)
+            .and_then(|r| r.lights.iter().find(|l| l.light == wanted).map(|l| (r, l)))
+            .and_then(|(r, l)| value(p.quantity, r, l, lang));
+        let (shown, number) = match v {
+            Some(Value::Number(x, true)) => (format!("{x:.0}"), Some(x)),
+            Some(Value::Number(x, false)) => {
+                let d = p.decimals.unwrap_or(2);
+                let shown = format!("{x:.d$}");
+                // The number as shown: what a reader (or a test) can compare.
+                (shown.clone(), shown.parse().ok())
+            }
+            Some(Value::Text(s)) => (s, None),
+            None => (NO_VALUE.to_string(), None),
+        };
+        out.push_str(&shown);
+        filled.push(Filled { placeholder: p, text: shown, value: number });
+    }
+    out.push_str(&text[at..]);
+    (out, filled)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Technique;
+
+    fn light_probe(light: usize, visibility: f32) -> LightProbe {
+        LightProbe {
+            light,
+            shadow_map_uv: [0.25, 0.75],
+            shadow_map_texel: [512, 1536],
+            inside_light_frustum: true,
+            n_dot_l: 0.19,
+            receiver_depth_ndc: 0.3,
+            receiver_depth_linear: 120.0,
+            stored_depth_ndc: 0.25,
+            stored_depth_linear: 100.0,
+            bias_ndc: 0.001,
+            blocker_search_radius_uv: 0.0,
+            blocker_search_radius_texels: 94.625,
+            blockers_found: 20,
+            blocker_samples: 32,
+            avg_blocker_depth_linear: Some(42.3),
+            penumbra_width_world: 1.3649,
+            filter_radius_uv: 0.0,
+            filter_radius_texels: 17.5,
+            filter_samples: 32,
+            visibility_gpu: visibility,
+            visibility_twin: visibility,
+            visibility_reference: None,
+            taps: Vec::new(),
+        }
+    }
+
+    fn report() -> ProbeReport {
+        ProbeReport {
+            pixel: [1, 2],
+            size: [960, 540],
+            time_s: 0.0,
+            technique: Technique::Pcss,
+            hit: true,
+            object: Some("floor".into()),
+            world_position: Some([0.0; 3]),
+            normal: Some([0.0, 1.0, 0.0]),
+            lights: vec![light_probe(0, 0.22), light_probe(1, 1.0)],
+        }
+    }
+
+    #[test]
+    fn fills_names_with_their_decimals_and_the_named_light() {
+        let r = report();
+        let text = "w = {probe.penumbra_width_world:.2}, r = {probe.search_radius_texels:.1} texels, \
+                    {probe.blockers_found} of {probe.blocker_samples}, on the {probe.object}: \
+                    {probe.verdict}; light 1 is {probe.light1.verdict}";
+        let (out, filled) = fill(text, Some(&r), 0, Lang::En);
+        assert_eq!(out, "w = 1.36, r = 94.6 texels, 20 of 32, on the floor: partly lit; light 1 is lit");
+        assert_eq!(filled[0].value, Some(1.36));
+        assert_eq!(filled[2].value, Some(20.0));
+        let (zh, _) = fill("{probe.verdict}", Some(&r), 1, Lang::Zh);
+        assert_eq!(zh, "受光");
+    }
+
+    #[test]
+    fn the_depth_gap_is_receiver_minus_stored() {
+        let r = report();
+        let (out, _) = fill("{probe.depth_gap_world:.1}", Some(&r), 0, Lang::En);
+        assert_eq!(out, "20.0");
+    }
+
+    #[test]
+    fn without_a_probe_the_values_are_pending() {
+        let (out, filled) = fill("V = {probe.visibility}", None, 0, Lang::En);
+        assert_eq!(out, format!("V = {NO_VALUE}"));
+        assert_eq!(filled[0].value, None);
+    }
+
+    #[test]
+    fn bad_placeholders_are_named() {
+        let bad = |text: &str| placeholders(text).expect_err(text);
+        let e = bad("x {probe.penumbra} y");
+        assert!(e.contains("`{probe.penumbra}`") && e.contains("penumbra_width_world"), "{e}");
+        assert!(bad("{probe.visibility:2}").contains("`.N`"));
+        assert!(bad("{light.visibility}").contains("only `{probe.NAME}`"));
+        assert!(bad("{probe.lamp1.visibility}").contains("`lamp1`"));
+        assert!(bad("open { brace").contains("unclosed"));
+        assert_eq!(placeholders("no braces at all"), Ok(Vec::new()));
+    }
+}
