@@ -5,15 +5,22 @@
 
 use egui_kittest::kittest::Queryable;
 use egui_kittest::{Harness, SnapshotOptions};
+use shadowlab::lessons::Lang;
+use shadowlab::lessons::live::{self, Verdict};
+use shadowlab::probe::ProbeReport;
 use shadowlab::ui::{Settings, ShadowlabApp, Source, app_for_test};
 
 fn harness() -> Harness<'static, ShadowlabApp> {
+    harness_sized([1400.0, 820.0])
+}
+
+fn harness_sized(size: [f32; 2]) -> Harness<'static, ShadowlabApp> {
     let mut setup = egui_kittest::wgpu::default_wgpu_setup();
     if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
         setup = eframe::egui_wgpu::WgpuSetup::CreateNew(shadowlab::ui::configure_wgpu(create));
     }
     let mut harness = Harness::builder()
-        .with_size([1400.0, 820.0])
+        .with_size(size)
         .wgpu_setup(setup)
         .build_eframe(|cc| app_for_test(cc, Settings { show_timings: false, ..Settings::default() }));
     settle(&mut harness);
@@ -326,4 +333,61 @@ fn the_ground_truth_fills_in_batch_by_batch() {
     assert!(done < total);
     settle(&mut h);
     assert_eq!(h.state().reference_progress(), Some((256, 256)));
+}
+
+/// `shadowlab probe --lesson ID --step N --no-reference`, parsed.
+fn cli_probe(lesson: &str, step: usize) -> ProbeReport {
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"))
+        .args(["probe", "--lesson", lesson, "--step", &step.to_string(), "--no-reference"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("run shadowlab probe");
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    serde_json::from_slice(&output.stdout).expect("probe JSON")
+}
+
+#[test]
+fn every_lesson_step_quotes_the_probe_on_screen_in_both_languages_at_two_window_sizes() {
+    let lessons = shadowlab::lessons::load_all(&shadowlab::lessons::default_dir()).expect("lessons");
+    let cli: Vec<Vec<Option<ProbeReport>>> = lessons
+        .iter()
+        .map(|l| {
+            let steps = l.steps.iter().enumerate();
+            steps.map(|(i, s)| s.probe.map(|_| cli_probe(&l.id, i + 1))).collect()
+        })
+        .collect();
+    for size in [[1600.0, 900.0], [1280.0, 720.0]] {
+        let mut h = harness_sized(size);
+        for (li, lesson) in lessons.iter().enumerate() {
+            for (si, step) in lesson.steps.iter().enumerate() {
+                let what = format!("{} step {} at {}x{}", lesson.id, si + 1, size[0], size[1]);
+                h.state_mut().go_to_step(li, si);
+                if step.play {
+                    // Paused at the step's own time: the moment the text and the CLI describe.
+                    h.state_mut().playing = false;
+                    h.state_mut().time_s = step.time_s;
+                    h.state_mut().mark_dirty();
+                }
+                settle(&mut h);
+                let Some(expected) = &cli[li][si] else { continue };
+                // The app probes the lesson's own frame: its numbers are the CLI's, whatever the
+                // shape of its camera view.
+                let report = h.state().probe_report().cloned().unwrap_or_else(|| panic!("{what}: no probe"));
+                assert_eq!(&report, expected, "{what}: the app's probe differs from `shadowlab probe`");
+                if let Some(verdict) = step.expect {
+                    assert_eq!(Verdict::of(report.lights[step.light].visibility_gpu), verdict, "{what}");
+                }
+                for lang in [Lang::En, Lang::Zh] {
+                    h.state_mut().lang = lang;
+                    h.run_steps(2);
+                    let (text, filled) = live::fill(step.text.get(lang), Some(&report), step.light, lang);
+                    assert!(filled.iter().all(|f| f.text != live::NO_VALUE), "{what} ({lang:?}): {text}");
+                    // The lesson panel shows exactly this text: every quoted number is the probe's.
+                    h.get_by_label(&text);
+                }
+                h.state_mut().lang = Lang::En;
+            }
+        }
+    }
 }

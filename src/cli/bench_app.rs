@@ -31,7 +31,7 @@ pub(super) fn start_session(app: &mut ShadowlabApp) -> Result<(String, usize), S
         .ok_or("no pcss step shows the shadow map")?;
     app.go_to_step(pcss, step);
     if app.probe_at.is_none() {
-        app.probe_at = Some((0.5, 0.6));
+        app.probe_at = Some(crate::ui::ProbeAt::View(0.5, 0.6));
     }
     Ok((app.lessons[pcss].id.clone(), step + 1))
 }

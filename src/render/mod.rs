@@ -124,6 +124,9 @@ pub struct Renderer {
     lights_bind_group: Option<wgpu::BindGroup>,
     scene_gpu: Option<SceneGpu>,
     targets: Option<ViewTargets>,
+    /// The targets of the size used before (the app alternates its view's size with a lesson
+    /// probe's frame): kept so that switching back allocates nothing.
+    spare_targets: Option<ViewTargets>,
     timer: Option<timing::Timer>,
     /// The last frame rendered: its targets are the ones the read-backs and the ground truth use.
     last_frame: Option<Frame>,
@@ -210,6 +213,7 @@ impl Renderer {
             lights_bind_group: None,
             scene_gpu: None,
             targets: None,
+            spare_targets: None,
             timer,
             last_frame: None,
         })
@@ -369,7 +373,9 @@ impl Renderer {
             self.shadow_maps = Some(maps);
         }
         if self.targets.as_ref().is_none_or(|t| t.size != request.size) {
-            self.targets = Some(ViewTargets::new(device, request.size));
+            let reuse = self.spare_targets.take().filter(|t| t.size == request.size);
+            let targets = reuse.unwrap_or_else(|| ViewTargets::new(device, request.size));
+            self.spare_targets = self.targets.replace(targets);
         }
         let t = request.time_s;
         let frame_lights: Vec<LightGpu> =

@@ -64,8 +64,8 @@ pub struct ShadowlabApp {
     pub playing: bool,
     pub speed: f32,
     pub selected_light: usize,
-    /// Probe position as fractions of the camera view (survives resizing).
-    pub probe_at: Option<(f32, f32)>,
+    /// Where the probe is pinned, if anywhere.
+    pub probe_at: Option<ProbeAt>,
     pub probe: Option<ProbeReport>,
     pub overlays: Vec<Overlay>,
     pub ab: Option<AbSplit>,
@@ -266,7 +266,7 @@ impl ShadowlabApp {
                 self.playing = s.play;
                 self.overlays = s.overlays.clone();
                 self.selected_light = s.light;
-                self.probe_at = s.probe.map(|[x, y]| (x as f32 / 960.0, y as f32 / 540.0));
+                self.probe_at = s.probe.map(|[x, y]| ProbeAt::LessonFrame(x, y));
                 if let Some(d) = s.diagram {
                     self.diagram = d;
                 }
@@ -494,6 +494,17 @@ impl eframe::App for ShadowlabApp {
         self.settings.lang = self.lang;
         eframe::set_value(storage, settings::STORAGE_KEY, &self.settings);
     }
+}
+
+/// Where the probe is pinned.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ProbeAt {
+    /// A point of the camera view as fractions of its width and height (a click; survives resizing).
+    View(f32, f32),
+    /// A lesson step's probe: a pixel of the lesson's own frame (`lessons::PROBE_FRAME`), probed
+    /// in that frame, so the numbers are those of `shadowlab probe --lesson` and of the slides,
+    /// whatever the view's size and shape. The marker goes where that surface point appears.
+    LessonFrame(u32, u32),
 }
 
 /// Build the app for tests and tools, with explicit settings (no storage).

@@ -2,8 +2,8 @@
 //! The views always show the last finished frame; while a value is being dragged they ask for
 //! previews (half resolution or less, PCSS with fewer taps) and refine once it is let go.
 
-use super::ShadowlabApp;
-use super::worker::{RenderJob, RenderOutput, WorkerEvent};
+use super::worker::{ProbeSpot, RenderJob, RenderOutput, WorkerEvent};
+use super::{ProbeAt, ShadowlabApp};
 use crate::lessons::Overlay;
 use crate::render::{FrameRequest, LightGpu, PassTimes};
 use crate::scene::Technique;
@@ -166,7 +166,7 @@ impl ShadowlabApp {
         {
             self.scene.camera.target = glam::Vec3::from(p);
             // The focused point now projects to the centre of the view, and so does the probe.
-            self.probe_at = Some((0.5, 0.5));
+            self.probe_at = Some(ProbeAt::View(0.5, 0.5));
             self.focus_on_probe = false;
             self.mark_dirty();
         }
@@ -208,8 +208,15 @@ impl ShadowlabApp {
         }
         let has_lights = !self.scene.lights.is_empty();
         let full_detail = !preview && !self.playing;
-        let probe_pixel = self.probe_at.filter(|_| full_detail).map(|(fx, fy)| {
-            (((fx * size.0 as f32) as u32).min(size.0 - 1), ((fy * size.1 as f32) as u32).min(size.1 - 1))
+        let probe = self.probe_at.filter(|_| full_detail).map(|at| match at {
+            ProbeAt::View(fx, fy) => ProbeSpot {
+                pixel: (
+                    ((fx * size.0 as f32) as u32).min(size.0 - 1),
+                    ((fy * size.1 as f32) as u32).min(size.1 - 1),
+                ),
+                frame: size,
+            },
+            ProbeAt::LessonFrame(x, y) => ProbeSpot { pixel: (x, y), frame: crate::lessons::PROBE_FRAME },
         });
         // The analysis pass feeds the overlays only: skip it when none is on.
         let overlays_need_analysis = self.overlays.iter().any(|o| *o != Overlay::LightFrustum);
@@ -230,7 +237,7 @@ impl ShadowlabApp {
                 timestamps: true,
                 ..Default::default()
             },
-            probe_pixel,
+            probe,
             analysis,
             reference: analysis && self.overlays.contains(&Overlay::Error),
             technique_b: self.ab.as_ref().map(|ab| ab.b),

@@ -3,8 +3,8 @@
 //! Shadow map: linear depth with a legend, hover readout, the probe's uv, search and filter
 //! circles and every tap at its real size; drag to move the light.
 
-use super::ShadowlabApp;
 use super::worker::MapView;
+use super::{ProbeAt, ShadowlabApp};
 use crate::render::{DepthImage, LightGpu};
 use crate::shadow::depth_linear_from_ndc;
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
@@ -155,6 +155,26 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     ui.allocate_rect(full, Sense::hover());
 }
 
+/// Where the probe's marker goes in the camera view: the clicked point, or, for a lesson's probe
+/// (probed in the lesson's own frame), where its surface point projects in this view.
+fn probe_marker(app: &ShadowlabApp, rect: Rect) -> Option<Pos2> {
+    match app.probe_at? {
+        ProbeAt::View(fx, fy) => Some(pos2(rect.left() + fx * rect.width(), rect.top() + fy * rect.height())),
+        ProbeAt::LessonFrame(..) => {
+            let world = glam::Vec3::from(app.probe.as_ref()?.world_position?);
+            let clip =
+                app.scene.camera.clip_from_world(rect.width() / rect.height().max(1.0)) * world.extend(1.0);
+            (clip.w > 0.0).then(|| {
+                let ndc = clip.truncate() / clip.w;
+                pos2(
+                    rect.left() + (ndc.x * 0.5 + 0.5) * rect.width(),
+                    rect.top() + (0.5 - ndc.y * 0.5) * rect.height(),
+                )
+            })
+        }
+    }
+}
+
 fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let response = ui.interact(rect, ui.scope_id().with("camera view"), Sense::click_and_drag());
     let painter = ui.painter_at(rect);
@@ -183,8 +203,7 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         draw_light_frusta(app, &painter, rect);
     }
     render_progress(app, &painter, rect);
-    if let Some((fx, fy)) = app.probe_at {
-        let p = pos2(rect.left() + fx * rect.width(), rect.top() + fy * rect.height());
+    if let Some(p) = probe_marker(app, rect) {
         painter.circle_stroke(p, 7.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
         painter.line_segment([p - vec2(12.0, 0.0), p + vec2(12.0, 0.0)], Stroke::new(1.5, Color32::BLACK));
         painter.line_segment([p - vec2(0.0, 12.0), p + vec2(0.0, 12.0)], Stroke::new(1.5, Color32::BLACK));
@@ -222,7 +241,7 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         }
     }
     let pointer_fraction =
-        |pos: Pos2| ((pos.x - rect.left()) / rect.width(), (pos.y - rect.top()) / rect.height());
+        |pos: Pos2| ProbeAt::View((pos.x - rect.left()) / rect.width(), (pos.y - rect.top()) / rect.height());
     if response.double_clicked() {
         // Focus: the probe finds the surface point; the camera turns to it once it is known.
         if let Some(pos) = response.interact_pointer_pos() {
@@ -406,7 +425,7 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         }
         for tap in &l.taps {
             let p = to_rect(tap.uv);
-            let (fill, search) = match tap.kind {
+            let (fill, search) = match tap.kind.as_str() {
                 "blocker-search" => (tap.value > 0.5, true),
                 _ => (tap.value < 0.5, false),
             };

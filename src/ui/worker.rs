@@ -21,8 +21,8 @@ pub struct RenderJob {
     pub scene: Scene,
     /// Time, size (the resolution rendered at) and the light the analysis describes.
     pub request: FrameRequest,
-    /// Probe this pixel of the frame (full-quality renders only).
-    pub probe_pixel: Option<(u32, u32)>,
+    /// Probe here (full-quality renders only).
+    pub probe: Option<ProbeSpot>,
     /// Render the analysis targets of the selected light (the overlays need them).
     pub analysis: bool,
     /// Accumulate the ground truth of the selected light (needs `analysis`).
@@ -35,6 +35,13 @@ pub struct RenderJob {
     pub preview: bool,
     /// Texels per side of the shadow-map picture at most (the map is subsampled beyond).
     pub map_texels: u32,
+}
+
+/// A pixel to probe, in a frame of its own size: the view's, or a lesson's own frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProbeSpot {
+    pub pixel: (u32, u32),
+    pub frame: (u32, u32),
 }
 
 /// The selected light's shadow map: the depths (for the hover readout and the probe picture)
@@ -412,9 +419,10 @@ impl Renderers {
     fn details(&mut self, job: &RenderJob) -> Result<(ProbeOutcome, Option<Analysis>), RenderError> {
         let scene = &job.scene;
         let request = FrameRequest { final_color: false, analysis: true, timestamps: false, ..job.request };
-        let probe = job
-            .probe_pixel
-            .map(|pixel| probe::probe(&mut self.a, scene, &request, pixel, false).map_err(|e| e.to_string()));
+        let probe = job.probe.map(|spot| {
+            let frame = FrameRequest { size: spot.frame, ..request };
+            probe::probe(&mut self.a, scene, &frame, spot.pixel, false).map_err(|e| e.to_string())
+        });
         let analysis = if job.analysis {
             self.a.render(scene, &request)?;
             Some(self.a.read_analysis()?)
@@ -428,7 +436,7 @@ impl Renderers {
 impl RenderJob {
     /// A probe or overlays to work out after the image.
     fn wants_details(&self) -> bool {
-        !self.scene.lights.is_empty() && (self.probe_pixel.is_some() || self.analysis)
+        !self.scene.lights.is_empty() && (self.probe.is_some() || self.analysis)
     }
 }
 
