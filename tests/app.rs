@@ -8,7 +8,7 @@ use egui_kittest::{Harness, SnapshotOptions};
 use shadowlab::lessons::Lang;
 use shadowlab::lessons::live::{self, Verdict};
 use shadowlab::probe::ProbeReport;
-use shadowlab::ui::{Settings, ShadowlabApp, Source, app_for_test};
+use shadowlab::ui::{ProbeAt, Settings, ShadowlabApp, Source, app_for_test};
 
 fn harness() -> Harness<'static, ShadowlabApp> {
     harness_sized([1400.0, 820.0])
@@ -390,4 +390,27 @@ fn every_lesson_step_quotes_the_probe_on_screen_in_both_languages_at_two_window_
             }
         }
     }
+}
+
+#[test]
+fn a_student_probe_says_so_and_one_click_brings_back_the_lessons() {
+    let mut h = harness();
+    let lessons = &h.state().lessons;
+    let lesson = lessons.iter().position(|l| l.id == "pcss").expect("the PCSS lesson");
+    let step = lessons[lesson].steps[0].clone();
+    h.state_mut().go_to_step(lesson, 0);
+    settle(&mut h);
+    assert!(h.query_by_label("Back to the lesson's probe").is_none(), "the lesson's own probe needs no note");
+    // A probe of the student's own (a click in the view sets this).
+    h.state_mut().probe_at = Some(ProbeAt::View(0.3, 0.7));
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    h.get_by_label("The numbers above are read at your probe.");
+    h.get_by_label("Back to the lesson's probe").click();
+    settle(&mut h);
+    let [x, y] = step.probe.expect("the step names a probe");
+    assert_eq!(h.state().probe_at, Some(ProbeAt::LessonFrame(x, y)));
+    assert_eq!(h.state().probe_report().map(|r| r.pixel), Some([x, y]));
+    let text = step.text_filled(Lang::En, h.state().probe_report());
+    h.get_by_label(&text);
 }

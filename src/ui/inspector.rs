@@ -256,16 +256,19 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
         ui.label("click the camera view to pin a probe");
         return;
     };
+    // A lesson's probe is a pixel of the lesson's own frame, not of this view.
+    let pixel = match app.probe_at {
+        Some(super::ProbeAt::LessonFrame(..)) => format!(
+            "pixel {},{} of the lesson's {}x{} frame",
+            report.pixel[0], report.pixel[1], report.size[0], report.size[1]
+        ),
+        _ => format!("pixel {},{}", report.pixel[0], report.pixel[1]),
+    };
     if !report.hit {
-        ui.label(format!("pixel {},{}: no surface", report.pixel[0], report.pixel[1]));
+        ui.label(format!("{pixel}: no surface"));
         return;
     }
-    ui.label(format!(
-        "pixel {},{} on {}",
-        report.pixel[0],
-        report.pixel[1],
-        report.object.as_deref().unwrap_or("?")
-    ));
+    ui.label(format!("{pixel}, on {}", report.object.as_deref().unwrap_or("?")));
     let Some(l) = report.lights.iter().find(|l| l.light == app.selected_light) else { return };
     egui::Grid::new("probe").striped(true).num_columns(2).show(ui, |ui| {
         let mut row = |name: &str, value: String| {

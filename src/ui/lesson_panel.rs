@@ -14,6 +14,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     // Live numbers from the probe on screen (or "…" while it is worked out).
     let text = step.text_filled(lang, app.probe.as_ref());
     let tries = step.try_this_filled(lang, app.probe.as_ref());
+    let lesson_probe = step.probe.map(|[x, y]| super::ProbeAt::LessonFrame(x, y));
     // Navigation first, so it stays in reach however long the text is.
     ui.horizontal(|ui| {
         if ui.button("Previous").on_hover_text("Left arrow").clicked() {
@@ -30,6 +31,20 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     ui.heading(title);
     ui.add_space(4.0);
     ui.label(RichText::new(text).size(15.0));
+    // The numbers follow whatever probe is pinned; say so when it is not the lesson's own.
+    if lesson_probe.is_some() && app.probe_at != lesson_probe {
+        let (note, back) = match lang {
+            Lang::En => ("The numbers above are read at your probe.", "Back to the lesson's probe"),
+            Lang::Zh => ("上面的数字取自你放置的探针。", "回到本课的探针"),
+        };
+        ui.horizontal_wrapped(|ui| {
+            ui.label(RichText::new(note).italics());
+            if ui.button(back).clicked() {
+                app.probe_at = lesson_probe;
+                app.mark_dirty();
+            }
+        });
+    }
     if !tries.is_empty() {
         ui.add_space(8.0);
         ui.strong(match lang {
