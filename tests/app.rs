@@ -414,3 +414,28 @@ fn a_student_probe_says_so_and_one_click_brings_back_the_lessons() {
     let text = step.text_filled(Lang::En, h.state().probe_report());
     h.get_by_label(&text);
 }
+
+#[test]
+fn a_step_sets_the_view_and_the_view_selector_changes_it() {
+    let mut h = harness();
+    let lesson = h.state().lessons.iter().position(|l| l.id == "hard-shadows").expect("lesson 1");
+    // Step 2 says "black in this visibility view": the camera panel must show that view.
+    h.state_mut().go_to_step(lesson, 1);
+    settle(&mut h);
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::Visibility);
+    h.get_by_value("view: visibility").click();
+    h.run_steps(2);
+    h.get_by_label("blockers").click();
+    settle(&mut h);
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::Blockers);
+    h.get_by_value("view: blockers");
+    // Opening a scene starts from the shaded view again.
+    h.state_mut()
+        .open(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/contact.toml")));
+    settle(&mut h);
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::Final);
+    assert!(
+        h.state().probe_at.is_none() && h.state().overlays.is_empty(),
+        "a new scene keeps no probe or overlay"
+    );
+}

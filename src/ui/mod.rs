@@ -23,6 +23,7 @@ use crate::lessons::{self, Lang, Lesson, Overlay};
 use crate::probe::ProbeReport;
 use crate::render::Analysis;
 use crate::scene::{Camera, Scene, Technique, load_scene, parse_scene_str};
+use crate::views::View;
 use rendering::{Shown, Submitted};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -68,6 +69,8 @@ pub struct ShadowlabApp {
     pub probe_at: Option<ProbeAt>,
     pub probe: Option<ProbeReport>,
     pub overlays: Vec<Overlay>,
+    /// What the camera panel shows (a lesson step sets it).
+    pub view: View,
     pub ab: Option<AbSplit>,
     pub lessons: Vec<Lesson>,
     pub lang: Lang,
@@ -198,6 +201,7 @@ impl ShadowlabApp {
             analysis: None,
             reference: None,
             view_state: Default::default(),
+            view: View::Final,
             panel_state: Default::default(),
             open_path: String::new(),
             screenshot: Arc::new(Mutex::new(None)),
@@ -219,6 +223,11 @@ impl ShadowlabApp {
         match loaded {
             Ok(scene) => {
                 self.set_scene(scene, Source::Scene(path.to_path_buf()));
+                // A new scene starts clean: nothing of the last one's probe, overlays, view or zoom.
+                self.probe_at = None;
+                self.overlays.clear();
+                self.view = View::Final;
+                self.view_state.reset_zoom();
                 self.settings.last_scene = (!is_obj).then(|| path.to_path_buf());
                 self.settings.last_lesson = None;
                 self.error = None;
@@ -265,6 +274,7 @@ impl ShadowlabApp {
                 self.time_s = s.time_s;
                 self.playing = s.play;
                 self.overlays = s.overlays.clone();
+                self.view = s.view;
                 self.selected_light = s.light;
                 self.probe_at = s.probe.map(|[x, y]| ProbeAt::LessonFrame(x, y));
                 if let Some(d) = s.diagram {

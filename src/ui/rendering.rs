@@ -7,6 +7,7 @@ use super::{ProbeAt, ShadowlabApp};
 use crate::lessons::Overlay;
 use crate::render::{FrameRequest, LightGpu, PassTimes};
 use crate::scene::Technique;
+use crate::views::View;
 use std::time::{Duration, Instant};
 
 /// Show "rendering..." over a view that has waited this long for its frame.
@@ -220,7 +221,8 @@ impl ShadowlabApp {
         });
         // The analysis pass feeds the overlays only: skip it when none is on.
         let overlays_need_analysis = self.overlays.iter().any(|o| *o != Overlay::LightFrustum);
-        let analysis = full_detail && overlays_need_analysis && has_lights;
+        let view_needs_analysis = !matches!(self.view, View::Final | View::ShadowMap);
+        let analysis = full_detail && (overlays_need_analysis || view_needs_analysis) && has_lights;
         let mut scene = self.scene.clone();
         if preview && scene.shadow.technique == Technique::Pcss {
             scene.shadow.samples = scene.shadow.samples.min(PREVIEW_PCSS_SAMPLES);
@@ -239,7 +241,7 @@ impl ShadowlabApp {
             },
             probe,
             analysis,
-            reference: analysis && self.overlays.contains(&Overlay::Error),
+            reference: analysis && (self.overlays.contains(&Overlay::Error) || self.view.needs_reference()),
             technique_b: self.ab.as_ref().map(|ab| ab.b),
             thumbnails: full_detail,
             preview,

@@ -7,6 +7,7 @@ use super::worker::MapView;
 use super::{ProbeAt, ShadowlabApp};
 use crate::render::{DepthImage, LightGpu};
 use crate::shadow::depth_linear_from_ndc;
+use crate::views::View;
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
 use glam::{Mat4, Vec4};
 
@@ -16,6 +17,9 @@ pub struct ViewState {
     stale: bool,
     overlay: Option<egui::TextureHandle>,
     legends: Vec<String>,
+    /// The camera panel's debug view (visibility, heatmaps, reference, error) and its legend.
+    view_image: Option<egui::TextureHandle>,
+    view_legend: Option<String>,
     map: Option<(egui::TextureHandle, DepthImage, LightGpu)>,
     /// Linear depth range of the shown map, world units.
     map_range: (f32, f32),
@@ -29,6 +33,12 @@ pub struct ViewState {
 impl ViewState {
     pub fn invalidate(&mut self) {
         self.stale = true;
+    }
+
+    /// The whole map again (a new scene).
+    pub fn reset_zoom(&mut self) {
+        self.zoom = 1.0;
+        self.zoom_centre = (0.5, 0.5);
     }
 
     /// The map panel is zoomed in (its picture then needs every texel).
@@ -55,6 +65,19 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     }
     app.view_state.stale = false;
     let light = app.shown.lights.get(app.selected_light).copied();
+    // The debug view from the analysis pass (and the ground truth).
+    app.view_state.view_image = None;
+    app.view_state.view_legend = None;
+    if let Some(analysis) = &app.analysis {
+        let samples = app.scene.shadow.reference_samples;
+        if let Some((image, legend)) =
+            crate::views::analysis_view(app.view, analysis, app.reference.as_deref(), samples)
+        {
+            app.view_state.view_image =
+                Some(ctx.load_texture("debug view", color_image(&image), egui::TextureOptions::NEAREST));
+            app.view_state.view_legend = Some(legend);
+        }
+    }
     // Overlays from the analysis pass.
     app.view_state.overlay = None;
     app.view_state.legends.clear();
@@ -134,12 +157,15 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     } else {
         "(working out the overlays...)"
     })];
-    let legends = if app.overlays_stale() && app.view_state.overlay.is_some() {
-        &waiting[..]
+    let stale = app.overlays_stale() && (app.view_state.overlay.is_some() || app.view != View::Final);
+    let mut lines: Vec<&str> = Vec::new();
+    if stale {
+        lines.push(&waiting[0]);
     } else {
-        &app.view_state.legends[..]
-    };
-    for legend in legends {
+        lines.extend(app.view_state.view_legend.iter().flat_map(|l| l.lines()));
+        lines.extend(app.view_state.legends.iter().map(String::as_str));
+    }
+    for legend in lines {
         painter.text(
             pos2(legend_rect.left() + 4.0, y),
             egui::Align2::LEFT_TOP,
@@ -153,6 +179,40 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         shadow_map_panel(app, ui, map_rect);
     }
     ui.allocate_rect(full, Sense::hover());
+}
+
+impl ShadowlabApp {
+    /// The view the camera panel shows now: the chosen one once it is worked out for the frame
+    /// on screen, the shaded image until then (a preview while dragging, the first frame).
+    pub fn camera_panel_view(&self) -> View {
+        let ready = match self.view {
+            View::Final => true,
+            View::ShadowMap => self.view_state.map.is_some(),
+            _ => self.view_state.view_image.is_some() && !self.overlays_stale(),
+        };
+        if ready { self.view } else { View::Final }
+    }
+}
+
+/// What the camera panel shows: a drop-down in its top-left corner (lesson steps set it too).
+fn view_selector(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
+    let corner = Rect::from_min_size(rect.min + vec2(8.0, 8.0), vec2(190.0, 24.0));
+    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(corner));
+    let before = app.view;
+    egui::ComboBox::from_id_salt("camera view")
+        .selected_text(format!("view: {}", app.view.name()))
+        .show_ui(&mut child, |ui| {
+            for view in View::ALL {
+                ui.selectable_value(&mut app.view, view, view.name());
+            }
+        })
+        .response
+        .on_hover_text("What the camera panel shows (`--view` in the CLI)");
+    if app.view != before {
+        // The analysis pass (and the ground truth) may be needed now.
+        app.mark_dirty();
+        app.view_state.invalidate();
+    }
 }
 
 /// Where the probe's marker goes in the camera view: the clicked point, or, for a lesson's probe
@@ -179,8 +239,21 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let response = ui.interact(rect, ui.scope_id().with("camera view"), Sense::click_and_drag());
     let painter = ui.painter_at(rect);
     let uv = Rect::from_min_max(Pos2::ZERO, pos2(1.0, 1.0));
-    if let Some(texture) = &app.shown.camera {
-        painter.image(texture.id(), rect, uv, Color32::WHITE);
+    match (app.camera_panel_view(), &app.view_state.view_image, &app.view_state.map) {
+        (View::ShadowMap, _, Some((texture, ..))) => {
+            // The light's map, square, in the middle of the panel.
+            painter.rect_filled(rect, 0.0, Color32::from_gray(20));
+            let square = Rect::from_center_size(rect.center(), Vec2::splat(rect.width().min(rect.height())));
+            painter.image(texture.id(), square, uv, Color32::WHITE);
+        }
+        (View::Final, ..) | (View::ShadowMap, _, None) | (_, None, _) => {
+            if let Some(texture) = &app.shown.camera {
+                painter.image(texture.id(), rect, uv, Color32::WHITE);
+            }
+        }
+        (_, Some(texture), _) => {
+            painter.image(texture.id(), rect, uv, Color32::WHITE);
+        }
     }
     if let (Some(ab), Some(id_b)) = (&app.ab, app.shown.camera_b.as_ref().map(|t| t.id())) {
         let x = rect.left() + rect.width() * ab.divider;
@@ -208,6 +281,8 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         painter.line_segment([p - vec2(12.0, 0.0), p + vec2(12.0, 0.0)], Stroke::new(1.5, Color32::BLACK));
         painter.line_segment([p - vec2(0.0, 12.0), p + vec2(0.0, 12.0)], Stroke::new(1.5, Color32::BLACK));
     }
+
+    view_selector(app, ui, rect);
 
     // Interaction: the A/B divider first, then the camera.
     let mut handled = false;

@@ -193,30 +193,50 @@ pub fn render_view(
             let (image, legend) = shadow_map_image(&map, &frame.lights[light]);
             (image, Some(legend.to_string()))
         }
-        View::Visibility => {
+        _ => {
             let a = renderer.read_analysis()?;
-            (gray_image(&a, |i| a.shadow[i][0]), Some("visibility: black = shadowed, white = lit".into()))
+            let reference =
+                if view.needs_reference() { Some(renderer.render_reference(scene, light)?) } else { None };
+            let (image, legend) =
+                analysis_view(view, &a, reference.as_deref(), scene.shadow.reference_samples).ok_or_else(
+                    || crate::render::RenderError::Usage(format!("view {} has no image", view.name())),
+                )?;
+            (image, Some(legend))
+        }
+    })
+}
+
+/// A view made from the analysis pass (and the ground truth for `reference` and `error`), with
+/// its legend. None for the views that are not (final, shadow map), and for reference and error
+/// without a ground truth.
+pub fn analysis_view(
+    view: View,
+    a: &Analysis,
+    reference: Option<&[f32]>,
+    reference_samples: u32,
+) -> Option<(RgbaImage, String)> {
+    match view {
+        View::Final | View::ShadowMap => None,
+        View::Visibility => {
+            Some((gray_image(a, |i| a.shadow[i][0]), "visibility: black = shadowed, white = lit".into()))
         }
         View::BlockerRadius | View::Penumbra | View::Blockers => {
-            let a = renderer.read_analysis()?;
             let (label, unit, channel) = match view {
                 View::BlockerRadius => ("blocker-search radius", "texels", 1),
                 View::Penumbra => ("penumbra width", "texels", 2),
                 _ => ("blockers found", "taps", 3),
             };
-            let (image, legend) = heat_image(&a, label, unit, |i| a.shadow[i][channel]);
-            (image, Some(legend.to_string()))
+            let (image, legend) = heat_image(a, label, unit, |i| a.shadow[i][channel]);
+            Some((image, legend.to_string()))
         }
-        View::Reference | View::Error => {
-            let a = renderer.read_analysis()?;
-            let reference = renderer.render_reference(scene, light)?;
-            if view == View::Reference {
-                let note = format!("reference: {} hard shadows averaged", scene.shadow.reference_samples);
-                (gray_image(&a, |i| reference[i]), Some(note))
-            } else {
-                let (image, legend, mae) = error_image(&a, &reference);
-                (image, Some(format!("{legend}\nmean absolute error: {mae:.5}")))
-            }
+        View::Reference => {
+            let reference = reference?;
+            let note = format!("reference: {reference_samples} hard shadows averaged");
+            Some((gray_image(a, |i| reference[i]), note))
         }
-    })
+        View::Error => {
+            let (image, legend, mae) = error_image(a, reference?);
+            Some((image, format!("{legend}\nmean absolute error: {mae:.5}")))
+        }
+    }
 }
