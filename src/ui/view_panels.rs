@@ -334,7 +334,7 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
 
 /// The depth colour ramp with its range in world units.
 fn legend_bar(ui: &mut Ui, (lo, hi): (f32, f32)) {
-    ui.horizontal(|ui| {
+    ui.horizontal_wrapped(|ui| {
         ui.small(format!("{lo:.1}"));
         let (rect, _) = ui.allocate_exact_size(vec2(140.0, 10.0), Sense::hover());
         let steps = 28;
@@ -347,7 +347,8 @@ fn legend_bar(ui: &mut Ui, (lo, hi): (f32, f32)) {
             );
             ui.painter().rect_filled(cell, 0.0, Color32::from_rgb(c[0], c[1], c[2]));
         }
-        ui.small(format!("{hi:.1} world units from the light · white: nothing stored · wheel: zoom"));
+        ui.small(format!("{hi:.1} world units from the light"));
+        ui.small("· white: nothing stored · wheel: zoom");
     });
 }
 
@@ -436,6 +437,8 @@ fn draw_light_frusta(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
 fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect));
     let ui = &mut child;
+    // Nothing of the map panel spills over the panel beside it (the lesson text).
+    ui.set_clip_rect(rect.intersect(ui.clip_rect()));
     let light_count = app.scene.lights.len();
     ui.horizontal(|ui| {
         ui.strong("Shadow map");
@@ -466,7 +469,8 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         return;
     };
     let avail = ui.available_rect_before_wrap();
-    let side = avail.width().min(avail.height() - 60.0).max(64.0);
+    // The column's own width: a long legend line must not widen the map past it.
+    let side = rect.width().min(avail.height() - 60.0).max(64.0);
     let map_rect = Rect::from_min_size(avail.min, vec2(side, side));
     let response = ui.allocate_rect(map_rect, Sense::click_and_drag());
     super::set_landmark(ui.ctx(), super::LANDMARK_SHADOW_MAP, map_rect);
@@ -537,13 +541,9 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             info = format!("texel {tx},{ty} · nothing stored (cleared to 1.0)");
         }
     }
-    ui.painter().text(
-        info_pos,
-        egui::Align2::LEFT_TOP,
-        info,
-        egui::FontId::proportional(13.0),
-        Color32::LIGHT_GRAY,
-    );
+    // Wrapped to the map's width: the column may be narrow.
+    let galley = ui.painter().layout(info, egui::FontId::proportional(13.0), Color32::LIGHT_GRAY, side);
+    ui.painter().galley(info_pos, galley, Color32::LIGHT_GRAY);
 
     // Wheel over the map zooms around the probe (or the pointer), to see taps at texel scale.
     let map_size = map.size;
