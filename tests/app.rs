@@ -3,7 +3,7 @@
 //! a parameter change that changes the image, a bad scene that keeps the old one, and lesson
 //! stepping with the arrow keys.
 
-use egui_kittest::kittest::Queryable;
+use egui_kittest::kittest::{NodeT, Queryable};
 use egui_kittest::{Harness, SnapshotOptions};
 use shadowlab::lessons::Lang;
 use shadowlab::lessons::live::{self, Verdict};
@@ -438,4 +438,89 @@ fn a_step_sets_the_view_and_the_view_selector_changes_it() {
         h.state().probe_at.is_none() && h.state().overlays.is_empty(),
         "a new scene keeps no probe or overlay"
     );
+}
+
+/// Text a Chinese reader may see in Latin letters: names the files and the CLI use (techniques,
+/// kernels, views, bias modes), units and acronyms.
+fn allowed_in_chinese(word: &str) -> bool {
+    use shadowlab::scene::{BiasMode, Kernel, Technique};
+    let names = Technique::ALL
+        .iter()
+        .map(|t| t.name())
+        .chain(Kernel::ALL.iter().map(|k| k.name()))
+        .chain(BiasMode::ALL.iter().map(|b| b.name()))
+        .chain(shadowlab::views::View::ALL.iter().map(|v| v.name()));
+    // "screenshots" is the screenshot folder's default path.
+    let fixed = [
+        "shadowlab",
+        "English",
+        "NDC",
+        "uv",
+        "GPU",
+        "CPU",
+        "ms",
+        "PCF",
+        "PCSS",
+        "A",
+        "B",
+        "F",
+        "S",
+        "R",
+        "N",
+        "L",
+        "x",
+        "s",
+        "screenshots",
+        "Resize",
+        "panel",
+    ];
+    names.chain(fixed).any(|n| n == word)
+        // Identifiers and file names: `light.0.width`, games202.toml, blocker-radius.
+        || word.contains(['_', '-', '.']) || word.chars().any(|c| c.is_ascii_digit())
+}
+
+#[test]
+fn in_chinese_every_panel_label_is_chinese() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    h.state_mut().lang = Lang::Zh;
+    // The shortcut help is open throughout (it floats over the panels).
+    h.state_mut().show_help = true;
+    let mut english = std::collections::BTreeSet::new();
+    let lessons = h.state().lessons.len();
+    let mut places = vec![None];
+    for l in 0..lessons {
+        places.extend((0..h.state().lessons[l].steps.len()).map(|s| Some((l, s))));
+    }
+    for place in places {
+        if let Some((l, s)) = place {
+            h.state_mut().go_to_step(l, s);
+            h.state_mut().playing = false;
+        }
+        settle(&mut h);
+        h.run_steps(2);
+        for node in h.root().children_recursive() {
+            let a = node.accesskit_node();
+            for text in [a.label(), a.value()].into_iter().flatten() {
+                // egui's own accessibility names for resize handles and close buttons: never drawn.
+                if text.starts_with("Resize ") || text == "Close window" {
+                    continue;
+                }
+                // Han characters, or CJK punctuation (a wrapped line may hold only "）。").
+                let cjk = text.chars().any(|c| {
+                    ('\u{4e00}'..='\u{9fff}').contains(&c)
+                        || ('\u{3000}'..='\u{303f}').contains(&c)
+                        || ('\u{ff00}'..='\u{ffef}').contains(&c)
+                });
+                let words = text.split(|c: char| !(c.is_ascii_alphanumeric() || "_-.".contains(c)));
+                if !cjk
+                    && words
+                        .filter(|w| w.chars().any(|c| c.is_ascii_alphabetic()))
+                        .any(|w| !allowed_in_chinese(w))
+                {
+                    english.insert(text);
+                }
+            }
+        }
+    }
+    assert!(english.is_empty(), "English left in the Chinese UI (add it to src/ui/strings.rs): {english:#?}");
 }

@@ -1,47 +1,50 @@
 //! The top bar (scene and lesson picker, file box, playback, screenshot, language), the status
 //! bar (errors, timings) and the shortcut help.
 
+use super::strings::tr;
 use super::{ShadowlabApp, Source, shipped_path};
 use crate::lessons::Lang;
 use std::path::PathBuf;
 
 impl ShadowlabApp {
     pub(super) fn top_bar(&mut self, ui: &mut egui::Ui) {
+        let lang = self.lang;
+        let tr = move |en: &'static str| tr(lang, en);
         ui.horizontal_wrapped(|ui| {
             ui.strong("shadowlab");
             ui.separator();
             self.source_selector(ui);
-            let file_label = ui.label("file");
+            let file_label = ui.label(tr("file"));
             let field = ui
                 .add(
                     egui::TextEdit::singleline(&mut self.open_path)
-                        .hint_text("scene .toml or .obj path")
+                        .hint_text(tr("scene .toml or .obj path"))
                         .desired_width(180.0),
                 )
                 .labelled_by(file_label.id);
             let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
-            if (ui.button("Open").clicked() || entered) && !self.open_path.trim().is_empty() {
+            if (ui.button(tr("Open")).clicked() || entered) && !self.open_path.trim().is_empty() {
                 let path = PathBuf::from(self.open_path.trim());
                 self.open(&path);
             }
             ui.separator();
-            let play_label = if self.playing { "Pause" } else { "Play" };
-            if ui.button(play_label).on_hover_text("Space").clicked() {
+            let play_label = tr(if self.playing { "Pause" } else { "Play" });
+            if ui.button(play_label).on_hover_text(tr("Space")).clicked() {
                 self.playing = !self.playing;
             }
-            let time_label = ui.label("time (s)");
+            let time_label = ui.label(tr("time (s)"));
             let time = ui.add(egui::Slider::new(&mut self.time_s, 0.0..=60.0).max_decimals(2));
             if time.labelled_by(time_label.id).changed() {
                 self.mark_dirty();
             }
-            let speed_label = ui.label("speed");
+            let speed_label = ui.label(tr("speed"));
             ui.add(egui::DragValue::new(&mut self.speed).speed(0.05).range(0.0..=10.0).suffix("×"))
                 .labelled_by(speed_label.id);
             ui.separator();
-            if ui.button("Screenshot").on_hover_text("S: window and each view as PNGs").clicked() {
+            if ui.button(tr("Screenshot")).on_hover_text(tr("S: window and each view as PNGs")).clicked() {
                 self.request_screenshot(ui.ctx());
             }
-            let lang_label = ui.label("language");
+            let lang_label = ui.label(tr("language"));
             egui::ComboBox::from_id_salt("lang")
                 .selected_text(match self.lang {
                     Lang::En => "English",
@@ -53,7 +56,7 @@ impl ShadowlabApp {
                 })
                 .response
                 .labelled_by(lang_label.id);
-            if ui.button("F1 Help").clicked() {
+            if ui.button(tr("F1 Help")).clicked() {
                 self.show_help = !self.show_help;
             }
         });
@@ -68,11 +71,13 @@ impl ShadowlabApp {
                 .map(|l| format!("{} · {}/{}", l.title.get(self.lang), step + 1, l.steps.len()))
                 .unwrap_or_default(),
         };
+        let lang = self.lang;
+        let tr = move |en: &'static str| tr(lang, en);
         let mut choice: Option<Result<PathBuf, usize>> = None;
-        let label = ui.label("scene");
+        let label = ui.label(tr("scene"));
         let combo =
             egui::ComboBox::from_id_salt("source").selected_text(current).width(240.0).show_ui(ui, |ui| {
-                ui.label("Scenes");
+                ui.label(tr("Scenes"));
                 let mut scenes: Vec<PathBuf> = std::fs::read_dir(shipped_path("assets/scenes"))
                     .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
                     .unwrap_or_default();
@@ -85,7 +90,7 @@ impl ShadowlabApp {
                     }
                 }
                 ui.separator();
-                ui.label("Lessons");
+                ui.label(tr("Lessons"));
                 for (i, lesson) in self.lessons.iter().enumerate() {
                     let selected = matches!(self.source, Source::Lesson { lesson, .. } if lesson == i);
                     if ui
@@ -105,10 +110,12 @@ impl ShadowlabApp {
     }
 
     pub(super) fn status_bar(&mut self, ui: &mut egui::Ui) {
+        let lang = self.lang;
+        let tr = move |en: &'static str| tr(lang, en);
         ui.horizontal(|ui| {
             if let Some(error) = self.error.clone() {
-                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), format!("Error: {error}"));
-                if ui.small_button("dismiss").clicked() {
+                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), format!("{}: {error}", tr("Error")));
+                if ui.small_button(tr("dismiss")).clicked() {
                     self.error = None;
                 }
                 ui.separator();
@@ -124,8 +131,9 @@ impl ShadowlabApp {
     }
 
     pub(super) fn help_window(&mut self, ctx: &egui::Context) {
+        let lang = self.lang;
         let mut open = self.show_help;
-        egui::Window::new("Shortcuts").open(&mut open).collapsible(false).show(ctx, |ui| {
+        egui::Window::new(tr(lang, "Shortcuts")).open(&mut open).collapsible(false).show(ctx, |ui| {
             egui::Grid::new("keys").striped(true).show(ui, |ui| {
                 for (key, what) in [
                     ("Left / Right", "previous / next lesson step"),
@@ -141,8 +149,8 @@ impl ShadowlabApp {
                     ("Drag (shadow map)", "move the light"),
                     ("Drop a .toml or .obj", "open it"),
                 ] {
-                    ui.strong(key);
-                    ui.label(what);
+                    ui.strong(tr(lang, key));
+                    ui.label(tr(lang, what));
                     ui.end_row();
                 }
             });
@@ -155,16 +163,30 @@ impl ShadowlabApp {
     pub(super) fn timing_text(&self, ctx: &egui::Context) -> String {
         let ui_ms = ctx.input(|i| i.unstable_dt) * 1e3;
         let shown = &self.shown;
-        let mut text = format!("UI {ui_ms:.0} ms · render {:.0} ms", shown.render_ms);
+        let zh = self.lang == Lang::Zh;
+        let mut text = if zh {
+            format!("界面 {ui_ms:.0} ms · 渲染 {:.0} ms", shown.render_ms)
+        } else {
+            format!("UI {ui_ms:.0} ms · render {:.0} ms", shown.render_ms)
+        };
         if let Some(t) = shown.pass_times {
-            text += &format!(" (GPU shadow {:.1} ms, camera {:.1} ms)", t.shadow_ms, t.camera_ms);
+            text += &if zh {
+                format!("（GPU 阴影趟 {:.1} ms，相机趟 {:.1} ms）", t.shadow_ms, t.camera_ms)
+            } else {
+                format!(" (GPU shadow {:.1} ms, camera {:.1} ms)", t.shadow_ms, t.camera_ms)
+            };
         }
-        text += &format!(" at {}x{}", shown.size.0, shown.size.1);
+        text += &if zh {
+            format!("，分辨率 {}x{}", shown.size.0, shown.size.1)
+        } else {
+            format!(" at {}x{}", shown.size.0, shown.size.1)
+        };
         if shown.preview {
-            text += " · preview";
+            text += if zh { " · 预览" } else { " · preview" };
         }
         if let Some(waited) = self.render_is_slow() {
-            text += &format!(" · rendering {:.1} s", waited.as_secs_f32());
+            let label = if zh { "渲染中" } else { "rendering" };
+            text += &format!(" · {label} {:.1} s", waited.as_secs_f32());
         }
         text
     }

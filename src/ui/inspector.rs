@@ -1,12 +1,14 @@
 //! The inspector: every scene, light and `[shadow]` parameter, with units in the labels, and
 //! the probe's numbers. Any change re-renders at once.
 
+use super::strings::tr as translate;
 use super::{AbSplit, ShadowlabApp};
-use crate::lessons::Overlay;
+use crate::lessons::{Lang, Overlay};
 use crate::scene::{BiasMode, Kernel, LightKind, LightSize, Projection, Technique};
 use egui::{Slider, Ui};
 
 fn combo<T: Copy + PartialEq>(
+    lang: Lang,
     ui: &mut Ui,
     label: &str,
     value: &mut T,
@@ -21,123 +23,146 @@ fn combo<T: Copy + PartialEq>(
         }
     });
     if let Some(key) = key {
-        response.response.on_hover_text(key_hint(key));
+        response.response.on_hover_text(key_hint(lang, key));
     }
     changed
 }
 
 /// The hover text naming a widget's key in scene and lesson files (`--set KEY=VALUE`).
-fn key_hint(key: &str) -> String {
-    format!("scene key `{key}` (lessons and --set use it)")
+fn key_hint(lang: Lang, key: &str) -> String {
+    match lang {
+        Lang::En => format!("scene key `{key}` (lessons and --set use it)"),
+        Lang::Zh => format!("场景键 `{key}`（课程文件和 --set 都用它）"),
+    }
 }
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
+    let lang = app.lang;
+    let tr = move |en: &'static str| translate(lang, en);
     let mut changed = false;
     let s = &mut app.scene.shadow;
-    ui.heading("Technique");
-    changed |= combo(ui, "technique", &mut s.technique, Technique::ALL, Technique::name, Some("technique"));
+    ui.heading(tr("Technique"));
+    changed |= combo(
+        lang,
+        ui,
+        tr("technique"),
+        &mut s.technique,
+        Technique::ALL,
+        Technique::name,
+        Some("technique"),
+    );
     let mut ab_on = app.ab.is_some();
     if ui
-        .checkbox(&mut ab_on, "A/B split against")
-        .on_hover_text("drag the divider in the camera view")
+        .checkbox(&mut ab_on, tr("A/B split against"))
+        .on_hover_text(tr("drag the divider in the camera view"))
         .changed()
     {
         app.ab = ab_on.then_some(AbSplit { b: Technique::Hard, divider: 0.5 });
         changed = true;
     }
     if let Some(ab) = &mut app.ab {
-        changed |= combo(ui, "right side", &mut ab.b, Technique::ALL, Technique::name, None);
+        changed |= combo(lang, ui, tr("right side"), &mut ab.b, Technique::ALL, Technique::name, None);
     }
 
     ui.separator();
-    ui.heading("Bias");
-    changed |= combo(ui, "bias mode", &mut s.bias_mode, BiasMode::ALL, BiasMode::name, Some("bias_mode"));
+    ui.heading(tr("Bias"));
+    changed |=
+        combo(lang, ui, tr("bias mode"), &mut s.bias_mode, BiasMode::ALL, BiasMode::name, Some("bias_mode"));
     changed |= ui
-        .add(Slider::new(&mut s.bias, 0.0..=0.05).logarithmic(true).text("bias (NDC depth)"))
-        .on_hover_text(key_hint("bias"))
+        .add(Slider::new(&mut s.bias, 0.0..=0.05).logarithmic(true).text(tr("bias (NDC depth)")))
+        .on_hover_text(key_hint(lang, "bias"))
         .changed();
     changed |= ui
-        .add(Slider::new(&mut s.slope_bias, 0.0..=0.2).logarithmic(true).text("slope bias (NDC)"))
-        .on_hover_text(key_hint("slope_bias"))
+        .add(Slider::new(&mut s.slope_bias, 0.0..=0.2).logarithmic(true).text(tr("slope bias (NDC)")))
+        .on_hover_text(key_hint(lang, "slope_bias"))
         .changed();
     changed |= ui
-        .add(Slider::new(&mut s.adaptive_c, 0.0..=8.0).text("adaptive c (× half texel)"))
-        .on_hover_text(key_hint("adaptive_c"))
+        .add(Slider::new(&mut s.adaptive_c, 0.0..=8.0).text(tr("adaptive c (× half texel)")))
+        .on_hover_text(key_hint(lang, "adaptive_c"))
         .changed();
     changed |= ui
-        .add(Slider::new(&mut s.normal_offset_texels, 0.0..=4.0).text("normal offset (texels)"))
-        .on_hover_text(key_hint("normal_offset_texels"))
+        .add(Slider::new(&mut s.normal_offset_texels, 0.0..=4.0).text(tr("normal offset (texels)")))
+        .on_hover_text(key_hint(lang, "normal_offset_texels"))
         .changed();
     changed |= ui
-        .add(Slider::new(&mut s.depth_bias_constant, 0..=20000).text("hardware bias (depth units)"))
-        .on_hover_text(key_hint("depth_bias_constant"))
+        .add(Slider::new(&mut s.depth_bias_constant, 0..=20000).text(tr("hardware bias (depth units)")))
+        .on_hover_text(key_hint(lang, "depth_bias_constant"))
         .changed();
     changed |= ui
-        .add(Slider::new(&mut s.depth_bias_slope, -4.0..=8.0).text("hardware slope bias"))
-        .on_hover_text(key_hint("depth_bias_slope"))
+        .add(Slider::new(&mut s.depth_bias_slope, -4.0..=8.0).text(tr("hardware slope bias")))
+        .on_hover_text(key_hint(lang, "depth_bias_slope"))
         .changed();
     changed |= ui
-        .checkbox(&mut s.cull_front_faces, "cull front faces in the shadow pass")
-        .on_hover_text(key_hint("cull_front_faces"))
+        .checkbox(&mut s.cull_front_faces, tr("cull front faces in the shadow pass"))
+        .on_hover_text(key_hint(lang, "cull_front_faces"))
         .changed();
     changed |= ui
-        .checkbox(&mut s.clamp_outside, "outside the light frustum = lit")
-        .on_hover_text(key_hint("clamp_outside"))
+        .checkbox(&mut s.clamp_outside, tr("outside the light frustum = lit"))
+        .on_hover_text(key_hint(lang, "clamp_outside"))
         .changed();
 
     ui.separator();
-    ui.heading("PCF");
-    changed |= combo(ui, "kernel", &mut s.pcf_kernel, Kernel::ALL, Kernel::name, Some("pcf_kernel"));
+    ui.heading(tr("PCF"));
+    changed |=
+        combo(lang, ui, tr("kernel"), &mut s.pcf_kernel, Kernel::ALL, Kernel::name, Some("pcf_kernel"));
     changed |= ui
-        .add(Slider::new(&mut s.samples, 1..=128).text("samples"))
-        .on_hover_text(key_hint("samples"))
+        .add(Slider::new(&mut s.samples, 1..=128).text(tr("samples")))
+        .on_hover_text(key_hint(lang, "samples"))
         .changed();
     if s.pcf_kernel == Kernel::Grid {
         let side = crate::shadow::kernels::grid_side(s.samples);
-        ui.small(format!("grid uses {side}×{side} = {} taps", side * side));
+        ui.small(match lang {
+            Lang::En => format!("grid uses {side}×{side} = {} taps", side * side),
+            Lang::Zh => format!("网格实际用 {side}×{side} = {} 个采样点", side * side),
+        });
     }
     changed |= ui
-        .add(Slider::new(&mut s.radius_texels, 0.0..=32.0).text("radius (texels)"))
-        .on_hover_text(key_hint("radius_texels"))
+        .add(Slider::new(&mut s.radius_texels, 0.0..=32.0).text(tr("radius (texels)")))
+        .on_hover_text(key_hint(lang, "radius_texels"))
         .changed();
     changed |= ui
-        .checkbox(&mut s.rotate_per_pixel, "rotate the pattern per pixel")
-        .on_hover_text(key_hint("rotate_per_pixel"))
+        .checkbox(&mut s.rotate_per_pixel, tr("rotate the pattern per pixel"))
+        .on_hover_text(key_hint(lang, "rotate_per_pixel"))
         .changed();
-    changed |= ui.add(egui::DragValue::new(&mut s.noise_seed).prefix("noise seed ")).changed();
+    changed |=
+        ui.add(egui::DragValue::new(&mut s.noise_seed).prefix(format!("{} ", tr("noise seed")))).changed();
 
     ui.separator();
-    ui.heading("PCSS");
+    ui.heading(tr("PCSS"));
     changed |= ui
-        .add(Slider::new(&mut s.blocker_samples, 1..=128).text("blocker samples"))
-        .on_hover_text(key_hint("blocker_samples"))
+        .add(Slider::new(&mut s.blocker_samples, 1..=128).text(tr("blocker samples")))
+        .on_hover_text(key_hint(lang, "blocker_samples"))
         .changed();
     changed |= ui
-        .add(Slider::new(&mut s.min_filter_radius_texels, 0.0..=16.0).text("min filter radius (texels)"))
-        .on_hover_text(key_hint("min_filter_radius_texels"))
+        .add(Slider::new(&mut s.min_filter_radius_texels, 0.0..=16.0).text(tr("min filter radius (texels)")))
+        .on_hover_text(key_hint(lang, "min_filter_radius_texels"))
         .changed();
     changed |= ui
-        .add(Slider::new(&mut s.reference_samples, 1..=1024).logarithmic(true).text("ground-truth samples"))
-        .on_hover_text(key_hint("reference_samples"))
+        .add(
+            Slider::new(&mut s.reference_samples, 1..=1024)
+                .logarithmic(true)
+                .text(tr("ground-truth samples")),
+        )
+        .on_hover_text(key_hint(lang, "reference_samples"))
         .changed();
 
     ui.separator();
     changed |= lights(app, ui);
 
     ui.separator();
-    ui.heading("Camera");
+    ui.heading(tr("Camera"));
     if let Projection::Perspective { fov_deg } = &mut app.scene.camera.projection {
-        changed |= ui.add(Slider::new(fov_deg, 10.0..=120.0).text("field of view (°)")).changed();
+        changed |= ui.add(Slider::new(fov_deg, 10.0..=120.0).text(tr("field of view (°)"))).changed();
     }
-    if ui.button("Reset camera (R)").clicked() {
+    if ui.button(tr("Reset camera (R)")).clicked() {
         app.reset_camera();
     }
 
     ui.separator();
-    ui.heading("Overlays");
+    ui.heading(tr("Overlays"));
     for overlay in Overlay::ALL {
         let mut on = app.overlays.contains(&overlay);
-        if ui.checkbox(&mut on, overlay.name()).changed() {
+        if ui.checkbox(&mut on, tr(overlay.name())).changed() {
             if on {
                 app.overlays.push(overlay);
             } else {
@@ -148,11 +173,11 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     }
 
     ui.separator();
-    if ui.button("Reset to scene/lesson values").clicked() {
+    if ui.button(tr("Reset to scene/lesson values")).clicked() {
         app.reset();
     }
     ui.horizontal(|ui| {
-        let label = ui.label("screenshot folder");
+        let label = ui.label(tr("screenshot folder"));
         let mut folder = app.settings.screenshot_dir.display().to_string();
         if ui.text_edit_singleline(&mut folder).labelled_by(label.id).changed() {
             app.settings.screenshot_dir = folder.into();
@@ -166,16 +191,18 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
 }
 
 fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
+    let lang = app.lang;
+    let tr = move |en: &'static str| translate(lang, en);
     let mut changed = false;
-    ui.heading("Lights");
+    ui.heading(tr("Lights"));
     let count = app.scene.lights.len();
     if count == 0 {
-        ui.label("this scene has no lights");
+        ui.label(tr("this scene has no lights"));
         return false;
     }
     ui.horizontal(|ui| {
         for i in 0..count {
-            if ui.selectable_label(app.selected_light == i, format!("light {i}")).clicked() {
+            if ui.selectable_label(app.selected_light == i, format!("{} {i}", tr("light"))).clicked() {
                 app.selected_light = i;
                 changed = true;
             }
@@ -183,92 +210,102 @@ fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
     });
     let Some(light) = app.scene.lights.get_mut(app.selected_light) else { return changed };
     let mut size = light.shadow_map_size;
-    egui::ComboBox::from_label("shadow map (texels)").selected_text(format!("{size}²")).show_ui(ui, |ui| {
-        for option in [256u32, 512, 1024, 2048, 4096, 8192] {
-            ui.selectable_value(&mut size, option, format!("{option}²"));
-        }
-    });
+    egui::ComboBox::from_label(tr("shadow map (texels)")).selected_text(format!("{size}²")).show_ui(
+        ui,
+        |ui| {
+            for option in [256u32, 512, 1024, 2048, 4096, 8192] {
+                ui.selectable_value(&mut size, option, format!("{option}²"));
+            }
+        },
+    );
     if size != light.shadow_map_size {
         light.shadow_map_size = size;
         changed = true;
     }
     match &mut light.kind {
         LightKind::Directional { extent_world } => {
-            ui.label("directional light, orthographic map");
+            ui.label(tr("directional light, orthographic map"));
             changed |= ui
-                .add(Slider::new(extent_world, 1.0..=300.0).text("half-width (world units)"))
-                .on_hover_text(key_hint("light.N.extent"))
+                .add(Slider::new(extent_world, 1.0..=300.0).text(tr("half-width (world units)")))
+                .on_hover_text(key_hint(lang, "light.N.extent"))
                 .changed();
         }
         LightKind::Spot { fov_deg } => {
-            ui.label("spot light, perspective map");
-            changed |= ui.add(Slider::new(fov_deg, 5.0..=150.0).text("field of view (°)")).changed();
+            ui.label(tr("spot light, perspective map"));
+            changed |= ui.add(Slider::new(fov_deg, 5.0..=150.0).text(tr("field of view (°)"))).changed();
         }
     }
     let far = light.far;
     changed |= ui
-        .add(Slider::new(&mut light.near, 0.01..=far * 0.9).logarithmic(true).text("near (world units)"))
-        .on_hover_text(key_hint("light.N.near"))
+        .add(Slider::new(&mut light.near, 0.01..=far * 0.9).logarithmic(true).text(tr("near (world units)")))
+        .on_hover_text(key_hint(lang, "light.N.near"))
         .changed();
     let near = light.near;
     changed |= ui
-        .add(Slider::new(&mut light.far, near * 1.1..=2000.0).logarithmic(true).text("far (world units)"))
-        .on_hover_text(key_hint("light.N.far"))
+        .add(Slider::new(&mut light.far, near * 1.1..=2000.0).logarithmic(true).text(tr("far (world units)")))
+        .on_hover_text(key_hint(lang, "light.N.far"))
         .changed();
     let directional = light.is_orthographic();
     match &mut light.size {
         LightSize::Width { width_world } => {
             let slider = ui
-                .add(Slider::new(width_world, 0.0..=40.0).text("light width (world units)"))
-                .on_hover_text(key_hint("light.N.width"));
+                .add(Slider::new(width_world, 0.0..=40.0).text(tr("light width (world units)")))
+                .on_hover_text(key_hint(lang, "light.N.width"));
             super::set_landmark(ui.ctx(), super::LANDMARK_LIGHT_WIDTH, slider.rect);
             changed |= slider.changed();
-            if directional && ui.small_button("use an angular diameter instead").clicked() {
+            if directional && ui.small_button(tr("use an angular diameter instead")).clicked() {
                 light.size = LightSize::AngularDiameter { angular_diameter_deg: 0.53 };
                 changed = true;
             }
         }
         LightSize::AngularDiameter { angular_diameter_deg } => {
             changed |= ui
-                .add(Slider::new(angular_diameter_deg, 0.0..=20.0).text("angular diameter (°)"))
-                .on_hover_text(key_hint("light.N.angular_diameter_deg"))
+                .add(Slider::new(angular_diameter_deg, 0.0..=20.0).text(tr("angular diameter (°)")))
+                .on_hover_text(key_hint(lang, "light.N.angular_diameter_deg"))
                 .changed();
-            if ui.small_button("use a width instead").clicked() {
+            if ui.small_button(tr("use a width instead")).clicked() {
                 light.size = LightSize::Width { width_world: 2.0 };
                 changed = true;
             }
         }
     }
     changed |= ui
-        .add(Slider::new(&mut light.intensity, 0.0..=4.0).text("intensity"))
-        .on_hover_text(key_hint("light.N.intensity"))
+        .add(Slider::new(&mut light.intensity, 0.0..=4.0).text(tr("intensity")))
+        .on_hover_text(key_hint(lang, "light.N.intensity"))
         .changed();
     changed |= ui
-        .add(Slider::new(&mut light.orbit_deg_per_s, -180.0..=180.0).text("orbit (°/s)"))
-        .on_hover_text(key_hint("light.N.orbit_deg_per_s"))
+        .add(Slider::new(&mut light.orbit_deg_per_s, -180.0..=180.0).text(tr("orbit (°/s)")))
+        .on_hover_text(key_hint(lang, "light.N.orbit_deg_per_s"))
         .changed();
     changed
 }
 
 pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
-    ui.heading("Probe");
+    let lang = app.lang;
+    let tr = move |en: &'static str| translate(lang, en);
+    ui.heading(tr("Probe"));
     let Some(report) = app.probe_report() else {
-        ui.label("click the camera view to pin a probe");
+        ui.label(tr("click the camera view to pin a probe"));
         return;
     };
     // A lesson's probe is a pixel of the lesson's own frame, not of this view.
-    let pixel = match app.probe_at {
-        Some(super::ProbeAt::LessonFrame(..)) => format!(
-            "pixel {},{} of the lesson's {}x{} frame",
-            report.pixel[0], report.pixel[1], report.size[0], report.size[1]
-        ),
-        _ => format!("pixel {},{}", report.pixel[0], report.pixel[1]),
+    let ([x, y], [w, h]) = (report.pixel, report.size);
+    let lesson_frame = matches!(app.probe_at, Some(super::ProbeAt::LessonFrame(..)));
+    let pixel = match (lang, lesson_frame) {
+        (Lang::En, true) => format!("pixel {x},{y} of the lesson's {w}x{h} frame"),
+        (Lang::Zh, true) => format!("本课 {w}x{h} 画面中的像素 {x},{y}"),
+        (Lang::En, false) => format!("pixel {x},{y}"),
+        (Lang::Zh, false) => format!("像素 {x},{y}"),
     };
     if !report.hit {
-        ui.label(format!("{pixel}: no surface"));
+        ui.label(format!("{pixel}: {}", tr("no surface")));
         return;
     }
-    ui.label(format!("{pixel}, on {}", report.object.as_deref().unwrap_or("?")));
+    let object = report.object.as_deref().unwrap_or("?");
+    ui.label(match lang {
+        Lang::En => format!("{pixel}, on {object}"),
+        Lang::Zh => format!("{pixel}，位于 {object}"),
+    });
     let Some(l) = report.lights.iter().find(|l| l.light == app.selected_light) else { return };
     egui::Grid::new("probe").striped(true).num_columns(2).show(ui, |ui| {
         let mut row = |name: &str, value: String| {
@@ -276,24 +313,30 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
             ui.monospace(value);
             ui.end_row();
         };
-        row("shadow-map uv", format!("{:.4}, {:.4}", l.shadow_map_uv[0], l.shadow_map_uv[1]));
-        row("texel", format!("{}, {}", l.shadow_map_texel[0], l.shadow_map_texel[1]));
+        row(tr("shadow-map uv"), format!("{:.4}, {:.4}", l.shadow_map_uv[0], l.shadow_map_uv[1]));
+        row(tr("texel"), format!("{}, {}", l.shadow_map_texel[0], l.shadow_map_texel[1]));
         row(
-            "receiver depth",
-            format!("{:.4} NDC · {:.3} world", l.receiver_depth_ndc, l.receiver_depth_linear),
+            tr("receiver depth"),
+            format!("{:.4} NDC · {:.3} {}", l.receiver_depth_ndc, l.receiver_depth_linear, tr("world")),
         );
-        row("stored depth", format!("{:.4} NDC · {:.3} world", l.stored_depth_ndc, l.stored_depth_linear));
-        row("bias", format!("{:.6} NDC", l.bias_ndc));
-        row("N·L", format!("{:.3}", l.n_dot_l));
-        row("blocker search", format!("{:.2} texels", l.blocker_search_radius_texels));
-        row("blockers found", format!("{} / {}", l.blockers_found, l.blocker_samples));
         row(
-            "avg blocker depth",
-            l.avg_blocker_depth_linear.map_or("none".into(), |d| format!("{d:.3} world")),
+            tr("stored depth"),
+            format!("{:.4} NDC · {:.3} {}", l.stored_depth_ndc, l.stored_depth_linear, tr("world")),
         );
-        row("penumbra width", format!("{:.4} world", l.penumbra_width_world));
-        row("filter radius", format!("{:.2} texels ({} taps)", l.filter_radius_texels, l.filter_samples));
-        row("visibility (CPU twin)", format!("{:.4}", l.visibility_twin));
-        row("visibility (GPU)", format!("{:.4}", l.visibility_gpu));
+        row(tr("bias"), format!("{:.6} NDC", l.bias_ndc));
+        row(tr("N·L"), format!("{:.3}", l.n_dot_l));
+        row(tr("blocker search"), format!("{:.2} {}", l.blocker_search_radius_texels, tr("texels")));
+        row(tr("blockers found"), format!("{} / {}", l.blockers_found, l.blocker_samples));
+        row(
+            tr("avg blocker depth"),
+            l.avg_blocker_depth_linear.map_or(tr("none").into(), |d| format!("{d:.3} {}", tr("world"))),
+        );
+        row(tr("penumbra width"), format!("{:.4} {}", l.penumbra_width_world, tr("world")));
+        row(
+            tr("filter radius"),
+            format!("{:.2} {} ({} {})", l.filter_radius_texels, tr("texels"), l.filter_samples, tr("taps")),
+        );
+        row(tr("visibility (CPU twin)"), format!("{:.4}", l.visibility_twin));
+        row(tr("visibility (GPU)"), format!("{:.4}", l.visibility_gpu));
     });
 }

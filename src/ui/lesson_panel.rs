@@ -7,6 +7,7 @@ use egui::{RichText, Ui};
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let lang = app.lang;
+    let tr = move |en: &'static str| super::strings::tr(lang, en);
     let Some((lesson, step, index)) = app.current_step() else { return };
     let count = lesson.steps.len();
     let lesson_title = lesson.title.get(lang).to_string();
@@ -17,15 +18,15 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let lesson_probe = step.probe.map(|[x, y]| super::ProbeAt::LessonFrame(x, y));
     // Navigation first, so it stays in reach however long the text is.
     ui.horizontal(|ui| {
-        if ui.button("Previous").on_hover_text("Left arrow").clicked() {
+        if ui.button(tr("Previous")).on_hover_text(tr("Left arrow")).clicked() {
             app.step_lesson(-1);
         }
-        ui.label(RichText::new(format!("step {} / {count}", index + 1)).weak());
-        if ui.button("Next").on_hover_text("Right arrow").clicked() {
+        ui.label(RichText::new(format!("{} {} / {count}", tr("step"), index + 1)).weak());
+        if ui.button(tr("Next")).on_hover_text(tr("Right arrow")).clicked() {
             app.step_lesson(1);
         }
     });
-    ui.checkbox(&mut app.show_all_panels, "show every panel");
+    ui.checkbox(&mut app.show_all_panels, tr("show every panel"));
     ui.separator();
     ui.label(RichText::new(lesson_title).small());
     ui.heading(title);

@@ -9,6 +9,7 @@ mod panels;
 mod rendering;
 mod screenshots;
 mod settings;
+mod strings;
 mod view_panels;
 mod window;
 mod worker;
@@ -231,7 +232,7 @@ impl ShadowlabApp {
                 self.settings.last_scene = (!is_obj).then(|| path.to_path_buf());
                 self.settings.last_lesson = None;
                 self.error = None;
-                self.status = format!("opened {}", path.display());
+                self.status = format!("{} {}", strings::tr(self.lang, "opened"), path.display());
             }
             Err(e) => self.error = Some(e),
         }

@@ -2,7 +2,8 @@
 //! texel grid projected on surfaces, the outside-the-frustum tint, and the error against the
 //! ground truth. Each comes with a legend line.
 
-use crate::lessons::Overlay;
+use super::strings::tr;
+use crate::lessons::{Lang, Overlay};
 use crate::render::{Analysis, LightGpu};
 use crate::shadow::project_to_light;
 use crate::views::heat_color;
@@ -11,6 +12,7 @@ use image::{Rgba, RgbaImage};
 
 /// The overlays combined into one translucent image, and their legends.
 pub fn compose(
+    lang: Lang,
     overlays: &[Overlay],
     analysis: &Analysis,
     light: Option<&LightGpu>,
@@ -30,7 +32,11 @@ pub fn compose(
                     .filter(|&i| analysis.hit(i))
                     .map(|i| analysis.shadow[i][channel])
                     .fold(0.0f32, f32::max);
-                legends.push(format!("{label}: 0 .. {max:.2} {unit} (dark blue .. yellow)"));
+                let (label, unit) = (tr(lang, label), tr(lang, unit));
+                legends.push(match lang {
+                    Lang::En => format!("{label}: 0 .. {max:.2} {unit} (dark blue .. yellow)"),
+                    Lang::Zh => format!("{label}：0 .. {max:.2} {unit}（深蓝 .. 黄）"),
+                });
                 let scale = if max > 0.0 { 1.0 / max } else { 0.0 };
                 paint(&mut image, analysis, |i| {
                     let v = analysis.shadow[i][channel];
@@ -39,10 +45,11 @@ pub fn compose(
             }
             Overlay::TexelGrid => {
                 let Some(light) = light else { continue };
-                legends.push(format!(
-                    "texel grid: lines where the shadow-map texel changes ({}² map)",
-                    light.map_size_texels
-                ));
+                let size = light.map_size_texels;
+                legends.push(match lang {
+                    Lang::En => format!("texel grid: lines where the shadow-map texel changes ({size}² map)"),
+                    Lang::Zh => format!("纹素网格：线条标出阴影贴图纹素变化的地方（{size}² 贴图）"),
+                });
                 let texel = |i: usize| {
                     let p = Vec3::from_slice(&analysis.position[i][..3]);
                     let s = project_to_light(light, p);
@@ -66,7 +73,13 @@ pub fn compose(
             }
             Overlay::OutsideFrustum => {
                 let Some(light) = light else { continue };
-                legends.push("orange: outside the light's frustum (no shadow-map data)".into());
+                legends.push(
+                    match lang {
+                        Lang::En => "orange: outside the light's frustum (no shadow-map data)",
+                        Lang::Zh => "橙色：光源视锥之外（没有阴影贴图数据）",
+                    }
+                    .into(),
+                );
                 paint(&mut image, analysis, |i| {
                     let s = project_to_light(light, Vec3::from_slice(&analysis.position[i][..3]));
                     let outside = s.x < 0.0 || s.y < 0.0 || s.x > 1.0 || s.y > 1.0 || s.z < 0.0 || s.z > 1.0;
@@ -75,11 +88,20 @@ pub fn compose(
             }
             Overlay::Error => {
                 let Some(reference) = reference else {
-                    legends.push("error: computing the ground truth...".into());
+                    legends.push(
+                        match lang {
+                            Lang::En => "error: computing the ground truth...",
+                            Lang::Zh => "误差：正在计算真实结果……",
+                        }
+                        .into(),
+                    );
                     continue;
                 };
                 let (_, _, mae) = crate::views::error_image(analysis, reference);
-                legends.push(format!("|visibility − ground truth|: 0 .. 1, mean {mae:.4}"));
+                legends.push(match lang {
+                    Lang::En => format!("|visibility − ground truth|: 0 .. 1, mean {mae:.4}"),
+                    Lang::Zh => format!("|可见性 − 真实结果|：0 .. 1，平均 {mae:.4}"),
+                });
                 paint(&mut image, analysis, |i| {
                     let e = (analysis.shadow[i][0] - reference[i]).abs();
                     (e > 0.02).then(|| with_alpha(heat_color(e), 200))

@@ -3,7 +3,7 @@
 
 use super::ShadowlabApp;
 use crate::diagrams::{self, DiagramInputs, DiagramKind};
-use crate::lessons::Panel;
+use crate::lessons::{Lang, Panel};
 use crate::shadow::kernels;
 use egui::{Color32, Rect, Sense, Stroke, Ui, pos2, vec2};
 
@@ -29,7 +29,7 @@ pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
     let show_diagram = app.panel_visible(Panel::Diagram);
     ui.horizontal(|ui| {
         if show_diagram {
-            ui.strong("Diagram");
+            ui.strong(super::strings::tr(app.lang, "Diagram"));
             for kind in DiagramKind::ALL {
                 if ui.selectable_label(app.diagram == kind, kind.id()).on_hover_text(kind.title()).clicked() {
                     app.diagram = kind;
@@ -38,7 +38,7 @@ pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
             ui.separator();
         }
         if app.current_step().is_none() {
-            ui.checkbox(&mut app.settings.show_kernel_plot, "sample pattern");
+            ui.checkbox(&mut app.settings.show_kernel_plot, super::strings::tr(app.lang, "sample pattern"));
         }
     });
     let show_plot = app.panel_visible(Panel::KernelPlot);
@@ -127,12 +127,20 @@ fn kernel_plot(app: &ShadowlabApp, ui: &mut Ui, rect: Rect) {
     painter.text(
         pos2(rect.left() + 6.0, rect.top() + 4.0),
         egui::Align2::LEFT_TOP,
-        format!(
-            "{} · {} taps{}",
-            s.pcf_kernel.name(),
-            points.len(),
-            if s.rotate_per_pixel { " · rotated per pixel" } else { "" }
-        ),
+        match app.lang {
+            Lang::En => format!(
+                "{} · {} taps{}",
+                s.pcf_kernel.name(),
+                points.len(),
+                if s.rotate_per_pixel { " · rotated per pixel" } else { "" }
+            ),
+            Lang::Zh => format!(
+                "{} · {} 个采样点{}",
+                s.pcf_kernel.name(),
+                points.len(),
+                if s.rotate_per_pixel { " · 每个像素旋转" } else { "" }
+            ),
+        },
         egui::FontId::proportional(13.0),
         Color32::LIGHT_GRAY,
     );

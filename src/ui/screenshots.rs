@@ -12,7 +12,7 @@ impl ShadowlabApp {
             }
         });
         self.screenshot_pending = true;
-        self.status = "taking a screenshot...".into();
+        self.status = super::strings::tr(self.lang, "taking a screenshot...").into();
     }
 
     /// Save a finished window screenshot and each viewport as PNGs.
@@ -26,7 +26,7 @@ impl ShadowlabApp {
         match self.save_screenshot(&window) {
             Ok(paths) => {
                 let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
-                self.status = format!("saved {}", names.join(", "));
+                self.status = format!("{} {}", super::strings::tr(self.lang, "saved"), names.join(", "));
             }
             Err(e) => self.error = Some(e),
         }

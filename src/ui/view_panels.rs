@@ -3,8 +3,10 @@
 //! Shadow map: linear depth with a legend, hover readout, the probe's uv, search and filter
 //! circles and every tap at its real size; drag to move the light.
 
+use super::strings::tr;
 use super::worker::MapView;
 use super::{ProbeAt, ShadowlabApp};
+use crate::lessons::{Lang, Overlay};
 use crate::render::{DepthImage, LightGpu};
 use crate::shadow::depth_linear_from_ndc;
 use crate::views::View;
@@ -71,7 +73,7 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     if let Some(analysis) = &app.analysis {
         let samples = app.scene.shadow.reference_samples;
         if let Some((image, legend)) =
-            crate::views::analysis_view(app.view, analysis, app.reference.as_deref(), samples)
+            crate::views::analysis_view(app.view, analysis, app.reference.as_deref(), samples, app.lang)
         {
             app.view_state.view_image =
                 Some(ctx.load_texture("debug view", color_image(&image), egui::TextureOptions::NEAREST));
@@ -82,10 +84,19 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     app.view_state.overlay = None;
     app.view_state.legends.clear();
     if let Some(analysis) = &app.analysis {
+        // An overlay of the quantity the view already shows would only hide it (and repeat its legend).
+        let shown_by_view = |o: &Overlay| match o {
+            Overlay::BlockerRadius => app.view == View::BlockerRadius,
+            Overlay::Penumbra => app.view == View::Penumbra,
+            Overlay::Blockers => app.view == View::Blockers,
+            Overlay::Error => app.view == View::Error,
+            _ => false,
+        };
+        let overlays: Vec<Overlay> = app.overlays.iter().copied().filter(|o| !shown_by_view(o)).collect();
         let (image, legends) =
-            super::overlays::compose(&app.overlays, analysis, light.as_ref(), app.reference.as_deref());
+            super::overlays::compose(app.lang, &overlays, analysis, light.as_ref(), app.reference.as_deref());
         app.view_state.legends = legends;
-        if !app.overlays.is_empty() {
+        if !overlays.is_empty() {
             app.view_state.overlay =
                 Some(ctx.load_texture("overlay", color_image(&image), egui::TextureOptions::NEAREST));
         }
@@ -116,8 +127,11 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     if app.worker.is_none() {
         ui.centered_and_justified(|ui| {
             ui.label(format!(
-                "No GPU view: {}",
-                app.gpu_error.clone().unwrap_or_else(|| "unknown reason".into())
+                "{}: {}",
+                super::strings::tr(app.lang, "No GPU view"),
+                app.gpu_error
+                    .clone()
+                    .unwrap_or_else(|| super::strings::tr(app.lang, "unknown reason").into())
             ));
         });
         return;
@@ -152,11 +166,10 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     camera_view(app, ui, camera_rect);
     let painter = ui.painter_at(legend_rect);
     let mut y = legend_rect.top() + 4.0;
-    let waiting = [String::from(if app.interacting {
-        "(overlays refresh when you let go)"
-    } else {
-        "(working out the overlays...)"
-    })];
+    let waiting = [String::from(tr(
+        app.lang,
+        if app.interacting { "(overlays refresh when you let go)" } else { "(working out the overlays...)" },
+    ))];
     let stale = app.overlays_stale() && (app.view_state.overlay.is_some() || app.view != View::Final);
     let mut lines: Vec<&str> = Vec::new();
     if stale {
@@ -200,14 +213,14 @@ fn view_selector(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(corner));
     let before = app.view;
     egui::ComboBox::from_id_salt("camera view")
-        .selected_text(format!("view: {}", app.view.name()))
+        .selected_text(format!("{}: {}", tr(app.lang, "view"), app.view.name()))
         .show_ui(&mut child, |ui| {
             for view in View::ALL {
                 ui.selectable_value(&mut app.view, view, view.name());
             }
         })
         .response
-        .on_hover_text("What the camera panel shows (`--view` in the CLI)");
+        .on_hover_text(tr(app.lang, "What the camera panel shows (`--view` in the CLI)"));
     if app.view != before {
         // The analysis pass (and the ground truth) may be needed now.
         app.mark_dirty();
@@ -333,7 +346,7 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
 }
 
 /// The depth colour ramp with its range in world units.
-fn legend_bar(ui: &mut Ui, (lo, hi): (f32, f32)) {
+fn legend_bar(ui: &mut Ui, lang: Lang, (lo, hi): (f32, f32)) {
     ui.horizontal_wrapped(|ui| {
         ui.small(format!("{lo:.1}"));
         let (rect, _) = ui.allocate_exact_size(vec2(140.0, 10.0), Sense::hover());
@@ -347,8 +360,8 @@ fn legend_bar(ui: &mut Ui, (lo, hi): (f32, f32)) {
             );
             ui.painter().rect_filled(cell, 0.0, Color32::from_rgb(c[0], c[1], c[2]));
         }
-        ui.small(format!("{hi:.1} world units from the light"));
-        ui.small("· white: nothing stored · wheel: zoom");
+        ui.small(format!("{hi:.1} {}", tr(lang, "world units from the light")));
+        ui.small(tr(lang, "· white: nothing stored · wheel: zoom"));
     });
 }
 
@@ -365,7 +378,7 @@ fn render_progress(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
     if app.shown.camera.is_none() || app.render_is_slow().is_some() {
         let waited = app.render_is_slow().map_or(0.0, |d| d.as_secs_f32());
         label(
-            format!("rendering... {waited:.1} s"),
+            format!("{} {waited:.1} s", tr(app.lang, "rendering...")),
             rect.right_top() + vec2(-8.0, 8.0),
             egui::Align2::RIGHT_TOP,
         );
@@ -379,7 +392,10 @@ fn render_progress(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
             Rect::from_min_size(bar.min, vec2(bar.width() * done as f32 / total.max(1) as f32, bar.height()));
         painter.rect_filled(filled, 2.0, Color32::from_rgb(255, 210, 0));
         label(
-            format!("ground truth {done} / {total} samples"),
+            match app.lang {
+                Lang::En => format!("ground truth {done} / {total} samples"),
+                Lang::Zh => format!("真实结果 {done} / {total} 个采样"),
+            },
             bar.left_top() + vec2(0.0, -6.0),
             egui::Align2::LEFT_BOTTOM,
         );
@@ -441,7 +457,7 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     ui.set_clip_rect(rect.intersect(ui.clip_rect()));
     let light_count = app.scene.lights.len();
     ui.horizontal(|ui| {
-        ui.strong("Shadow map");
+        ui.strong(tr(app.lang, "Shadow map"));
         for i in 0..light_count {
             let selected = app.selected_light == i;
             let clicked = match app.view_state.thumbnails.get(i) {
@@ -449,12 +465,12 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
                     .add(
                         egui::Button::image_and_text(
                             egui::Image::new(t).fit_to_exact_size(vec2(40.0, 40.0)),
-                            format!("light {i}"),
+                            format!("{} {i}", tr(app.lang, "light")),
                         )
                         .selected(selected),
                     )
                     .clicked(),
-                None => ui.selectable_label(selected, format!("light {i}")).clicked(),
+                None => ui.selectable_label(selected, format!("{} {i}", tr(app.lang, "light"))).clicked(),
             };
             if clicked && !selected {
                 app.selected_light = i;
@@ -462,10 +478,10 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             }
         }
     });
-    legend_bar(ui, app.view_state.map_range);
+    legend_bar(ui, app.lang, app.view_state.map_range);
     let zoom = app.view_state.zoom.max(1.0);
     let Some((texture, map, light)) = &app.view_state.map else {
-        ui.label("no light in this scene");
+        ui.label(tr(app.lang, "no light in this scene"));
         return;
     };
     let avail = ui.available_rect_before_wrap();
@@ -518,9 +534,10 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         painter.circle_stroke(centre, 4.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
     }
     let info_pos = pos2(map_rect.left(), map_rect.bottom() + 4.0);
-    let mut info = String::from(
+    let mut info = String::from(tr(
+        app.lang,
         "drag to move the light · blue: blocker search · white: filter · green lit, pink blocked",
-    );
+    ));
     if let Some(pos) = response.hover_pos() {
         let u = (shown.left() + (pos.x - map_rect.left()) / side).clamp(0.0, 0.9999);
         let v = (shown.top() + (pos.y - map_rect.top()) / side).clamp(0.0, 0.9999);
@@ -530,15 +547,22 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             let ndc = Vec4::new(u * 2.0 - 1.0, 1.0 - v * 2.0, z, 1.0);
             let w = Mat4::from_cols_array_2d(&light.clip_from_world).inverse() * ndc;
             let p = w.truncate() / w.w;
-            info = format!(
-                "texel {tx},{ty} · stored {z:.5} NDC = {:.3} world · point ({:.2}, {:.2}, {:.2})",
-                depth_linear_from_ndc(light, z),
-                p.x,
-                p.y,
-                p.z
-            );
+            let d = depth_linear_from_ndc(light, z);
+            info = match app.lang {
+                Lang::En => format!(
+                    "texel {tx},{ty} · stored {z:.5} NDC = {d:.3} world · point ({:.2}, {:.2}, {:.2})",
+                    p.x, p.y, p.z
+                ),
+                Lang::Zh => format!(
+                    "纹素 {tx},{ty} · 存储 {z:.5} NDC = {d:.3} 世界单位 · 点 ({:.2}, {:.2}, {:.2})",
+                    p.x, p.y, p.z
+                ),
+            };
         } else {
-            info = format!("texel {tx},{ty} · nothing stored (cleared to 1.0)");
+            info = match app.lang {
+                Lang::En => format!("texel {tx},{ty} · nothing stored (cleared to 1.0)"),
+                Lang::Zh => format!("纹素 {tx},{ty} · 没有存储任何东西（清除值 1.0）"),
+            };
         }
     }
     // Wrapped to the map's width: the column may be narrow.

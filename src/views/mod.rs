@@ -1,6 +1,7 @@
 //! Debug views as images: the camera view, the shadow term, the shadow map, PCSS heatmaps,
 //! the ground truth and the error against it. Heatmaps come with the value range they map.
 
+use crate::lessons::Lang;
 use crate::render::{Analysis, DepthImage, LightGpu};
 use crate::shadow::depth_linear_from_ndc;
 use image::{Rgba, RgbaImage};
@@ -197,10 +198,11 @@ pub fn render_view(
             let a = renderer.read_analysis()?;
             let reference =
                 if view.needs_reference() { Some(renderer.render_reference(scene, light)?) } else { None };
-            let (image, legend) =
-                analysis_view(view, &a, reference.as_deref(), scene.shadow.reference_samples).ok_or_else(
-                    || crate::render::RenderError::Usage(format!("view {} has no image", view.name())),
-                )?;
+            let samples = scene.shadow.reference_samples;
+            let (image, legend) = analysis_view(view, &a, reference.as_deref(), samples, Lang::En)
+                .ok_or_else(|| {
+                    crate::render::RenderError::Usage(format!("view {} has no image", view.name()))
+                })?;
             (image, Some(legend))
         }
     })
@@ -214,11 +216,18 @@ pub fn analysis_view(
     a: &Analysis,
     reference: Option<&[f32]>,
     reference_samples: u32,
+    lang: Lang,
 ) -> Option<(RgbaImage, String)> {
+    let zh = lang == Lang::Zh;
     match view {
         View::Final | View::ShadowMap => None,
         View::Visibility => {
-            Some((gray_image(a, |i| a.shadow[i][0]), "visibility: black = shadowed, white = lit".into()))
+            let legend = if zh {
+                "可见性：黑 = 处于阴影中，白 = 受光"
+            } else {
+                "visibility: black = shadowed, white = lit"
+            };
+            Some((gray_image(a, |i| a.shadow[i][0]), legend.into()))
         }
         View::BlockerRadius | View::Penumbra | View::Blockers => {
             let (label, unit, channel) = match view {
@@ -227,16 +236,38 @@ pub fn analysis_view(
                 _ => ("blockers found", "taps", 3),
             };
             let (image, legend) = heat_image(a, label, unit, |i| a.shadow[i][channel]);
-            Some((image, legend.to_string()))
+            let legend = if zh {
+                let (label, unit) = match channel {
+                    1 => ("遮挡物搜索半径", "纹素"),
+                    2 => ("半影宽度", "纹素"),
+                    _ => ("找到的遮挡物", "个采样点"),
+                };
+                format!("{label}：{:.4} .. {:.4} {unit}（深蓝 .. 黄）", legend.min, legend.max)
+            } else {
+                legend.to_string()
+            };
+            Some((image, legend))
         }
         View::Reference => {
             let reference = reference?;
-            let note = format!("reference: {reference_samples} hard shadows averaged");
+            let note = if zh {
+                format!("真实结果：{reference_samples} 张硬阴影的平均")
+            } else {
+                format!("reference: {reference_samples} hard shadows averaged")
+            };
             Some((gray_image(a, |i| reference[i]), note))
         }
         View::Error => {
             let (image, legend, mae) = error_image(a, reference?);
-            Some((image, format!("{legend}\nmean absolute error: {mae:.5}")))
+            let text = if zh {
+                format!(
+                    "|PCSS − 真实结果|：{:.4} .. {:.4}（深蓝 .. 黄）\n平均绝对误差：{mae:.5}",
+                    legend.min, legend.max
+                )
+            } else {
+                format!("{legend}\nmean absolute error: {mae:.5}")
+            };
+            Some((image, text))
         }
     }
 }
