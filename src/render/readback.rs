@@ -33,22 +33,6 @@ pub fn read_texture_region(
     Ok(out)
 }
 
-/// A texture of 32-bit floats (`channels` per texel), read straight into floats.
-pub fn read_texture_f32s(
-    device: &wgpu::Device,
-    queue: &wgpu::Queue,
-    texture: &wgpu::Texture,
-    layer: u32,
-    size: (u32, u32),
-    channels: u32,
-    aspect: wgpu::TextureAspect,
-) -> Result<Vec<f32>, RenderError> {
-    let mut out = Vec::with_capacity((size.0 * size.1 * channels) as usize);
-    let region = Region { layer, origin: (0, 0), size, bytes_per_texel: 4 * channels, aspect };
-    for_each_row(device, queue, texture, region, |row| out.extend(f32s(row)))?;
-    Ok(out)
-}
-
 /// Which texels of a texture to read.
 #[derive(Clone, Copy)]
 pub struct Region {
