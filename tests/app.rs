@@ -250,6 +250,29 @@ fn opening_an_obj_builds_a_scene_around_it() {
     assert_eq!(app.scene.objects[1].name, "blender_export.obj");
     assert_eq!(app.scene.lights.len(), 1);
     assert!(app.camera_image().is_some());
+    // The light's frustum is fitted to the model: it holds the model (scaled to 10 units) and
+    // the shadow its top casts on the floor, and not much more.
+    let light = &app.scene.lights[0];
+    let shadowlab::scene::LightKind::Directional { extent_world } = light.kind else { panic!("directional") };
+    let clip = light.clip_from_world(0.0);
+    let to_floor = -(light.target - light.position).normalize();
+    for object in &app.scene.objects[1..] {
+        let (lo, hi) = object.mesh.bounds();
+        for corner in 0..8 {
+            let pick = |bit: u32, a: f32, b: f32| if corner & bit == 0 { a } else { b };
+            let local = glam::Vec3::new(pick(1, lo.x, hi.x), pick(2, lo.y, hi.y), pick(4, lo.z, hi.z));
+            let world = object.world_from_object(0.0).transform_point3(local);
+            let shadow_tip = world - to_floor * (world.y / to_floor.y);
+            for p in [world, shadow_tip] {
+                let ndc = clip.project_point3(p);
+                assert!(
+                    ndc.x.abs() <= 1.0 && ndc.y.abs() <= 1.0,
+                    "{p} is outside the light's frustum ({ndc})"
+                );
+            }
+        }
+    }
+    assert!(extent_world < 16.0, "a 10-unit model needs no {extent_world}-unit half-width");
 }
 
 #[test]
@@ -523,4 +546,37 @@ fn in_chinese_every_panel_label_is_chinese() {
         }
     }
     assert!(english.is_empty(), "English left in the Chinese UI (add it to src/ui/strings.rs): {english:#?}");
+}
+
+#[test]
+fn the_ab_divider_follows_a_fast_drag_that_started_on_it() {
+    let mut h = harness();
+    h.state_mut().ab =
+        Some(shadowlab::ui::AbSplit { b: shadowlab::scene::Technique::Hard, divider: 0.5, grabbed: false });
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    let view = shadowlab::ui::landmark(&h.ctx, shadowlab::ui::LANDMARK_CAMERA_VIEW).expect("the camera view");
+    let camera = *h.state().camera();
+    let start = egui::pos2(view.center().x, view.center().y);
+    // Press on the divider, then one fast move far past the grab margin, then release.
+    let end = start + egui::vec2(-0.3 * view.width(), 40.0);
+    h.hover_at(start);
+    h.run_steps(1);
+    let button = |pos, pressed| egui::Event::PointerButton {
+        pos,
+        button: egui::PointerButton::Primary,
+        pressed,
+        modifiers: Default::default(),
+    };
+    h.event(button(start, true));
+    h.run_steps(1);
+    for k in 1..=3 {
+        h.event(egui::Event::PointerMoved(start + (end - start) * (k as f32 / 3.0)));
+        h.run_steps(1);
+    }
+    h.event(button(end, false));
+    settle(&mut h);
+    let divider = h.state().ab.as_ref().expect("A/B still on").divider;
+    assert!((divider - 0.2).abs() < 0.02, "the divider should follow the pointer to 0.2 ({divider})");
+    assert_eq!(*h.state().camera(), camera, "dragging the divider must not orbit the camera");
 }

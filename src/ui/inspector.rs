@@ -57,7 +57,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         .on_hover_text(tr("drag the divider in the camera view"))
         .changed()
     {
-        app.ab = ab_on.then_some(AbSplit { b: Technique::Hard, divider: 0.5 });
+        app.ab = ab_on.then_some(AbSplit { b: Technique::Hard, divider: 0.5, grabbed: false });
         changed = true;
     }
     if let Some(ab) = &mut app.ab {

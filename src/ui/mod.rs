@@ -43,6 +43,8 @@ pub struct AbSplit {
     pub b: Technique,
     /// Divider position, 0..1 of the view width.
     pub divider: f32,
+    /// A drag that started on the divider moves it until release, however fast the pointer goes.
+    pub grabbed: bool,
 }
 
 pub struct ShadowlabApp {
@@ -114,6 +116,15 @@ pub fn scene_for_obj(path: &Path) -> Result<Scene, String> {
     let extent = (hi - lo).max_element().max(1e-6);
     let scale = 10.0 / extent;
     let lift = -lo.y * scale;
+    // The light's frustum fitted to the model and its shadow: the model's footprint (half its
+    // XZ diagonal from the origin) plus how far its top's shadow reaches along the light, with a
+    // 15% margin. The light shines from (10, 40, 20) towards the origin.
+    let size = (hi - lo) * scale;
+    let centre_xz = ((lo + hi) * 0.5 * scale).truncate();
+    let footprint = centre_xz.length() + 0.5 * (size.x * size.x + size.z * size.z).sqrt();
+    let light_dir = glam::Vec3::new(10.0, 40.0, 20.0).normalize();
+    let reach = size.y * (light_dir.x * light_dir.x + light_dir.z * light_dir.z).sqrt() / light_dir.y;
+    let light_extent = 1.15 * (footprint + reach);
     let text = format!(
         r#"[camera]
 position = [18.0, 14.0, 18.0]
@@ -131,7 +142,7 @@ translate = [0.0, {lift}, 0.0]
 [[light]]
 kind = "directional"
 position = [10.0, 40.0, 20.0]
-extent = 20.0
+extent = {light_extent}
 far = 120.0
 width = 2.0
 "#
@@ -419,6 +430,7 @@ fn spawn_worker(cc: &eframe::CreationContext<'_>) -> (Option<RenderWorker>, Opti
 /// Where some widgets were last drawn, for tools that drive the app (`bench --app --window`).
 pub const LANDMARK_LIGHT_WIDTH: &str = "light-width slider";
 pub const LANDMARK_SHADOW_MAP: &str = "shadow-map picture";
+pub const LANDMARK_CAMERA_VIEW: &str = "camera view";
 
 fn set_landmark(ctx: &egui::Context, name: &'static str, rect: egui::Rect) {
     ctx.data_mut(|d| d.insert_temp(egui::Id::NULL.with(("landmark", name)), rect));

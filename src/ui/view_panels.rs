@@ -250,6 +250,7 @@ fn probe_marker(app: &ShadowlabApp, rect: Rect) -> Option<Pos2> {
 
 fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let response = ui.interact(rect, ui.scope_id().with("camera view"), Sense::click_and_drag());
+    super::set_landmark(ui.ctx(), super::LANDMARK_CAMERA_VIEW, rect);
     let painter = ui.painter_at(rect);
     let uv = Rect::from_min_max(Pos2::ZERO, pos2(1.0, 1.0));
     match (app.camera_panel_view(), &app.view_state.view_image, &app.view_state.map) {
@@ -302,10 +303,18 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     if let Some(ab) = &mut app.ab
         && let Some(pos) = response.interact_pointer_pos()
     {
+        // Grabbed on press (near the divider), held until release.
         let x = rect.left() + rect.width() * ab.divider;
-        if response.dragged_by(egui::PointerButton::Primary) && (pos.x - x).abs() < 12.0 {
+        if response.drag_started_by(egui::PointerButton::Primary) {
+            let press = ui.input(|i| i.pointer.press_origin()).unwrap_or(pos);
+            ab.grabbed = (press.x - x).abs() < 12.0;
+        }
+        if ab.grabbed && response.dragged_by(egui::PointerButton::Primary) {
             ab.divider = ((pos.x - rect.left()) / rect.width()).clamp(0.02, 0.98);
             handled = true;
+        }
+        if response.drag_stopped() {
+            ab.grabbed = false;
         }
     }
     let delta = response.drag_delta();
