@@ -580,3 +580,37 @@ fn the_ab_divider_follows_a_fast_drag_that_started_on_it() {
     assert!((divider - 0.2).abs() < 0.02, "the divider should follow the pointer to 0.2 ({divider})");
     assert_eq!(*h.state().camera(), camera, "dragging the divider must not orbit the camera");
 }
+
+#[test]
+fn a_screenshot_saves_what_the_panels_show_under_an_absolute_path() {
+    let mut h = harness();
+    // A relative folder, as a user may type it: the app must say where the files really went.
+    let relative = std::path::PathBuf::from(format!("target/test-screenshots-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&relative);
+    h.state_mut().settings.screenshot_dir = relative.clone();
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("the PCSS lesson");
+    h.state_mut().go_to_step(lesson, 0);
+    settle(&mut h);
+    // Let the layout settle too (the lesson panel's scroll bar), then render at that size.
+    h.run_steps(3);
+    settle(&mut h);
+    h.get_by_label("Screenshot").click();
+    for _ in 0..4 {
+        h.run_steps(1);
+    }
+    let status = h.state().status.clone();
+    let absolute = std::path::absolute(&relative).expect("absolute");
+    assert!(status.contains(&absolute.display().to_string()), "status: {status}");
+    let camera = image::open(absolute.join("shot-001-camera.png")).expect("the camera view PNG").to_rgba8();
+    let shown = h.state().camera_image().expect("the camera view");
+    assert_eq!(camera.dimensions(), shown.dimensions());
+    // The PNG carries the penumbra overlay and the probe's ring, as the panel does.
+    let ring = camera.pixels().filter(|p| p.0 == [255, 210, 0, 255]).count();
+    assert!(ring > 20, "the probe marker is missing ({ring} marker pixels)");
+    let differs = camera.pixels().zip(shown.pixels()).filter(|(a, b)| a != b).count();
+    assert!(differs > 1000, "the overlay is missing ({differs} pixels differ from the bare render)");
+    assert!(
+        absolute.join("shot-001-window.png").exists() && absolute.join("shot-001-shadow-map.png").exists()
+    );
+    let _ = std::fs::remove_dir_all(&relative);
+}

@@ -120,7 +120,8 @@ impl ShadowlabApp {
                 }
                 ui.separator();
             }
-            ui.label(&self.status);
+            // Truncated: a long message (the saved files' paths) must not widen the window's layout.
+            ui.add(egui::Label::new(&self.status).truncate()).on_hover_text(&self.status);
             if !self.settings.show_timings {
                 return;
             }

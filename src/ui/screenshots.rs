@@ -1,6 +1,7 @@
 //! Screenshots: the window as egui painted it, and each view as rendered, as PNGs.
 
 use super::ShadowlabApp;
+use crate::views::View;
 use std::path::PathBuf;
 
 impl ShadowlabApp {
@@ -32,8 +33,43 @@ impl ShadowlabApp {
         }
     }
 
+    /// The camera panel as drawn: the view shown, its overlays and the probe's marker.
+    fn camera_picture(&self) -> Option<image::RgbaImage> {
+        let mut picture = match self.camera_panel_view() {
+            View::Final | View::ShadowMap => self.shown.color.clone()?,
+            _ => self.view_state.view_picture.clone()?,
+        };
+        let (w, h) = picture.dimensions();
+        if let Some(overlay) = self.view_state.overlay_picture.as_ref().filter(|_| !self.overlays_stale())
+            && overlay.dimensions() == (w, h)
+        {
+            for (under, over) in picture.pixels_mut().zip(overlay.pixels()) {
+                let a = f32::from(over[3]) / 255.0;
+                for k in 0..3 {
+                    under[k] = (f32::from(over[k]) * a + f32::from(under[k]) * (1.0 - a)).round() as u8;
+                }
+            }
+        }
+        if let Some((fx, fy)) = self.probe_fraction(w as f32 / h.max(1) as f32) {
+            // The marker as on screen: a yellow ring of radius 7 and 2 px wide.
+            let (cx, cy) = (fx * w as f32, fy * h as f32);
+            let span = |c: f32, size: u32| (c - 9.0).max(0.0) as u32..((c + 9.0).max(0.0) as u32).min(size);
+            for y in span(cy, h) {
+                for x in span(cx, w) {
+                    let d = ((x as f32 + 0.5 - cx).powi(2) + (y as f32 + 0.5 - cy).powi(2)).sqrt();
+                    if (d - 7.0).abs() <= 1.0 {
+                        picture.put_pixel(x, y, image::Rgba([255, 210, 0, 255]));
+                    }
+                }
+            }
+        }
+        Some(picture)
+    }
+
     pub(super) fn save_screenshot(&mut self, window: &egui::ColorImage) -> Result<Vec<PathBuf>, String> {
-        let dir = self.settings.screenshot_dir.clone();
+        // Reported and written as an absolute path: the working directory is nobody's business.
+        let dir = std::path::absolute(&self.settings.screenshot_dir)
+            .map_err(|e| format!("{}: {e}", self.settings.screenshot_dir.display()))?;
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let n = (1..10_000).find(|n| !dir.join(format!("shot-{n:03}-window.png")).exists()).unwrap_or(0);
         let mut written = Vec::new();
@@ -43,8 +79,8 @@ impl ShadowlabApp {
         if let Some(img) = image::RgbaImage::from_raw(w as u32, h as u32, bytes) {
             images.push(("window", img));
         }
-        if let Some(img) = &self.shown.color {
-            images.push(("camera", img.clone()));
+        if let Some(img) = self.camera_picture() {
+            images.push(("camera", img));
         }
         if let Some((map, light)) = self.view_state.map() {
             images.push(("shadow-map", crate::views::shadow_map_image(map, light).0));

@@ -22,6 +22,9 @@ pub struct ViewState {
     /// The camera panel's debug view (visibility, heatmaps, reference, error) and its legend.
     view_image: Option<egui::TextureHandle>,
     view_legend: Option<String>,
+    /// The pictures behind `view_image` and `overlay`, for the per-view screenshot.
+    pub(super) view_picture: Option<image::RgbaImage>,
+    pub(super) overlay_picture: Option<image::RgbaImage>,
     map: Option<(egui::TextureHandle, DepthImage, LightGpu)>,
     /// Linear depth range of the shown map, world units.
     map_range: (f32, f32),
@@ -70,6 +73,8 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     // The debug view from the analysis pass (and the ground truth).
     app.view_state.view_image = None;
     app.view_state.view_legend = None;
+    app.view_state.view_picture = None;
+    app.view_state.overlay_picture = None;
     if let Some(analysis) = &app.analysis {
         let samples = app.scene.shadow.reference_samples;
         if let Some((image, legend)) =
@@ -78,6 +83,7 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
             app.view_state.view_image =
                 Some(ctx.load_texture("debug view", color_image(&image), egui::TextureOptions::NEAREST));
             app.view_state.view_legend = Some(legend);
+            app.view_state.view_picture = Some(image);
         }
     }
     // Overlays from the analysis pass.
@@ -99,6 +105,7 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
         if !overlays.is_empty() {
             app.view_state.overlay =
                 Some(ctx.load_texture("overlay", color_image(&image), egui::TextureOptions::NEAREST));
+            app.view_state.overlay_picture = Some(image);
         }
     }
 }
@@ -231,19 +238,23 @@ fn view_selector(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
 /// Where the probe's marker goes in the camera view: the clicked point, or, for a lesson's probe
 /// (probed in the lesson's own frame), where its surface point projects in this view.
 fn probe_marker(app: &ShadowlabApp, rect: Rect) -> Option<Pos2> {
-    match app.probe_at? {
-        ProbeAt::View(fx, fy) => Some(pos2(rect.left() + fx * rect.width(), rect.top() + fy * rect.height())),
-        ProbeAt::LessonFrame(..) => {
-            let world = glam::Vec3::from(app.probe.as_ref()?.world_position?);
-            let clip =
-                app.scene.camera.clip_from_world(rect.width() / rect.height().max(1.0)) * world.extend(1.0);
-            (clip.w > 0.0).then(|| {
-                let ndc = clip.truncate() / clip.w;
-                pos2(
-                    rect.left() + (ndc.x * 0.5 + 0.5) * rect.width(),
-                    rect.top() + (0.5 - ndc.y * 0.5) * rect.height(),
-                )
-            })
+    let (fx, fy) = app.probe_fraction(rect.width() / rect.height().max(1.0))?;
+    Some(pos2(rect.left() + fx * rect.width(), rect.top() + fy * rect.height()))
+}
+
+impl ShadowlabApp {
+    /// The probe's marker as fractions of a camera view of this aspect (width / height).
+    pub(super) fn probe_fraction(&self, aspect: f32) -> Option<(f32, f32)> {
+        match self.probe_at? {
+            ProbeAt::View(fx, fy) => Some((fx, fy)),
+            ProbeAt::LessonFrame(..) => {
+                let world = glam::Vec3::from(self.probe.as_ref()?.world_position?);
+                let clip = self.scene.camera.clip_from_world(aspect) * world.extend(1.0);
+                (clip.w > 0.0).then(|| {
+                    let ndc = clip.truncate() / clip.w;
+                    (ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5)
+                })
+            }
         }
     }
 }
