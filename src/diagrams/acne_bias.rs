@@ -105,7 +105,10 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     for j in 0..=steps {
         let x = j as f32 / steps as f32 * nf;
         let i = (x.floor() as usize).min(n - 1);
-        let shadowed = v.surf(x) - bias_tx > v.stored(i) + 1e-4;
+        // With front faces culled the map holds the object's far side: the lit surface (before
+        // the contact) is never compared with itself, whatever the bias; the blocker still is.
+        let self_test = x <= v.contact;
+        let shadowed = !(inp.cull_front_faces && self_test) && v.surf(x) - bias_tx > v.stored(i) + 1e-4;
         let verdict = match (x > v.contact, shadowed) {
             (false, false) => Verdict::Lit,
             (false, true) => Verdict::Acne,
@@ -186,7 +189,9 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     text.line(c, &format!("normal offset = {} texels", num(k_normal)));
     text.line(c, &format!("   = {} world of extra bias", num(normal_world)));
     text.y += 10.0;
-    let (verdict, vc) = if bias_eff < needed * 0.999 {
+    let (verdict, vc) = if inp.cull_front_faces {
+        (["front faces culled: the map holds", "back faces, so no acne here"], pal::LIT)
+    } else if bias_eff < needed * 0.999 {
         (["too little bias:", "acne (self-shadowing stripes)"], pal::BLOCKED)
     } else if bias_eff > needed * 3.0 {
         (["more bias than needed:", "shadow detaches (peter panning)"], pal::PENUMBRA)

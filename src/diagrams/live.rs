@@ -37,6 +37,7 @@ pub fn inputs_from_scene(
         objects_xz: objects_xz(scene, time_s),
         camera_xz: [scene.camera.position.x, scene.camera.position.z],
         clamp_outside: scene.shadow.clamp_outside,
+        cull_front_faces: scene.shadow.cull_front_faces,
         ..DiagramInputs::default()
     };
     let shadow = &scene.shadow;

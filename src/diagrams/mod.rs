@@ -127,6 +127,9 @@ pub struct DiagramInputs {
     pub outside_frustum: bool,
     /// Points outside the frustum count as lit (`clamp_outside`); otherwise the lookup wraps.
     pub clamp_outside: bool,
+    /// The shadow pass culls front faces: closed objects store their back faces, so a lit
+    /// surface is never compared with itself (`cull_front_faces`).
+    pub cull_front_faces: bool,
     pub lights: Vec<LightTopView>,
     /// Object centre and radius in the XZ plane (world).
     pub objects_xz: Vec<([f32; 2], f32)>,
@@ -177,6 +180,7 @@ impl Default for DiagramInputs {
             visibility: 0.5,
             outside_frustum: false,
             clamp_outside: true,
+            cull_front_faces: false,
             lights: vec![
                 LightTopView {
                     position_xz: [0.0, 80.0],

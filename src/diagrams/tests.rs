@@ -379,3 +379,14 @@ fn writes_default_pngs_for_inspection() {
     i.bias_ndc = 0.0;
     save("acne-bias-zero", DiagramKind::AcneBias, &i);
 }
+
+#[test]
+fn acne_bias_with_front_faces_culled_shows_no_acne_whatever_the_bias() {
+    let magenta =
+        |pm: &Pixmap| pm.pixels().iter().filter(|p| p.red() > 170 && p.green() < 60 && p.blue() > 90).count();
+    let acne = DiagramInputs { bias_ndc: 0.0, ..DiagramInputs::default() };
+    let culled = DiagramInputs { cull_front_faces: true, ..acne.clone() };
+    let with_acne = render(DiagramKind::AcneBias, &acne, 960, 540);
+    let without = render(DiagramKind::AcneBias, &culled, 960, 540);
+    assert!(magenta(&with_acne) > magenta(&without) + 200, "culling must remove the acne stripes");
+}
