@@ -614,3 +614,22 @@ fn a_screenshot_saves_what_the_panels_show_under_an_absolute_path() {
     );
     let _ = std::fs::remove_dir_all(&relative);
 }
+
+#[test]
+fn lessons_are_picked_from_their_own_list_first_in_the_top_bar_and_on_start() {
+    let mut h = harness();
+    let titles: Vec<String> = h.state().lessons.iter().map(|l| l.title.en.clone()).collect();
+    // The start list (the window shows it on a first start).
+    h.state_mut().show_lesson_list = true;
+    h.run_steps(2);
+    h.get_by_label(&format!("4. {}", titles[3])).click();
+    settle(&mut h);
+    assert_eq!(h.state().source, Source::Lesson { lesson: 3, step: 0 });
+    assert!(!h.state().show_lesson_list, "the list closes once a lesson is chosen");
+    // The lesson picker in the top bar.
+    h.get_by_label("lesson").click();
+    h.run_steps(2);
+    h.get_by_label(&format!("2. {}", titles[1])).click();
+    settle(&mut h);
+    assert_eq!(h.state().source, Source::Lesson { lesson: 1, step: 0 });
+}

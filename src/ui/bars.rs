@@ -13,13 +13,14 @@ impl ShadowlabApp {
         ui.horizontal_wrapped(|ui| {
             ui.strong("shadowlab");
             ui.separator();
-            self.source_selector(ui);
+            self.lesson_selector(ui);
+            self.scene_selector(ui);
             let file_label = ui.label(tr("file"));
             let field = ui
                 .add(
                     egui::TextEdit::singleline(&mut self.open_path)
                         .hint_text(tr("scene .toml or .obj path"))
-                        .desired_width(180.0),
+                        .desired_width(150.0),
                 )
                 .labelled_by(file_label.id);
             let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
@@ -62,22 +63,61 @@ impl ShadowlabApp {
         });
     }
 
-    pub(super) fn source_selector(&mut self, ui: &mut egui::Ui) {
+    /// The lessons come first: a teacher opens one, a student steps through it.
+    pub(super) fn lesson_selector(&mut self, ui: &mut egui::Ui) {
+        let lang = self.lang;
+        let tr = move |en: &'static str| tr(lang, en);
+        let current = match &self.source {
+            Source::Lesson { lesson, step } => self
+                .lessons
+                .get(*lesson)
+                .map(|l| {
+                    // Short enough for one top-bar line; the list shows the whole titles.
+                    let title = l.title.get(lang);
+                    let short: String = title.chars().take(24).collect();
+                    let cut = if short.len() < title.len() { "…" } else { "" };
+                    format!("{}. {short}{cut} · {}/{}", lesson + 1, step + 1, l.steps.len())
+                })
+                .unwrap_or_default(),
+            Source::Scene(_) => tr("(none: explore freely)").to_string(),
+        };
+        let mut choice = None;
+        let label = ui.label(tr("lesson"));
+        let combo =
+            egui::ComboBox::from_id_salt("lesson").selected_text(current).width(250.0).show_ui(ui, |ui| {
+                for (i, lesson) in self.lessons.iter().enumerate() {
+                    let selected = matches!(self.source, Source::Lesson { lesson, .. } if lesson == i);
+                    let item =
+                        ui.selectable_label(selected, format!("{}. {}", i + 1, lesson.title.get(lang)));
+                    if item.on_hover_text(lesson.summary.get(lang)).clicked() {
+                        choice = Some(i);
+                    }
+                }
+            });
+        combo.response.labelled_by(label.id);
+        if let Some(lesson) = choice {
+            self.go_to_step(lesson, 0);
+        }
+    }
+
+    /// The shipped scenes, to explore without a lesson.
+    pub(super) fn scene_selector(&mut self, ui: &mut egui::Ui) {
+        let lang = self.lang;
+        let tr = move |en: &'static str| tr(lang, en);
         let current = match &self.source {
             Source::Scene(p) => p.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default(),
             Source::Lesson { lesson, step } => self
                 .lessons
                 .get(*lesson)
-                .map(|l| format!("{} · {}/{}", l.title.get(self.lang), step + 1, l.steps.len()))
+                .and_then(|l| l.steps.get(*step))
+                .and_then(|s| s.scene_path.file_name())
+                .map(|n| n.to_string_lossy().to_string())
                 .unwrap_or_default(),
         };
-        let lang = self.lang;
-        let tr = move |en: &'static str| tr(lang, en);
-        let mut choice: Option<Result<PathBuf, usize>> = None;
+        let mut choice: Option<PathBuf> = None;
         let label = ui.label(tr("scene"));
         let combo =
-            egui::ComboBox::from_id_salt("source").selected_text(current).width(240.0).show_ui(ui, |ui| {
-                ui.label(tr("Scenes"));
+            egui::ComboBox::from_id_salt("source").selected_text(current).width(130.0).show_ui(ui, |ui| {
                 let mut scenes: Vec<PathBuf> = std::fs::read_dir(shipped_path("assets/scenes"))
                     .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
                     .unwrap_or_default();
@@ -86,27 +126,56 @@ impl ShadowlabApp {
                 for path in scenes {
                     let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
                     if ui.selectable_label(self.source == Source::Scene(path.clone()), name).clicked() {
-                        choice = Some(Ok(path));
-                    }
-                }
-                ui.separator();
-                ui.label(tr("Lessons"));
-                for (i, lesson) in self.lessons.iter().enumerate() {
-                    let selected = matches!(self.source, Source::Lesson { lesson, .. } if lesson == i);
-                    if ui
-                        .selectable_label(selected, format!("{}. {}", i + 1, lesson.title.get(self.lang)))
-                        .clicked()
-                    {
-                        choice = Some(Err(i));
+                        choice = Some(path);
                     }
                 }
             });
         combo.response.labelled_by(label.id);
-        match choice {
-            Some(Ok(path)) => self.open(&path),
-            Some(Err(lesson)) => self.go_to_step(lesson, 0),
-            None => {}
+        if let Some(path) = choice {
+            self.open(&path);
         }
+    }
+
+    /// On start: the lessons, with what each teaches, or free exploration.
+    pub(super) fn lesson_list(&mut self, ctx: &egui::Context) {
+        if !self.show_lesson_list {
+            return;
+        }
+        let lang = self.lang;
+        let tr = move |en: &'static str| tr(lang, en);
+        let mut open = true;
+        let mut choice = None;
+        egui::Window::new(tr("Lessons"))
+            .open(&mut open)
+            .collapsible(false)
+            .resizable(false)
+            .default_width(560.0)
+            .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
+            .show(ctx, |ui| {
+                for (i, lesson) in self.lessons.iter().enumerate() {
+                    if ui
+                        .button(
+                            egui::RichText::new(format!("{}. {}", i + 1, lesson.title.get(lang))).size(17.0),
+                        )
+                        .clicked()
+                    {
+                        choice = Some(Some(i));
+                    }
+                    ui.label(lesson.summary.get(lang));
+                    ui.add_space(6.0);
+                }
+                ui.separator();
+                if ui.button(tr("Explore freely (no lesson)")).clicked() {
+                    choice = Some(None);
+                }
+            });
+        if let Some(lesson) = choice {
+            if let Some(i) = lesson {
+                self.go_to_step(i, 0);
+            }
+            open = false;
+        }
+        self.show_lesson_list = open;
     }
 
     pub(super) fn status_bar(&mut self, ui: &mut egui::Ui) {

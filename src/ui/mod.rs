@@ -83,6 +83,8 @@ pub struct ShadowlabApp {
     pub error: Option<String>,
     pub status: String,
     pub show_help: bool,
+    /// The lesson list shown on start (the window only; tests and tools start without it).
+    pub show_lesson_list: bool,
     /// In a lesson: show every panel, not only the ones the step names.
     pub show_all_panels: bool,
     /// Point the camera at the probe's surface point once the probe is computed (double-click).
@@ -157,7 +159,10 @@ impl ShadowlabApp {
         install_cjk_font(&cc.egui_ctx);
         cc.egui_ctx.set_visuals(egui::Visuals::dark());
         let (worker, gpu_error) = spawn_worker(cc);
-        Self::with_settings(worker, gpu_error, settings)
+        let mut app = Self::with_settings(worker, gpu_error, settings);
+        // A first start (or one that ended outside a lesson) offers the lessons.
+        app.show_lesson_list = app.current_step().is_none();
+        app
     }
 
     fn with_settings(worker: Option<RenderWorker>, gpu_error: Option<String>, settings: Settings) -> Self {
@@ -205,6 +210,7 @@ impl ShadowlabApp {
             error,
             status: String::new(),
             show_help: false,
+            show_lesson_list: false,
             show_all_panels: false,
             focus_on_probe: false,
             dirty: true,
@@ -503,6 +509,7 @@ impl eframe::App for ShadowlabApp {
         }
         egui::CentralPanel::default().show(ui, |ui| view_panels::show(self, ui));
         self.help_window(&ctx);
+        self.lesson_list(&ctx);
         if self.dirty {
             ctx.request_repaint();
         }

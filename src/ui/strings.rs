@@ -10,6 +10,9 @@ use std::sync::OnceLock;
 const ZH: &[(&str, &str)] = &[
     // Top bar, status bar and help.
     ("scene", "场景"),
+    ("lesson", "课程"),
+    ("(none: explore freely)", "（无：自由探索）"),
+    ("Explore freely (no lesson)", "自由探索（不选课程）"),
     ("Scenes", "场景"),
     ("Lessons", "课程"),
     ("file", "文件"),
