@@ -633,3 +633,36 @@ fn lessons_are_picked_from_their_own_list_first_in_the_top_bar_and_on_start() {
     settle(&mut h);
     assert_eq!(h.state().source, Source::Lesson { lesson: 1, step: 0 });
 }
+
+#[test]
+fn f5_presents_the_views_diagram_and_lesson_text_alone_and_esc_returns() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("the PCSS lesson");
+    h.state_mut().go_to_step(lesson, 1);
+    settle(&mut h);
+    let normal_view = shadowlab::ui::landmark(&h.ctx, shadowlab::ui::LANDMARK_CAMERA_VIEW).expect("view");
+    let key = |h: &mut Harness<'_, ShadowlabApp>, key| {
+        h.event(egui::Event::Key {
+            key,
+            physical_key: None,
+            pressed: true,
+            repeat: false,
+            modifiers: Default::default(),
+        });
+        h.run_steps(2);
+    };
+    key(&mut h, egui::Key::F5);
+    settle(&mut h);
+    assert!(h.state().present);
+    assert!(h.query_by_label("Technique").is_none(), "the inspector is hidden");
+    assert!(h.query_by_label("Screenshot").is_none(), "the top bar is hidden");
+    h.get_by_label("F5 or Esc: leave present mode");
+    let step = h.state().current_step().map(|(_, s, _)| s.clone()).expect("step");
+    h.get_by_label(&step.text_filled(shadowlab::lessons::Lang::En, h.state().probe_report()));
+    let present_view = shadowlab::ui::landmark(&h.ctx, shadowlab::ui::LANDMARK_CAMERA_VIEW).expect("view");
+    assert!(present_view.width() > normal_view.width() * 1.1, "{present_view:?} vs {normal_view:?}");
+    h.get_by_label("Shadow map");
+    key(&mut h, egui::Key::Escape);
+    assert!(!h.state().present);
+    h.get_by_label("Technique");
+}

@@ -60,6 +60,13 @@ impl ShadowlabApp {
             if ui.button(tr("F1 Help")).clicked() {
                 self.show_help = !self.show_help;
             }
+            if ui
+                .button(tr("Present (F5)"))
+                .on_hover_text(tr("camera view, map, diagram and lesson text, large"))
+                .clicked()
+            {
+                self.present = true;
+            }
         });
     }
 
@@ -211,6 +218,7 @@ impl ShadowlabApp {
                     ("S", "screenshot (window and each view)"),
                     ("F1", "this help"),
                     ("R", "reset the camera"),
+                    ("F5", "present mode (Esc leaves it)"),
                     ("Left-drag (camera view)", "orbit"),
                     ("Right- or middle-drag", "pan"),
                     ("Wheel", "zoom"),

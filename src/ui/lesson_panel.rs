@@ -26,12 +26,18 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
             app.step_lesson(1);
         }
     });
-    ui.checkbox(&mut app.show_all_panels, tr("show every panel"));
+    // Present mode (F5): larger text for a projector, and a way back.
+    let (body, heading) = if app.present { (22.0, 30.0) } else { (15.0, 20.0) };
+    if app.present {
+        ui.label(RichText::new(tr("F5 or Esc: leave present mode")).weak());
+    } else {
+        ui.checkbox(&mut app.show_all_panels, tr("show every panel"));
+    }
     ui.separator();
     ui.label(RichText::new(lesson_title).small());
-    ui.heading(title);
+    ui.label(RichText::new(title).size(heading).strong());
     ui.add_space(4.0);
-    ui.label(RichText::new(text).size(15.0));
+    ui.label(RichText::new(text).size(body));
     // The numbers follow whatever probe is pinned; say so when it is not the lesson's own.
     if lesson_probe.is_some() && app.probe_at != lesson_probe {
         let (note, back) = match lang {
@@ -53,7 +59,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
             Lang::Zh => "试一试",
         });
         for t in tries {
-            ui.label(format!("• {t}"));
+            ui.label(RichText::new(format!("• {t}")).size(body * 0.8));
         }
     }
     if app.panel_visible(Panel::Probe) && app.probe_report().is_some() {

@@ -83,6 +83,9 @@ pub struct ShadowlabApp {
     pub error: Option<String>,
     pub status: String,
     pub show_help: bool,
+    /// Present mode (F5): the camera view, the map, the diagram and the lesson text, large, for a
+    /// projector; everything else hidden.
+    pub present: bool,
     /// The lesson list shown on start (the window only; tests and tools start without it).
     pub show_lesson_list: bool,
     /// In a lesson: show every panel, not only the ones the step names.
@@ -210,6 +213,7 @@ impl ShadowlabApp {
             error,
             status: String::new(),
             show_help: false,
+            present: false,
             show_lesson_list: false,
             show_all_panels: false,
             focus_on_probe: false,
@@ -299,6 +303,8 @@ impl ShadowlabApp {
                     self.diagram = d;
                 }
                 self.settings.last_lesson = Some((id, step));
+                // However the lesson was opened (list, picker, arrow keys), the start list is done.
+                self.show_lesson_list = false;
                 self.error = None;
             }
             Err(e) => self.error = Some(format!("{}: step {}: {e}", l.path.display(), step + 1)),
@@ -389,6 +395,13 @@ impl ShadowlabApp {
                 i.key_pressed(egui::Key::R),
             )
         });
+        if ctx.input(|i| i.key_pressed(egui::Key::F5)) {
+            self.present = !self.present;
+        }
+        if ctx.input(|i| i.key_pressed(egui::Key::Escape)) {
+            self.present = false;
+            self.show_lesson_list = false;
+        }
         if right {
             self.step_lesson(1);
         }
@@ -486,26 +499,44 @@ impl eframe::App for ShadowlabApp {
         if self.screenshot_pending {
             ctx.request_repaint();
         }
-        egui::Panel::top("top").show(ui, |ui| self.top_bar(ui));
-        egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
-        let inspector = egui::Panel::left("inspector")
-            .resizable(true)
-            .default_size(self.settings.inspector_width)
-            .show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| inspector::show(self, ui));
-            });
-        self.settings.inspector_width = inspector.response.rect.width();
+        let screen = ui.max_rect();
+        if !self.present {
+            egui::Panel::top("top").show(ui, |ui| self.top_bar(ui));
+            egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
+            let inspector = egui::Panel::left("inspector")
+                .resizable(true)
+                .default_size(self.settings.inspector_width)
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| inspector::show(self, ui));
+                });
+            self.settings.inspector_width = inspector.response.rect.width();
+        }
         if self.current_step().is_some() {
-            egui::Panel::right("lesson").resizable(true).default_size(320.0).show(ui, |ui| {
+            let panel = if self.present {
+                // A third of the screen for the text, at a size the back row can read.
+                egui::Panel::right("lesson (present)")
+                    .resizable(false)
+                    .exact_size((screen.width() * 0.3).max(360.0))
+            } else {
+                egui::Panel::right("lesson").resizable(true).default_size(320.0)
+            };
+            panel.show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| lesson_panel::show(self, ui));
             });
         }
         if self.panel_visible(lessons::Panel::Diagram) || self.panel_visible(lessons::Panel::KernelPlot) {
-            let diagrams = egui::Panel::bottom("diagrams")
-                .resizable(true)
-                .default_size(self.settings.diagram_height)
-                .show(ui, |ui| panels::show_bottom(self, ui));
-            self.settings.diagram_height = diagrams.response.rect.height();
+            if self.present {
+                egui::Panel::bottom("diagrams (present)")
+                    .resizable(false)
+                    .exact_size(screen.height() * 0.4)
+                    .show(ui, |ui| panels::show_bottom(self, ui));
+            } else {
+                let diagrams = egui::Panel::bottom("diagrams")
+                    .resizable(true)
+                    .default_size(self.settings.diagram_height)
+                    .show(ui, |ui| panels::show_bottom(self, ui));
+                self.settings.diagram_height = diagrams.response.rect.height();
+            }
         }
         egui::CentralPanel::default().show(ui, |ui| view_panels::show(self, ui));
         self.help_window(&ctx);
