@@ -666,3 +666,28 @@ fn f5_presents_the_views_diagram_and_lesson_text_alone_and_esc_returns() {
     assert!(!h.state().present);
     h.get_by_label("Technique");
 }
+
+#[test]
+fn a_small_window_keeps_a_usable_camera_view_even_with_large_saved_panels() {
+    let mut setup = egui_kittest::wgpu::default_wgpu_setup();
+    if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
+        setup = eframe::egui_wgpu::WgpuSetup::CreateNew(shadowlab::ui::configure_wgpu(create));
+    }
+    // Panel sizes saved from a large window.
+    let settings = Settings {
+        show_timings: false,
+        inspector_width: 700.0,
+        diagram_height: 600.0,
+        ..Settings::default()
+    };
+    let mut h = Harness::builder()
+        .with_size([800.0, 500.0])
+        .wgpu_setup(setup)
+        .build_eframe(move |cc| app_for_test(cc, settings.clone()));
+    settle(&mut h);
+    let view = shadowlab::ui::landmark(&h.ctx, shadowlab::ui::LANDMARK_CAMERA_VIEW).expect("the camera view");
+    assert!(
+        view.width() >= 0.3 * 800.0 && view.height() >= 0.25 * 500.0,
+        "camera view {view:?} in an 800x500 window"
+    );
+}

@@ -503,9 +503,12 @@ impl eframe::App for ShadowlabApp {
         if !self.present {
             egui::Panel::top("top").show(ui, |ui| self.top_bar(ui));
             egui::Panel::bottom("status").show(ui, |ui| self.status_bar(ui));
+            // Panel sizes are kept between runs, but never beyond a share of this window: a size
+            // saved in a large window (or shrunk in a tiny one) must not crowd out the views.
             let inspector = egui::Panel::left("inspector")
                 .resizable(true)
-                .default_size(self.settings.inspector_width)
+                .default_size(self.settings.inspector_width.clamp(220.0, (screen.width() * 0.3).max(220.0)))
+                .max_size((screen.width() * 0.35).max(220.0))
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| inspector::show(self, ui));
                 });
@@ -518,7 +521,10 @@ impl eframe::App for ShadowlabApp {
                     .resizable(false)
                     .exact_size((screen.width() * 0.3).max(360.0))
             } else {
-                egui::Panel::right("lesson").resizable(true).default_size(320.0)
+                egui::Panel::right("lesson")
+                    .resizable(true)
+                    .default_size(320.0)
+                    .max_size((screen.width() * 0.35).max(240.0))
             };
             panel.show(ui, |ui| {
                 egui::ScrollArea::vertical().show(ui, |ui| lesson_panel::show(self, ui));
@@ -533,7 +539,10 @@ impl eframe::App for ShadowlabApp {
             } else {
                 let diagrams = egui::Panel::bottom("diagrams")
                     .resizable(true)
-                    .default_size(self.settings.diagram_height)
+                    .default_size(
+                        self.settings.diagram_height.clamp(140.0, (screen.height() * 0.4).max(140.0)),
+                    )
+                    .max_size((screen.height() * 0.45).max(140.0))
                     .show(ui, |ui| panels::show_bottom(self, ui));
                 self.settings.diagram_height = diagrams.response.rect.height();
             }
