@@ -183,7 +183,7 @@ pub fn legend_caption(summary: &str, lang: Lang) -> String {
         .collect();
     let mut s = shortened.join(" · ").replace("  ", " ");
     if lang == Lang::Zh {
-        const ZH: [(&str, &str); 12] = [
+        const ZH: [(&str, &str); 18] = [
             ("visibility: black = shadowed, white = lit", "可见度：黑 = 阴影，白 = 受光"),
             ("|visibility - reference|:", "|可见度 − 参考真值|："),
             ("blocker-search radius:", "遮挡物搜索半径："),
@@ -193,6 +193,21 @@ pub fn legend_caption(summary: &str, lang: Lang) -> String {
             ("hard shadows averaged", "个硬阴影的平均"),
             ("reference:", "参考真值："),
             ("mean absolute error:", "平均绝对误差："),
+            (
+                "orange: outside the light's frustum (no shadow-map data)",
+                "橙色：光源视锥之外（没有阴影贴图数据）",
+            ),
+            (
+                "light frusta: yellow = this light, blue = the others",
+                "光源视锥：黄色 = 本光源，蓝色 = 其他光源",
+            ),
+            (
+                "texel grid: lines where the shadow-map texel changes",
+                "纹素网格：线条标出阴影贴图纹素变化的地方",
+            ),
+            ("|visibility − ground truth|:", "|可见度 − 真实结果|："),
+            ("mean", "平均"),
+            ("map)", "贴图）"),
             ("texels", "纹素"),
             ("taps", "次采样"),
             ("..", "至"),

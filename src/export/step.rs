@@ -3,7 +3,7 @@
 //! diagram inputs taken from it.
 
 use crate::diagrams::{DiagramInputs, DiagramKind, live};
-use crate::lessons::{Lesson, Step};
+use crate::lessons::{Lang, Lesson, Overlay, Step};
 use crate::probe::{ProbeReport, probe};
 use crate::render::{Analysis, FrameRequest, RenderError, Renderer};
 use crate::scene::{Scene, Technique};
@@ -133,7 +133,52 @@ pub fn render_step(
     let normal = report.as_ref().and_then(|r| r.normal);
     let inputs = live::inputs_from_scene(scene, light, time_s, light_probe, normal);
 
-    let (camera, camera_summary) = views::render_view(renderer, scene, view, light, time_s, size)?;
+    let (mut camera, mut camera_summary) = views::render_view(renderer, scene, view, light, time_s, size)?;
+    // The step's overlays, as the app draws them over the view (legends in the caption).
+    let overlays: Vec<Overlay> =
+        step.overlays.iter().copied().filter(|&o| !views::overlays::shown_by_view(view, o)).collect();
+    let analysis_overlays: Vec<Overlay> =
+        overlays.iter().copied().filter(|&o| o != Overlay::LightFrustum).collect();
+    if has_lights && !analysis_overlays.is_empty() {
+        let request = FrameRequest {
+            time_s,
+            size,
+            selected_light: light,
+            final_color: false,
+            analysis: true,
+            ..Default::default()
+        };
+        let frame = renderer.render(scene, &request)?;
+        let analysis = renderer.read_analysis()?;
+        let reference = if analysis_overlays.contains(&Overlay::Error) {
+            Some(renderer.render_reference(scene, light)?)
+        } else {
+            None
+        };
+        let light_gpu = frame.lights.get(light).copied();
+        let (image, legends) = views::overlays::compose(
+            Lang::En,
+            &analysis_overlays,
+            &analysis,
+            light_gpu.as_ref(),
+            reference.as_deref(),
+        );
+        views::overlays::blend_onto(&mut camera, &image);
+        let lines = camera_summary.into_iter().chain(legends);
+        camera_summary = Some(lines.collect::<Vec<_>>().join("\n")).filter(|s| !s.is_empty());
+    }
+    if has_lights && overlays.contains(&Overlay::LightFrustum) {
+        let lights = renderer.last_frame().map(|f| f.lights.clone()).unwrap_or_default();
+        let aspect = size.0 as f32 / size.1.max(1) as f32;
+        views::overlays::draw_light_frusta(
+            &mut camera,
+            &scene.camera.clip_from_world(aspect),
+            &lights,
+            light,
+        );
+        let legend = "light frusta: yellow = this light, blue = the others".to_string();
+        camera_summary = Some(camera_summary.map_or(legend.clone(), |s| format!("{s}\n{legend}")));
+    }
     let shadow_map = if has_lights {
         let map = renderer.read_shadow_map(light)?;
         let light_gpu = renderer

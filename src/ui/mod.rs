@@ -4,7 +4,6 @@
 mod bars;
 mod inspector;
 mod lesson_panel;
-mod overlays;
 mod panels;
 mod rendering;
 mod screenshots;

@@ -40,15 +40,8 @@ impl ShadowlabApp {
             _ => self.view_state.view_picture.clone()?,
         };
         let (w, h) = picture.dimensions();
-        if let Some(overlay) = self.view_state.overlay_picture.as_ref().filter(|_| !self.overlays_stale())
-            && overlay.dimensions() == (w, h)
-        {
-            for (under, over) in picture.pixels_mut().zip(overlay.pixels()) {
-                let a = f32::from(over[3]) / 255.0;
-                for k in 0..3 {
-                    under[k] = (f32::from(over[k]) * a + f32::from(under[k]) * (1.0 - a)).round() as u8;
-                }
-            }
+        if let Some(overlay) = self.view_state.overlay_picture.as_ref().filter(|_| !self.overlays_stale()) {
+            crate::views::overlays::blend_onto(&mut picture, overlay);
         }
         if let Some((fx, fy)) = self.probe_fraction(w as f32 / h.max(1) as f32) {
             // The marker as on screen: a yellow ring of radius 7 and 2 px wide.

@@ -90,17 +90,19 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     app.view_state.overlay = None;
     app.view_state.legends.clear();
     if let Some(analysis) = &app.analysis {
-        // An overlay of the quantity the view already shows would only hide it (and repeat its legend).
-        let shown_by_view = |o: &Overlay| match o {
-            Overlay::BlockerRadius => app.view == View::BlockerRadius,
-            Overlay::Penumbra => app.view == View::Penumbra,
-            Overlay::Blockers => app.view == View::Blockers,
-            Overlay::Error => app.view == View::Error,
-            _ => false,
-        };
-        let overlays: Vec<Overlay> = app.overlays.iter().copied().filter(|o| !shown_by_view(o)).collect();
-        let (image, legends) =
-            super::overlays::compose(app.lang, &overlays, analysis, light.as_ref(), app.reference.as_deref());
+        let overlays: Vec<Overlay> = app
+            .overlays
+            .iter()
+            .copied()
+            .filter(|&o| !crate::views::overlays::shown_by_view(app.view, o))
+            .collect();
+        let (image, legends) = crate::views::overlays::compose(
+            app.lang,
+            &overlays,
+            analysis,
+            light.as_ref(),
+            app.reference.as_deref(),
+        );
         app.view_state.legends = legends;
         if !overlays.is_empty() {
             app.view_state.overlay =
@@ -423,50 +425,13 @@ fn render_progress(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
 }
 
 /// Project a world point with `clip_from_world` into `rect`; None behind the eye.
-fn to_screen(clip_from_world: &Mat4, p: glam::Vec3, rect: Rect) -> Option<Pos2> {
-    let clip = *clip_from_world * p.extend(1.0);
-    (clip.w > 1e-4).then(|| {
-        let ndc = clip.truncate() / clip.w;
-        pos2(
-            rect.left() + (ndc.x * 0.5 + 0.5) * rect.width(),
-            rect.top() + (0.5 - ndc.y * 0.5) * rect.height(),
-        )
-    })
-}
-
 fn draw_light_frusta(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
+    use crate::views::overlays::{FRUSTUM_OTHER, FRUSTUM_SELECTED, light_frustum_edges};
     let camera = app.scene.camera.clip_from_world(rect.width() / rect.height().max(1.0));
-    for (i, light) in app.shown.lights.iter().enumerate() {
-        let world_from_clip = Mat4::from_cols_array_2d(&light.clip_from_world).inverse();
-        let corner = |x: f32, y: f32, z: f32| {
-            let w = world_from_clip * Vec4::new(x, y, z, 1.0);
-            w.truncate() / w.w
-        };
-        let c: Vec<glam::Vec3> = [
-            (-1., -1., 0.),
-            (1., -1., 0.),
-            (1., 1., 0.),
-            (-1., 1., 0.),
-            (-1., -1., 1.),
-            (1., -1., 1.),
-            (1., 1., 1.),
-            (-1., 1., 1.),
-        ]
-        .iter()
-        .map(|&(x, y, z)| corner(x, y, z))
-        .collect();
-        let color = if i == app.selected_light {
-            Color32::from_rgb(255, 200, 60)
-        } else {
-            Color32::from_rgb(120, 170, 255)
-        };
-        for (a, b) in
-            [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
-        {
-            if let (Some(pa), Some(pb)) = (to_screen(&camera, c[a], rect), to_screen(&camera, c[b], rect)) {
-                painter.line_segment([pa, pb], Stroke::new(1.5, color));
-            }
-        }
+    let at = |p: [f32; 2]| pos2(rect.left() + p[0] * rect.width(), rect.top() + p[1] * rect.height());
+    for (a, b, selected) in light_frustum_edges(&camera, &app.shown.lights, app.selected_light) {
+        let [r, g, bl] = if selected { FRUSTUM_SELECTED } else { FRUSTUM_OTHER };
+        painter.line_segment([at(a), at(b)], Stroke::new(1.5, Color32::from_rgb(r, g, bl)));
     }
 }
 

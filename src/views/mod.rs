@@ -1,6 +1,8 @@
 //! Debug views as images: the camera view, the shadow term, the shadow map, PCSS heatmaps,
 //! the ground truth and the error against it. Heatmaps come with the value range they map.
 
+pub mod overlays;
+
 use crate::lessons::Lang;
 use crate::render::{Analysis, DepthImage, LightGpu};
 use crate::shadow::depth_linear_from_ndc;

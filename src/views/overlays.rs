@@ -1,8 +1,7 @@
 //! Overlays on the camera view, computed from the analysis pass: PCSS heatmaps, the shadow-map
 //! texel grid projected on surfaces, the outside-the-frustum tint, and the error against the
-//! ground truth. Each comes with a legend line.
+//! ground truth. Each comes with a legend line. The app and the slides draw the same ones.
 
-use super::strings::tr;
 use crate::lessons::{Lang, Overlay};
 use crate::render::{Analysis, LightGpu};
 use crate::shadow::project_to_light;
@@ -32,7 +31,14 @@ pub fn compose(
                     .filter(|&i| analysis.hit(i))
                     .map(|i| analysis.shadow[i][channel])
                     .fold(0.0f32, f32::max);
-                let (label, unit) = (tr(lang, label), tr(lang, unit));
+                let (label, unit) = match lang {
+                    Lang::En => (label, unit),
+                    Lang::Zh => match channel {
+                        1 => ("遮挡物搜索半径", "纹素"),
+                        2 => ("半影宽度", "纹素"),
+                        _ => ("找到的遮挡物", "个采样点"),
+                    },
+                };
                 legends.push(match lang {
                     Lang::En => format!("{label}: 0 .. {max:.2} {unit} (dark blue .. yellow)"),
                     Lang::Zh => format!("{label}：0 .. {max:.2} {unit}（深蓝 .. 黄）"),
@@ -133,5 +139,113 @@ fn paint(image: &mut RgbaImage, analysis: &Analysis, color: impl Fn(usize) -> Op
             }
             pixel[3] = (out_a * 255.0).round() as u8;
         }
+    }
+}
+
+/// The edges of every light's frustum as seen by a camera (`clip_from_world` of the view), in
+/// fractions of the view (0..1 across, 0..1 down), with whether the light is `selected`. Edges
+/// behind the camera are left out.
+pub fn light_frustum_edges(
+    clip_from_world: &glam::Mat4,
+    lights: &[LightGpu],
+    selected: usize,
+) -> Vec<([f32; 2], [f32; 2], bool)> {
+    let to_view = |p: Vec3| {
+        let clip = *clip_from_world * p.extend(1.0);
+        (clip.w > 1e-4).then(|| {
+            let ndc = clip.truncate() / clip.w;
+            [ndc.x * 0.5 + 0.5, 0.5 - ndc.y * 0.5]
+        })
+    };
+    let mut edges = Vec::new();
+    for (i, light) in lights.iter().enumerate() {
+        let world_from_clip = glam::Mat4::from_cols_array_2d(&light.clip_from_world).inverse();
+        let corner = |x: f32, y: f32, z: f32| {
+            let w = world_from_clip * glam::Vec4::new(x, y, z, 1.0);
+            w.truncate() / w.w
+        };
+        let c: Vec<Vec3> = [
+            (-1., -1., 0.),
+            (1., -1., 0.),
+            (1., 1., 0.),
+            (-1., 1., 0.),
+            (-1., -1., 1.),
+            (1., -1., 1.),
+            (1., 1., 1.),
+            (-1., 1., 1.),
+        ]
+        .iter()
+        .map(|&(x, y, z)| corner(x, y, z))
+        .collect();
+        for (a, b) in
+            [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
+        {
+            if let (Some(pa), Some(pb)) = (to_view(c[a]), to_view(c[b])) {
+                edges.push((pa, pb, i == selected));
+            }
+        }
+    }
+    edges
+}
+
+/// The frustum colours: the selected light's and the others'.
+pub const FRUSTUM_SELECTED: [u8; 3] = [255, 200, 60];
+pub const FRUSTUM_OTHER: [u8; 3] = [120, 170, 255];
+
+/// An overlay of the quantity the view already shows would only hide it (and repeat its legend).
+pub fn shown_by_view(view: crate::views::View, overlay: Overlay) -> bool {
+    use crate::views::View;
+    matches!(
+        (overlay, view),
+        (Overlay::BlockerRadius, View::BlockerRadius)
+            | (Overlay::Penumbra, View::Penumbra)
+            | (Overlay::Blockers, View::Blockers)
+            | (Overlay::Error, View::Error)
+    )
+}
+
+/// Alpha-blend a translucent `overlay` (from [`compose`]) over an opaque picture of its size.
+pub fn blend_onto(picture: &mut RgbaImage, overlay: &RgbaImage) {
+    if picture.dimensions() != overlay.dimensions() {
+        return;
+    }
+    for (under, over) in picture.pixels_mut().zip(overlay.pixels()) {
+        let a = f32::from(over[3]) / 255.0;
+        for k in 0..3 {
+            under[k] = (f32::from(over[k]) * a + f32::from(under[k]) * (1.0 - a)).round() as u8;
+        }
+    }
+}
+
+/// Draw the lights' frustum edges onto a picture of the camera view (slides, screenshots).
+pub fn draw_light_frusta(
+    picture: &mut RgbaImage,
+    clip_from_world: &glam::Mat4,
+    lights: &[LightGpu],
+    selected: usize,
+) {
+    let (w, h) = picture.dimensions();
+    let Some(mut pixmap) = tiny_skia::Pixmap::from_vec(
+        picture.as_raw().clone(),
+        tiny_skia::IntSize::from_wh(w, h).unwrap_or_else(|| tiny_skia::IntSize::from_wh(1, 1).expect("1x1")),
+    ) else {
+        return;
+    };
+    let width = (w.max(h) as f32 / 640.0).max(1.5);
+    let stroke = tiny_skia::Stroke { width, ..Default::default() };
+    for (a, b, is_selected) in light_frustum_edges(clip_from_world, lights, selected) {
+        let mut path = tiny_skia::PathBuilder::new();
+        path.move_to(a[0] * w as f32, a[1] * h as f32);
+        path.line_to(b[0] * w as f32, b[1] * h as f32);
+        let Some(path) = path.finish() else { continue };
+        let [r, g, bl] = if is_selected { FRUSTUM_SELECTED } else { FRUSTUM_OTHER };
+        let mut paint = tiny_skia::Paint::default();
+        paint.set_color_rgba8(r, g, bl, 255);
+        paint.anti_alias = true;
+        pixmap.stroke_path(&path, &paint, &stroke, tiny_skia::Transform::identity(), None);
+    }
+    // The picture is opaque, so premultiplied and straight alpha are the same bytes.
+    if let Some(drawn) = RgbaImage::from_raw(w, h, pixmap.take()) {
+        *picture = drawn;
     }
 }
