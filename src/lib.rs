@@ -4,6 +4,7 @@
 pub mod cli;
 pub mod diagrams;
 pub mod export;
+pub mod i18n;
 pub mod lessons;
 pub mod probe;
 pub mod reference;

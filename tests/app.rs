@@ -545,7 +545,7 @@ fn in_chinese_every_panel_label_is_chinese() {
             }
         }
     }
-    assert!(english.is_empty(), "English left in the Chinese UI (add it to src/ui/strings.rs): {english:#?}");
+    assert!(english.is_empty(), "English left in the Chinese UI (add it to src/i18n/ui_zh.rs): {english:#?}");
 }
 
 #[test]

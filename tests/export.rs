@@ -120,6 +120,19 @@ fn chinese_slides_differ_from_english_ones() {
         let differing = a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
         assert!(differing > 1000, "{name}: only {differing} pixels differ between en and zh");
     }
+    // The diagrams are drawn in Chinese, on their own and on the slide.
+    let d = SlideLayout::new(960, 540).diagram;
+    for i in 1..=steps() {
+        let name = format!("{LESSON}/step-{i:02}-diagram.png");
+        let (a, b) = (decode(&english().join(&name)), decode(&zh.join(&name)));
+        let differing = a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
+        assert!(differing > 500, "{name}: only {differing} pixels differ between en and zh");
+        let slide = format!("{LESSON}/step-{i:02}-slide.png");
+        let (a, b) = (decode(&english().join(&slide)), decode(&zh.join(&slide)));
+        let region =
+            |img: &image::RgbaImage| image::imageops::crop_imm(img, d.x, d.y, d.w, d.h).to_image().into_raw();
+        assert_ne!(region(&a), region(&b), "{slide}: the diagram on the slide is not translated");
+    }
     // The pictures themselves do not depend on the language.
     let camera = format!("{LESSON}/step-01-camera.png");
     assert_eq!(std::fs::read(english().join(&camera)).ok(), std::fs::read(zh.join(&camera)).ok());

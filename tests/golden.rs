@@ -104,8 +104,9 @@ fn check_diagram(
     name: &str,
     kind: shadowlab::diagrams::DiagramKind,
     inputs: &shadowlab::diagrams::DiagramInputs,
+    lang: shadowlab::lessons::Lang,
 ) {
-    let pixmap = shadowlab::diagrams::draw(kind, inputs, 960, 540).expect("draw");
+    let pixmap = shadowlab::diagrams::draw(kind, inputs, lang, 960, 540).expect("draw");
     let png = shadowlab::diagrams::encode_png(&pixmap).expect("encode");
     let actual = image::load_from_memory(&png).expect("decode").to_rgba8();
     compare_with_golden(name, actual);
@@ -114,9 +115,24 @@ fn check_diagram(
 #[test]
 fn diagrams_at_fixed_inputs() {
     let defaults = shadowlab::diagrams::DiagramInputs::default();
+    let en = shadowlab::lessons::Lang::En;
     for kind in shadowlab::diagrams::DiagramKind::ALL {
-        check_diagram(&format!("diagram_{}", kind.id()), kind, &defaults);
+        check_diagram(&format!("diagram_{}", kind.id()), kind, &defaults, en);
     }
     let far_blocker = shadowlab::diagrams::DiagramInputs { blocker_depth_linear: Some(40.0), ..defaults };
-    check_diagram("diagram_pcss_far_blocker", shadowlab::diagrams::DiagramKind::PcssTriangles, &far_blocker);
+    check_diagram(
+        "diagram_pcss_far_blocker",
+        shadowlab::diagrams::DiagramKind::PcssTriangles,
+        &far_blocker,
+        en,
+    );
+}
+
+/// The same diagrams with Chinese labels (needs a CJK font: fonts-noto-cjk).
+#[test]
+fn diagrams_in_chinese() {
+    let defaults = shadowlab::diagrams::DiagramInputs::default();
+    for kind in shadowlab::diagrams::DiagramKind::ALL {
+        check_diagram(&format!("diagram_{}_zh", kind.id()), kind, &defaults, shadowlab::lessons::Lang::Zh);
+    }
 }

@@ -156,7 +156,7 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
                     resize(img, layout.shadow_map.w, layout.shadow_map.h, FilterType::Triangle)
                 });
                 let d = layout.diagram;
-                let diagram = diagrams::draw(pictures.diagram, &pictures.inputs, d.w, d.h)
+                let diagram = diagrams::draw(pictures.diagram, &pictures.inputs, args.lang, d.w, d.h)
                     .map_err(|e| failed("diagram", e))?;
                 // The text's live numbers, from the probe this slide shows.
                 let body = step.text_filled(args.lang, pictures.probe.as_ref());

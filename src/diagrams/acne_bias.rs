@@ -155,8 +155,10 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         let (x, y) = (v.sx(first as f32 + 0.75), v.sy(v.stored(first)));
         let y_end = (y + shift_px).min(PLOT[1] + PLOT[3] - 4.0);
         c.arrow([x, y], [x, y_end], col(pal::SEARCH, 1.0), 2.5, false);
-        let more = if y + shift_px > y_end { " (steps below view)" } else { "" };
-        let t = format!("bias = {} texels{more}", num(bias_tx));
+        let t = match y + shift_px > y_end {
+            true => c.fill("bias = {} texels (steps below view)", &[&num(bias_tx)]),
+            false => c.fill("bias = {} texels", &[&num(bias_tx)]),
+        };
         c.label(&t, [x + 8.0, (y + y_end) * 0.5], Anchor::MidLeft, FS_SMALL);
     }
     if let Some(p) = acne_at {
@@ -169,8 +171,10 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         let (a, b) = (v.at(v.contact), v.at(end));
         let (a, b) = ([a[0], a[1] + 26.0], [b[0], b[1] + 26.0]);
         c.arrow(a, b, col(pal::PENUMBRA, 1.0), 3.0, true);
-        let off = if leak_end >= nf - 0.01 { ", beyond view" } else { "" };
-        let t = format!("peter panning gap = {} world{off}", num(gap_w));
+        let t = match leak_end >= nf - 0.01 {
+            true => c.fill("peter panning gap = {} world, beyond view", &[&num(gap_w)]),
+            false => c.fill("peter panning gap = {} world", &[&num(gap_w)]),
+        };
         let at = [(a[0] + b[0]) * 0.5, ((a[1] + b[1]) * 0.5 + 16.0).min(PLOT[1] + PLOT[3] - 12.0)];
         c.text(&t, at, Anchor::TopCenter, Style::em(FS_SMALL, pal::PENUMBRA));
     }
@@ -180,14 +184,20 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let npw = ndc_per_world(inp, recv);
     let mut text = Column { x: 600.0, y: PLOT[1] + 4.0 };
     text.line(c, "texel = W / map size");
-    text.line(c, &format!("   = {} / {} = {} world", num(w_frustum), map as u32, num(texel)));
-    text.line(c, &format!("slope = tan({angle:.0}°) = {slope:.2}"));
+    let t = c.fill("   = {} / {} = {} world", &[&num(w_frustum), &(map as u32), &num(texel)]);
+    text.line(c, &t);
+    let t = c.fill("slope = tan({}°) = {}", &[&format!("{angle:.0}"), &format!("{slope:.2}")]);
+    text.line(c, &t);
     text.line(c, "needed bias ≈ texel/2 · slope");
-    text.line(c, &format!("   = {} world = {} NDC", num(needed), ndc(needed * npw)));
+    let t = c.fill("   = {} world = {} NDC", &[&num(needed), &ndc(needed * npw)]);
+    text.line(c, &t);
     let b_ndc = ndc(fin(inp.bias_ndc, 0.0));
-    text.line(c, &format!("bias = {b_ndc} NDC = {} world", num(bias_w)));
-    text.line(c, &format!("normal offset = {} texels", num(k_normal)));
-    text.line(c, &format!("   = {} world of extra bias", num(normal_world)));
+    let t = c.fill("bias = {} NDC = {} world", &[&b_ndc, &num(bias_w)]);
+    text.line(c, &t);
+    let t = c.fill("normal offset = {} texels", &[&num(k_normal)]);
+    text.line(c, &t);
+    let t = c.fill("   = {} world of extra bias", &[&num(normal_world)]);
+    text.line(c, &t);
     text.y += 10.0;
     let (verdict, vc) = if inp.cull_front_faces {
         (["front faces culled: the map holds", "back faces, so no acne here"], pal::LIT)

@@ -8,6 +8,8 @@ use tiny_skia::{
 
 use super::style::{Anchor, Style, col, fin, pal};
 use super::text::{TextRenderer, TextStyle};
+use crate::i18n;
+use crate::lessons::Lang;
 
 /// Pixmap plus a uniform scale from logical units (at least 960x540) to pixels.
 pub struct Canvas {
@@ -20,14 +22,29 @@ pub struct Canvas {
     off: [f32; 2],
     clip: Option<Mask>,
     text: &'static TextRenderer,
+    /// Language of every label: [`Canvas::text`] and [`Canvas::measure`] translate exact
+    /// matches of the string table, templates go through [`Canvas::fill`].
+    pub lang: Lang,
+    /// Every string drawn, as drawn (the tests look for English left in a Chinese diagram).
+    pub drawn: Vec<String>,
 }
 
 impl Canvas {
-    pub fn new(pixmap: Pixmap) -> Self {
+    pub fn new(pixmap: Pixmap, lang: Lang) -> Self {
         let (pw, ph) = (pixmap.width() as f32, pixmap.height() as f32);
         let scale = (pw / 960.0).min(ph / 540.0).max(1e-3);
         let off = [(pw / scale - 960.0) * 0.5, (ph / scale - 540.0) * 0.5];
-        let mut c = Self { pixmap, scale, w: 960.0, h: 540.0, off, clip: None, text: TextRenderer::shared() };
+        let mut c = Self {
+            pixmap,
+            scale,
+            w: 960.0,
+            h: 540.0,
+            off,
+            clip: None,
+            text: TextRenderer::shared(),
+            lang,
+            drawn: Vec::new(),
+        };
         c.pixmap.fill(col(pal::BG, 1.0));
         c
     }
@@ -171,7 +188,13 @@ impl Canvas {
         }
     }
 
+    /// `template` in the canvas language with its `{}` holes filled in order.
+    pub fn fill(&self, template: &'static str, args: &[&dyn std::fmt::Display]) -> String {
+        i18n::fill(self.lang, template, args)
+    }
+
     pub fn measure(&self, text: &str, size: f32) -> (f32, f32) {
+        let text = i18n::tr(self.lang, text);
         let m = self.text.measure(text, size * self.scale);
         (m.width_px / self.scale, m.height_px() / self.scale)
     }
@@ -186,6 +209,8 @@ impl Canvas {
     /// Draws text anchored at `p`, kept inside the pixmap; with `st.plate`, a translucent plate
     /// behind it keeps it legible over lines. Returns the box `[x, y, w, h]`.
     pub fn text(&mut self, s: &str, p: [f32; 2], anchor: Anchor, st: Style) -> [f32; 4] {
+        let s = i18n::tr(self.lang, s);
+        self.drawn.push(s.to_string());
         let sc = self.scale;
         let m = self.text.measure(s, st.size * sc);
         let (w, asc, h) = (m.width_px / sc, m.ascent_px / sc, m.height_px() / sc);

@@ -17,6 +17,7 @@ mod widgets;
 #[cfg(test)]
 mod tests;
 
+use crate::lessons::Lang;
 pub use text::{CJK_FONT_PATHS, TextMetrics, TextRenderer, TextStyle, load_system_cjk_font};
 
 /// Largest accepted width or height, in pixels.
@@ -67,7 +68,7 @@ impl DiagramKind {
         Self::ALL.into_iter().find(|k| k.id() == id)
     }
 
-    /// English title shown in the diagram's title bar.
+    /// English title shown in the diagram's title bar (translated by `crate::i18n`).
     pub fn title(&self) -> &'static str {
         match self {
             DiagramKind::TwoPass => "Shadow mapping in two passes",
@@ -236,20 +237,32 @@ fn ndc_per_world(inputs: &DiagramInputs, d: f32) -> f32 {
     }
 }
 
-/// Draws `kind` from `inputs` onto a new `width_px` x `height_px` premultiplied RGBA pixmap.
-/// Fails only for a zero or oversized (> [`MAX_SIDE_PX`]) size.
+/// Draws `kind` from `inputs` with labels in `lang` onto a new `width_px` x `height_px`
+/// premultiplied RGBA pixmap. Fails only for a zero or oversized (> [`MAX_SIDE_PX`]) size.
 pub fn draw(
     kind: DiagramKind,
     inputs: &DiagramInputs,
+    lang: Lang,
     width_px: u32,
     height_px: u32,
 ) -> Result<tiny_skia::Pixmap, DiagramError> {
+    draw_traced(kind, inputs, lang, width_px, height_px).map(|(pixmap, _)| pixmap)
+}
+
+/// [`draw`], also returning every string drawn (as translated).
+pub fn draw_traced(
+    kind: DiagramKind,
+    inputs: &DiagramInputs,
+    lang: Lang,
+    width_px: u32,
+    height_px: u32,
+) -> Result<(tiny_skia::Pixmap, Vec<String>), DiagramError> {
     let bad = DiagramError::InvalidSize { width_px, height_px };
     if width_px == 0 || height_px == 0 || width_px > MAX_SIDE_PX || height_px > MAX_SIDE_PX {
         return Err(bad);
     }
     let pixmap = tiny_skia::Pixmap::new(width_px, height_px).ok_or(bad)?;
-    let mut c = canvas::Canvas::new(pixmap);
+    let mut c = canvas::Canvas::new(pixmap, lang);
     c.title_bar(kind.title());
     match kind {
         DiagramKind::TwoPass => two_pass::draw(&mut c, inputs),
@@ -258,7 +271,7 @@ pub fn draw(
         DiagramKind::PcssTriangles => pcss::draw(&mut c, inputs),
         DiagramKind::MultiLight => multi_light::draw(&mut c, inputs),
     }
-    Ok(c.pixmap)
+    Ok((c.pixmap, c.drawn))
 }
 
 /// Encodes a pixmap as PNG (straight alpha, as PNG requires).

@@ -137,10 +137,11 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     for (i, l) in inp.lights.iter().enumerate() {
         let p = f.px(sane(l.position_xz));
         let st = Style::em(FS_LABEL, pal::INK);
-        c.text(&format!("light {i}"), [p[0], p[1] + 26.0], Anchor::TopCenter, st);
+        let t = c.fill("light {}", &[&i]);
+        c.text(&t, [p[0], p[1] + 26.0], Anchor::TopCenter, st);
     }
     c.text("camera", [cam[0], cam[1] + 18.0], Anchor::TopCenter, Style::em(FS_LABEL, pal::CAMERA));
-    let t = format!("top view (x →, z ↓) · grid = {} world", num(step));
+    let t = c.fill("top view (x →, z ↓) · grid = {} world", &[&num(step)]);
     c.label(&t, [AREA[0] + 6.0, AREA[1] + AREA[3] - 6.0], Anchor::BottomLeft, FS_SMALL);
     legend_column(c, inp);
 }
@@ -148,13 +149,16 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
 fn legend_column(c: &mut Canvas, inp: &DiagramInputs) {
     let mut items: Vec<(Swatch, String)> = (inp.lights.iter().enumerate().take(8))
         .map(|(i, l)| {
-            let kind = if l.spot { "spot" } else { "ortho" };
+            let template = match l.spot {
+                true => "light {}: spot, half-width {}",
+                false => "light {}: ortho, half-width {}",
+            };
             let hw = num(fin(l.half_width_world, 0.0));
-            (Swatch::Fill(hue(i), 0.3), format!("light {i}: {kind}, half-width {hw}"))
+            (Swatch::Fill(hue(i), 0.3), c.fill(template, &[&i, &hw]))
         })
         .collect();
     if inp.lights.len() > 8 {
-        items.push((Swatch::Line(pal::MUTED), format!("… {} more lights", inp.lights.len() - 8)));
+        items.push((Swatch::Line(pal::MUTED), c.fill("… {} more lights", &[&(inp.lights.len() - 8)])));
     }
     items.push((Swatch::Dot(pal::BLOCKER), "object".to_string()));
     items.push((Swatch::Fill(pal::CAMERA, 1.0), "camera".to_string()));
@@ -162,7 +166,8 @@ fn legend_column(c: &mut Canvas, inp: &DiagramInputs) {
     let b = c.legend(&refs, [656.0, 64.0], Anchor::TopLeft);
     let mut text = Column { x: 656.0, y: b[1] + b[3] + 18.0 };
     let n = inp.lights.len();
-    text.line(c, &format!("{n} lights → {n} shadow maps"));
+    let t = c.fill("{} lights → {} shadow maps", &[&n, &n]);
+    text.line(c, &t);
     for l in [
         "one depth pass per light;",
         "lighting from each light adds up",

@@ -74,12 +74,12 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     c.set_clip(None);
     c.rect([gx, gy, side, side], None, Some((col(pal::MUTED, 1.0), 2.0)));
     let y_f = (centre[1] + r_f * ppt + 6.0).min(gy + side - 26.0);
-    let t = format!("filter r = {} texels", num(r_f));
+    let t = c.fill("filter r = {} texels", &[&num(r_f)]);
     c.label(&t, [centre[0], y_f], Anchor::TopCenter, FS_SMALL);
     // PCF has no blocker search: only PCSS draws (and labels) a search circle.
     if r_s > 0.0 {
         let y_s = (centre[1] - r_s * ppt - 6.0).max(gy + 26.0);
-        let t = format!("search r = {} texels", num(r_s));
+        let t = c.fill("search r = {} texels", &[&num(r_s)]);
         c.text(&t, [centre[0], y_s], Anchor::BottomCenter, Style::em(FS_SMALL, pal::SEARCH));
     }
 
@@ -87,33 +87,40 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let map = inp.shadow_map_size_texels.max(1) as f32;
     let mut text = Column { x: 520.0, y: 70.0 };
     text.line(c, "V = (1/N) · Σ [ d_r − bias ≤ map(uv + r·s_i) ]");
-    text.line(c, &format!("samples N = {n}"));
-    text.line(c, &format!("filter radius r = {} texels", num(r_f)));
-    text.line(c, &format!("   = {} / {} = {} UV", num(r_f), map as u32, num(r_f / map)));
+    let t = c.fill("samples N = {}", &[&n]);
+    text.line(c, &t);
+    let t = c.fill("filter radius r = {} texels", &[&num(r_f)]);
+    text.line(c, &t);
+    let t = c.fill("   = {} / {} = {} UV", &[&num(r_f), &(map as u32), &num(r_f / map)]);
+    text.line(c, &t);
     if r_s > 0.0 {
-        text.tint(c, &format!("search radius = {} texels", num(r_s)), pal::SEARCH);
+        let t = c.fill("search radius = {} texels", &[&num(r_s)]);
+        text.tint(c, &t, pal::SEARCH);
     }
     let grid = match k as u64 {
-        1 => "grid: 1 cell = 1 texel".to_string(),
-        k => format!("grid: a line every {k} texels"),
+        1 => c.fill("grid: 1 cell = 1 texel", &[]),
+        k => c.fill("grid: a line every {} texels", &[&k]),
     };
     text.tint(c, &grid, pal::MUTED);
-    let hits = format!("blocker search: {} of {} samples hit", inp.blockers_found, inp.blocker_samples);
+    let hits = c.fill("blocker search: {} of {} samples hit", &[&inp.blockers_found, &inp.blocker_samples]);
     text.line(c, &hits);
-    text.line(c, &format!("lit {lit}   ·   blocked {blocked}"));
+    let t = c.fill("lit {}   ·   blocked {}", &[&lit, &blocked]);
+    text.line(c, &t);
     if lit + blocked != n {
-        text.tint(c, &format!("({} samples without a result)", n - lit - blocked), pal::MUTED);
+        let t = c.fill("({} samples without a result)", &[&(n - lit - blocked)]);
+        text.tint(c, &t, pal::MUTED);
     }
     let v = if n > 0 { lit as f32 / n as f32 } else { fin(inp.visibility, 1.0) };
     let vis = if n > 0 {
-        format!("visibility = lit / N = {lit} / {n} = {v:.2}")
+        c.fill("visibility = lit / N = {} / {} = {}", &[&lit, &n, &format!("{v:.2}")])
     } else {
-        format!("no samples: visibility = {v:.2}")
+        c.fill("no samples: visibility = {}", &[&format!("{v:.2}")])
     };
     text.styled(c, &vis, Style::em(FS_LABEL + 3.0, pal::INK));
     let reported = fin(inp.visibility, v);
     if n > 0 && (reported - v).abs() > 0.005 {
-        text.tint(c, &format!("(reported by the shader: {reported:.2})"), pal::MUTED);
+        let t = c.fill("(reported by the shader: {})", &[&format!("{reported:.2}")]);
+        text.tint(c, &t, pal::MUTED);
     }
     // The pixel's resulting shade.
     let shade = (40.0 + v.clamp(0.0, 1.0) * 200.0) as u8;

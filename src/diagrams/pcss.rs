@@ -137,13 +137,13 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         let t = format!("d_blocker = {}", num(n.d_b));
         c.label(&t, [72.0, y_b - 10.0], Anchor::BottomLeft, FS_LABEL);
     }
-    let near_txt = format!("near plane d = {}", num(n.near));
+    let near_txt = c.fill("near plane d = {}", &[&num(n.near)]);
     c.label(&near_txt, [74.0, y_near + 4.0], Anchor::TopLeft, FS_SMALL);
     let st = Style::em(FS_SMALL, pal::SEARCH);
     c.text("search region", [X_EDGE, y_near + 6.0], Anchor::TopCenter, st);
     match n.theta {
         None => {
-            let t = format!("w_light = {} world", num(n.w_light));
+            let t = c.fill("w_light = {} world", &[&num(n.w_light)]);
             c.label(&t, [X_EDGE, Y_LIGHT - 16.0], Anchor::BottomCenter, FS_LABEL)
         }
         Some(t) => {
@@ -154,13 +154,13 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     if n.has_blocker && p1 - p0 > 1.0 {
         let (b0, b1) = (p0.max(AREA[0]), p1.min(AREA[0] + AREA[2]));
         c.bracket(b0, b1, Y_RECV + 22.0, pen, 3.0);
-        let t = format!("w_penumbra = {} world", num(n.w_pen));
+        let t = c.fill("w_penumbra = {} world", &[&num(n.w_pen)]);
         let at = [((b0 + b1) * 0.5).max(300.0), Y_RECV + 30.0];
         let st = Style::em(FS_LABEL, pal::PENUMBRA);
         c.text(&t, at, Anchor::TopCenter, st);
     }
     let ex = if exag >= 1.0 { format!("{exag:.0}") } else { num(exag) };
-    let t = format!("widths ×{ex}, depths to scale");
+    let t = c.fill("widths ×{}, depths to scale", &[&ex]);
     let corner = [AREA[0] + 4.0, AREA[1] + 6.0];
     c.label(&t, corner, Anchor::TopLeft, FS_SMALL);
     formulas(c, inp, &n);
@@ -198,7 +198,8 @@ fn formulas(c: &mut Canvas, inp: &DiagramInputs, n: &Numbers) {
         }
     }
     if n.has_blocker {
-        col_.em(c, &format!("  = {} world", num(n.w_pen)), pal::PENUMBRA);
+        let t = c.fill("  = {} world", &[&num(n.w_pen)]);
+        col_.em(c, &t, pal::PENUMBRA);
         if n.d_b >= n.d_r {
             col_.tint(c, "blocker not in front of receiver", pal::MUTED);
         }
@@ -209,16 +210,20 @@ fn formulas(c: &mut Canvas, inp: &DiagramInputs, n: &Numbers) {
     };
     col_.line(c, search);
     let ws = num(n.w_search);
-    col_.em(c, &format!("  = {ws} world on the near plane"), pal::SEARCH);
+    let t = c.fill("  = {} world on the near plane", &[&ws]);
+    col_.em(c, &t, pal::SEARCH);
     let r_s = num(fin(inp.search_radius_texels, 0.0));
-    col_.line(c, &format!("search radius = {r_s} texels"));
+    let t = c.fill("search radius = {} texels", &[&r_s]);
+    col_.line(c, &t);
     let (found, total) = (inp.blockers_found, inp.blocker_samples);
-    col_.line(c, &format!("blockers found: {found} / {total}"));
+    let t = c.fill("blockers found: {} / {}", &[&found, &total]);
+    col_.line(c, &t);
     let r_f = num(fin(inp.filter_radius_texels, 0.0));
-    col_.line(c, &format!("filter radius = {r_f} texels"));
+    let t = c.fill("filter radius = {} texels", &[&r_f]);
+    col_.line(c, &t);
     let reported = fin(inp.penumbra_width_world, n.w_pen);
     if n.has_blocker && (reported - n.w_pen).abs() > 0.01 * n.w_pen.abs().max(1e-6) {
-        let t = format!("(shader's w_penumbra: {} world)", num(reported));
+        let t = c.fill("(shader's w_penumbra: {} world)", &[&num(reported)]);
         col_.tint(c, &t, pal::MUTED);
     }
 }

@@ -1,10 +1,11 @@
 use super::*;
+use crate::lessons::Lang;
 use tiny_skia::Pixmap;
 
 const BG: [u8; 3] = [250, 250, 246];
 
 fn render(kind: DiagramKind, inp: &DiagramInputs, w: u32, h: u32) -> Pixmap {
-    draw(kind, inp, w, h).unwrap_or_else(|e| panic!("{} at {w}x{h}: {e}", kind.id()))
+    draw(kind, inp, Lang::En, w, h).unwrap_or_else(|e| panic!("{} at {w}x{h}: {e}", kind.id()))
 }
 
 /// Number of cells of a `cols` x `rows` grid (below the title bar) holding pixels that differ
@@ -71,7 +72,7 @@ fn other_aspect_ratios_keep_the_design_centred() {
 fn bad_sizes_are_errors() {
     let inp = DiagramInputs::default();
     for (w, h) in [(0, 10), (10, 0), (0, 0), (8193, 100), (100, 8193), (u32::MAX, 1)] {
-        match draw(DiagramKind::TwoPass, &inp, w, h) {
+        match draw(DiagramKind::TwoPass, &inp, Lang::En, w, h) {
             Err(DiagramError::InvalidSize { width_px, height_px }) => {
                 assert_eq!((width_px, height_px), (w, h))
             }
@@ -369,6 +370,9 @@ fn writes_default_pngs_for_inspection() {
     };
     for kind in DiagramKind::ALL {
         save(kind.id(), kind, &DiagramInputs::default());
+        let (zh, _) = draw_traced(kind, &DiagramInputs::default(), Lang::Zh, 960, 540).expect("draw");
+        std::fs::write(dir.join(format!("{}_zh.png", kind.id())), encode_png(&zh).expect("png"))
+            .expect("write");
     }
     let mut i = DiagramInputs { blocker_depth_linear: Some(110.0), ..DiagramInputs::default() };
     save("pcss-close", DiagramKind::PcssTriangles, &i);
@@ -389,4 +393,98 @@ fn acne_bias_with_front_faces_culled_shows_no_acne_whatever_the_bias() {
     let with_acne = render(DiagramKind::AcneBias, &acne, 960, 540);
     let without = render(DiagramKind::AcneBias, &culled, 960, 540);
     assert!(magenta(&with_acne) > magenta(&without) + 200, "culling must remove the acne stripes");
+}
+
+/// Input cases that reach every label a diagram can draw: verdicts, the no-blocker and
+/// directional PCSS formulas, the wrapped lookup, the "beyond view" notes, many lights.
+fn label_cases() -> Vec<(&'static str, DiagramInputs)> {
+    let d = DiagramInputs::default;
+    let mut cases = degenerate_inputs();
+    cases.push(("defaults", d()));
+    cases.push((
+        "directional",
+        DiagramInputs { light_angular_diameter_deg: Some(2.0), light_width_world: None, ..d() },
+    ));
+    cases.push(("shadowed", DiagramInputs { stored_depth_linear: 100.0, ..d() }));
+    cases.push(("shadowed, no bias", DiagramInputs { stored_depth_linear: 100.0, bias_ndc: 0.0, ..d() }));
+    cases.push(("acne", DiagramInputs { bias_ndc: 0.0, ..d() }));
+    cases.push(("peter panning", DiagramInputs { bias_ndc: 0.05, ..d() }));
+    cases.push(("huge offset", DiagramInputs { normal_offset_texels: 40.0, bias_ndc: 0.2, ..d() }));
+    cases.push(("culled", DiagramInputs { cull_front_faces: true, ..d() }));
+    cases.push(("perspective", DiagramInputs { orthographic: false, light_near: 1.0, ..d() }));
+    cases.push(("outside, lit", DiagramInputs { outside_frustum: true, ..d() }));
+    for stored in [100.0, 120.0] {
+        let wrapped =
+            DiagramInputs { outside_frustum: true, clamp_outside: false, stored_depth_linear: stored, ..d() };
+        cases.push(("outside, wrapped", wrapped));
+    }
+    cases.push(("shader disagrees", DiagramInputs { penumbra_width_world: 9.0, visibility: 0.9, ..d() }));
+    cases.push((
+        "wide filter",
+        DiagramInputs { filter_radius_texels: 60.0, search_radius_texels: 90.0, ..d() },
+    ));
+    cases
+}
+
+/// Words of English left in a Chinese label: ASCII words of three letters or more that are not
+/// symbols (`d_receiver`), units shared by both languages (NDC, UV) or technique names.
+fn english_words(label: &str) -> Vec<String> {
+    const SHARED: [&str; 6] = ["NDC", "UV", "uv", "PCF", "PCSS", "tan"];
+    label
+        .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
+        .filter(|w| w.len() >= 3 && !w.contains('_') && w.chars().all(|c| c.is_ascii_alphabetic()))
+        .filter(|w| !SHARED.contains(w))
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn every_chinese_diagram_label_is_chinese() {
+    let mut english = std::collections::BTreeSet::new();
+    let mut count = 0;
+    for (case, inp) in label_cases() {
+        for kind in DiagramKind::ALL {
+            let (_, texts) = draw_traced(kind, &inp, Lang::Zh, 960, 540).expect("draw");
+            count += texts.len();
+            for t in texts {
+                if !english_words(&t).is_empty() {
+                    english.insert(format!("{} ({case}): {t}", kind.id()));
+                }
+            }
+        }
+    }
+    assert!(count > 500, "only {count} labels drawn");
+    assert!(
+        english.is_empty(),
+        "English left in Chinese diagrams (add it to src/i18n/diagrams_zh.rs): {english:#?}"
+    );
+    // The check itself finds English.
+    let (_, en) =
+        draw_traced(DiagramKind::PcssTriangles, &DiagramInputs::default(), Lang::En, 960, 540).expect("draw");
+    assert!(en.iter().any(|t| !english_words(t).is_empty()));
+}
+
+#[test]
+fn chinese_diagrams_keep_the_numbers_of_the_english_ones() {
+    let digits = |texts: &[String]| -> Vec<String> {
+        let mut numbers: Vec<String> = texts
+            .iter()
+            .flat_map(|t| {
+                t.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
+                    .map(str::to_string)
+                    .collect::<Vec<_>>()
+            })
+            .filter(|w| w.chars().any(|c| c.is_ascii_digit()))
+            .collect();
+        numbers.sort();
+        numbers
+    };
+    for (case, inp) in label_cases().into_iter().take(30) {
+        for kind in DiagramKind::ALL {
+            let (_, en) = draw_traced(kind, &inp, Lang::En, 960, 540).expect("draw");
+            let (_, zh) = draw_traced(kind, &inp, Lang::Zh, 960, 540).expect("draw");
+            assert_eq!(en.len(), zh.len(), "{} ({case}): different label count", kind.id());
+            assert_eq!(digits(&en), digits(&zh), "{} ({case}): numbers differ", kind.id());
+        }
+    }
 }

@@ -154,8 +154,8 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let side_anchor = |n: Pt| {
         if n[0] >= 0.0 { Anchor::MidLeft } else { Anchor::MidRight }
     };
-    let stored_txt = format!("stored depth = {}", num(stored));
-    let recv_txt = format!("receiver depth = {}", num(recv));
+    let stored_txt = c.fill("stored depth = {}", &[&num(stored)]);
+    let recv_txt = c.fill("receiver depth = {}", &[&num(recv)]);
     if occluded {
         let (a, b) = (add(r.apex, down, 24.0), add(s, down, 24.0));
         c.arrow(a, b, col(pal::BLOCKER, 1.0), 2.5, true);
@@ -168,13 +168,13 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         if side > 0.0 { (Anchor::MidRight, Anchor::MidLeft) } else { (Anchor::MidLeft, Anchor::MidRight) };
     let p_at = [p[0] - 14.0 * side, p[1] + 4.0];
     c.text("P", p_at, toward_light, Style::em(FS_LABEL, pal::INK));
-    let map_txt = format!("shadow map: {} texels", inp.shadow_map_size_texels);
+    let map_txt = c.fill("shadow map: {} texels", &[&inp.shadow_map_size_texels]);
     let end = add(add(plane_c, r.u, half * side), dir, -30.0);
     c.label(&map_txt, [end[0] + 6.0 * side, end[1]], away, FS_SMALL);
-    let kind = ["perspective", "orthographic"][usize::from(inp.orthographic)];
-    let light_txt = format!("light ({kind}) · pass 1: depth");
+    let light_txt = ["light (perspective) · pass 1: depth", "light (orthographic) · pass 1: depth"]
+        [usize::from(inp.orthographic)];
     let light_at = [icon[0] - 30.0 * side, icon[1]];
-    c.label(&light_txt, light_at, toward_light, FS_SMALL);
+    c.label(light_txt, light_at, toward_light, FS_SMALL);
     let cam_anchor = if side > 0.0 { Anchor::BottomRight } else { Anchor::BottomLeft };
     let cam_at = [cam[0] + 20.0 * side, cam[1] - 22.0];
     c.label("camera · pass 2: compare", cam_at, cam_anchor, FS_SMALL);
@@ -182,11 +182,12 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     // Verdict panel under the ground.
     let y0 = GROUND_Y + 22.0;
     let first = ["first hit: P itself", "first hit: blocker"][usize::from(occluded)];
-    let l1 = format!("{stored_txt} ({first})   ·   {recv_txt} (P)   ·   world units");
+    let first = c.fill(first, &[]);
+    let l1 = c.fill("{} ({})   ·   {} (P)   ·   world units", &[&stored_txt, &first, &recv_txt]);
     c.label(&l1, [20.0, y0], Anchor::TopLeft, FS_LABEL);
     let (b, st) = (num(bias_w), num(stored));
     let bias_ndc = ndc(fin(inp.bias_ndc, 0.0));
-    let test = format!("bias = {bias_ndc} NDC ≈ {b} world   →   {} − {b} ≤ {st} ?", num(recv));
+    let test = c.fill("bias = {} NDC ≈ {} world   →   {} − {} ≤ {} ?", &[&bias_ndc, &b, &num(recv), &b, &st]);
     let bx = c.label(&test, [20.0, y0 + 30.0], Anchor::TopLeft, FS_LABEL);
     let (verdict, vc) = match (inp.outside_frustum, inp.clamp_outside, lit) {
         (true, true, _) => ("outside the light frustum → lit", pal::LIT),

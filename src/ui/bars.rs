@@ -1,8 +1,8 @@
 //! The top bar (scene and lesson picker, file box, playback, screenshot, language), the status
 //! bar (errors, timings) and the shortcut help.
 
-use super::strings::tr;
 use super::{ShadowlabApp, Source, shipped_path};
+use crate::i18n::tr;
 use crate::lessons::Lang;
 use std::path::PathBuf;
 

@@ -1,8 +1,8 @@
 //! The inspector: every scene, light and `[shadow]` parameter, with units in the labels, and
 //! the probe's numbers. Any change re-renders at once.
 
-use super::strings::tr as translate;
 use super::{AbSplit, ShadowlabApp};
+use crate::i18n::tr as translate;
 use crate::lessons::{Lang, Overlay};
 use crate::scene::{BiasMode, Kernel, LightKind, LightSize, Projection, Technique};
 use egui::{Slider, Ui};

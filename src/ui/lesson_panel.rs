@@ -7,7 +7,7 @@ use egui::{RichText, Ui};
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let lang = app.lang;
-    let tr = move |en: &'static str| super::strings::tr(lang, en);
+    let tr = move |en: &'static str| crate::i18n::tr(lang, en);
     let Some((lesson, step, index)) = app.current_step() else { return };
     let count = lesson.steps.len();
     let lesson_title = lesson.title.get(lang).to_string();

@@ -8,7 +8,6 @@ mod panels;
 mod rendering;
 mod screenshots;
 mod settings;
-mod strings;
 mod view_panels;
 mod window;
 mod worker;
@@ -252,7 +251,7 @@ impl ShadowlabApp {
                 self.settings.last_scene = (!is_obj).then(|| path.to_path_buf());
                 self.settings.last_lesson = None;
                 self.error = None;
-                self.status = format!("{} {}", strings::tr(self.lang, "opened"), path.display());
+                self.status = format!("{} {}", crate::i18n::tr(self.lang, "opened"), path.display());
             }
             Err(e) => self.error = Some(e),
         }

@@ -7,10 +7,19 @@ use crate::lessons::{Lang, Panel};
 use crate::shadow::kernels;
 use egui::{Color32, Rect, Sense, Stroke, Ui, pos2, vec2};
 
-/// The drawn diagram, redrawn when its kind, inputs or size change.
+/// The drawn diagram, redrawn when what it was drawn from changes.
 #[derive(Default)]
 pub struct PanelState {
-    diagram: Option<(egui::TextureHandle, DiagramKind, DiagramInputs, (u32, u32))>,
+    diagram: Option<(egui::TextureHandle, DiagramKey)>,
+}
+
+/// What a diagram texture was drawn from: kind, live inputs, language and size in pixels.
+#[derive(PartialEq)]
+struct DiagramKey {
+    kind: DiagramKind,
+    inputs: DiagramInputs,
+    lang: Lang,
+    size_px: (u32, u32),
 }
 
 fn live_inputs(app: &ShadowlabApp) -> DiagramInputs {
@@ -29,16 +38,20 @@ pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
     let show_diagram = app.panel_visible(Panel::Diagram);
     ui.horizontal(|ui| {
         if show_diagram {
-            ui.strong(super::strings::tr(app.lang, "Diagram"));
+            ui.strong(crate::i18n::tr(app.lang, "Diagram"));
             for kind in DiagramKind::ALL {
-                if ui.selectable_label(app.diagram == kind, kind.id()).on_hover_text(kind.title()).clicked() {
+                if ui
+                    .selectable_label(app.diagram == kind, kind.id())
+                    .on_hover_text(crate::i18n::tr(app.lang, kind.title()))
+                    .clicked()
+                {
                     app.diagram = kind;
                 }
             }
             ui.separator();
         }
         if app.current_step().is_none() {
-            ui.checkbox(&mut app.settings.show_kernel_plot, super::strings::tr(app.lang, "sample pattern"));
+            ui.checkbox(&mut app.settings.show_kernel_plot, crate::i18n::tr(app.lang, "sample pattern"));
         }
     });
     let show_plot = app.panel_visible(Panel::KernelPlot);
@@ -68,21 +81,17 @@ fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     };
     let ppp = ui.ctx().pixels_per_point();
     let size_px = ((w * ppp).max(32.0) as u32, (h * ppp).max(18.0) as u32);
-    let inputs = live_inputs(app);
-    let current = app
-        .panel_state
-        .diagram
-        .as_ref()
-        .is_some_and(|(_, kind, old, size)| *kind == app.diagram && *old == inputs && *size == size_px);
+    let key = DiagramKey { kind: app.diagram, inputs: live_inputs(app), lang: app.lang, size_px };
+    let current = app.panel_state.diagram.as_ref().is_some_and(|(_, drawn)| *drawn == key);
     if !current {
-        match diagrams::draw(app.diagram, &inputs, size_px.0, size_px.1) {
+        match diagrams::draw(key.kind, &key.inputs, key.lang, size_px.0, size_px.1) {
             Ok(pixmap) => {
                 let image = egui::ColorImage::from_rgba_premultiplied(
                     [pixmap.width() as usize, pixmap.height() as usize],
                     pixmap.data(),
                 );
                 let texture = ui.ctx().load_texture("diagram", image, egui::TextureOptions::LINEAR);
-                app.panel_state.diagram = Some((texture, app.diagram, inputs, size_px));
+                app.panel_state.diagram = Some((texture, key));
             }
             Err(e) => app.error = Some(e.to_string()),
         }

@@ -13,7 +13,7 @@ impl ShadowlabApp {
             }
         });
         self.screenshot_pending = true;
-        self.status = super::strings::tr(self.lang, "taking a screenshot...").into();
+        self.status = crate::i18n::tr(self.lang, "taking a screenshot...").into();
     }
 
     /// Save a finished window screenshot and each viewport as PNGs.
@@ -27,7 +27,7 @@ impl ShadowlabApp {
         match self.save_screenshot(&window) {
             Ok(paths) => {
                 let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
-                self.status = format!("{} {}", super::strings::tr(self.lang, "saved"), names.join(", "));
+                self.status = format!("{} {}", crate::i18n::tr(self.lang, "saved"), names.join(", "));
             }
             Err(e) => self.error = Some(e),
         }

@@ -3,9 +3,9 @@
 //! Shadow map: linear depth with a legend, hover readout, the probe's uv, search and filter
 //! circles and every tap at its real size; drag to move the light.
 
-use super::strings::tr;
 use super::worker::MapView;
 use super::{ProbeAt, ShadowlabApp};
+use crate::i18n::tr;
 use crate::lessons::{Lang, Overlay};
 use crate::render::{DepthImage, LightGpu};
 use crate::shadow::depth_linear_from_ndc;
@@ -137,10 +137,8 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         ui.centered_and_justified(|ui| {
             ui.label(format!(
                 "{}: {}",
-                super::strings::tr(app.lang, "No GPU view"),
-                app.gpu_error
-                    .clone()
-                    .unwrap_or_else(|| super::strings::tr(app.lang, "unknown reason").into())
+                crate::i18n::tr(app.lang, "No GPU view"),
+                app.gpu_error.clone().unwrap_or_else(|| crate::i18n::tr(app.lang, "unknown reason").into())
             ));
         });
         return;

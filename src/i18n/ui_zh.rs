@@ -1,13 +1,7 @@
-//! The app's fixed strings in Simplified Chinese. English is the key: the code reads in English
-//! and `tr` looks the Chinese up. Lesson text has its own translations (lessons/*.toml).
-//! `tests/app.rs` walks the app in Chinese and fails on any English text left on screen.
-
-use crate::lessons::Lang;
-use std::collections::HashMap;
-use std::sync::OnceLock;
+//! The app's panels, bars, help and overlays in Simplified Chinese.
 
 /// English -> Chinese, for every string the panels show.
-const ZH: &[(&str, &str)] = &[
+pub(super) const UI: &[(&str, &str)] = &[
     // Top bar, status bar and help.
     ("scene", "场景"),
     ("lesson", "课程"),
@@ -160,33 +154,3 @@ const ZH: &[(&str, &str)] = &[
     ("Diagram", "示意图"),
     ("sample pattern", "采样图案"),
 ];
-
-fn table() -> &'static HashMap<&'static str, &'static str> {
-    static TABLE: OnceLock<HashMap<&'static str, &'static str>> = OnceLock::new();
-    TABLE.get_or_init(|| ZH.iter().copied().collect())
-}
-
-/// `en` in `lang`. A string missing from the table shows in English (and fails the app test).
-pub fn tr(lang: Lang, en: &'static str) -> &'static str {
-    match lang {
-        Lang::En => en,
-        Lang::Zh => table().get(en).copied().unwrap_or(en),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn every_entry_is_translated_once() {
-        let mut seen = std::collections::HashSet::new();
-        for (en, zh) in ZH {
-            assert!(seen.insert(en), "`{en}` is in the table twice");
-            assert!(
-                zh.chars().any(|c| ('\u{4e00}'..='\u{9fff}').contains(&c) || "←→".contains(c)),
-                "`{en}` -> `{zh}`"
-            );
-        }
-    }
-}
