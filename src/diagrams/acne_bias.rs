@@ -175,14 +175,17 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
             true => c.fill("peter panning gap = {} world, beyond view", &[&num(gap_w)]),
             false => c.fill("peter panning gap = {} world", &[&num(gap_w)]),
         };
-        let at = [(a[0] + b[0]) * 0.5, ((a[1] + b[1]) * 0.5 + 16.0).min(PLOT[1] + PLOT[3] - 12.0)];
+        // Centred under the arrow, but kept left of the number column.
+        let half_w = c.measure(&t, FS_SMALL).0 * 0.5;
+        let x = ((a[0] + b[0]) * 0.5).min(590.0 - half_w);
+        let at = [x, ((a[1] + b[1]) * 0.5 + 16.0).min(PLOT[1] + PLOT[3] - 12.0)];
         c.text(&t, at, Anchor::TopCenter, Style::em(FS_SMALL, pal::PENUMBRA));
     }
     c.label("contact", [v.sx(v.contact) - 6.0, top - 6.0], Anchor::BottomRight, FS_SMALL);
 
     // Numbers, in a column on the right.
     let npw = ndc_per_world(inp, recv);
-    let mut text = Column { x: 600.0, y: PLOT[1] + 4.0 };
+    let mut text = Column::new(600.0, PLOT[1] + 4.0);
     text.line(c, "texel = W / map size");
     let t = c.fill("   = {} / {} = {} world", &[&num(w_frustum), &(map as u32), &num(texel)]);
     text.line(c, &t);

@@ -1,5 +1,6 @@
-//! Drawing surface for the diagrams: a 960x540 design box scaled uniformly onto the pixmap and
-//! centred in it, with shape, clip and text primitives in design units.
+//! Drawing surface for the diagrams: a 960x540 design box scaled uniformly onto the pixmap,
+//! centred vertically and at the left of a wider pixmap (so text columns on the right can run
+//! on), with shape, clip and text primitives in design units.
 
 use tiny_skia::{
     Color, FillRule, GradientStop, LineCap, LineJoin, LinearGradient, Mask, Paint, Path, PathBuilder, Pixmap,
@@ -15,9 +16,6 @@ use crate::lessons::Lang;
 pub struct Canvas {
     pub pixmap: Pixmap,
     scale: f32,
-    /// Design size (960x540): diagrams lay out in this box, centred on the pixmap.
-    pub w: f32,
-    pub h: f32,
     /// Offset of the design box inside the full logical canvas.
     off: [f32; 2],
     clip: Option<Mask>,
@@ -25,25 +23,40 @@ pub struct Canvas {
     /// Language of every label: [`Canvas::text`] and [`Canvas::measure`] translate exact
     /// matches of the string table, templates go through [`Canvas::fill`].
     pub lang: Lang,
-    /// Every string drawn, as drawn (the tests look for English left in a Chinese diagram).
-    pub drawn: Vec<String>,
+    /// Every string drawn, as drawn, with its size in pixels (the tests look for English left
+    /// in a Chinese diagram and for text too small to read).
+    pub drawn: Vec<(String, f32)>,
+    /// Smallest text size, design units: text drawn smaller than this on screen grows to it
+    /// (up to [`MAX_TEXT_GROWTH`] times its design size).
+    min_text: f32,
+    /// Right edge of the rightmost text drawn so far, design units.
+    pub text_right: f32,
+    /// Boxes of the text drawn so far: grown labels move off the ones they would cover.
+    text_boxes: Vec<[f32; 4]>,
 }
 
+/// How much a label may grow to reach the minimum text size: more would bury the drawing.
+pub const MAX_TEXT_GROWTH: f32 = 1.75;
+
 impl Canvas {
-    pub fn new(pixmap: Pixmap, lang: Lang) -> Self {
+    /// A canvas on `pixmap` with labels in `lang`, text at least `min_text_px` pixels high
+    /// where growing it by at most [`MAX_TEXT_GROWTH`] reaches that.
+    pub fn new(pixmap: Pixmap, lang: Lang, min_text_px: f32) -> Self {
         let (pw, ph) = (pixmap.width() as f32, pixmap.height() as f32);
         let scale = (pw / 960.0).min(ph / 540.0).max(1e-3);
-        let off = [(pw / scale - 960.0) * 0.5, (ph / scale - 540.0) * 0.5];
+        let off = [0.0, (ph / scale - 540.0) * 0.5];
+        let min_text = fin(min_text_px, 0.0).max(0.0) / scale;
         let mut c = Self {
             pixmap,
             scale,
-            w: 960.0,
-            h: 540.0,
             off,
             clip: None,
             text: TextRenderer::shared(),
             lang,
             drawn: Vec::new(),
+            min_text,
+            text_right: 0.0,
+            text_boxes: Vec::new(),
         };
         c.pixmap.fill(col(pal::BG, 1.0));
         c
@@ -193,9 +206,14 @@ impl Canvas {
         i18n::fill(self.lang, template, args)
     }
 
+    /// The size text of design size `size` is drawn at (grown towards the minimum size).
+    pub fn fs(&self, size: f32) -> f32 {
+        size.max(self.min_text).min(size * MAX_TEXT_GROWTH)
+    }
+
     pub fn measure(&self, text: &str, size: f32) -> (f32, f32) {
         let text = i18n::tr(self.lang, text);
-        let m = self.text.measure(text, size * self.scale);
+        let m = self.text.measure(text, self.fs(size) * self.scale);
         (m.width_px / self.scale, m.height_px() / self.scale)
     }
 
@@ -203,16 +221,18 @@ impl Canvas {
     /// when the aspect ratio differs from 16:9).
     pub fn full_rect(&self) -> [f32; 4] {
         let [ox, oy] = self.off;
-        [-ox, -oy, self.w + 2.0 * ox, self.h + 2.0 * oy]
+        let (pw, ph) = (self.pixmap.width() as f32, self.pixmap.height() as f32);
+        [-ox, -oy, pw / self.scale, ph / self.scale]
     }
 
     /// Draws text anchored at `p`, kept inside the pixmap; with `st.plate`, a translucent plate
     /// behind it keeps it legible over lines. Returns the box `[x, y, w, h]`.
     pub fn text(&mut self, s: &str, p: [f32; 2], anchor: Anchor, st: Style) -> [f32; 4] {
         let s = i18n::tr(self.lang, s);
-        self.drawn.push(s.to_string());
         let sc = self.scale;
-        let m = self.text.measure(s, st.size * sc);
+        let size = self.fs(st.size);
+        self.drawn.push((s.to_string(), size * sc));
+        let m = self.text.measure(s, size * sc);
         let (w, asc, h) = (m.width_px / sc, m.ascent_px / sc, m.height_px() / sc);
         use Anchor::*;
         let fx = match anchor {
@@ -228,15 +248,41 @@ impl Canvas {
         let pad = 3.0;
         let [fx0, fy0, fw, fh] = self.full_rect();
         let x = (fin(p[0], 0.0) - fx * w).clamp(fx0 + pad, (fx0 + fw - w - pad).max(fx0 + pad));
-        let y = (fin(p[1], 0.0) - fy * h).clamp(fy0 + pad, (fy0 + fh - h - pad).max(fy0 + pad));
+        let mut y = (fin(p[1], 0.0) - fy * h).clamp(fy0 + pad, (fy0 + fh - h - pad).max(fy0 + pad));
+        if st.plate && self.min_text > 0.0 {
+            y = self.clear_of_earlier_text([x, y, w, h], [fy0 + pad, fy0 + fh - h - pad]);
+        }
+        self.text_boxes.push([x, y, w, h]);
         if st.plate {
             let plate = [x - pad, y - pad * 0.5, w + 2.0 * pad, h + pad];
             self.rect(plate, Some(col(pal::BG, 0.88)), None);
         }
+        self.text_right = self.text_right.max(x + w);
         let [ox, oy] = self.off;
-        let style = TextStyle { px: st.size * sc, color: col(st.color, 1.0), bold: st.bold };
+        let style = TextStyle { px: size * sc, color: col(st.color, 1.0), bold: st.bold };
         self.text.draw(&mut self.pixmap, s, (x + ox) * sc, (y + oy + asc) * sc, style);
         [x, y, w, h]
+    }
+
+    /// `y` for the box `b` moved up or down (whichever is the shorter move within `y_range`)
+    /// until it covers no earlier text. Only text grown for a small panel needs this: the
+    /// layouts are drawn for their design sizes.
+    fn clear_of_earlier_text(&self, b: [f32; 4], y_range: [f32; 2]) -> f32 {
+        let gap = 2.0;
+        let covers = |y: f32, o: &[f32; 4]| {
+            b[0] < o[0] + o[2] && o[0] < b[0] + b[2] && y < o[1] + o[3] + gap && o[1] < y + b[3] + gap
+        };
+        let free = |y: f32| !self.text_boxes.iter().any(|o| covers(y, o));
+        let mut candidates = vec![b[1]];
+        for o in &self.text_boxes {
+            candidates.push(o[1] + o[3] + gap + 0.5);
+            candidates.push(o[1] - b[3] - gap - 0.5);
+        }
+        candidates
+            .into_iter()
+            .filter(|y| (y_range[0]..=y_range[1].max(y_range[0])).contains(y) && free(*y))
+            .min_by(|a, c| (a - b[1]).abs().total_cmp(&(c - b[1]).abs()))
+            .unwrap_or(b[1])
     }
 
     /// Shorthand: ink-coloured label with a plate.

@@ -18,6 +18,7 @@ mod widgets;
 mod tests;
 
 use crate::lessons::Lang;
+pub use canvas::MAX_TEXT_GROWTH;
 pub use text::{CJK_FONT_PATHS, TextMetrics, TextRenderer, TextStyle, load_system_cjk_font};
 
 /// Largest accepted width or height, in pixels.
@@ -246,23 +247,26 @@ pub fn draw(
     width_px: u32,
     height_px: u32,
 ) -> Result<tiny_skia::Pixmap, DiagramError> {
-    draw_traced(kind, inputs, lang, width_px, height_px).map(|(pixmap, _)| pixmap)
+    draw_traced(kind, inputs, lang, [width_px, height_px], 0.0).map(|(pixmap, _)| pixmap)
 }
 
-/// [`draw`], also returning every string drawn (as translated).
+/// [`draw`] for a panel on screen, also returning every string drawn (as translated) with its
+/// size in pixels: text smaller than `min_text_px` grows towards it (at most
+/// [`MAX_TEXT_GROWTH`] times), and a panel wider than 16:9 gives the text columns and the
+/// legend the extra width.
 pub fn draw_traced(
     kind: DiagramKind,
     inputs: &DiagramInputs,
     lang: Lang,
-    width_px: u32,
-    height_px: u32,
-) -> Result<(tiny_skia::Pixmap, Vec<String>), DiagramError> {
+    [width_px, height_px]: [u32; 2],
+    min_text_px: f32,
+) -> Result<(tiny_skia::Pixmap, Vec<(String, f32)>), DiagramError> {
     let bad = DiagramError::InvalidSize { width_px, height_px };
     if width_px == 0 || height_px == 0 || width_px > MAX_SIDE_PX || height_px > MAX_SIDE_PX {
         return Err(bad);
     }
     let pixmap = tiny_skia::Pixmap::new(width_px, height_px).ok_or(bad)?;
-    let mut c = canvas::Canvas::new(pixmap, lang);
+    let mut c = canvas::Canvas::new(pixmap, lang, min_text_px);
     c.title_bar(kind.title());
     match kind {
         DiagramKind::TwoPass => two_pass::draw(&mut c, inputs),

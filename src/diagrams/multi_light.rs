@@ -164,7 +164,9 @@ fn legend_column(c: &mut Canvas, inp: &DiagramInputs) {
     items.push((Swatch::Fill(pal::CAMERA, 1.0), "camera".to_string()));
     let refs: Vec<(Swatch, &str)> = items.iter().map(|(s, t)| (*s, t.as_str())).collect();
     let b = c.legend(&refs, [656.0, 64.0], Anchor::TopLeft);
-    let mut text = Column { x: 656.0, y: b[1] + b[3] + 18.0 };
+    // No legend row below: the column may run to the foot of the diagram.
+    let mut text = Column::new(656.0, b[1] + b[3] + 18.0);
+    text.bottom = 536.0;
     let n = inp.lights.len();
     let t = c.fill("{} lights → {} shadow maps", &[&n, &n]);
     text.line(c, &t);

@@ -85,7 +85,7 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
 
     // Numbers on the right.
     let map = inp.shadow_map_size_texels.max(1) as f32;
-    let mut text = Column { x: 520.0, y: 70.0 };
+    let mut text = Column::new(520.0, 70.0);
     text.line(c, "V = (1/N) · Σ [ d_r − bias ≤ map(uv + r·s_i) ]");
     let t = c.fill("samples N = {}", &[&n]);
     text.line(c, &t);
@@ -125,6 +125,7 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     // The pixel's resulting shade.
     let shade = (40.0 + v.clamp(0.0, 1.0) * 200.0) as u8;
     let swatch = tiny_skia::ColorU8::from_rgba(shade, shade, shade, 255);
+    text.reserve(48.0);
     c.rect([text.x, text.y + 4.0, 56.0, 40.0], Some(col(swatch, 1.0)), Some((ink, 2.0)));
     c.label("→ pixel brightness", [text.x + 68.0, text.y + 24.0], Anchor::MidLeft, FS_LABEL);
 

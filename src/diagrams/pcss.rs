@@ -131,16 +131,19 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let ink = col(pal::INK, 1.0);
     c.arrow([40.0, Y_LIGHT], [40.0, Y_RECV], ink, 2.5, true);
     let d_r_txt = format!("d_receiver = {}", num(n.d_r));
-    c.label(&d_r_txt, [50.0, Y_RECV + 16.0], Anchor::TopLeft, FS_LABEL);
+    let d_r_box = c.label(&d_r_txt, [50.0, Y_RECV + 16.0], Anchor::TopLeft, FS_LABEL);
     if n.has_blocker {
         c.arrow([62.0, Y_LIGHT], [62.0, y_b], col(pal::BLOCKER, 1.0), 2.5, true);
         let t = format!("d_blocker = {}", num(n.d_b));
         c.label(&t, [72.0, y_b - 10.0], Anchor::BottomLeft, FS_LABEL);
     }
     let near_txt = c.fill("near plane d = {}", &[&num(n.near)]);
-    c.label(&near_txt, [74.0, y_near + 4.0], Anchor::TopLeft, FS_SMALL);
-    let st = Style::em(FS_SMALL, pal::SEARCH);
-    c.text("search region", [X_EDGE, y_near + 6.0], Anchor::TopCenter, st);
+    let near_box = c.label(&near_txt, [74.0, y_near + 4.0], Anchor::TopLeft, FS_SMALL);
+    // Below the cut, and below the near-plane label where grown text would overlap it.
+    let half_w = c.measure("search region", FS_SMALL).0 * 0.5;
+    let overlaps = X_EDGE - half_w < near_box[0] + near_box[2] + 6.0;
+    let y = if overlaps { near_box[1] + near_box[3] + 4.0 } else { y_near + 6.0 };
+    c.text("search region", [X_EDGE, y], Anchor::TopCenter, Style::em(FS_SMALL, pal::SEARCH));
     match n.theta {
         None => {
             let t = c.fill("w_light = {} world", &[&num(n.w_light)]);
@@ -155,15 +158,15 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         let (b0, b1) = (p0.max(AREA[0]), p1.min(AREA[0] + AREA[2]));
         c.bracket(b0, b1, Y_RECV + 22.0, pen, 3.0);
         let t = c.fill("w_penumbra = {} world", &[&num(n.w_pen)]);
-        let at = [((b0 + b1) * 0.5).max(300.0), Y_RECV + 30.0];
+        // Under its bracket, clear of the d_receiver label.
+        let half_w = c.measure(&t, FS_LABEL).0 * 0.5;
+        let at = [((b0 + b1) * 0.5).max(d_r_box[0] + d_r_box[2] + 12.0 + half_w), Y_RECV + 30.0];
         let st = Style::em(FS_LABEL, pal::PENUMBRA);
         c.text(&t, at, Anchor::TopCenter, st);
     }
     let ex = if exag >= 1.0 { format!("{exag:.0}") } else { num(exag) };
-    let t = c.fill("widths ×{}, depths to scale", &[&ex]);
-    let corner = [AREA[0] + 4.0, AREA[1] + 6.0];
-    c.label(&t, corner, Anchor::TopLeft, FS_SMALL);
-    formulas(c, inp, &n);
+    let scale_note = c.fill("widths ×{}, depths to scale", &[&ex]);
+    formulas(c, inp, &n, &scale_note);
 
     let items = [
         (Swatch::Fill(pal::LIGHT, 1.0), "light"),
@@ -177,8 +180,8 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
 }
 
 /// The formulas with the live numbers, in a column on the right.
-fn formulas(c: &mut Canvas, inp: &DiagramInputs, n: &Numbers) {
-    let mut col_ = Column { x: 612.0, y: 64.0 };
+fn formulas(c: &mut Canvas, inp: &DiagramInputs, n: &Numbers, scale_note: &str) {
+    let mut col_ = Column::new(612.0, 64.0);
     let (d_r, d_b) = (num(n.d_r), num(n.d_b));
     match (n.has_blocker, n.theta) {
         (false, _) => {
@@ -226,4 +229,5 @@ fn formulas(c: &mut Canvas, inp: &DiagramInputs, n: &Numbers) {
         let t = c.fill("(shader's w_penumbra: {} world)", &[&num(reported)]);
         col_.tint(c, &t, pal::MUTED);
     }
+    col_.tint(c, scale_note, pal::MUTED);
 }

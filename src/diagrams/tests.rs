@@ -370,7 +370,7 @@ fn writes_default_pngs_for_inspection() {
     };
     for kind in DiagramKind::ALL {
         save(kind.id(), kind, &DiagramInputs::default());
-        let (zh, _) = draw_traced(kind, &DiagramInputs::default(), Lang::Zh, 960, 540).expect("draw");
+        let (zh, _) = draw_traced(kind, &DiagramInputs::default(), Lang::Zh, [960, 540], 0.0).expect("draw");
         std::fs::write(dir.join(format!("{}_zh.png", kind.id())), encode_png(&zh).expect("png"))
             .expect("write");
     }
@@ -444,9 +444,9 @@ fn every_chinese_diagram_label_is_chinese() {
     let mut count = 0;
     for (case, inp) in label_cases() {
         for kind in DiagramKind::ALL {
-            let (_, texts) = draw_traced(kind, &inp, Lang::Zh, 960, 540).expect("draw");
+            let (_, texts) = draw_traced(kind, &inp, Lang::Zh, [960, 540], 0.0).expect("draw");
             count += texts.len();
-            for t in texts {
+            for (t, _) in texts {
                 if !english_words(&t).is_empty() {
                     english.insert(format!("{} ({case}): {t}", kind.id()));
                 }
@@ -460,16 +460,17 @@ fn every_chinese_diagram_label_is_chinese() {
     );
     // The check itself finds English.
     let (_, en) =
-        draw_traced(DiagramKind::PcssTriangles, &DiagramInputs::default(), Lang::En, 960, 540).expect("draw");
-    assert!(en.iter().any(|t| !english_words(t).is_empty()));
+        draw_traced(DiagramKind::PcssTriangles, &DiagramInputs::default(), Lang::En, [960, 540], 0.0)
+            .expect("draw");
+    assert!(en.iter().any(|(t, _)| !english_words(t).is_empty()));
 }
 
 #[test]
 fn chinese_diagrams_keep_the_numbers_of_the_english_ones() {
-    let digits = |texts: &[String]| -> Vec<String> {
+    let digits = |texts: &[(String, f32)]| -> Vec<String> {
         let mut numbers: Vec<String> = texts
             .iter()
-            .flat_map(|t| {
+            .flat_map(|(t, _)| {
                 t.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == '-'))
                     .map(str::to_string)
                     .collect::<Vec<_>>()
@@ -481,10 +482,28 @@ fn chinese_diagrams_keep_the_numbers_of_the_english_ones() {
     };
     for (case, inp) in label_cases().into_iter().take(30) {
         for kind in DiagramKind::ALL {
-            let (_, en) = draw_traced(kind, &inp, Lang::En, 960, 540).expect("draw");
-            let (_, zh) = draw_traced(kind, &inp, Lang::Zh, 960, 540).expect("draw");
+            let (_, en) = draw_traced(kind, &inp, Lang::En, [960, 540], 0.0).expect("draw");
+            let (_, zh) = draw_traced(kind, &inp, Lang::Zh, [960, 540], 0.0).expect("draw");
             assert_eq!(en.len(), zh.len(), "{} ({case}): different label count", kind.id());
             assert_eq!(digits(&en), digits(&zh), "{} ({case}): numbers differ", kind.id());
         }
+    }
+}
+
+#[test]
+fn on_a_small_panel_text_grows_to_the_minimum_size() {
+    for kind in DiagramKind::ALL {
+        // 760x256: the diagram panel of a 1600x900 window; text would be 8 px at design size.
+        let (_, plain) =
+            draw_traced(kind, &DiagramInputs::default(), Lang::Zh, [760, 256], 0.0).expect("draw");
+        let (_, grown) =
+            draw_traced(kind, &DiagramInputs::default(), Lang::Zh, [760, 256], 14.0).expect("draw");
+        let smallest = |t: &[(String, f32)]| t.iter().map(|(_, px)| *px).fold(f32::INFINITY, f32::min);
+        assert!(smallest(&plain) < 9.0, "{}: {}", kind.id(), smallest(&plain));
+        assert!(smallest(&grown) >= 14.0, "{}: {} px", kind.id(), smallest(&grown));
+        // Growth is capped: on a tiny panel text stays at most MAX_TEXT_GROWTH times its size.
+        let (_, tiny) =
+            draw_traced(kind, &DiagramInputs::default(), Lang::En, [320, 180], 14.0).expect("draw");
+        assert!(smallest(&tiny) < 14.0 && smallest(&tiny) <= 17.0 / 3.0 * MAX_TEXT_GROWTH + 0.01);
     }
 }

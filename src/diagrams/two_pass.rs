@@ -184,11 +184,12 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let first = ["first hit: P itself", "first hit: blocker"][usize::from(occluded)];
     let first = c.fill(first, &[]);
     let l1 = c.fill("{} ({})   ·   {} (P)   ·   world units", &[&stored_txt, &first, &recv_txt]);
-    c.label(&l1, [20.0, y0], Anchor::TopLeft, FS_LABEL);
     let (b, st) = (num(bias_w), num(stored));
     let bias_ndc = ndc(fin(inp.bias_ndc, 0.0));
     let test = c.fill("bias = {} NDC ≈ {} world   →   {} − {} ≤ {} ?", &[&bias_ndc, &b, &num(recv), &b, &st]);
-    let bx = c.label(&test, [20.0, y0 + 30.0], Anchor::TopLeft, FS_LABEL);
+    let l1_box = c.label(&l1, [20.0, y0], Anchor::TopLeft, FS_LABEL);
+    let y1 = y0 + l1_box[3] + 6.0;
+    let bx = c.label(&test, [20.0, y1], Anchor::TopLeft, FS_LABEL);
     let (verdict, vc) = match (inp.outside_frustum, inp.clamp_outside, lit) {
         (true, true, _) => ("outside the light frustum → lit", pal::LIT),
         (true, false, true) => ("yes → lit (wrapped lookup!)", pal::LIT),
@@ -196,7 +197,7 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         (false, _, true) => ("yes → lit", pal::LIT),
         (false, _, false) => ("no → in shadow", pal::BLOCKED),
     };
-    let at = [bx[0] + bx[2] + 14.0, y0 + 30.0];
+    let at = [bx[0] + bx[2] + 14.0, y1];
     c.text(verdict, at, Anchor::TopLeft, Style::em(FS_LABEL + 2.0, vc));
 
     let items = [

@@ -16,9 +16,9 @@ impl Canvas {
 
     /// Legend box with its corner `anchor` at `p`. Returns its box `[x, y, w, h]`.
     pub fn legend(&mut self, items: &[(Swatch, &str)], p: [f32; 2], anchor: Anchor) -> [f32; 4] {
-        let (row, sw) = (FS_SMALL * 1.45, 30.0);
+        let (row, sw) = (self.fs(FS_SMALL) * 1.45, 30.0);
         let tw = items.iter().map(|(_, s)| self.measure(s, FS_SMALL).0).fold(0.0, f32::max);
-        let (w, h) = (sw + 22.0 + tw, row * items.len() as f32 + 12.0);
+        let (w, h) = (sw + 30.0 + tw, row * items.len() as f32 + 12.0);
         let x = match anchor {
             Anchor::TopRight | Anchor::BottomRight | Anchor::MidRight => p[0] - w,
             _ => p[0],
@@ -37,12 +37,21 @@ impl Canvas {
         [x, y, w, h]
     }
 
-    /// One-row legend centred on `center` (x centre, bottom y).
+    /// One-row legend centred on `center` (x centre, bottom y); on a panel wide enough, a
+    /// legend box right of all the text instead, which leaves the bottom to grown text.
     pub fn legend_row(&mut self, items: &[(Swatch, &str)], center: [f32; 2]) -> [f32; 4] {
+        let [fx, _, fw, _] = self.full_rect();
+        let box_w = 60.0 + items.iter().map(|(_, s)| self.measure(s, FS_SMALL).0).fold(0.0, f32::max);
+        let right_x = self.text_right.max(960.0) + 24.0;
+        if right_x + box_w + 8.0 <= fx + fw {
+            return self.legend(items, [right_x, 64.0], Anchor::TopLeft);
+        }
         let (sw, gap) = (26.0, 22.0);
         let widths: Vec<f32> = items.iter().map(|(_, s)| self.measure(s, FS_SMALL).0 + sw + 8.0).collect();
         let total = widths.iter().sum::<f32>() + gap * (items.len().max(1) - 1) as f32 + 20.0;
-        let (h, x0) = (FS_SMALL * 1.6, center[0] - total * 0.5);
+        let [fx, _, fw, _] = self.full_rect();
+        let x0 = (center[0] - total * 0.5).min(fx + fw - total - 4.0).max(fx + 4.0);
+        let h = self.fs(FS_SMALL) * 1.6;
         let y = center[1] - h;
         let frame = Some((col(pal::MUTED, 1.0), 1.5));
         self.rect([x0, y, total, h], Some(col(pal::BG, 0.94)), frame);
@@ -104,16 +113,39 @@ impl Canvas {
     }
 }
 
-/// A column of text lines with plates, top to bottom.
+/// A column of text lines with plates, top to bottom; a line that would pass [`COLUMN_BOTTOM`]
+/// (grown text on a small panel) starts a new column to the right.
 pub struct Column {
     pub x: f32,
     pub y: f32,
+    top: f32,
+    /// Lowest a line may reach before the column flows on.
+    pub bottom: f32,
+    /// Widest line of the current column, design units.
+    width: f32,
 }
 
+/// Lowest a column line may reach: the legend row sits below.
+pub const COLUMN_BOTTOM: f32 = 494.0;
+
 impl Column {
+    pub fn new(x: f32, y: f32) -> Self {
+        Self { x, y, top: y, bottom: COLUMN_BOTTOM, width: 0.0 }
+    }
+
     pub fn styled(&mut self, c: &mut Canvas, s: &str, st: Style) {
-        c.text(s, [self.x, self.y], Anchor::TopLeft, st);
-        self.y += st.size * 1.5;
+        let advance = c.fs(st.size) * 1.5;
+        self.reserve(advance);
+        let b = c.text(s, [self.x, self.y], Anchor::TopLeft, st);
+        self.width = self.width.max(b[2]);
+        self.y += advance;
+    }
+
+    /// Starts a new column when `height` more would pass [`COLUMN_BOTTOM`].
+    pub fn reserve(&mut self, height: f32) {
+        if self.y + height > self.bottom && self.y > self.top {
+            (self.x, self.y, self.width) = (self.x + self.width + 24.0, self.top, 0.0);
+        }
     }
 
     /// Regular ink line at label size.

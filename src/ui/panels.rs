@@ -11,6 +11,8 @@ use egui::{Color32, Rect, Sense, Stroke, Ui, pos2, vec2};
 #[derive(Default)]
 pub struct PanelState {
     diagram: Option<(egui::TextureHandle, DiagramKey)>,
+    /// Size of the smallest text in the diagram on screen, points.
+    pub smallest_diagram_text_pt: Option<f32>,
 }
 
 /// What a diagram texture was drawn from: kind, live inputs, language and size in pixels.
@@ -72,20 +74,23 @@ pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
     ui.allocate_rect(avail, Sense::hover());
 }
 
+/// Smallest diagram text on screen, points: readable from the back of a classroom.
+pub const DIAGRAM_MIN_TEXT_PT: f32 = 14.0;
+
 fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
-    // 16:9 inside the rect, drawn at the screen's pixel density.
-    let (w, h) = if rect.width() / rect.height().max(1.0) > 16.0 / 9.0 {
-        (rect.height() * 16.0 / 9.0, rect.height())
-    } else {
-        (rect.width(), rect.width() * 9.0 / 16.0)
-    };
+    // The whole width (text columns and legend use what is wider than 16:9), at most 16:9
+    // tall, drawn at the screen's pixel density.
+    let (w, h) = (rect.width(), rect.height().min(rect.width() * 9.0 / 16.0));
     let ppp = ui.ctx().pixels_per_point();
     let size_px = ((w * ppp).max(32.0) as u32, (h * ppp).max(18.0) as u32);
     let key = DiagramKey { kind: app.diagram, inputs: live_inputs(app), lang: app.lang, size_px };
     let current = app.panel_state.diagram.as_ref().is_some_and(|(_, drawn)| *drawn == key);
     if !current {
-        match diagrams::draw(key.kind, &key.inputs, key.lang, size_px.0, size_px.1) {
-            Ok(pixmap) => {
+        let min_text_px = DIAGRAM_MIN_TEXT_PT * ppp;
+        match diagrams::draw_traced(key.kind, &key.inputs, key.lang, [size_px.0, size_px.1], min_text_px) {
+            Ok((pixmap, texts)) => {
+                let smallest_px = texts.iter().map(|(_, px)| *px).fold(f32::INFINITY, f32::min);
+                app.panel_state.smallest_diagram_text_pt = Some(smallest_px / ppp);
                 let image = egui::ColorImage::from_rgba_premultiplied(
                     [pixmap.width() as usize, pixmap.height() as usize],
                     pixmap.data(),

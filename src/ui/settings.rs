@@ -31,7 +31,7 @@ impl Default for Settings {
             lang: Lang::En,
             split: 0.62,
             inspector_width: 300.0,
-            diagram_height: 250.0,
+            diagram_height: 300.0,
             screenshot_dir: PathBuf::from("screenshots"),
             show_kernel_plot: true,
             show_timings: true,
