@@ -473,7 +473,7 @@ fn allowed_in_chinese(word: &str) -> bool {
         .chain(Kernel::ALL.iter().map(|k| k.name()))
         .chain(BiasMode::ALL.iter().map(|b| b.name()))
         .chain(shadowlab::views::View::ALL.iter().map(|v| v.name()));
-    // "screenshots" is the screenshot folder's default path.
+    // "screenshots" is the screenshot folder's default path; x, y and z name coordinates.
     let fixed = [
         "shadowlab",
         "English",
@@ -492,6 +492,8 @@ fn allowed_in_chinese(word: &str) -> bool {
         "N",
         "L",
         "x",
+        "y",
+        "z",
         "s",
         "screenshots",
         "Resize",
@@ -690,4 +692,76 @@ fn a_small_window_keeps_a_usable_camera_view_even_with_large_saved_panels() {
         view.width() >= 0.3 * 800.0 && view.height() >= 0.25 * 500.0,
         "camera view {view:?} in an 800x500 window"
     );
+}
+
+#[test]
+fn at_1600x900_diagram_text_is_at_least_14_points_in_both_layouts_and_languages() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("the PCSS lesson");
+    h.state_mut().go_to_step(lesson, 0);
+    settle(&mut h);
+    assert!(h.state().panel_visible(shadowlab::lessons::Panel::Diagram));
+    for lang in [shadowlab::lessons::Lang::En, shadowlab::lessons::Lang::Zh] {
+        for present in [false, true] {
+            h.state_mut().lang = lang;
+            h.state_mut().present = present;
+            settle(&mut h);
+            h.run_steps(2);
+            let smallest = h.state().smallest_diagram_text_pt().expect("a diagram is drawn");
+            assert!(smallest >= 14.0, "{lang:?}, present {present}: diagram text of {smallest:.1} pt");
+        }
+    }
+}
+
+#[test]
+fn every_try_this_apply_button_sets_what_its_prompt_says() {
+    let mut h = harness_sized([1600.0, 1000.0]);
+    let lessons = h.state().lessons.clone();
+    let mut pressed = 0;
+    for (l, lesson) in lessons.iter().enumerate() {
+        for (s, step) in lesson.steps.iter().enumerate() {
+            h.state_mut().go_to_step(l, s);
+            h.run_steps(2);
+            let applying: Vec<usize> =
+                (0..step.try_this.len()).filter(|&j| step.try_this[j].applies_anything()).collect();
+            assert_eq!(h.query_all_by_label("Apply").count(), applying.len(), "{} step {}", lesson.id, s + 1);
+            for (button, &j) in applying.iter().enumerate() {
+                let at = format!("{} step {} try_this {}", lesson.id, s + 1, j + 1);
+                let prompt = &step.try_this[j];
+                let camera = h.state().scene.camera;
+                h.query_all_by_label("Apply").nth(button).expect("the Apply button").click();
+                h.run_steps(2);
+                pressed += 1;
+                let expected = step.scene_with_try_this(j).expect("the prompt's scene");
+                let app = h.state();
+                assert_eq!(app.applied_try_this, Some(j), "{at}");
+                assert_eq!(format!("{:?}", app.scene.shadow), format!("{:?}", expected.shadow), "{at}");
+                assert_eq!(format!("{:?}", app.scene.lights), format!("{:?}", expected.lights), "{at}");
+                assert_eq!(app.scene.camera, camera, "{at}: the student's camera is kept");
+                assert_eq!(app.time_s, prompt.time_s.unwrap_or(step.time_s), "{at}");
+                assert_eq!(app.view, prompt.view.unwrap_or(step.view), "{at}");
+                // Every control the prompt names is on screen for the student to move.
+                for (key, _) in &prompt.overrides {
+                    if let Some(n) = key.strip_prefix("light.").and_then(|k| k.split('.').next()) {
+                        h.state_mut().selected_light = n.parse().expect("light index");
+                        h.run_steps(2);
+                    }
+                    let label = shadowlab::ui::control_label(key).expect("a control");
+                    assert!(
+                        h.query_all_by_label_contains(label).next().is_some(),
+                        "{at}: no `{label}` control on screen"
+                    );
+                }
+            }
+            if !applying.is_empty() {
+                h.get_by_label("Back to the step's settings").click();
+                h.run_steps(2);
+                let own = step.scene().expect("the step's scene");
+                assert_eq!(format!("{:?}", h.state().scene.lights), format!("{:?}", own.lights));
+                assert_eq!(format!("{:?}", h.state().scene.shadow), format!("{:?}", own.shadow));
+                assert_eq!(h.state().applied_try_this, None);
+            }
+        }
+    }
+    assert!(pressed >= 30, "only {pressed} Apply buttons pressed");
 }

@@ -59,7 +59,7 @@ fn every_text_is_given_in_both_languages() {
                 step.try_this.len()
             );
             for (j, prompt) in step.try_this.iter().enumerate() {
-                check_text(prompt, &format!("{at} try_this {}", j + 1));
+                check_text(&prompt.text, &format!("{at} try_this {}", j + 1));
             }
         }
     }
@@ -186,6 +186,74 @@ fn unknown_overlay_names_file_line_and_value() {
     assert!(message.contains("shadow-rays"), "{message}");
 }
 
+/// The part of a control's label before its unit: “light width” of “light width (world units)”.
+fn short_label(label: &str) -> &str {
+    let en = label.split(" (").next().unwrap_or(label);
+    en.split('（').next().unwrap_or(en)
+}
+
+#[test]
+fn try_this_prompts_name_the_apps_controls_and_apply_what_they_say() {
+    let mut applied = 0;
+    for lesson in shipped() {
+        for (i, step) in lesson.steps.iter().enumerate() {
+            for (j, prompt) in step.try_this.iter().enumerate() {
+                let at = format!("{} step {} try_this {}", lesson.id, i + 1, j + 1);
+                let (en, zh) = (&prompt.text.en, &prompt.text.zh);
+                // No command-line syntax: the student is in the app.
+                for text in [en, zh] {
+                    assert!(
+                        !text.contains('`') && !text.contains("--"),
+                        "{at}: command-line syntax in {text:?}"
+                    );
+                }
+                for (key, value) in &prompt.overrides {
+                    let label = shadowlab::ui::control_label(key)
+                        .unwrap_or_else(|| panic!("{at}: `{key}` has no control in the app"));
+                    let en_name = format!("“{}”", short_label(label));
+                    let zh_name = format!("「{}」", short_label(shadowlab::i18n::tr(Lang::Zh, label)));
+                    assert!(en.contains(&en_name), "{at}: the English text does not name {en_name}: {en}");
+                    assert!(zh.contains(&zh_name), "{at}: the Chinese text does not name {zh_name}: {zh}");
+                    let value = value.trim_matches('"');
+                    assert!(
+                        en.contains(value) && zh.contains(value),
+                        "{at}: the text does not say {key} = {value}"
+                    );
+                }
+                if let Some(t) = prompt.time_s {
+                    assert!(
+                        en.contains("“time”") && zh.contains("「时间」"),
+                        "{at}: the time control is not named"
+                    );
+                    assert!(en.contains(&t.to_string()), "{at}: the text does not say time {t}");
+                }
+                if let Some(view) = prompt.view {
+                    assert!(
+                        en.contains(view.name()) && zh.contains(view.name()),
+                        "{at}: view {} not named",
+                        view.name()
+                    );
+                }
+                // The Apply button's scene loads.
+                step.scene_with_try_this(j).unwrap_or_else(|e| panic!("{at}: {e}"));
+                applied += usize::from(prompt.applies_anything());
+            }
+        }
+    }
+    assert!(applied >= 30, "only {applied} prompts have an Apply button");
+}
+
+#[test]
+fn a_bad_key_in_a_try_this_prompt_names_the_file_and_the_key() {
+    let path = data_file("bad_try_this_key.toml");
+    let message = match lessons::load_lesson(&path) {
+        Ok(_) => panic!("a prompt whose Apply cannot work was accepted"),
+        Err(e) => e.to_string(),
+    };
+    assert!(message.contains("bad_try_this_key.toml") && message.contains("radius_texel"), "{message}");
+    assert!(message.contains("try_this 1"), "{message}");
+}
+
 #[test]
 fn bad_override_key_names_file_line_and_key() {
     let line = line_of(&data_file("bad_set_key.toml"), "set = ");
@@ -230,7 +298,10 @@ fn every_claimed_verdict_and_quoted_number_holds_at_the_cli_probe() {
     // `shadowlab probe --lesson ID --step N` (the lesson's own frame) must find what the text says.
     for lesson in shipped() {
         for (i, step) in lesson.steps.iter().enumerate() {
-            let quotes = [&step.text].into_iter().chain(&step.try_this).any(|t| t.en.contains("{probe."));
+            let quotes = [&step.text]
+                .into_iter()
+                .chain(step.try_this.iter().map(|t| &t.text))
+                .any(|t| t.en.contains("{probe."));
             if step.expect.is_none() && !quotes {
                 continue;
             }
@@ -250,7 +321,7 @@ fn every_claimed_verdict_and_quoted_number_holds_at_the_cli_probe() {
             // Every quoted number has a value there (no "…" on a slide or in the app), and each
             // is the report's value as rounded in the text.
             for lang in [Lang::En, Lang::Zh] {
-                let texts = [&step.text].into_iter().chain(&step.try_this);
+                let texts = [&step.text].into_iter().chain(step.try_this.iter().map(|t| &t.text));
                 for text in texts.map(|t| t.get(lang)) {
                     let (filled_text, filled) = live::fill(text, Some(&report), step.light, lang);
                     for f in &filled {

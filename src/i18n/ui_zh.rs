@@ -153,4 +153,12 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("(working out the overlays...)", "（正在计算叠加层……）"),
     ("Diagram", "示意图"),
     ("sample pattern", "采样图案"),
+    // Lesson panel: "Try this" prompts.
+    ("Apply", "应用"),
+    ("set what this prompt says", "按这条提示设置"),
+    ("applied", "已应用"),
+    ("Back to the step's settings", "回到这一步的设置"),
+    // Lights: position and target.
+    ("position", "位置"),
+    ("target", "目标点"),
 ];

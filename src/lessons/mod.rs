@@ -130,13 +130,24 @@ fn default_panels() -> Vec<Panel> {
     vec![Panel::Camera, Panel::ShadowMap, Panel::Diagram]
 }
 
+/// A "Try this" prompt as written: its text and what its Apply button changes.
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct TryThisFile {
+    en: String,
+    zh: String,
+    set: Option<toml::Table>,
+    time: Option<f32>,
+    view: Option<String>,
+}
+
 #[derive(Deserialize)]
 #[serde(deny_unknown_fields)]
 struct StepFile {
     title: Text,
     text: Text,
     #[serde(default)]
-    try_this: Vec<Text>,
+    try_this: Vec<TryThisFile>,
     scene: Spanned<String>,
     set: Option<Spanned<toml::Table>>,
     #[serde(default)]
@@ -157,12 +168,29 @@ struct StepFile {
     expect: Option<live::Verdict>,
 }
 
+/// A "Try this" prompt: text naming the app's controls, and the change its Apply button makes
+/// on top of the step (`--set`-style overrides, a scene time, a view).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TryThis {
+    pub text: Text,
+    pub overrides: Vec<(String, String)>,
+    pub time_s: Option<f32>,
+    pub view: Option<View>,
+}
+
+impl TryThis {
+    /// The prompt changes something the Apply button can set.
+    pub fn applies_anything(&self) -> bool {
+        !self.overrides.is_empty() || self.time_s.is_some() || self.view.is_some()
+    }
+}
+
 /// One step of a lesson, checked: its scene loads with its overrides.
 #[derive(Clone, Debug)]
 pub struct Step {
     pub title: Text,
     pub text: Text,
-    pub try_this: Vec<Text>,
+    pub try_this: Vec<TryThis>,
     pub scene_path: PathBuf,
     /// `--set`-style overrides, in file order.
     pub overrides: Vec<(String, String)>,
@@ -182,6 +210,13 @@ impl Step {
     /// The step's scene with its overrides applied.
     pub fn scene(&self) -> Result<Scene, SceneError> {
         load_scene(&self.scene_path, &self.overrides)
+    }
+
+    /// The step's scene with prompt `index`'s changes on top (what its Apply button shows).
+    pub fn scene_with_try_this(&self, index: usize) -> Result<Scene, SceneError> {
+        let extra = self.try_this.get(index).map_or(&[][..], |t| &t.overrides[..]);
+        let all: Vec<(String, String)> = self.overrides.iter().chain(extra).cloned().collect();
+        load_scene(&self.scene_path, &all)
     }
 }
 
@@ -220,7 +255,7 @@ fn flatten(prefix: &str, table: &toml::Table, out: &mut Vec<(String, String)>) {
 /// The step's text quotes the probe (`{probe...}`) somewhere.
 fn step_quotes_probe(step: &Step) -> bool {
     std::iter::once(&step.text)
-        .chain(&step.try_this)
+        .chain(step.try_this.iter().map(|t| &t.text))
         .any(|t| t.en.contains("{probe.") || t.zh.contains("{probe."))
 }
 
@@ -232,7 +267,7 @@ impl Step {
 
     /// The try-this prompts in `lang`, filled in.
     pub fn try_this_filled(&self, lang: Lang, probe: Option<&crate::probe::ProbeReport>) -> Vec<String> {
-        self.try_this.iter().map(|t| live::fill(t.get(lang), probe, self.light, lang).0).collect()
+        self.try_this.iter().map(|t| live::fill(t.text.get(lang), probe, self.light, lang).0).collect()
     }
 }
 
@@ -286,10 +321,31 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
             flatten("", set.get_ref(), &mut overrides);
         }
         let set_span = s.set.as_ref().map_or(0..0, |set| set.span());
+        let mut try_this = Vec::with_capacity(s.try_this.len());
+        for (i, t) in s.try_this.into_iter().enumerate() {
+            let mut overrides = Vec::new();
+            if let Some(set) = &t.set {
+                flatten("", set, &mut overrides);
+            }
+            let view = match &t.view {
+                None => None,
+                Some(v) => Some(
+                    View::from_name(v)
+                        .ok_or_else(|| error(0..0, format!("try_this {}: unknown view `{v}`", i + 1)))?,
+                ),
+            };
+            if t.time.is_some_and(|t| !t.is_finite()) {
+                return Err(error(
+                    0..0,
+                    format!("try_this {}: `time` must be a finite number of seconds", i + 1),
+                ));
+            }
+            try_this.push(TryThis { text: Text { en: t.en, zh: t.zh }, overrides, time_s: t.time, view });
+        }
         let step = Step {
             title: s.title,
             text: s.text,
-            try_this: s.try_this,
+            try_this,
             scene_path: base.join(s.scene.get_ref()),
             overrides,
             time_s: s.time,
@@ -303,7 +359,7 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
             expect: s.expect,
         };
         // Live numbers: every `{probe.NAME}` must name a probe value, in both languages.
-        for text in std::iter::once(&step.text).chain(&step.try_this) {
+        for text in std::iter::once(&step.text).chain(step.try_this.iter().map(|t| &t.text)) {
             for lang_text in [&text.en, &text.zh] {
                 if let Err(message) = live::placeholders(lang_text) {
                     return Err(error(0..0, message));
@@ -318,6 +374,12 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
             SceneError::Override { .. } => error(set_span.clone(), e.to_string()),
             _ => error(s.scene.span(), e.to_string()),
         })?;
+        // Every Apply button works: the prompt's changes load on top of the step's.
+        for (i, t) in step.try_this.iter().enumerate() {
+            if !t.overrides.is_empty() {
+                step.scene_with_try_this(i).map_err(|e| error(0..0, format!("try_this {}: {e}", i + 1)))?;
+            }
+        }
         if step.light >= scene.lights.len().max(1) {
             return Err(error(
                 0..0,

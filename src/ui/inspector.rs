@@ -29,6 +29,49 @@ fn combo<T: Copy + PartialEq>(
 }
 
 /// The hover text naming a widget's key in scene and lesson files (`--set KEY=VALUE`).
+/// The inspector control of each scene key a lesson may change (`light.N.*` for any light),
+/// by its English label: "Try this" prompts name the control, and the tests check they do.
+const CONTROLS: &[(&str, &str)] = &[
+    ("technique", "technique"),
+    ("bias_mode", "bias mode"),
+    ("bias", "bias (NDC depth)"),
+    ("slope_bias", "slope bias (NDC)"),
+    ("adaptive_c", "adaptive c (× half texel)"),
+    ("normal_offset_texels", "normal offset (texels)"),
+    ("depth_bias_constant", "hardware bias (depth units)"),
+    ("depth_bias_slope", "hardware slope bias"),
+    ("cull_front_faces", "cull front faces in the shadow pass"),
+    ("clamp_outside", "outside the light frustum = lit"),
+    ("pcf_kernel", "kernel"),
+    ("samples", "samples"),
+    ("radius_texels", "radius (texels)"),
+    ("rotate_per_pixel", "rotate the pattern per pixel"),
+    ("blocker_samples", "blocker samples"),
+    ("min_filter_radius_texels", "min filter radius (texels)"),
+    ("reference_samples", "ground-truth samples"),
+    ("light.N.shadow_map_size", "shadow map (texels)"),
+    ("light.N.extent", "half-width (world units)"),
+    ("light.N.near", "near (world units)"),
+    ("light.N.far", "far (world units)"),
+    ("light.N.width", "light width (world units)"),
+    ("light.N.angular_diameter_deg", "angular diameter (°)"),
+    ("light.N.intensity", "intensity"),
+    ("light.N.orbit_deg_per_s", "orbit (°/s)"),
+    ("light.N.position", "position"),
+    ("light.N.target", "target"),
+];
+
+/// The English label of the inspector control that sets scene key `key` (`light.2.width`
+/// finds the light-width slider), or `None` when the app has no control for it.
+pub fn control_label(key: &str) -> Option<&'static str> {
+    let parts: Vec<&str> = key.split('.').collect();
+    let key = match parts.as_slice() {
+        ["light", n, rest] if n.parse::<usize>().is_ok() => format!("light.N.{rest}"),
+        _ => key.to_string(),
+    };
+    CONTROLS.iter().find(|(k, _)| *k == key).map(|(_, label)| *label)
+}
+
 fn key_hint(lang: Lang, key: &str) -> String {
     match lang {
         Lang::En => format!("scene key `{key}` (lessons and --set use it)"),
@@ -209,6 +252,18 @@ fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
         }
     });
     let Some(light) = app.scene.lights.get_mut(app.selected_light) else { return changed };
+    for (label, key, point) in [
+        ("position", "light.N.position", &mut light.position),
+        ("target", "light.N.target", &mut light.target),
+    ] {
+        ui.horizontal(|ui| {
+            let name = ui.label(tr(label)).on_hover_text(key_hint(lang, key));
+            for (axis, prefix) in ["x ", "y ", "z "].into_iter().enumerate() {
+                let value = egui::DragValue::new(&mut point[axis]).speed(0.5).max_decimals(2).prefix(prefix);
+                changed |= ui.add(value).labelled_by(name.id).changed();
+            }
+        });
+    }
     let mut size = light.shadow_map_size;
     egui::ComboBox::from_label(tr("shadow map (texels)")).selected_text(format!("{size}²")).show_ui(
         ui,

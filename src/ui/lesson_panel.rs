@@ -5,6 +5,29 @@ use super::ShadowlabApp;
 use crate::lessons::{Lang, Panel};
 use egui::{RichText, Ui};
 
+/// The Apply button's tooltip: each control it sets and the value.
+fn what_apply_sets(prompt: &crate::lessons::TryThis, lang: Lang) -> String {
+    let tr = |en: &'static str| crate::i18n::tr(lang, en);
+    let mut lines = vec![tr("set what this prompt says").to_string()];
+    for (key, value) in &prompt.overrides {
+        let control = super::control_label(key).map_or(key.as_str(), tr);
+        let light = key.strip_prefix("light.").and_then(|k| k.split('.').next());
+        let of_light = light.map(|n| format!(" ({} {n})", tr("light"))).unwrap_or_default();
+        lines.push(format!("{control}{of_light} = {value}"));
+    }
+    if let Some(t) = prompt.time_s {
+        lines.push(format!("{} = {t}", tr("time (s)")));
+    }
+    if let Some(v) = prompt.view {
+        lines.push(format!("{} = {}", tr("view"), v.name()));
+    }
+    lines.join("\n")
+}
+
+fn step_prompts(app: &ShadowlabApp) -> Vec<crate::lessons::TryThis> {
+    app.current_step().map(|(_, s, _)| s.try_this.clone()).unwrap_or_default()
+}
+
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let lang = app.lang;
     let tr = move |en: &'static str| crate::i18n::tr(lang, en);
@@ -58,8 +81,23 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
             Lang::En => "Try this",
             Lang::Zh => "试一试",
         });
-        for t in tries {
+        let prompts = step_prompts(app);
+        for (i, t) in tries.iter().enumerate() {
             ui.label(RichText::new(format!("• {t}")).size(body * 0.8));
+            let prompt = prompts.get(i).filter(|p| p.applies_anything());
+            ui.horizontal(|ui| {
+                if let Some(p) = prompt
+                    && ui.button(tr("Apply")).on_hover_text(what_apply_sets(p, lang)).clicked()
+                {
+                    app.apply_try_this(i);
+                }
+                if app.applied_try_this == Some(i) {
+                    ui.label(RichText::new(tr("applied")).weak());
+                    if ui.button(tr("Back to the step's settings")).clicked() {
+                        app.back_to_step_settings();
+                    }
+                }
+            });
         }
     }
     if app.panel_visible(Panel::Probe) && app.probe_report().is_some() {

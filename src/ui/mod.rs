@@ -12,6 +12,7 @@ mod view_panels;
 mod window;
 mod worker;
 
+pub use inspector::control_label;
 pub use settings::Settings;
 pub use window::{
     clear_paints_panels, configure_wgpu, display_available, run, ui_painter, window_options,
@@ -88,6 +89,8 @@ pub struct ShadowlabApp {
     pub show_lesson_list: bool,
     /// In a lesson: show every panel, not only the ones the step names.
     pub show_all_panels: bool,
+    /// The step's "Try this" prompt whose Apply button was pressed last (cleared by a new step).
+    pub applied_try_this: Option<usize>,
     /// Point the camera at the probe's surface point once the probe is computed (double-click).
     focus_on_probe: bool,
     /// Something changed: render again.
@@ -214,6 +217,7 @@ impl ShadowlabApp {
             present: false,
             show_lesson_list: false,
             show_all_panels: false,
+            applied_try_this: None,
             focus_on_probe: false,
             dirty: true,
             interacting: false,
@@ -301,12 +305,51 @@ impl ShadowlabApp {
                     self.diagram = d;
                 }
                 self.settings.last_lesson = Some((id, step));
+                self.applied_try_this = None;
                 // However the lesson was opened (list, picker, arrow keys), the start list is done.
                 self.show_lesson_list = false;
                 self.error = None;
             }
             Err(e) => self.error = Some(format!("{}: step {}: {e}", l.path.display(), step + 1)),
         }
+    }
+
+    /// Apply the current step's "Try this" prompt `index`: the step's settings with the prompt's
+    /// changes on top, keeping the camera and the probe where the student has them.
+    pub fn apply_try_this(&mut self, index: usize) {
+        let Some((lesson, step, step_index)) = self.current_step() else { return };
+        let (path, step) = (lesson.path.clone(), step.clone());
+        let Some(prompt) = step.try_this.get(index) else { return };
+        match step.scene_with_try_this(index) {
+            Ok(mut scene) => {
+                scene.camera = self.scene.camera;
+                self.scene = scene;
+                self.time_s = prompt.time_s.unwrap_or(step.time_s);
+                // A prompt that names a moment shows that moment, not one playing past it.
+                if prompt.time_s.is_some() {
+                    self.playing = false;
+                }
+                self.view = prompt.view.unwrap_or(step.view);
+                self.applied_try_this = Some(index);
+                self.error = None;
+                self.mark_dirty();
+            }
+            Err(e) => {
+                self.error =
+                    Some(format!("{}: step {}: try this {}: {e}", path.display(), step_index + 1, index + 1))
+            }
+        }
+    }
+
+    /// Undo an applied prompt: the step's own settings, camera and probe kept.
+    pub fn back_to_step_settings(&mut self) {
+        let Some((_, step, _)) = self.current_step() else { return };
+        let (time_s, view, play) = (step.time_s, step.view, step.play);
+        let camera = self.scene.camera;
+        self.scene = self.base_scene.clone();
+        self.scene.camera = camera;
+        (self.time_s, self.view, self.playing, self.applied_try_this) = (time_s, view, play, None);
+        self.mark_dirty();
     }
 
     /// Step forward (+1) or back (-1) through the lessons.
@@ -345,6 +388,11 @@ impl ShadowlabApp {
     }
 
     /// Whether `panel` is shown: everything outside lessons, the step's panels inside one.
+    /// Size of the smallest text in the diagram on screen, points (`None` before one is drawn).
+    pub fn smallest_diagram_text_pt(&self) -> Option<f32> {
+        self.panel_state.smallest_diagram_text_pt
+    }
+
     pub fn panel_visible(&self, panel: lessons::Panel) -> bool {
         match self.current_step() {
             Some((_, step, _)) if !self.show_all_panels => step.panels.contains(&panel),
