@@ -365,7 +365,10 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
     egui::Grid::new("probe").striped(true).num_columns(2).show(ui, |ui| {
         let mut row = |name: &str, value: String| {
             ui.label(name);
-            ui.monospace(value);
+            // Wraps at the " · " between units rather than running past a narrow column.
+            ui.add(
+                egui::Label::new(egui::RichText::new(value).monospace()).wrap_mode(egui::TextWrapMode::Wrap),
+            );
             ui.end_row();
         };
         row(tr("shadow-map uv"), format!("{:.4}, {:.4}", l.shadow_map_uv[0], l.shadow_map_uv[1]));

@@ -586,7 +586,9 @@ impl eframe::App for ShadowlabApp {
                 let diagrams = egui::Panel::bottom("diagrams")
                     .resizable(true)
                     .default_size(
-                        self.settings.diagram_height.clamp(140.0, (screen.height() * 0.4).max(140.0)),
+                        // A third of the window at most: 300 at 1600x900 (14 pt diagram text),
+                        // less on a smaller screen, where the camera view comes first.
+                        self.settings.diagram_height.clamp(140.0, (screen.height() * 0.34).max(140.0)),
                     )
                     .max_size((screen.height() * 0.45).max(140.0))
                     .show(ui, |ui| panels::show_bottom(self, ui));

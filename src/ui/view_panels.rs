@@ -185,15 +185,13 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         lines.extend(app.view_state.view_legend.iter().flat_map(|l| l.lines()));
         lines.extend(app.view_state.legends.iter().map(String::as_str));
     }
+    // Wrapped to the view's width: a long legend takes a second line rather than being cut.
     for legend in lines {
-        painter.text(
-            pos2(legend_rect.left() + 4.0, y),
-            egui::Align2::LEFT_TOP,
-            legend,
-            egui::FontId::proportional(13.0),
-            Color32::LIGHT_GRAY,
-        );
-        y += 16.0;
+        let font = egui::FontId::proportional(13.0);
+        let galley = painter.layout(legend.to_string(), font, Color32::LIGHT_GRAY, legend_rect.width() - 8.0);
+        let height = galley.size().y;
+        painter.galley(pos2(legend_rect.left() + 4.0, y), galley, Color32::LIGHT_GRAY);
+        y += height;
     }
     if show_map {
         shadow_map_panel(app, ui, map_rect);
