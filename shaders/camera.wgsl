@@ -7,6 +7,16 @@
 @group(2) @binding(0) var<uniform> object: ObjectGpu;
 @group(2) @binding(1) var diffuse_texture: texture_2d<f32>;
 @group(2) @binding(2) var diffuse_sampler: sampler;
+// The camera view's albedo cache: the diffuse texture's value at each pixel, written by
+// `fs_albedo` for the still textured objects while the camera and those objects keep still.
+@group(3) @binding(0) var albedo_cache: texture_2d<f32>;
+
+// The pipeline that draws the still textured objects reads their albedo from the cache rather
+// than sampling it again: the floor's anisotropic lookup is most of the base cost on a software
+// rasteriser, and the cached value is the same sample (same triangle, same derivatives), so the
+// picture is unchanged. A constant, not a per-object switch: llvmpipe pays for a sample behind
+// any run-time branch.
+override ALBEDO_FROM_CACHE: bool = false;
 
 struct VertexOut {
     @builtin(position) clip_position: vec4<f32>,
@@ -70,13 +80,28 @@ fn spot_falloff(light: LightGpu, world_pos: vec3<f32>) -> f32 {
     return smoothstep(0.0, 0.05, edge) * select(0.0, 1.0, s.z > 0.0 && s.z < 1.0);
 }
 
+fn surface_albedo(in: VertexOut) -> vec3<f32> {
+    var albedo = object.base_color.rgb;
+    if object.base_color.w > 0.5 {
+        if ALBEDO_FROM_CACHE {
+            albedo = albedo * textureLoad(albedo_cache, vec2<i32>(in.clip_position.xy), 0).rgb;
+        } else {
+            albedo = albedo * textureSample(diffuse_texture, diffuse_sampler, in.uv).rgb;
+        }
+    }
+    return albedo;
+}
+
+// The albedo cache pass: the texture's value, as `surface_albedo` samples it.
+@fragment
+fn fs_albedo(in: VertexOut) -> @location(0) vec4<f32> {
+    return vec4<f32>(textureSample(diffuse_texture, diffuse_sampler, in.uv).rgb, 1.0);
+}
+
 @fragment
 fn fs_final(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
     let n = shading_normal(in, front_facing);
-    var albedo = object.base_color.rgb;
-    if object.base_color.w > 0.5 {
-        albedo = albedo * textureSample(diffuse_texture, diffuse_sampler, in.uv).rgb;
-    }
+    let albedo = surface_albedo(in);
     let v = normalize(frame.camera_position.xyz - in.world_position);
     let seed = noise_seed_at(in.clip_position);
     var color = frame.ambient.rgb * albedo;

@@ -136,3 +136,32 @@ fn diagrams_in_chinese() {
         check_diagram(&format!("diagram_{}_zh", kind.id()), kind, &defaults, shadowlab::lessons::Lang::Zh);
     }
 }
+
+/// The albedo cache is a speed-up, not a technique: a view drawn from the cache (the camera and
+/// the floor still) is the same, byte for byte, as the one drawn by sampling the textures.
+#[test]
+fn the_albedo_cache_changes_no_pixel() {
+    let (_ctx, mut renderer) = common::gpu();
+    for (name, technique) in [("games202", "pcss"), ("homework", "hard"), ("multi_light", "pcf")] {
+        let scene = common::scene(name, &[("technique", technique)]);
+        let request = shadowlab::render::FrameRequest { size: (480, 270), time_s: 0.5, ..Default::default() };
+        let mut images = Vec::new();
+        let mut from_cache = Vec::new();
+        for _ in 0..3 {
+            let frame = renderer.render(&scene, &request).expect("render");
+            from_cache.push(frame.albedo_from_cache);
+            images.push(renderer.read_color().expect("read"));
+        }
+        // Sampled, then the cache filled and read, then read again.
+        assert_eq!(from_cache, [false, true, true], "{name}");
+        let differing =
+            |a: &RgbaImage, b: &RgbaImage| a.pixels().zip(b.pixels()).filter(|(p, q)| p != q).count();
+        assert_eq!(differing(&images[0], &images[1]), 0, "{name}: filling the cache changed the picture");
+        assert_eq!(differing(&images[0], &images[2]), 0, "{name}: reading the cache changed the picture");
+        // A moved camera samples again (and a still one refills the cache on its second frame).
+        let mut moved = scene.clone();
+        moved.camera.position += glam::Vec3::new(1.0, 0.0, 0.0);
+        assert!(!renderer.render(&moved, &request).expect("render").albedo_from_cache, "{name}");
+        assert!(renderer.render(&moved, &request).expect("render").albedo_from_cache, "{name}");
+    }
+}

@@ -1,4 +1,5 @@
-//! Pass 2 (shaders/camera.wgsl): the camera view. A depth pre-pass first, so that the shading
+//! Pass 2 (shaders/camera.wgsl): the camera view. When the view's albedo cache needs filling,
+//! the still textured objects' texture values first; then a depth pre-pass, so that the shading
 //! runs once per visible pixel however much geometry overlaps it; then the shaded colour and,
 //! when asked, the float analysis targets of the selected light.
 
@@ -6,15 +7,23 @@ use super::scene_gpu::SceneGpu;
 use super::targets::ViewTargets;
 use super::timing::Timer;
 use super::{BACKGROUND, FrameRequest};
+use crate::scene::Scene;
 
 /// The pipelines and bind groups the camera passes draw with.
 pub struct CameraPasses<'a> {
     pub depth_only: &'a wgpu::RenderPipeline,
     pub shaded: &'a wgpu::RenderPipeline,
+    /// Present when the still textured objects read the view's albedo cache: `shaded` with
+    /// ALBEDO_FROM_CACHE, which draws those objects (`shaded` draws the rest).
+    pub shaded_from_cache: Option<&'a wgpu::RenderPipeline>,
     /// Present when the request asks for the analysis targets.
     pub analysis: Option<&'a wgpu::RenderPipeline>,
+    /// Present when the view's albedo cache is to be filled before the other passes.
+    pub fill_albedo_cache: Option<&'a wgpu::RenderPipeline>,
     pub frame_group: &'a wgpu::BindGroup,
     pub lights_group: &'a wgpu::BindGroup,
+    /// Group 3 while the cache itself is the pass's target.
+    pub albedo_placeholder: &'a wgpu::BindGroup,
 }
 
 impl CameraPasses<'_> {
@@ -24,6 +33,7 @@ impl CameraPasses<'_> {
         encoder: &mut wgpu::CommandEncoder,
         request: &FrameRequest,
         targets: &ViewTargets,
+        scene: &Scene,
         scene_gpu: &SceneGpu,
         timer: Option<&Timer>,
     ) {
@@ -41,7 +51,38 @@ impl CameraPasses<'_> {
         .into_iter()
         .flatten()
         .collect();
+        if let Some(pipeline) = self.fill_albedo_cache {
+            let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
+                label: Some("albedo cache"),
+                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
+                    view: &targets.albedo_cache.view,
+                    depth_slice: None,
+                    resolve_target: None,
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(wgpu::Color::TRANSPARENT),
+                        store: wgpu::StoreOp::Store,
+                    },
+                })],
+                depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
+                    view: &targets.depth_view,
+                    depth_ops: Some(wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(1.0),
+                        store: wgpu::StoreOp::Discard,
+                    }),
+                    stencil_ops: None,
+                }),
+                timestamp_writes: timer.and_then(|t| t.span_writes(1, true, false)),
+                occlusion_query_set: None,
+                multiview_mask: None,
+            });
+            pass.set_pipeline(pipeline);
+            pass.set_bind_group(0, self.frame_group, &[]);
+            pass.set_bind_group(1, self.lights_group, &[]);
+            pass.set_bind_group(3, self.albedo_placeholder, &[]);
+            scene_gpu.draw_cacheable_albedo(&mut pass, 2, scene, true);
+        }
         {
+            let first = self.fill_albedo_cache.is_none();
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("camera depth pre-pass"),
                 color_attachments: &[],
@@ -53,7 +94,7 @@ impl CameraPasses<'_> {
                     }),
                     stencil_ops: None,
                 }),
-                timestamp_writes: timer.and_then(|t| t.span_writes(1, true, shaded.is_empty())),
+                timestamp_writes: timer.and_then(|t| t.span_writes(1, first, shaded.is_empty())),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });
@@ -61,6 +102,7 @@ impl CameraPasses<'_> {
             pass.set_pipeline(self.depth_only);
             pass.set_bind_group(0, self.frame_group, &[]);
             pass.set_bind_group(1, self.lights_group, &[]);
+            pass.set_bind_group(3, &targets.albedo_cache.bind_group, &[]);
             scene_gpu.draw(&mut pass, 2);
         }
         for (index, (pipeline, is_final)) in shaded.iter().enumerate() {
@@ -96,7 +138,15 @@ impl CameraPasses<'_> {
             pass.set_pipeline(pipeline);
             pass.set_bind_group(0, self.frame_group, &[]);
             pass.set_bind_group(1, self.lights_group, &[]);
-            scene_gpu.draw(&mut pass, 2);
+            pass.set_bind_group(3, &targets.albedo_cache.bind_group, &[]);
+            match self.shaded_from_cache.filter(|_| *is_final) {
+                Some(from_cache) => {
+                    scene_gpu.draw_cacheable_albedo(&mut pass, 2, scene, false);
+                    pass.set_pipeline(from_cache);
+                    scene_gpu.draw_cacheable_albedo(&mut pass, 2, scene, true);
+                }
+                None => scene_gpu.draw(&mut pass, 2),
+            }
         }
     }
 }

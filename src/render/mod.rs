@@ -119,6 +119,8 @@ pub struct Renderer {
     kernel_table_buffer: wgpu::Buffer,
     frame_bind_group: wgpu::BindGroup,
     shadow_view_bind_group: wgpu::BindGroup,
+    /// Group 3 while a view's albedo cache is being filled (a pass cannot read what it writes).
+    albedo_placeholder: targets::AlbedoCache,
     compare_sampler: wgpu::Sampler,
     shadow_maps: Option<ShadowMaps>,
     lights_bind_group: Option<wgpu::BindGroup>,
@@ -139,6 +141,9 @@ pub struct Frame {
     pub request: FrameRequest,
     pub lights: Vec<LightGpu>,
     pub params: ShadowParamsGpu,
+    /// The still textured objects' albedo came from the view's cache (the camera, the size and
+    /// those objects were as in the frame before), not from sampling their textures again.
+    pub albedo_from_cache: bool,
 }
 
 fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
@@ -196,7 +201,9 @@ impl Renderer {
             .features()
             .contains(wgpu::Features::TIMESTAMP_QUERY)
             .then(|| timing::Timer::new(device, queue));
+        let albedo_placeholder = targets::AlbedoCache::placeholder(device, &layouts.albedo_cache);
         Ok(Self {
+            albedo_placeholder,
             device: device.clone(),
             queue: queue.clone(),
             compare_sampler: compare_sampler(device),
@@ -290,6 +297,7 @@ impl Renderer {
             )));
         }
         let (lights, params) = self.prepare(scene, request);
+        let (albedo_from_cache, fill_albedo_cache) = self.plan_albedo_cache(scene, request);
         let unprepared = || RenderError::Usage("the renderer's resources were not made".into());
         let scene_gpu = self.scene_gpu.as_ref().ok_or_else(unprepared)?;
         let (Some(maps), Some(targets), Some(lights_group)) =
@@ -303,10 +311,15 @@ impl Renderer {
             cull_front_faces: scene.shadow.cull_front_faces,
         };
         let shadow_pipeline = self.pipelines.shadow(&self.device, key).clone();
-        let final_pipeline =
-            self.pipelines.camera(&self.device, CameraPipelineKey::new(&params, &lights, false)).clone();
+        let final_pipeline = self
+            .pipelines
+            .camera(&self.device, CameraPipelineKey::new(&params, &lights, false, false))
+            .clone();
+        let from_cache_pipeline = albedo_from_cache.then(|| {
+            self.pipelines.camera(&self.device, CameraPipelineKey::new(&params, &lights, false, true)).clone()
+        });
         let analysis_pipeline = request.analysis.then(|| {
-            self.pipelines.camera(&self.device, CameraPipelineKey::new(&params, &lights, true)).clone()
+            self.pipelines.camera(&self.device, CameraPipelineKey::new(&params, &lights, true, false)).clone()
         });
         let timer = self.timer.as_ref().filter(|_| request.timestamps);
         let mut encoder =
@@ -323,16 +336,19 @@ impl Renderer {
         let camera = camera_pass::CameraPasses {
             depth_only: &self.pipelines.camera_depth,
             shaded: &final_pipeline,
+            shaded_from_cache: from_cache_pipeline.as_ref(),
             analysis: analysis_pipeline.as_ref(),
+            fill_albedo_cache: fill_albedo_cache.then_some(&self.pipelines.camera_albedo),
             frame_group: &self.frame_bind_group,
             lights_group,
+            albedo_placeholder: &self.albedo_placeholder.bind_group,
         };
-        camera.encode(&mut encoder, request, targets, scene_gpu, timer);
+        camera.encode(&mut encoder, request, targets, scene, scene_gpu, timer);
         if let Some(t) = timer {
             t.resolve(&mut encoder);
         }
         self.queue.submit([encoder.finish()]);
-        let frame = Frame { request: *request, lights, params };
+        let frame = Frame { request: *request, lights, params, albedo_from_cache };
         self.last_frame = Some(frame.clone());
         Ok(frame)
     }
@@ -352,6 +368,26 @@ impl Renderer {
             .poll(wgpu::PollType::wait_indefinitely())
             .map(|_| ())
             .map_err(|e| RenderError::Readback(e.to_string()))
+    }
+
+    /// Whether this frame reads the view's albedo cache, and whether it fills it first. Only whole
+    /// views use it (a probe's one-pixel render samples directly), and only when the camera, the
+    /// view's size and the still textured objects are as they were last frame.
+    fn plan_albedo_cache(&mut self, scene: &Scene, request: &FrameRequest) -> (bool, bool) {
+        let (Some(scene_gpu), Some(targets)) = (&self.scene_gpu, &mut self.targets) else {
+            return (false, false);
+        };
+        let usable =
+            request.final_color && request.only_pixel.is_none() && scene_gpu.has_cacheable_albedo(scene);
+        let key = usable.then(|| {
+            let aspect = request.size.0 as f32 / request.size.1 as f32;
+            targets::AlbedoKey {
+                clip_from_world: scene.camera.clip_from_world(aspect).to_cols_array().map(f32::to_bits),
+                scene_upload: scene_gpu.generation,
+                object_transforms: scene_gpu.cacheable_albedo_transforms(scene),
+            }
+        });
+        targets.albedo_cache.plan(key)
     }
 
     /// Upload what this frame needs; returns its lights and parameters as the GPU will see them.
@@ -374,7 +410,8 @@ impl Renderer {
         }
         if self.targets.as_ref().is_none_or(|t| t.size != request.size) {
             let reuse = self.spare_targets.take().filter(|t| t.size == request.size);
-            let targets = reuse.unwrap_or_else(|| ViewTargets::new(device, request.size));
+            let targets =
+                reuse.unwrap_or_else(|| ViewTargets::new(device, request.size, &self.layouts.albedo_cache));
             self.spare_targets = self.targets.replace(targets);
         }
         let t = request.time_s;

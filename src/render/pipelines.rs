@@ -13,6 +13,8 @@ pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// returns linear colour (no per-pixel `pow`).
 pub const COLOR_TARGET_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
 pub const ANALYSIS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The albedo cache keeps the texture's samples as the shader computed them (f32, exact).
+pub const ALBEDO_CACHE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 /// Number of float targets of the analysis pass: shadow terms, position, normal.
 pub const ANALYSIS_TARGETS: usize = 3;
@@ -20,6 +22,8 @@ pub const ANALYSIS_TARGETS: usize = 3;
 pub struct Layouts {
     pub frame: wgpu::BindGroupLayout,
     pub lights: wgpu::BindGroupLayout,
+    /// Group 3 of the camera passes: the view's albedo cache.
+    pub albedo_cache: wgpu::BindGroupLayout,
     pub object: wgpu::BindGroupLayout,
     pub shadow_view: wgpu::BindGroupLayout,
     pub reference_io: wgpu::BindGroupLayout,
@@ -96,6 +100,15 @@ impl Layouts {
                 entries: &[uniform_entry(0, vf, false)],
             }),
             lights: shadow_inputs_layout(device, "lights", false),
+            albedo_cache: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+                label: Some("albedo cache"),
+                entries: &[texture_entry(
+                    0,
+                    wgpu::ShaderStages::FRAGMENT,
+                    float(false),
+                    wgpu::TextureViewDimension::D2,
+                )],
+            }),
             object: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("object"),
                 entries: &[
@@ -163,10 +176,17 @@ pub struct CameraPipelineKey {
     pub light_count: u32,
     /// `fs_analysis` (float targets) rather than `fs_final` (colour).
     pub analysis: bool,
+    /// Still textured objects read their albedo from the view's cache (ALBEDO_FROM_CACHE).
+    pub albedo_from_cache: bool,
 }
 
 impl CameraPipelineKey {
-    pub fn new(params: &ShadowParamsGpu, lights: &[LightGpu], analysis: bool) -> Self {
+    pub fn new(
+        params: &ShadowParamsGpu,
+        lights: &[LightGpu],
+        analysis: bool,
+        albedo_from_cache: bool,
+    ) -> Self {
         // 1 or 2 where every light agrees (SPEC_ALL_*), 0 where they differ or there are none.
         let shared = |value: fn(&LightGpu) -> u32| match lights.split_first() {
             Some((first, rest)) if rest.iter().all(|l| value(l) == value(first)) => value(first) + 1,
@@ -183,6 +203,7 @@ impl CameraPipelineKey {
             size_model: shared(|l| l.size_model.min(1)),
             light_count: lights.len() as u32,
             analysis,
+            albedo_from_cache: albedo_from_cache && !analysis,
         }
     }
 }
@@ -196,6 +217,8 @@ pub struct Pipelines {
     camera: HashMap<CameraPipelineKey, wgpu::RenderPipeline>,
     /// The camera's depth pre-pass: depth only, no fragment shader.
     pub camera_depth: wgpu::RenderPipeline,
+    /// Fills the view's albedo cache (`fs_albedo`).
+    pub camera_albedo: wgpu::RenderPipeline,
     pub reference: wgpu::ComputePipeline,
 }
 
@@ -250,7 +273,12 @@ impl Pipelines {
         });
         let camera_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("camera pass"),
-            bind_group_layouts: &[Some(&layouts.frame), Some(&layouts.lights), Some(&layouts.object)],
+            bind_group_layouts: &[
+                Some(&layouts.frame),
+                Some(&layouts.lights),
+                Some(&layouts.object),
+                Some(&layouts.albedo_cache),
+            ],
             immediate_size: 0,
         });
         let reference_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
@@ -282,6 +310,27 @@ impl Pipelines {
             multiview_mask: None,
             cache: None,
         });
+        let camera_albedo = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some("camera albedo cache"),
+            layout: Some(&camera_layout),
+            vertex: wgpu::VertexState {
+                module: &camera_module,
+                entry_point: Some("vs_camera"),
+                compilation_options: Default::default(),
+                buffers: &[Some(vertex_layout())],
+            },
+            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+            depth_stencil: Some(depth_state(wgpu::DepthBiasState::default())),
+            multisample: wgpu::MultisampleState::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &camera_module,
+                entry_point: Some("fs_albedo"),
+                compilation_options: Default::default(),
+                targets: &[Some(ALBEDO_CACHE_FORMAT.into())],
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
         let mut pipelines = Self {
             shadow_module,
             shadow_layout,
@@ -290,12 +339,13 @@ impl Pipelines {
             camera_layout,
             camera: HashMap::new(),
             camera_depth,
+            camera_albedo,
             reference,
         };
         // Build the default variants now, so that a device that cannot compile them fails here.
         let defaults = ShadowParamsGpu::new(&Default::default());
-        for analysis in [false, true] {
-            pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], analysis));
+        for (analysis, cached) in [(false, false), (false, true), (true, false)] {
+            pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], analysis, cached));
         }
         pipelines
     }
@@ -313,6 +363,7 @@ impl Pipelines {
                 ("SPEC_PROJECTION", f64::from(key.projection)),
                 ("SPEC_SIZE_MODEL", f64::from(key.size_model)),
                 ("SPEC_LIGHT_COUNT", f64::from(key.light_count)),
+                ("ALBEDO_FROM_CACHE", if key.albedo_from_cache { 1.0 } else { 0.0 }),
             ];
             let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
             let analysis_target = Some(wgpu::ColorTargetState::from(ANALYSIS_FORMAT));

@@ -27,6 +27,8 @@ struct DrawItem {
 pub struct SceneGpu {
     /// Identity of what was uploaded: each object's mesh pointer and colour.
     key: Vec<(usize, [u32; 3])>,
+    /// Distinct for every upload (a new scene's textures invalidate cached albedo).
+    pub generation: u64,
     meshes: Vec<MeshGpu>,
     draws: Vec<DrawItem>,
 }
@@ -82,6 +84,12 @@ fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, image: &TextureIma
         );
     }
     texture.create_view(&wgpu::TextureViewDescriptor::default())
+}
+
+impl DrawItem {
+    fn albedo_cacheable(&self, scene: &Scene) -> bool {
+        self.textured && scene.objects.get(self.object).is_some_and(|o| o.is_still())
+    }
 }
 
 impl SceneGpu {
@@ -169,7 +177,9 @@ impl SceneGpu {
                 });
             }
         }
-        Self { key: scene_key(scene), meshes, draws }
+        static UPLOADS: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+        let generation = UPLOADS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        Self { key: scene_key(scene), generation, meshes, draws }
     }
 
     /// Object transforms at time `t`.
@@ -190,7 +200,42 @@ impl SceneGpu {
 
     /// Record every draw; the caller has set the pipeline and the other bind groups.
     pub fn draw<'a>(&'a self, pass: &mut wgpu::RenderPass<'a>, object_group: u32) {
-        for draw in &self.draws {
+        self.draw_where(pass, object_group, |_| true);
+    }
+
+    /// The parts whose albedo the camera view may cache: textured, on objects that do not move.
+    pub fn has_cacheable_albedo(&self, scene: &Scene) -> bool {
+        self.draws.iter().any(|d| d.albedo_cacheable(scene))
+    }
+
+    /// Record the draws whose albedo is cacheable (see [`Self::has_cacheable_albedo`]), or the
+    /// others.
+    pub fn draw_cacheable_albedo<'a>(
+        &'a self,
+        pass: &mut wgpu::RenderPass<'a>,
+        object_group: u32,
+        scene: &Scene,
+        cacheable: bool,
+    ) {
+        self.draw_where(pass, object_group, |d| d.albedo_cacheable(scene) == cacheable);
+    }
+
+    /// World transforms of the objects with cacheable albedo (part of the cache's key).
+    pub fn cacheable_albedo_transforms(&self, scene: &Scene) -> Vec<[u32; 16]> {
+        let cacheable = self.draws.iter().filter(|d| d.albedo_cacheable(scene));
+        cacheable
+            .filter_map(|d| scene.objects.get(d.object))
+            .map(|o| o.world_from_object(0.0).to_cols_array().map(f32::to_bits))
+            .collect()
+    }
+
+    fn draw_where<'a>(
+        &'a self,
+        pass: &mut wgpu::RenderPass<'a>,
+        object_group: u32,
+        keep: impl Fn(&DrawItem) -> bool,
+    ) {
+        for draw in self.draws.iter().filter(|d| keep(d)) {
             let mesh = &self.meshes[draw.mesh];
             pass.set_bind_group(object_group, &draw.bind_group, &[]);
             pass.set_vertex_buffer(0, mesh.vertices.slice(..));

@@ -1,7 +1,9 @@
 //! Offscreen targets the renderer owns: the camera view (colour, depth, analysis floats) and
 //! the shadow-map array (one layer per light).
 
-use super::pipelines::{ANALYSIS_FORMAT, ANALYSIS_TARGETS, COLOR_FORMAT, COLOR_TARGET_FORMAT, DEPTH_FORMAT};
+use super::pipelines::{
+    ALBEDO_CACHE_FORMAT, ANALYSIS_FORMAT, ANALYSIS_TARGETS, COLOR_FORMAT, COLOR_TARGET_FORMAT, DEPTH_FORMAT,
+};
 
 fn texture(
     device: &wgpu::Device,
@@ -33,10 +35,47 @@ pub struct ViewTargets {
     pub depth_view: wgpu::TextureView,
     pub analysis: Vec<wgpu::Texture>,
     pub analysis_views: Vec<wgpu::TextureView>,
+    pub albedo_cache: AlbedoCache,
+}
+
+/// The albedo of the still textured objects at each pixel of this view, kept while the camera,
+/// the size and those objects stay the same (see `ALBEDO_FROM_CACHE` in shaders/camera.wgsl).
+pub struct AlbedoCache {
+    pub view: wgpu::TextureView,
+    /// Group 3 of the camera passes.
+    pub bind_group: wgpu::BindGroup,
+    /// What the cache holds; `None` until it is first filled.
+    pub filled_for: Option<AlbedoKey>,
+    /// What the previous frame drew: the cache is filled on the second frame with the same key,
+    /// so a camera in motion does not pay for a cache it would throw away.
+    pub last_seen: Option<AlbedoKey>,
+}
+
+/// Everything the cached albedo depends on, as bits.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AlbedoKey {
+    pub clip_from_world: [u32; 16],
+    pub scene_upload: u64,
+    pub object_transforms: Vec<[u32; 16]>,
+}
+
+impl AlbedoCache {
+    /// What to do for a frame with `key`: `(read the cache, fill it first)`.
+    pub fn plan(&mut self, key: Option<AlbedoKey>) -> (bool, bool) {
+        // Frames that do not draw the colour view (analysis, a probe's pixel) leave it be.
+        let Some(key) = key else { return (false, false) };
+        let filled = self.filled_for.as_ref() == Some(&key);
+        let steady = self.last_seen.as_ref() == Some(&key);
+        self.last_seen = Some(key.clone());
+        if !filled && steady {
+            self.filled_for = Some(key);
+        }
+        (filled || steady, !filled && steady)
+    }
 }
 
 impl ViewTargets {
-    pub fn new(device: &wgpu::Device, size: (u32, u32)) -> Self {
+    pub fn new(device: &wgpu::Device, size: (u32, u32), albedo_layout: &wgpu::BindGroupLayout) -> Self {
         let rw = wgpu::TextureUsages::RENDER_ATTACHMENT
             | wgpu::TextureUsages::COPY_SRC
             | wgpu::TextureUsages::TEXTURE_BINDING;
@@ -53,6 +92,9 @@ impl ViewTargets {
         let analysis: Vec<_> = (0..ANALYSIS_TARGETS)
             .map(|_| texture(device, "camera analysis", size, 1, ANALYSIS_FORMAT, rw, &[]))
             .collect();
+        let cache_usage = wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::TEXTURE_BINDING;
+        let cache = texture(device, "albedo cache", size, 1, ALBEDO_CACHE_FORMAT, cache_usage, &[]);
+        let albedo_cache = AlbedoCache::new(device, &cache, albedo_layout);
         Self {
             size,
             color_view: color.create_view(&wgpu::TextureViewDescriptor {
@@ -63,7 +105,33 @@ impl ViewTargets {
             depth_view: depth.create_view(&Default::default()),
             analysis_views: analysis.iter().map(|t| t.create_view(&Default::default())).collect(),
             analysis,
+            albedo_cache,
         }
+    }
+}
+
+impl AlbedoCache {
+    pub fn new(device: &wgpu::Device, texture: &wgpu::Texture, layout: &wgpu::BindGroupLayout) -> Self {
+        let view = texture.create_view(&Default::default());
+        let bind_group = device.create_bind_group(&wgpu::BindGroupDescriptor {
+            label: Some("albedo cache"),
+            layout,
+            entries: &[wgpu::BindGroupEntry {
+                binding: 0,
+                resource: wgpu::BindingResource::TextureView(&view),
+            }],
+        });
+        Self { view, bind_group, filled_for: None, last_seen: None }
+    }
+
+    /// A 1x1 cache that is never read: group 3 while the real one is being written.
+    pub fn placeholder(device: &wgpu::Device, layout: &wgpu::BindGroupLayout) -> Self {
+        let usage = wgpu::TextureUsages::TEXTURE_BINDING;
+        Self::new(
+            device,
+            &texture(device, "albedo cache placeholder", (1, 1), 1, ALBEDO_CACHE_FORMAT, usage, &[]),
+            layout,
+        )
     }
 }
 

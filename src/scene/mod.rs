@@ -39,6 +39,11 @@ pub struct Object {
 }
 
 impl Object {
+    /// The object does not spin: its transform is the same at every time.
+    pub fn is_still(&self) -> bool {
+        self.spin_deg_per_s == Vec3::ZERO
+    }
+
     /// Model matrix at time `t`: scale, then rotate (XYZ Euler, degrees, plus spin), then translate.
     pub fn world_from_object(&self, t_s: f32) -> Mat4 {
         let t = f64::from(t_s);
