@@ -165,3 +165,43 @@ fn the_albedo_cache_changes_no_pixel() {
         assert!(renderer.render(&moved, &request).expect("render").albedo_from_cache, "{name}");
     }
 }
+
+/// The shadow maps are kept from one frame to the next exactly while nothing they depend on
+/// changes, and a frame drawn with kept maps is the one a fresh renderer draws.
+#[test]
+fn shadow_maps_are_kept_only_while_nothing_they_depend_on_changes() {
+    let (_ctx, mut renderer) = common::gpu();
+    let (_ctx2, mut fresh) = common::gpu();
+    let request = shadowlab::render::FrameRequest { size: (320, 180), ..Default::default() };
+    let base = common::scene("multi_light", &[("technique", "pcss")]);
+    let mut kept = |scene: &shadowlab::scene::Scene, time_s: f32| {
+        let request = shadowlab::render::FrameRequest { time_s, ..request };
+        let frame = renderer.render(scene, &request).expect("render");
+        let image = renderer.read_color().expect("read");
+        fresh.render(scene, &request).expect("render");
+        assert_eq!(image, fresh.read_color().expect("read"), "kept maps changed the picture");
+        frame.shadow_maps_kept
+    };
+    assert!(!kept(&base, 1.0), "the first frame draws its maps");
+    assert!(kept(&base, 1.0), "an unchanged frame keeps them");
+    // Camera-pass settings leave the maps alone.
+    let mut filter = base.clone();
+    filter.shadow.technique = shadowlab::scene::Technique::Pcf;
+    filter.shadow.radius_texels = 6.0;
+    assert!(kept(&filter, 1.0));
+    // What the maps hold: a light, a map size, hardware bias, culling, the time (orbits, spins).
+    let mut moved = filter.clone();
+    moved.lights[0].position.x += 5.0;
+    assert!(!kept(&moved, 1.0), "a moved light");
+    let mut smaller = moved.clone();
+    smaller.lights[1].shadow_map_size = 512;
+    assert!(!kept(&smaller, 1.0), "a smaller map");
+    let mut biased = smaller.clone();
+    biased.shadow.depth_bias_constant = 8;
+    assert!(!kept(&biased, 1.0), "hardware bias");
+    let mut culled = biased.clone();
+    culled.shadow.cull_front_faces = !culled.shadow.cull_front_faces;
+    assert!(!kept(&culled, 1.0), "face culling");
+    assert!(!kept(&culled, 2.0), "a later time");
+    assert!(kept(&culled, 2.0));
+}

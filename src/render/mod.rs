@@ -24,7 +24,7 @@ use crate::shadow::kernels::{MAX_TAPS, filter_taps, kernel_table};
 use gpu_types::{DYNAMIC_STRIDE, FrameGpu, ShadowViewGpu};
 use pipelines::{CameraPipelineKey, Layouts, Pipelines, ShadowPipelineKey};
 use scene_gpu::SceneGpu;
-use targets::{ShadowMaps, ViewTargets};
+use targets::{ShadowMaps, ShadowMapsKey, ViewTargets};
 
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {
@@ -144,6 +144,8 @@ pub struct Frame {
     /// The still textured objects' albedo came from the view's cache (the camera, the size and
     /// those objects were as in the frame before), not from sampling their textures again.
     pub albedo_from_cache: bool,
+    /// The shadow maps were kept from an earlier frame: nothing they depend on had changed.
+    pub shadow_maps_kept: bool,
 }
 
 fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
@@ -311,6 +313,18 @@ impl Renderer {
             cull_front_faces: scene.shadow.cull_front_faces,
         };
         let shadow_pipeline = self.pipelines.shadow(&self.device, key).clone();
+        let maps_key = ShadowMapsKey {
+            lights: (lights.iter().zip(&scene.lights))
+                .map(|(gpu, light)| {
+                    let matrix: [f32; 16] = bytemuck::cast(gpu.clip_from_world);
+                    (matrix.map(f32::to_bits), light.shadow_map_size)
+                })
+                .collect(),
+            object_transforms: SceneGpu::object_transforms(scene, request.time_s),
+            scene_upload: scene_gpu.generation,
+            pipeline: key,
+        };
+        let shadow_maps_kept = maps.drawn_for.as_ref() == Some(&maps_key);
         let final_pipeline = self
             .pipelines
             .camera(&self.device, CameraPipelineKey::new(&params, &lights, false, false))
@@ -324,15 +338,17 @@ impl Renderer {
         let timer = self.timer.as_ref().filter(|_| request.timestamps);
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
-        shadow_pass::encode(
-            &mut encoder,
-            scene,
-            scene_gpu,
-            maps,
-            &shadow_pipeline,
-            &self.shadow_view_bind_group,
-            timer,
-        );
+        if !shadow_maps_kept {
+            shadow_pass::encode(
+                &mut encoder,
+                scene,
+                scene_gpu,
+                maps,
+                &shadow_pipeline,
+                &self.shadow_view_bind_group,
+                timer,
+            );
+        }
         let camera = camera_pass::CameraPasses {
             depth_only: &self.pipelines.camera_depth,
             shaded: &final_pipeline,
@@ -348,7 +364,10 @@ impl Renderer {
             t.resolve(&mut encoder);
         }
         self.queue.submit([encoder.finish()]);
-        let frame = Frame { request: *request, lights, params, albedo_from_cache };
+        if let Some(maps) = &mut self.shadow_maps {
+            maps.drawn_for = Some(maps_key);
+        }
+        let frame = Frame { request: *request, lights, params, albedo_from_cache, shadow_maps_kept };
         self.last_frame = Some(frame.clone());
         Ok(frame)
     }
@@ -356,8 +375,12 @@ impl Renderer {
     /// GPU time of the shadow passes and the camera passes of the last frame rendered with
     /// `timestamps: true` (None where the adapter has no timestamp queries).
     pub fn last_pass_times(&self) -> Result<Option<PassTimes>, RenderError> {
+        let kept = self.last_frame.as_ref().is_some_and(|f| f.shadow_maps_kept);
         match &self.timer {
-            Some(t) => t.read(&self.device, &self.queue).map(Some),
+            // Kept maps cost nothing this frame (and wrote no timestamps).
+            Some(t) => t.read(&self.device, &self.queue).map(|times| {
+                Some(PassTimes { shadow_ms: if kept { 0.0 } else { times.shadow_ms }, ..times })
+            }),
             None => Ok(None),
         }
     }

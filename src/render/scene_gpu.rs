@@ -220,6 +220,11 @@ impl SceneGpu {
         self.draw_where(pass, object_group, |d| d.albedo_cacheable(scene) == cacheable);
     }
 
+    /// Every object's world transform at `t_s`, as bits (part of the shadow maps' key).
+    pub fn object_transforms(scene: &Scene, t_s: f32) -> Vec<[u32; 16]> {
+        scene.objects.iter().map(|o| o.world_from_object(t_s).to_cols_array().map(f32::to_bits)).collect()
+    }
+
     /// World transforms of the objects with cacheable albedo (part of the cache's key).
     pub fn cacheable_albedo_transforms(&self, scene: &Scene) -> Vec<[u32; 16]> {
         let cacheable = self.draws.iter().filter(|d| d.albedo_cacheable(scene));

@@ -1,5 +1,7 @@
 //! Pass 1 (shaders/shadow_pass.wgsl): each light's depth from its own view, into one layer of
-//! the shadow-map array. Re-rendered every frame, since lights orbit and objects spin.
+//! the shadow-map array. Re-rendered whenever a light, an object or the shadow pipeline has
+//! changed (every frame while lights orbit and objects spin; not while a slider that only the
+//! camera pass reads is dragged).
 
 use super::gpu_types::DYNAMIC_STRIDE;
 use super::scene_gpu::SceneGpu;

@@ -136,12 +136,24 @@ impl AlbedoCache {
 }
 
 pub struct ShadowMaps {
+    /// What the maps hold; `None` until drawn. A frame with the same key keeps them.
+    pub drawn_for: Option<ShadowMapsKey>,
     /// Texels per side of every layer; a light with a smaller map uses the top-left corner.
     pub atlas_size: u32,
     pub layers: u32,
     pub texture: wgpu::Texture,
     pub array_view: wgpu::TextureView,
     pub layer_views: Vec<wgpu::TextureView>,
+}
+
+/// Everything the shadow maps depend on, as bits: each light's view and map size, every
+/// object's transform, the uploaded meshes and the shadow pipeline (hardware bias, culling).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShadowMapsKey {
+    pub lights: Vec<([u32; 16], u32)>,
+    pub object_transforms: Vec<[u32; 16]>,
+    pub scene_upload: u64,
+    pub pipeline: super::pipelines::ShadowPipelineKey,
 }
 
 impl ShadowMaps {
@@ -171,6 +183,6 @@ impl ShadowMaps {
                 })
             })
             .collect();
-        Self { atlas_size, layers, texture, array_view, layer_views }
+        Self { drawn_for: None, atlas_size, layers, texture, array_view, layer_views }
     }
 }
