@@ -98,13 +98,21 @@ fn fs_albedo(in: VertexOut) -> @location(0) vec4<f32> {
     return vec4<f32>(textureSample(diffuse_texture, diffuse_sampler, in.uv).rgb, 1.0);
 }
 
-@fragment
-fn fs_final(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+// Blinn-Phong with every light's shadow; the selected light's shadow terms on the side.
+struct Shaded {
+    color: vec4<f32>,
+    selected: PcssResult,
+    selected_coord: ShadowCoord,
+}
+
+fn shade(in: VertexOut, front_facing: bool) -> Shaded {
+    var out: Shaded;
     let n = shading_normal(in, front_facing);
     let albedo = surface_albedo(in);
     let v = normalize(frame.camera_position.xyz - in.world_position);
     let seed = noise_seed_at(in.clip_position);
     var color = frame.ambient.rgb * albedo;
+    out.selected.visibility = 1.0;
     for (var i = 0u; i < light_count(); i++) {
         let light = lights[i];
         let l = light_dir_to(light, in.world_position);
@@ -112,12 +120,22 @@ fn fs_final(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @locati
         let h = normalize(l + v);
         let specular = 0.25 * pow48(max(dot(n, h), 0.0)) * select(0.0, 1.0, n_dot_l > 0.0);
         let coord = light_space_lookup(light, in.world_position, n);
-        let shadow = shadow_visibility(light, coord, seed).visibility;
+        let result = shadow_visibility(light, coord, seed);
+        if i == frame.selected_light {
+            out.selected = result;
+            out.selected_coord = coord;
+        }
         let radiance = light.color.rgb * spot_falloff(light, in.world_position);
-        color += shadow * radiance * (albedo * n_dot_l + vec3<f32>(specular));
+        color += result.visibility * radiance * (albedo * n_dot_l + vec3<f32>(specular));
     }
     // Linear: the target's sRGB view encodes on store.
-    return vec4<f32>(clamp(color, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);
+    out.color = vec4<f32>(clamp(color, vec3<f32>(0.0), vec3<f32>(1.0)), 1.0);
+    return out;
+}
+
+@fragment
+fn fs_final(in: VertexOut, @builtin(front_facing) front_facing: bool) -> @location(0) vec4<f32> {
+    return shade(in, front_facing).color;
 }
 
 struct AnalysisOut {
@@ -129,20 +147,46 @@ struct AnalysisOut {
     @location(2) normal: vec4<f32>,
 }
 
-@fragment
-fn fs_analysis(in: VertexOut, @builtin(front_facing) front_facing: bool) -> AnalysisOut {
+fn analysis_of(in: VertexOut, front_facing: bool, result: PcssResult, coord: ShadowCoord) -> AnalysisOut {
     var out: AnalysisOut;
-    let n = shading_normal(in, front_facing);
     out.position = vec4<f32>(in.world_position, 1.0);
-    out.normal = vec4<f32>(n, f32(object.object_index));
+    out.normal = vec4<f32>(shading_normal(in, front_facing), f32(object.object_index));
     if light_count() == 0u {
         out.shadow = vec4<f32>(1.0, 0.0, 0.0, 0.0);
         return out;
     }
     let light = lights[frame.selected_light];
-    let coord = light_space_lookup(light, in.world_position, n);
-    let result = shadow_visibility(light, coord, noise_seed_at(in.clip_position));
     let penumbra_texels = result.penumbra.width_world / texel_world_at(light, coord.depth_linear);
     out.shadow = vec4<f32>(result.visibility, result.search.radius_texels, penumbra_texels, f32(result.search.found));
     return out;
+}
+
+@fragment
+fn fs_analysis(in: VertexOut, @builtin(front_facing) front_facing: bool) -> AnalysisOut {
+    if light_count() == 0u {
+        var none: PcssResult;
+        var nowhere: ShadowCoord;
+        return analysis_of(in, front_facing, none, nowhere);
+    }
+    let light = lights[frame.selected_light];
+    let n = shading_normal(in, front_facing);
+    let coord = light_space_lookup(light, in.world_position, n);
+    let result = shadow_visibility(light, coord, noise_seed_at(in.clip_position));
+    return analysis_of(in, front_facing, result, coord);
+}
+
+// Both at once: the selected light's shadow terms are the ones the colour used, so a frame that
+// wants the picture and its analysis filters once, not twice.
+struct FinalAndAnalysisOut {
+    @location(0) color: vec4<f32>,
+    @location(1) shadow: vec4<f32>,
+    @location(2) position: vec4<f32>,
+    @location(3) normal: vec4<f32>,
+}
+
+@fragment
+fn fs_final_and_analysis(in: VertexOut, @builtin(front_facing) front_facing: bool) -> FinalAndAnalysisOut {
+    let shaded = shade(in, front_facing);
+    let analysis = analysis_of(in, front_facing, shaded.selected, shaded.selected_coord);
+    return FinalAndAnalysisOut(shaded.color, analysis.shadow, analysis.position, analysis.normal);
 }

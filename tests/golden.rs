@@ -205,3 +205,28 @@ fn shadow_maps_are_kept_only_while_nothing_they_depend_on_changes() {
     assert!(!kept(&culled, 2.0), "a later time");
     assert!(kept(&culled, 2.0));
 }
+
+/// A frame that wants its picture and its analysis draws both in one pass: the same colour as
+/// the picture alone, the same floats as the analysis alone.
+#[test]
+fn one_pass_for_picture_and_analysis_gives_what_two_passes_give() {
+    let (_ctx, mut renderer) = common::gpu();
+    for (name, technique, light) in
+        [("games202", "pcss", 0), ("multi_light", "pcf", 1), ("contact", "pcss", 0)]
+    {
+        let scene = common::scene(name, &[("technique", technique)]);
+        let base =
+            FrameRequest { size: (320, 180), time_s: 0.25, selected_light: light, ..Default::default() };
+        let alone = |renderer: &mut shadowlab::render::Renderer, final_color, analysis| {
+            renderer.render(&scene, &FrameRequest { final_color, analysis, ..base }).expect("render");
+        };
+        alone(&mut renderer, true, true);
+        let (both_color, both_analysis) =
+            (renderer.read_color().expect("read"), renderer.read_analysis().expect("read"));
+        alone(&mut renderer, true, false);
+        assert_eq!(both_color, renderer.read_color().expect("read"), "{name}: the colour changed");
+        alone(&mut renderer, false, true);
+        let analysis = renderer.read_analysis().expect("read");
+        assert_eq!(format!("{both_analysis:?}"), format!("{analysis:?}"), "{name}: the analysis changed");
+    }
+}

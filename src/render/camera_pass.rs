@@ -12,11 +12,14 @@ use crate::scene::Scene;
 /// The pipelines and bind groups the camera passes draw with.
 pub struct CameraPasses<'a> {
     pub depth_only: &'a wgpu::RenderPipeline,
-    pub shaded: &'a wgpu::RenderPipeline,
+    /// The colour pass, present when the request wants the picture.
+    pub shaded: Option<&'a wgpu::RenderPipeline>,
+    /// `shaded` writes the analysis targets too (after the colour).
+    pub shaded_writes_analysis: bool,
     /// Present when the still textured objects read the view's albedo cache: `shaded` with
     /// ALBEDO_FROM_CACHE, which draws those objects (`shaded` draws the rest).
     pub shaded_from_cache: Option<&'a wgpu::RenderPipeline>,
-    /// Present when the request asks for the analysis targets.
+    /// An analysis-only pass, present when the request wants the analysis without the picture.
     pub analysis: Option<&'a wgpu::RenderPipeline>,
     /// Present when the view's albedo cache is to be filled before the other passes.
     pub fill_albedo_cache: Option<&'a wgpu::RenderPipeline>,
@@ -44,13 +47,11 @@ impl CameraPasses<'_> {
                 pass.set_scissor_rect(x.min(width - 1), y.min(height - 1), 1, 1);
             }
         };
-        let shaded: Vec<(&wgpu::RenderPipeline, bool)> = [
-            request.final_color.then_some((self.shaded, true)),
-            self.analysis.filter(|_| request.analysis).map(|p| (p, false)),
-        ]
-        .into_iter()
-        .flatten()
-        .collect();
+        let shaded: Vec<(&wgpu::RenderPipeline, bool)> =
+            [self.shaded.map(|p| (p, true)), self.analysis.map(|p| (p, false))]
+                .into_iter()
+                .flatten()
+                .collect();
         if let Some(pipeline) = self.fill_albedo_cache {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("albedo cache"),
@@ -114,10 +115,14 @@ impl CameraPasses<'_> {
                     ops: wgpu::Operations { load: wgpu::LoadOp::Clear(clear), store: wgpu::StoreOp::Store },
                 })
             };
-            let color_attachments: Vec<_> = if *is_final {
-                vec![attachment(&targets.color_view, BACKGROUND)]
-            } else {
-                targets.analysis_views.iter().map(|view| attachment(view, wgpu::Color::TRANSPARENT)).collect()
+            let analysis =
+                targets.analysis_views.iter().map(|view| attachment(view, wgpu::Color::TRANSPARENT));
+            let color_attachments: Vec<_> = match (*is_final, self.shaded_writes_analysis) {
+                (true, true) => {
+                    std::iter::once(attachment(&targets.color_view, BACKGROUND)).chain(analysis).collect()
+                }
+                (true, false) => vec![attachment(&targets.color_view, BACKGROUND)],
+                (false, _) => analysis.collect(),
             };
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some(if *is_final { "camera pass" } else { "analysis pass" }),

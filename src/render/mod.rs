@@ -22,7 +22,7 @@ pub use timing::PassTimes;
 use crate::scene::{Kernel, MAX_LIGHTS, Scene, ShadowSettings};
 use crate::shadow::kernels::{MAX_TAPS, filter_taps, kernel_table};
 use gpu_types::{DYNAMIC_STRIDE, FrameGpu, ShadowViewGpu};
-use pipelines::{CameraPipelineKey, Layouts, Pipelines, ShadowPipelineKey};
+use pipelines::{CameraOutputs, CameraPipelineKey, Layouts, Pipelines, ShadowPipelineKey};
 use scene_gpu::SceneGpu;
 use targets::{ShadowMaps, ShadowMapsKey, ViewTargets};
 
@@ -325,16 +325,21 @@ impl Renderer {
             pipeline: key,
         };
         let shadow_maps_kept = maps.drawn_for.as_ref() == Some(&maps_key);
-        let final_pipeline = self
-            .pipelines
-            .camera(&self.device, CameraPipelineKey::new(&params, &lights, false, false))
-            .clone();
-        let from_cache_pipeline = albedo_from_cache.then(|| {
-            self.pipelines.camera(&self.device, CameraPipelineKey::new(&params, &lights, false, true)).clone()
-        });
-        let analysis_pipeline = request.analysis.then(|| {
-            self.pipelines.camera(&self.device, CameraPipelineKey::new(&params, &lights, true, false)).clone()
-        });
+        // Colour and analysis together come from one pass (one filtering of the selected light).
+        let shaded_outputs = match (request.final_color, request.analysis) {
+            (true, true) => Some(CameraOutputs::FinalAndAnalysis),
+            (true, false) => Some(CameraOutputs::Final),
+            (false, _) => None,
+        };
+        let mut pipeline = |outputs, from_cache| {
+            self.pipelines
+                .camera(&self.device, CameraPipelineKey::new(&params, &lights, outputs, from_cache))
+                .clone()
+        };
+        let shaded_pipeline = shaded_outputs.map(|o| pipeline(o, false));
+        let from_cache_pipeline = shaded_outputs.filter(|_| albedo_from_cache).map(|o| pipeline(o, true));
+        let analysis_pipeline =
+            (request.analysis && !request.final_color).then(|| pipeline(CameraOutputs::Analysis, false));
         let timer = self.timer.as_ref().filter(|_| request.timestamps);
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
@@ -351,7 +356,8 @@ impl Renderer {
         }
         let camera = camera_pass::CameraPasses {
             depth_only: &self.pipelines.camera_depth,
-            shaded: &final_pipeline,
+            shaded: shaded_pipeline.as_ref(),
+            shaded_writes_analysis: shaded_outputs == Some(CameraOutputs::FinalAndAnalysis),
             shaded_from_cache: from_cache_pipeline.as_ref(),
             analysis: analysis_pipeline.as_ref(),
             fill_albedo_cache: fill_albedo_cache.then_some(&self.pipelines.camera_albedo),

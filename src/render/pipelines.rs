@@ -162,6 +162,17 @@ pub struct ShadowPipelineKey {
     pub cull_front_faces: bool,
 }
 
+/// The targets a camera pass writes.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub enum CameraOutputs {
+    /// `fs_final`: the shaded colour.
+    Final,
+    /// `fs_analysis`: the selected light's shadow terms, position and normal (float targets).
+    Analysis,
+    /// `fs_final_and_analysis`: both from one filtering of the selected light.
+    FinalAndAnalysis,
+}
+
 /// What a camera pipeline is specialised for: the switch values of shaders/shadow_sampling.wgsl
 /// (as `ShadowParamsGpu` numbers them) and which fragment entry point it runs.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
@@ -174,8 +185,8 @@ pub struct CameraPipelineKey {
     pub projection: u32,
     pub size_model: u32,
     pub light_count: u32,
-    /// `fs_analysis` (float targets) rather than `fs_final` (colour).
-    pub analysis: bool,
+    /// What the fragment shader writes: colour, the analysis floats, or both.
+    pub outputs: CameraOutputs,
     /// Still textured objects read their albedo from the view's cache (ALBEDO_FROM_CACHE).
     pub albedo_from_cache: bool,
 }
@@ -184,7 +195,7 @@ impl CameraPipelineKey {
     pub fn new(
         params: &ShadowParamsGpu,
         lights: &[LightGpu],
-        analysis: bool,
+        outputs: CameraOutputs,
         albedo_from_cache: bool,
     ) -> Self {
         // 1 or 2 where every light agrees (SPEC_ALL_*), 0 where they differ or there are none.
@@ -202,8 +213,8 @@ impl CameraPipelineKey {
             // SPEC_ALL_WIDTH = 1, SPEC_ALL_ANGULAR = 2.
             size_model: shared(|l| l.size_model.min(1)),
             light_count: lights.len() as u32,
-            analysis,
-            albedo_from_cache: albedo_from_cache && !analysis,
+            outputs,
+            albedo_from_cache: albedo_from_cache && outputs != CameraOutputs::Analysis,
         }
     }
 }
@@ -344,9 +355,10 @@ impl Pipelines {
         };
         // Build the default variants now, so that a device that cannot compile them fails here.
         let defaults = ShadowParamsGpu::new(&Default::default());
-        for (analysis, cached) in [(false, false), (false, true), (true, false)] {
-            pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], analysis, cached));
+        for outputs in [CameraOutputs::Final, CameraOutputs::Analysis, CameraOutputs::FinalAndAnalysis] {
+            pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], outputs, false));
         }
+        pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], CameraOutputs::Final, true));
         pipelines
     }
 
@@ -368,11 +380,16 @@ impl Pipelines {
             let options = wgpu::PipelineCompilationOptions { constants: &constants, ..Default::default() };
             let analysis_target = Some(wgpu::ColorTargetState::from(ANALYSIS_FORMAT));
             let final_targets = [Some(COLOR_TARGET_FORMAT.into())];
-            let analysis_targets = [analysis_target.clone(), analysis_target.clone(), analysis_target];
-            let (label, entry, targets): (_, _, &[Option<wgpu::ColorTargetState>]) = if key.analysis {
-                ("camera analysis", "fs_analysis", &analysis_targets)
-            } else {
-                ("camera final", "fs_final", &final_targets)
+            let analysis_targets =
+                [analysis_target.clone(), analysis_target.clone(), analysis_target.clone()];
+            let both_targets =
+                [final_targets[0].clone(), analysis_target.clone(), analysis_target.clone(), analysis_target];
+            let (label, entry, targets): (_, _, &[Option<wgpu::ColorTargetState>]) = match key.outputs {
+                CameraOutputs::Final => ("camera final", "fs_final", &final_targets),
+                CameraOutputs::Analysis => ("camera analysis", "fs_analysis", &analysis_targets),
+                CameraOutputs::FinalAndAnalysis => {
+                    ("camera final and analysis", "fs_final_and_analysis", &both_targets)
+                }
             };
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some(label),

@@ -348,7 +348,10 @@ impl Renderers {
     fn image(&mut self, id: u64, job: &RenderJob) -> Result<RenderOutput, RenderError> {
         let start = Instant::now();
         let scene = &job.scene;
-        let request = FrameRequest { final_color: true, analysis: false, timestamps: true, ..job.request };
+        // The overlays' analysis comes from the same pass (one filtering, not two); `details`
+        // reads it back after the image is on its way.
+        let request =
+            FrameRequest { final_color: true, analysis: job.analysis, timestamps: true, ..job.request };
         let rendered = self.a.render(scene, &request)?;
         let pass_times = self.a.last_pass_times()?;
         let color = self.a.read_color()?;
@@ -414,21 +417,20 @@ impl Renderers {
 }
 
 impl Renderers {
-    /// The probe (one pixel of the analysis pass per light), then the selected light's analysis
-    /// pass for the overlays (left in the targets for the ground truth after it).
+    /// The selected light's analysis for the overlays (drawn with the image), then the probe
+    /// (one pixel of the analysis pass per light). The ground truth after them starts from the
+    /// view's analysis, so it is drawn again after a probe when the ground truth is wanted.
     fn details(&mut self, job: &RenderJob) -> Result<(ProbeOutcome, Option<Analysis>), RenderError> {
         let scene = &job.scene;
+        let analysis = if job.analysis { Some(self.a.read_analysis()?) } else { None };
         let request = FrameRequest { final_color: false, analysis: true, timestamps: false, ..job.request };
         let probe = job.probe.map(|spot| {
             let frame = FrameRequest { size: spot.frame, ..request };
             probe::probe(&mut self.a, scene, &frame, spot.pixel, false).map_err(|e| e.to_string())
         });
-        let analysis = if job.analysis {
+        if job.reference && job.analysis && job.probe.is_some() {
             self.a.render(scene, &request)?;
-            Some(self.a.read_analysis()?)
-        } else {
-            None
-        };
+        }
         Ok((probe, analysis))
     }
 }
