@@ -159,9 +159,15 @@ fn a_malformed_scene_shows_the_error_and_keeps_the_old_scene() {
     h.run_steps(1);
     h.get_by_label("Open").click();
     settle(&mut h);
-    let error = h.state().error.clone().expect("an error is shown");
+    let error = h.state().error.clone().expect("an error is shown").to_string();
     assert!(error.contains("broken.toml") && error.contains("technique"), "{error}");
     h.get_by_label_contains("broken.toml");
+    h.get_by_label_contains("could not open the scene");
+    // The headline in the reader's language; the details stay as the command line prints them.
+    h.state_mut().lang = Lang::Zh;
+    h.run_steps(2);
+    h.get_by_label_contains("无法打开场景");
+    h.state_mut().lang = Lang::En;
     assert_eq!(h.state().scene.objects.len(), objects_before, "the old scene stays");
     assert!(h.state().camera_image().is_some());
 }

@@ -305,43 +305,35 @@ impl Pipelines {
             compilation_options: Default::default(),
             cache: None,
         });
-        let camera_depth = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("camera depth pre-pass"),
-            layout: Some(&camera_layout),
-            vertex: wgpu::VertexState {
-                module: &camera_module,
-                entry_point: Some("vs_camera"),
-                compilation_options: Default::default(),
-                buffers: &[Some(vertex_layout())],
-            },
-            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-            depth_stencil: Some(depth_state(wgpu::DepthBiasState::default())),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: None,
-            multiview_mask: None,
-            cache: None,
-        });
-        let camera_albedo = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some("camera albedo cache"),
-            layout: Some(&camera_layout),
-            vertex: wgpu::VertexState {
-                module: &camera_module,
-                entry_point: Some("vs_camera"),
-                compilation_options: Default::default(),
-                buffers: &[Some(vertex_layout())],
-            },
-            primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-            depth_stencil: Some(depth_state(wgpu::DepthBiasState::default())),
-            multisample: wgpu::MultisampleState::default(),
-            fragment: Some(wgpu::FragmentState {
+        // Both write the camera view's depth from the camera's own vertex shader.
+        let writes_depth = |label, fragment| {
+            device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+                label: Some(label),
+                layout: Some(&camera_layout),
+                vertex: wgpu::VertexState {
+                    module: &camera_module,
+                    entry_point: Some("vs_camera"),
+                    compilation_options: Default::default(),
+                    buffers: &[Some(vertex_layout())],
+                },
+                primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
+                depth_stencil: Some(depth_state(wgpu::DepthBiasState::default())),
+                multisample: wgpu::MultisampleState::default(),
+                fragment,
+                multiview_mask: None,
+                cache: None,
+            })
+        };
+        let camera_depth = writes_depth("camera depth pre-pass", None);
+        let camera_albedo = writes_depth(
+            "camera albedo cache",
+            Some(wgpu::FragmentState {
                 module: &camera_module,
                 entry_point: Some("fs_albedo"),
                 compilation_options: Default::default(),
                 targets: &[Some(ALBEDO_CACHE_FORMAT.into())],
             }),
-            multiview_mask: None,
-            cache: None,
-        });
+        );
         let mut pipelines = Self {
             shadow_module,
             shadow_layout,

@@ -190,7 +190,9 @@ impl ShadowlabApp {
         let tr = move |en: &'static str| tr(lang, en);
         ui.horizontal(|ui| {
             if let Some(error) = self.error.clone() {
-                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), format!("{}: {error}", tr("Error")));
+                let headline = format!("{}: {}", tr("Error"), tr(error.what));
+                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), headline);
+                ui.add(egui::Label::new(&error.detail).truncate()).on_hover_text(&error.detail);
                 if ui.small_button(tr("dismiss")).clicked() {
                     self.error = None;
                 }

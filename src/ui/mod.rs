@@ -79,7 +79,7 @@ pub struct ShadowlabApp {
     pub diagram: crate::diagrams::DiagramKind,
     pub settings: Settings,
     /// A problem to show (bad file, bad value); the last good scene stays.
-    pub error: Option<String>,
+    pub error: Option<AppError>,
     pub status: String,
     pub show_help: bool,
     /// Present mode (F5): the camera view, the map, the diagram and the lesson text, large, for a
@@ -172,7 +172,7 @@ impl ShadowlabApp {
     fn with_settings(worker: Option<RenderWorker>, gpu_error: Option<String>, settings: Settings) -> Self {
         let (lessons, lesson_error) = match lessons::load_all(&shipped_path("lessons")) {
             Ok(l) => (l, None),
-            Err(e) => (Vec::new(), Some(e.to_string())),
+            Err(e) => (Vec::new(), Some(AppError::new("could not load the lessons", e))),
         };
         let default_path = shipped_path(DEFAULT_SCENE);
         let mut error = lesson_error;
@@ -180,7 +180,7 @@ impl ShadowlabApp {
         let scene = match load_scene(&wanted, &[]) {
             Ok(s) => s,
             Err(e) => {
-                error = Some(e.to_string());
+                error = Some(AppError::new("could not open the scene", e));
                 match load_scene(&default_path, &[]) {
                     Ok(s) => s,
                     Err(e) => fallback_scene(&e.to_string()),
@@ -257,7 +257,7 @@ impl ShadowlabApp {
                 self.error = None;
                 self.status = format!("{} {}", crate::i18n::tr(self.lang, "opened"), path.display());
             }
-            Err(e) => self.error = Some(e),
+            Err(e) => self.error = Some(AppError::new("could not open the scene", e)),
         }
     }
 
@@ -310,7 +310,10 @@ impl ShadowlabApp {
                 self.show_lesson_list = false;
                 self.error = None;
             }
-            Err(e) => self.error = Some(format!("{}: step {}: {e}", l.path.display(), step + 1)),
+            Err(e) => {
+                let detail = format!("{}: step {}: {e}", l.path.display(), step + 1);
+                self.error = Some(AppError::new("could not show this lesson step", detail));
+            }
         }
     }
 
@@ -335,8 +338,9 @@ impl ShadowlabApp {
                 self.mark_dirty();
             }
             Err(e) => {
-                self.error =
-                    Some(format!("{}: step {}: try this {}: {e}", path.display(), step_index + 1, index + 1))
+                let detail =
+                    format!("{}: step {}: try this {}: {e}", path.display(), step_index + 1, index + 1);
+                self.error = Some(AppError::new("could not apply this prompt", detail));
             }
         }
     }
@@ -413,7 +417,7 @@ impl ShadowlabApp {
 
     /// Why there is no GPU view, or the last rendering error, if any.
     pub fn gpu_problem(&self) -> Option<String> {
-        self.gpu_error.clone().or_else(|| self.error.clone())
+        self.gpu_error.clone().or_else(|| self.error.as_ref().map(AppError::to_string))
     }
 
     /// The camera view as last rendered (for screenshots and tests).
@@ -611,6 +615,27 @@ impl eframe::App for ShadowlabApp {
         self.settings.overlays = self.overlays.clone();
         self.settings.lang = self.lang;
         eframe::set_value(storage, settings::STORAGE_KEY, &self.settings);
+    }
+}
+
+/// A problem the status bar shows: what failed, in the reader's language, and the details
+/// (file, line, key) as the command line prints them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AppError {
+    /// English key of the headline (translated by `crate::i18n`).
+    pub what: &'static str,
+    pub detail: String,
+}
+
+impl AppError {
+    pub fn new(what: &'static str, detail: impl std::fmt::Display) -> Self {
+        Self { what, detail: detail.to_string() }
+    }
+}
+
+impl std::fmt::Display for AppError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.what, self.detail)
     }
 }
 

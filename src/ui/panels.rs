@@ -98,7 +98,7 @@ fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
                 let texture = ui.ctx().load_texture("diagram", image, egui::TextureOptions::LINEAR);
                 app.panel_state.diagram = Some((texture, key));
             }
-            Err(e) => app.error = Some(e.to_string()),
+            Err(e) => app.error = Some(super::AppError::new("could not draw the diagram", e)),
         }
     }
     if let Some((texture, ..)) = &app.panel_state.diagram {

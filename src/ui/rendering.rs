@@ -76,7 +76,7 @@ impl ShadowlabApp {
                 }
                 WorkerEvent::Failed { job, message } => {
                     if job == self.submitted.job {
-                        self.error = Some(message);
+                        self.error = Some(super::AppError::new("rendering failed", message));
                     }
                 }
             }
@@ -157,7 +157,7 @@ impl ShadowlabApp {
             Some(Ok(report)) => self.probe = Some(report),
             Some(Err(e)) => {
                 self.probe = None;
-                self.error = Some(e);
+                self.error = Some(super::AppError::new("the probe failed", e));
             }
             None if self.probe_at.is_none() => self.probe = None,
             None => {}

@@ -29,7 +29,7 @@ impl ShadowlabApp {
                 let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
                 self.status = format!("{} {}", crate::i18n::tr(self.lang, "saved"), names.join(", "));
             }
-            Err(e) => self.error = Some(e),
+            Err(e) => self.error = Some(super::AppError::new("could not save the screenshot", e)),
         }
     }
 
