@@ -230,3 +230,26 @@ fn one_pass_for_picture_and_analysis_gives_what_two_passes_give() {
         assert_eq!(format!("{both_analysis:?}"), format!("{analysis:?}"), "{name}: the analysis changed");
     }
 }
+
+/// Hard shadows and `none` skip the depth pre-pass (their one pass keeps the nearest fragment
+/// itself). Each pixel is still the pre-pass's: a one-pixel render, which keeps the pre-pass,
+/// gives the same colour at a grid of pixels over bunnies, floor and their edges.
+#[test]
+fn without_the_pre_pass_every_pixel_is_the_pre_pass_pixel() {
+    let (_ctx, mut renderer) = common::gpu();
+    for (name, technique) in [("homework", "hard"), ("games202", "none"), ("multi_light", "hard")] {
+        let scene = common::scene(name, &[("technique", technique)]);
+        let request = FrameRequest { size: (320, 180), time_s: 0.5, ..Default::default() };
+        renderer.render(&scene, &request).expect("render");
+        let whole = renderer.read_color().expect("read");
+        for y in (3..180).step_by(11) {
+            for x in (2..320).step_by(13) {
+                renderer
+                    .render(&scene, &FrameRequest { only_pixel: Some((x, y)), ..request })
+                    .expect("render");
+                let one = renderer.read_color().expect("read");
+                assert_eq!(whole.get_pixel(x, y), one.get_pixel(x, y), "{name} {technique} at {x},{y}");
+            }
+        }
+    }
+}

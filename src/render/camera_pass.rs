@@ -16,6 +16,9 @@ pub struct CameraPasses<'a> {
     pub shaded: Option<&'a wgpu::RenderPipeline>,
     /// `shaded` writes the analysis targets too (after the colour).
     pub shaded_writes_analysis: bool,
+    /// Run the depth pre-pass (the shaded pipelines were built to test against it); without
+    /// it the one shaded pass clears depth and keeps the nearest fragment itself.
+    pub depth_prepass: bool,
     /// Present when the still textured objects read the view's albedo cache: `shaded` with
     /// ALBEDO_FROM_CACHE, which draws those objects (`shaded` draws the rest).
     pub shaded_from_cache: Option<&'a wgpu::RenderPipeline>,
@@ -82,8 +85,8 @@ impl CameraPasses<'_> {
             pass.set_bind_group(3, self.albedo_placeholder, &[]);
             scene_gpu.draw_cacheable_albedo(&mut pass, 2, scene, true);
         }
-        {
-            let first = self.fill_albedo_cache.is_none();
+        let first = self.fill_albedo_cache.is_none();
+        if self.depth_prepass {
             let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("camera depth pre-pass"),
                 color_attachments: &[],
@@ -130,12 +133,14 @@ impl CameraPasses<'_> {
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &targets.depth_view,
                     depth_ops: Some(wgpu::Operations {
-                        load: wgpu::LoadOp::Load,
+                        load: if self.depth_prepass { wgpu::LoadOp::Load } else { wgpu::LoadOp::Clear(1.0) },
                         store: wgpu::StoreOp::Store,
                     }),
                     stencil_ops: None,
                 }),
-                timestamp_writes: timer.and_then(|t| t.span_writes(1, false, index + 1 == shaded.len())),
+                timestamp_writes: timer.and_then(|t| {
+                    t.span_writes(1, first && !self.depth_prepass && index == 0, index + 1 == shaded.len())
+                }),
                 occlusion_query_set: None,
                 multiview_mask: None,
             });

@@ -19,7 +19,7 @@ pub use gpu_types::{LightGpu, ShadowParamsGpu};
 pub use pipelines::COLOR_FORMAT;
 pub use timing::PassTimes;
 
-use crate::scene::{Kernel, MAX_LIGHTS, Scene, ShadowSettings};
+use crate::scene::{Kernel, MAX_LIGHTS, Scene, ShadowSettings, Technique};
 use crate::shadow::kernels::{MAX_TAPS, filter_taps, kernel_table};
 use gpu_types::{DYNAMIC_STRIDE, FrameGpu, ShadowViewGpu};
 use pipelines::{CameraOutputs, CameraPipelineKey, Layouts, Pipelines, ShadowPipelineKey};
@@ -331,10 +331,15 @@ impl Renderer {
             (true, false) => Some(CameraOutputs::Final),
             (false, _) => None,
         };
+        // The pre-pass shades each pixel once; where shading is cheap (no lookup, or one tap) and
+        // one pass follows, that pass's own depth test costs less than a second trip over the
+        // geometry.
+        let cheap = matches!(scene.shadow.technique, Technique::None | Technique::Hard);
+        let depth_prepass = !(cheap && request.final_color && request.only_pixel.is_none());
         let mut pipeline = |outputs, from_cache| {
-            self.pipelines
-                .camera(&self.device, CameraPipelineKey::new(&params, &lights, outputs, from_cache))
-                .clone()
+            let key = CameraPipelineKey::new(&params, &lights, outputs, from_cache);
+            let key = CameraPipelineKey { after_prepass: depth_prepass, ..key };
+            self.pipelines.camera(&self.device, key).clone()
         };
         let shaded_pipeline = shaded_outputs.map(|o| pipeline(o, false));
         let from_cache_pipeline = shaded_outputs.filter(|_| albedo_from_cache).map(|o| pipeline(o, true));
@@ -358,6 +363,7 @@ impl Renderer {
             depth_only: &self.pipelines.camera_depth,
             shaded: shaded_pipeline.as_ref(),
             shaded_writes_analysis: shaded_outputs == Some(CameraOutputs::FinalAndAnalysis),
+            depth_prepass,
             shaded_from_cache: from_cache_pipeline.as_ref(),
             analysis: analysis_pipeline.as_ref(),
             fill_albedo_cache: fill_albedo_cache.then_some(&self.pipelines.camera_albedo),

@@ -189,6 +189,10 @@ pub struct CameraPipelineKey {
     pub outputs: CameraOutputs,
     /// Still textured objects read their albedo from the view's cache (ALBEDO_FROM_CACHE).
     pub albedo_from_cache: bool,
+    /// The depth pre-pass ran: test against its depth (LessEqual, no writes). Without it the
+    /// pass keeps the nearest fragment itself (LessEqual, writes: of fragments at equal depth
+    /// the last drawn wins, as after the pre-pass).
+    pub after_prepass: bool,
 }
 
 impl CameraPipelineKey {
@@ -215,6 +219,7 @@ impl CameraPipelineKey {
             light_count: lights.len() as u32,
             outputs,
             albedo_from_cache: albedo_from_cache && outputs != CameraOutputs::Analysis,
+            after_prepass: true,
         }
     }
 }
@@ -393,7 +398,13 @@ impl Pipelines {
                     buffers: &[Some(vertex_layout())],
                 },
                 primitive: wgpu::PrimitiveState { cull_mode: None, ..Default::default() },
-                depth_stencil: Some(depth_state_after_prepass()),
+                depth_stencil: Some(match key.after_prepass {
+                    true => depth_state_after_prepass(),
+                    false => wgpu::DepthStencilState {
+                        depth_write_enabled: Some(true),
+                        ..depth_state_after_prepass()
+                    },
+                }),
                 multisample: wgpu::MultisampleState::default(),
                 fragment: Some(wgpu::FragmentState {
                     module,
