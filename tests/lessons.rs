@@ -244,13 +244,10 @@ fn try_this_prompts_name_the_apps_controls_and_apply_what_they_say() {
 }
 
 #[test]
-fn a_bad_key_in_a_try_this_prompt_names_the_file_and_the_key() {
-    let path = data_file("bad_try_this_key.toml");
-    let message = match lessons::load_lesson(&path) {
-        Ok(_) => panic!("a prompt whose Apply cannot work was accepted"),
-        Err(e) => e.to_string(),
-    };
-    assert!(message.contains("bad_try_this_key.toml") && message.contains("radius_texel"), "{message}");
+fn a_bad_key_in_a_try_this_prompt_names_file_line_and_key() {
+    let line = line_of(&data_file("bad_try_this_key.toml"), "radius_texel");
+    let message = error_of("bad_try_this_key.toml", line);
+    assert!(message.contains("radius_texel"), "{message}");
     assert!(message.contains("try_this 1"), "{message}");
 }
 

@@ -147,7 +147,7 @@ struct StepFile {
     title: Text,
     text: Text,
     #[serde(default)]
-    try_this: Vec<TryThisFile>,
+    try_this: Vec<Spanned<TryThisFile>>,
     scene: Spanned<String>,
     set: Option<Spanned<toml::Table>>,
     #[serde(default)]
@@ -322,21 +322,24 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
         }
         let set_span = s.set.as_ref().map_or(0..0, |set| set.span());
         let mut try_this = Vec::with_capacity(s.try_this.len());
-        for (i, t) in s.try_this.into_iter().enumerate() {
+        // Each prompt's errors point at its own line.
+        let prompt_spans: Vec<_> = s.try_this.iter().map(|t| t.span()).collect();
+        for (i, (t, span)) in s.try_this.into_iter().zip(&prompt_spans).enumerate() {
+            let t = t.into_inner();
             let mut overrides = Vec::new();
             if let Some(set) = &t.set {
                 flatten("", set, &mut overrides);
             }
-            let view = match &t.view {
-                None => None,
-                Some(v) => Some(
-                    View::from_name(v)
-                        .ok_or_else(|| error(0..0, format!("try_this {}: unknown view `{v}`", i + 1)))?,
-                ),
-            };
+            let view =
+                match &t.view {
+                    None => None,
+                    Some(v) => Some(View::from_name(v).ok_or_else(|| {
+                        error(span.clone(), format!("try_this {}: unknown view `{v}`", i + 1))
+                    })?),
+                };
             if t.time.is_some_and(|t| !t.is_finite()) {
                 return Err(error(
-                    0..0,
+                    span.clone(),
                     format!("try_this {}: `time` must be a finite number of seconds", i + 1),
                 ));
             }
@@ -375,9 +378,10 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
             _ => error(s.scene.span(), e.to_string()),
         })?;
         // Every Apply button works: the prompt's changes load on top of the step's.
-        for (i, t) in step.try_this.iter().enumerate() {
+        for (i, (t, span)) in step.try_this.iter().zip(&prompt_spans).enumerate() {
             if !t.overrides.is_empty() {
-                step.scene_with_try_this(i).map_err(|e| error(0..0, format!("try_this {}: {e}", i + 1)))?;
+                step.scene_with_try_this(i)
+                    .map_err(|e| error(span.clone(), format!("try_this {}: {e}", i + 1)))?;
             }
         }
         if step.light >= scene.lights.len().max(1) {

@@ -86,6 +86,10 @@ fn upload_texture(device: &wgpu::Device, queue: &wgpu::Queue, image: &TextureIma
     texture.create_view(&wgpu::TextureViewDescriptor::default())
 }
 
+fn transform_bits(object: &crate::scene::Object, t_s: f32) -> [u32; 16] {
+    object.world_from_object(t_s).to_cols_array().map(f32::to_bits)
+}
+
 impl DrawItem {
     fn albedo_cacheable(&self, scene: &Scene) -> bool {
         self.textured && scene.objects.get(self.object).is_some_and(|o| o.is_still())
@@ -222,16 +226,14 @@ impl SceneGpu {
 
     /// Every object's world transform at `t_s`, as bits (part of the shadow maps' key).
     pub fn object_transforms(scene: &Scene, t_s: f32) -> Vec<[u32; 16]> {
-        scene.objects.iter().map(|o| o.world_from_object(t_s).to_cols_array().map(f32::to_bits)).collect()
+        scene.objects.iter().map(|o| transform_bits(o, t_s)).collect()
     }
 
-    /// World transforms of the objects with cacheable albedo (part of the cache's key).
+    /// World transforms of the objects with cacheable albedo (part of the cache's key; they are
+    /// still, so any time gives the same).
     pub fn cacheable_albedo_transforms(&self, scene: &Scene) -> Vec<[u32; 16]> {
         let cacheable = self.draws.iter().filter(|d| d.albedo_cacheable(scene));
-        cacheable
-            .filter_map(|d| scene.objects.get(d.object))
-            .map(|o| o.world_from_object(0.0).to_cols_array().map(f32::to_bits))
-            .collect()
+        cacheable.filter_map(|d| scene.objects.get(d.object)).map(|o| transform_bits(o, 0.0)).collect()
     }
 
     fn draw_where<'a>(
