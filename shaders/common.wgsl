@@ -12,6 +12,7 @@ const BIAS_NONE: u32 = 0u;
 const BIAS_CONSTANT: u32 = 1u;
 const BIAS_SLOPE: u32 = 2u;
 const BIAS_ADAPTIVE: u32 = 3u;
+const BIAS_RECEIVER_PLANE: u32 = 4u;
 const KERNEL_POISSON: u32 = 0u;
 const KERNEL_UNIFORM: u32 = 1u;
 const KERNEL_VOGEL: u32 = 2u;

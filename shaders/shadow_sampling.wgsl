@@ -82,6 +82,9 @@ struct ShadowCoord {
     depth_ndc: f32,         // receiver depth as the map would store it
     depth_linear: f32,      // receiver distance from the light, world units
     n_dot_l: f32,
+    // Receiver-plane bias only (else 0): the receiver's plane in the map, as NDC depth per uv,
+    // so that the plane's depth at uv + delta is depth_ndc + dot(depth_gradient, delta).
+    depth_gradient: vec2<f32>,
 }
 
 fn depth_linear_from_ndc(light: LightGpu, z: f32) -> f32 {
@@ -134,7 +137,37 @@ fn light_space_lookup(light: LightGpu, world_pos: vec3<f32>, normal: vec3<f32>) 
     out.uv = s.xy;
     out.depth_ndc = s.z;
     out.depth_linear = depth_linear_from_ndc(light, s.z);
+    if bias_mode() == BIAS_RECEIVER_PLANE {
+        out.depth_gradient = receiver_plane_gradient(light, p, normal, s);
+    }
     return out;
+}
+
+// Two unit vectors that span the plane with unit normal n (Duff et al. 2017, branchless).
+fn tangents_of(n: vec3<f32>) -> array<vec3<f32>, 2> {
+    let sign = select(-1.0, 1.0, n.z >= 0.0);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    return array<vec3<f32>, 2>(
+        vec3<f32>(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        vec3<f32>(b, sign + n.y * n.y * a, -n.y),
+    );
+}
+
+// The receiver's plane (through p, normal n) as NDC depth per uv of the map: two points of the
+// plane a texel from p, projected like p (at s), fix it. A light's projection maps planes to
+// planes, so this is exact for spot lights too. Edge-on to the light (the two projected steps
+// parallel) there is no such plane: 0, the constant bias alone.
+fn receiver_plane_gradient(light: LightGpu, p: vec3<f32>, n: vec3<f32>, s: vec3<f32>) -> vec2<f32> {
+    let step = texel_world_at(light, depth_linear_from_ndc(light, s.z));
+    let t = tangents_of(n);
+    let a = project_to_light(light, p + t[0] * step) - s;
+    let b = project_to_light(light, p + t[1] * step) - s;
+    let det = a.x * b.y - a.y * b.x;
+    if !(abs(det) > 1e-3 * length(a.xy) * length(b.xy)) {
+        return vec2<f32>(0.0);
+    }
+    return vec2<f32>(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
 }
 
 // Depth bias in NDC units (REFERENCES "Bias"). `filter_radius_texels` grows the adaptive bias.
@@ -146,6 +179,11 @@ fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: 
         case BIAS_SLOPE: {
             // LearnOpenGL: max(0.05 * (1 - N.L), 0.005)
             return max(params.slope_bias * (1.0 - coord.n_dot_l), params.bias);
+        }
+        case BIAS_RECEIVER_PLANE: {
+            // The plane does the rest, per tap (`tap_reference_ndc`); this is the margin for
+            // depth precision.
+            return params.bias;
         }
         case BIAS_ADAPTIVE: {
             // Seed 000: A = (1 + ceil(R)) * W / (2 * map_size) is half a texel in world units,
@@ -188,21 +226,45 @@ fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
     return textureLoad(shadow_maps, texel, i32(light.layer), 0);
 }
 
+// The depth a tap at `uv` compares the map's with: the receiver's, less the bias. With the
+// receiver-plane bias it is the receiver's plane at the centre of the texel the tap reads (where
+// that texel's depth was rendered), so a flat receiver never shadows itself however far the tap
+// lands from the pixel; a bilinear tap of the sampler (not `point_sampled`) uses the plane at the
+// tap itself.
+fn tap_reference_ndc(
+    light: LightGpu,
+    coord: ShadowCoord,
+    uv: vec2<f32>,
+    bias_ndc: f32,
+    point_sampled: bool,
+) -> f32 {
+    if bias_mode() == BIAS_RECEIVER_PLANE {
+        var at = uv;
+        if point_sampled {
+            at = (floor(uv * light.map_size_texels) + 0.5) / light.map_size_texels;
+        }
+        return coord.depth_ndc + dot(coord.depth_gradient, at - coord.uv) - bias_ndc;
+    }
+    return coord.depth_ndc - bias_ndc;
+}
+
 // 1 = lit, 0 = shadowed, for one tap. Outside the light frustum counts as lit when clamped.
-fn depth_test(light: LightGpu, uv: vec2<f32>, receiver_ndc: f32, bias_ndc: f32) -> f32 {
-    if clamp_outside() == 1u && (outside_map(uv) || outside_depth(receiver_ndc)) {
+fn depth_test(light: LightGpu, coord: ShadowCoord, uv: vec2<f32>, bias_ndc: f32) -> f32 {
+    if clamp_outside() == 1u && (outside_map(uv) || outside_depth(coord.depth_ndc)) {
         return 1.0;
     }
-    if kernel() == KERNEL_HARDWARE && technique() != TECHNIQUE_HARD {
+    let bilinear = kernel() == KERNEL_HARDWARE && technique() != TECHNIQUE_HARD;
+    let reference = tap_reference_ndc(light, coord, uv, bias_ndc, !bilinear);
+    if bilinear {
         var lookup = uv;
         if clamp_outside() == 0u {
             lookup = fract(uv);
         }
         // Bilinear 2x2 comparison in the sampler (LessEqual: lit where reference <= stored).
         return textureSampleCompareLevel(shadow_maps, shadow_compare_sampler, lookup * light.atlas_scale,
-                                         i32(light.layer), receiver_ndc - bias_ndc);
+                                         i32(light.layer), reference);
     }
-    return select(0.0, 1.0, receiver_ndc - bias_ndc <= stored_depth_ndc(light, uv));
+    return select(0.0, 1.0, reference <= stored_depth_ndc(light, uv));
 }
 
 // ---------------------------------------------------------------- sample patterns
@@ -268,7 +330,8 @@ fn visibility_hard(light: LightGpu, coord: ShadowCoord) -> f32 {
     if clamp_outside() == 1u && outside_frustum(coord) {
         return 1.0;
     }
-    return select(0.0, 1.0, coord.depth_ndc - bias <= stored_depth_ndc(light, coord.uv));
+    let reference = tap_reference_ndc(light, coord, coord.uv, bias, true);
+    return select(0.0, 1.0, reference <= stored_depth_ndc(light, coord.uv));
 }
 
 // PCF: V = (1/N) sum_i [d_receiver - bias <= map(uv + r * s_i)], r in uv = radius_texels / map_size.
@@ -280,7 +343,7 @@ fn visibility_pcf(light: LightGpu, coord: ShadowCoord, radius_texels: f32, seed:
     var lit = 0.0;
     for (var i = 0u; i < n; i++) {
         let uv = coord.uv + kernel_offset(kernel(), FILTER_TABLE, i, seed, rotation) * radius_uv;
-        lit += depth_test(light, uv, coord.depth_ndc, bias);
+        lit += depth_test(light, coord, uv, bias);
     }
     return lit / f32(n);
 }
@@ -319,7 +382,7 @@ fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSea
             continue;
         }
         let z = stored_depth_ndc(light, uv);
-        if z < coord.depth_ndc - bias {
+        if z < tap_reference_ndc(light, coord, uv, bias, true) {
             out.found += 1u;
             sum += depth_linear_from_ndc(light, z);
         }

@@ -681,9 +681,26 @@ fn bench_json_has_a_row_per_technique_with_every_frame_and_the_adapter() {
     assert_eq!(json["animated"], Value::Bool(true));
     let rows = json["rows"].as_array().expect("rows is an array");
     let labels: Vec<&str> = rows.iter().filter_map(|r| r["technique"].as_str()).collect();
-    // contact.toml filters with 16 + 16 taps: no extra row for the scene's own counts.
-    assert_eq!(labels, ["none", "hard", "pcf 16", "pcf 32", "pcss 16+16", "pcss 32+32"], "{json:#}");
+    // contact.toml filters with 32 + 32 taps: no extra row for the scene's own counts; its
+    // adaptive bias gets two rows with the receiver-plane bias.
+    assert_eq!(
+        labels,
+        [
+            "none",
+            "hard",
+            "pcf 16",
+            "pcf 32",
+            "pcss 16+16",
+            "pcss 32+32",
+            "pcf 32 plane-bias",
+            "pcss 32+32 plane-bias"
+        ],
+        "{json:#}"
+    );
     for row in rows {
+        let plane = row["technique"].as_str().is_some_and(|l| l.ends_with("plane-bias"));
+        let mode = if plane { "receiver_plane" } else { "adaptive" };
+        assert_eq!(row["bias_mode"], Value::String(mode.into()), "{row}");
         for key in ["median_frame_ms", "min_frame_ms"] {
             let ms = row[key].as_f64().unwrap_or_else(|| panic!("`{key}` is not a number: {row}"));
             assert!(ms > 0.0 && ms.is_finite(), "{row}");

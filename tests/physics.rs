@@ -129,9 +129,21 @@ fn disk_crossing(level: f64) -> f64 {
 /// Full penumbra width (world units) across a shadow edge parallel to x near `(x, z_edge)`,
 /// seen from straight above: the 10%..90% width of the visibility profile along z, averaged
 /// over columns, scaled to the full width of a disk's profile.
-fn measured_penumbra(renderer: &mut Renderer, mut scene: Scene, x: f32, z_edge: f32, reference: bool) -> f32 {
+fn measured_penumbra(renderer: &mut Renderer, scene: Scene, x: f32, z_edge: f32, reference: bool) -> f32 {
+    measured_penumbra_in(renderer, scene, x, z_edge, 2.0, reference)
+}
+
+/// The same over a window `window_world` long along z.
+fn measured_penumbra_in(
+    renderer: &mut Renderer,
+    mut scene: Scene,
+    x: f32,
+    z_edge: f32,
+    window_world: f32,
+    reference: bool,
+) -> f32 {
     scene.camera = shadowlab::scene::Camera {
-        projection: shadowlab::scene::Projection::Orthographic { height_world: 2.0 },
+        projection: shadowlab::scene::Projection::Orthographic { height_world: window_world },
         position: glam::Vec3::new(x, 60.0, z_edge),
         target: glam::Vec3::new(x, 0.0, z_edge),
         up: glam::Vec3::new(0.0, 0.0, -1.0),
@@ -222,6 +234,85 @@ fn penumbra_grows_with_blocker_distance_as_similar_triangles_say() {
         widths.push(pcss);
     }
     assert!(widths[1] > 3.0 * widths[0], "the higher slab's penumbra must be much wider: {widths:?}");
+}
+
+/// Where a slab's far top edge (x, top, z) casts its shadow on the floor, seen from the light's
+/// centre.
+fn edge_shadow_on_floor(scene: &Scene, edge: glam::Vec3) -> glam::Vec3 {
+    let light = &scene.lights[0];
+    let ray = match light.kind {
+        shadowlab::scene::LightKind::Directional { .. } => (light.target - light.position).normalize(),
+        _ => (edge - light.position).normalize(),
+    };
+    edge + ray * (edge.y / -ray.y)
+}
+
+/// Blocker-search taps that found a blocker, summed over a patch of open floor far from any
+/// shadow, seen from above (a flat receiver tilted to the light must find none).
+fn blockers_on_open_floor(renderer: &mut Renderer, mut scene: Scene) -> (f32, usize) {
+    scene.camera = shadowlab::scene::Camera {
+        projection: shadowlab::scene::Projection::Orthographic { height_world: 4.0 },
+        position: glam::Vec3::new(14.0, 60.0, 10.0),
+        target: glam::Vec3::new(14.0, 0.0, 10.0),
+        up: glam::Vec3::new(0.0, 0.0, -1.0),
+        near: 1.0,
+        far: 100.0,
+    };
+    renderer.render(&scene, &common::analysis_request((64, 64), 0)).expect("render");
+    let analysis = renderer.read_analysis().expect("analysis");
+    let found: f32 = analysis.shadow.iter().map(|s| s[3]).sum();
+    (found, analysis.shadow.len())
+}
+
+/// PCSS on a floor tilted to the light: with a bias that does not grow with the kernel the
+/// blocker search counts the floor itself and the filter darkens the lit side (a halo); the
+/// receiver-plane bias compares each tap with the receiver's own plane at the texel it reads,
+/// which gives the ground truth's penumbra for both light models.
+#[test]
+fn the_receiver_plane_bias_gives_pcss_the_ground_truths_penumbra_on_a_tilted_floor() {
+    let (_ctx, mut renderer) = common::gpu();
+    let mut report = Vec::new();
+    for file in ["slab_edges_sun", "slab_edges_spot"] {
+        let path = common::repo_path(&format!("tests/data/scenes/{file}.toml"));
+        let adaptive = shadowlab::scene::load_scene(&path, &[]).expect("scene");
+        let plane = shadowlab::scene::load_scene(
+            &path,
+            &[("bias_mode".into(), "receiver_plane".into()), ("bias".into(), "0.0002".into())],
+        )
+        .expect("scene");
+        let (found_before, pixels) = blockers_on_open_floor(&mut renderer, adaptive.clone());
+        let (found_after, _) = blockers_on_open_floor(&mut renderer, plane.clone());
+        report.push(format!(
+            "{file}: open floor, blocker taps per pixel: adaptive {:.1}, receiver plane {:.1}",
+            found_before / pixels as f32,
+            found_after / pixels as f32
+        ));
+        assert!(found_before > 0.0, "{file}: the adaptive bias should count the floor as its own blocker");
+        assert_eq!(found_after, 0.0, "{file}: the receiver-plane bias must find no blocker on open floor");
+        // The slabs at 5 and 10 units; their far edges (z = -8) cast the edges measured.
+        for (x, top) in [(-6.0f32, 5.2f32), (6.0, 10.2)] {
+            let on_floor = edge_shadow_on_floor(&plane, glam::Vec3::new(x, top, -8.0));
+            let measure = |renderer: &mut Renderer, scene: &Scene, reference| {
+                measured_penumbra_in(renderer, scene.clone(), on_floor.x, on_floor.z, 8.0, reference)
+            };
+            let truth = measure(&mut renderer, &plane, true);
+            let before = measure(&mut renderer, &adaptive, false);
+            let after = measure(&mut renderer, &plane, false);
+            report.push(format!(
+                "{file}, blocker {:.0} up: ground truth {truth:.2}, PCSS adaptive bias {before:.2} ({:+.0}%), \
+                 receiver plane {after:.2} ({:+.0}%) world units",
+                top - 0.2,
+                (before / truth - 1.0) * 100.0,
+                (after / truth - 1.0) * 100.0
+            ));
+            assert!(
+                (0.75..=1.25).contains(&(after / truth)),
+                "{file} at {top}: PCSS with the receiver-plane bias {after:.3} vs ground truth {truth:.3}\n{}",
+                report.join("\n")
+            );
+        }
+    }
+    eprintln!("{}", report.join("\n"));
 }
 
 #[test]

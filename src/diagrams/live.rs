@@ -126,7 +126,7 @@ pub fn inputs_from_scene(
             let texel_world = light.texel_world_at(d);
             out.bias_ndc = match shadow.bias_mode {
                 BiasMode::None => 0.0,
-                BiasMode::Constant => shadow.bias,
+                BiasMode::Constant | BiasMode::ReceiverPlane => shadow.bias,
                 BiasMode::Slope => (shadow.slope_bias * (1.0 - n_dot_l)).max(shadow.bias),
                 BiasMode::Adaptive => {
                     let a = (1.0 + out.filter_radius_texels.ceil()) * 0.5 * texel_world;

@@ -20,6 +20,10 @@ pub enum BiasMode {
     Constant,
     Slope,
     Adaptive,
+    /// The constant bias plus, per tap, the receiver's own plane at the texel the tap reads
+    /// (receiver-plane depth bias): wide kernels stop finding the receiver itself.
+    #[serde(rename = "receiver_plane")]
+    ReceiverPlane,
 }
 
 /// Sample pattern in the unit disk for PCF and the blocker search.
@@ -53,7 +57,14 @@ macro_rules! enum_names {
     };
 }
 enum_names!(Technique, None => "none", Hard => "hard", Pcf => "pcf", Pcss => "pcss");
-enum_names!(BiasMode, None => "none", Constant => "constant", Slope => "slope", Adaptive => "adaptive");
+enum_names!(
+    BiasMode,
+    None => "none",
+    Constant => "constant",
+    Slope => "slope",
+    Adaptive => "adaptive",
+    ReceiverPlane => "receiver_plane"
+);
 enum_names!(Kernel, Poisson => "poisson", Uniform => "uniform", Vogel => "vogel", Grid => "grid", Hardware => "hardware");
 
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
@@ -61,7 +72,8 @@ enum_names!(Kernel, Poisson => "poisson", Uniform => "uniform", Vogel => "vogel"
 pub struct ShadowSettings {
     pub technique: Technique,
     pub bias_mode: BiasMode,
-    /// Constant bias, NDC depth units (GAMES202 EPS is 1e-3); the floor of the slope mode.
+    /// Constant bias, NDC depth units (GAMES202 EPS is 1e-3); the floor of the slope mode and
+    /// the margin of the receiver-plane mode.
     pub bias: f32,
     /// Slope-scaled mode: `bias = max(slope_bias * (1 - N.L), bias)`, NDC depth units.
     /// LearnOpenGL's 0.05 and 0.005 suit its 7.5-unit light frustum; NDC biases do not carry

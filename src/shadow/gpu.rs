@@ -15,6 +15,7 @@ pub const BIAS_NONE: u32 = 0;
 pub const BIAS_CONSTANT: u32 = 1;
 pub const BIAS_SLOPE: u32 = 2;
 pub const BIAS_ADAPTIVE: u32 = 3;
+pub const BIAS_RECEIVER_PLANE: u32 = 4;
 pub const KERNEL_POISSON: u32 = 0;
 pub const KERNEL_UNIFORM: u32 = 1;
 pub const KERNEL_VOGEL: u32 = 2;
@@ -24,7 +25,7 @@ pub const SIZE_MODEL_WIDTH: u32 = 0;
 pub const SIZE_MODEL_ANGULAR: u32 = 1;
 
 /// Every shared constant by its WGSL name, for the test that holds shaders/common.wgsl to them.
-pub const SHARED_CONSTANTS: [(&str, u32); 15] = [
+pub const SHARED_CONSTANTS: [(&str, u32); 16] = [
     ("TECHNIQUE_HARD", TECHNIQUE_HARD),
     ("TECHNIQUE_PCF", TECHNIQUE_PCF),
     ("TECHNIQUE_PCSS", TECHNIQUE_PCSS),
@@ -33,6 +34,7 @@ pub const SHARED_CONSTANTS: [(&str, u32); 15] = [
     ("BIAS_CONSTANT", BIAS_CONSTANT),
     ("BIAS_SLOPE", BIAS_SLOPE),
     ("BIAS_ADAPTIVE", BIAS_ADAPTIVE),
+    ("BIAS_RECEIVER_PLANE", BIAS_RECEIVER_PLANE),
     ("KERNEL_POISSON", KERNEL_POISSON),
     ("KERNEL_UNIFORM", KERNEL_UNIFORM),
     ("KERNEL_VOGEL", KERNEL_VOGEL),
@@ -57,6 +59,7 @@ pub fn bias_mode_id(b: BiasMode) -> u32 {
         BiasMode::Constant => BIAS_CONSTANT,
         BiasMode::Slope => BIAS_SLOPE,
         BiasMode::Adaptive => BIAS_ADAPTIVE,
+        BiasMode::ReceiverPlane => BIAS_RECEIVER_PLANE,
     }
 }
 

@@ -8,8 +8,8 @@ pub mod kernels;
 use crate::scene::Kernel;
 use glam::{Vec2, Vec3, Vec4};
 pub use gpu::{
-    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_SLOPE, LightGpu, SIZE_MODEL_ANGULAR, ShadowParamsGpu, TECHNIQUE_HARD,
-    TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS, kernel_from_id,
+    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, LightGpu, SIZE_MODEL_ANGULAR,
+    ShadowParamsGpu, TECHNIQUE_HARD, TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS, kernel_from_id,
 };
 use kernels::{filter_taps, kernel_offset};
 
@@ -26,6 +26,8 @@ pub struct ShadowCoord {
     pub depth_ndc: f32,
     pub depth_linear: f32,
     pub n_dot_l: f32,
+    /// Receiver-plane bias only (else 0): the receiver's plane as NDC depth per uv of the map.
+    pub depth_gradient: Vec2,
 }
 
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -125,6 +127,31 @@ pub fn outside_frustum(coord: &ShadowCoord) -> bool {
     outside_map(coord.uv) || outside_depth(coord.depth_ndc)
 }
 
+/// Two unit vectors that span the plane with unit normal n (Duff et al. 2017).
+fn tangents_of(n: Vec3) -> [Vec3; 2] {
+    let sign = if n.z >= 0.0 { 1.0 } else { -1.0 };
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    [Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3::new(b, sign + n.y * n.y * a, -n.y)]
+}
+
+/// The receiver's plane (through p, normal n, projected at s) as NDC depth per uv of the map,
+/// from two points of the plane a texel from p; 0 edge-on to the light.
+pub fn receiver_plane_gradient(light: &LightGpu, p: Vec3, n: Vec3, s: Vec3) -> Vec2 {
+    let step = texel_world_at(light, depth_linear_from_ndc(light, s.z));
+    let t = tangents_of(n);
+    let a = project_to_light(light, p + t[0] * step) - s;
+    let b = project_to_light(light, p + t[1] * step) - s;
+    let det = a.x * b.y - a.y * b.x;
+    let (a_uv, b_uv) = (Vec2::new(a.x, a.y), Vec2::new(b.x, b.y));
+    // Also false for NaN, as in the shader.
+    let spans_the_map = det.abs() > 1e-3 * a_uv.length() * b_uv.length();
+    if !spans_the_map {
+        return Vec2::ZERO;
+    }
+    Vec2::new(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det
+}
+
 /// WGSL `fract`: x - floor(x) (Rust's `f32::fract` truncates towards zero instead).
 fn wgsl_fract(v: Vec2) -> Vec2 {
     v - v.floor()
@@ -154,6 +181,9 @@ impl<'a> Twin<'a> {
         out.uv = Vec2::new(s.x, s.y);
         out.depth_ndc = s.z;
         out.depth_linear = depth_linear_from_ndc(light, s.z);
+        if self.params.bias_mode == BIAS_RECEIVER_PLANE {
+            out.depth_gradient = receiver_plane_gradient(light, p, normal, s);
+        }
         out
     }
 
@@ -162,6 +192,7 @@ impl<'a> Twin<'a> {
         match p.bias_mode {
             BIAS_CONSTANT => p.bias,
             BIAS_SLOPE => (p.slope_bias * (1.0 - coord.n_dot_l)).max(p.bias),
+            BIAS_RECEIVER_PLANE => p.bias,
             BIAS_ADAPTIVE => {
                 let a = (1.0 + filter_radius_texels.ceil())
                     * 0.5
@@ -208,23 +239,42 @@ impl<'a> Twin<'a> {
         top * (1.0 - f.y) + bottom * f.y
     }
 
-    pub fn depth_test(&self, uv: Vec2, receiver_ndc: f32, bias_ndc: f32) -> f32 {
+    /// The depth a tap at `uv` compares the map's with (see the shader's `tap_reference_ndc`).
+    pub fn tap_reference_ndc(
+        &self,
+        coord: &ShadowCoord,
+        uv: Vec2,
+        bias_ndc: f32,
+        point_sampled: bool,
+    ) -> f32 {
+        if self.params.bias_mode == BIAS_RECEIVER_PLANE {
+            let size = self.light.map_size_texels;
+            let at = if point_sampled { ((uv * size).floor() + Vec2::splat(0.5)) / size } else { uv };
+            return coord.depth_ndc + coord.depth_gradient.dot(at - coord.uv) - bias_ndc;
+        }
+        coord.depth_ndc - bias_ndc
+    }
+
+    pub fn depth_test(&self, coord: &ShadowCoord, uv: Vec2, bias_ndc: f32) -> f32 {
         let p = self.params;
-        if p.clamp_outside == 1 && (outside_map(uv) || outside_depth(receiver_ndc)) {
+        if p.clamp_outside == 1 && (outside_map(uv) || outside_depth(coord.depth_ndc)) {
             return 1.0;
         }
-        if kernel_from_id(p.kernel) == Kernel::Hardware && p.technique != TECHNIQUE_HARD {
+        let bilinear = kernel_from_id(p.kernel) == Kernel::Hardware && p.technique != TECHNIQUE_HARD;
+        let reference = self.tap_reference_ndc(coord, uv, bias_ndc, !bilinear);
+        if bilinear {
             let lookup = if p.clamp_outside == 0 { wgsl_fract(uv) } else { uv };
-            return self.hardware_compare(lookup, receiver_ndc - bias_ndc);
+            return self.hardware_compare(lookup, reference);
         }
-        if receiver_ndc - bias_ndc <= self.stored_depth_ndc(uv) { 1.0 } else { 0.0 }
+        if reference <= self.stored_depth_ndc(uv) { 1.0 } else { 0.0 }
     }
 
     pub fn visibility_hard(&mut self, coord: &ShadowCoord) -> f32 {
         let bias = self.receiver_bias_ndc(coord, 0.0);
         let p = self.params;
         let outside = p.clamp_outside == 1 && outside_frustum(coord);
-        let lit = outside || coord.depth_ndc - bias <= self.stored_depth_ndc(coord.uv);
+        let lit =
+            outside || self.tap_reference_ndc(coord, coord.uv, bias, true) <= self.stored_depth_ndc(coord.uv);
         let v = if lit { 1.0 } else { 0.0 };
         self.record(TapKind::Filter, coord.uv, v);
         v
@@ -238,7 +288,7 @@ impl<'a> Twin<'a> {
         let mut lit = 0.0;
         for i in 0..n {
             let uv = coord.uv + kernel_offset(kernel, i, n, seed) * radius_uv;
-            let v = self.depth_test(uv, coord.depth_ndc, bias);
+            let v = self.depth_test(coord, uv, bias);
             self.record(TapKind::Filter, uv, v);
             lit += v;
         }
@@ -273,7 +323,7 @@ impl<'a> Twin<'a> {
                 continue;
             }
             let z = self.stored_depth_ndc(uv);
-            let blocker = z < coord.depth_ndc - bias;
+            let blocker = z < self.tap_reference_ndc(coord, uv, bias, true);
             self.record(TapKind::BlockerSearch, uv, if blocker { 1.0 } else { 0.0 });
             if blocker {
                 out.found += 1;
