@@ -2,7 +2,7 @@
 //! GPU's analysis pass, the CPU twin (every intermediate value and tap) and the ground truth.
 
 use crate::render::{FrameRequest, RenderError, Renderer};
-use crate::scene::{Scene, Technique};
+use crate::scene::{BiasMode, Scene, Technique};
 use crate::shadow::{TapKind, Twin, kernels};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
@@ -28,6 +28,10 @@ pub struct LightProbe {
     pub stored_depth_ndc: f32,
     pub stored_depth_linear: f32,
     pub bias_ndc: f32,
+    /// Receiver-plane bias only: how much the receiver's plane recedes from the light per texel
+    /// of the map, along its steepest direction, world units (what the per-tap plane adds).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub receiver_plane_depth_per_texel_world: Option<f32>,
     pub blocker_search_radius_uv: f32,
     pub blocker_search_radius_texels: f32,
     pub blockers_found: u32,
@@ -147,6 +151,13 @@ pub fn probe(
             stored_depth_ndc: stored,
             stored_depth_linear: crate::shadow::depth_linear_from_ndc(&light_gpu, stored),
             bias_ndc: twin.receiver_bias_ndc(&coord, filter_radius_texels),
+            receiver_plane_depth_per_texel_world: (scene.shadow.bias_mode == BiasMode::ReceiverPlane).then(
+                || {
+                    coord.depth_gradient.length()
+                        / map_size
+                        / crate::shadow::ndc_per_world(&light_gpu, coord.depth_linear)
+                },
+            ),
             blocker_search_radius_uv: result.search.radius_texels / map_size,
             blocker_search_radius_texels: result.search.radius_texels,
             blockers_found: result.search.found,

@@ -37,10 +37,11 @@ fn every_lesson_loads_with_unique_ids_and_orders() {
 }
 
 #[test]
-fn every_lesson_has_three_to_six_steps() {
+fn every_lesson_has_three_to_seven_steps() {
+    // A lesson is one sitting of a class: the bias lesson, with its seven remedies, is the longest.
     for lesson in shipped() {
         let n = lesson.steps.len();
-        assert!((3..=6).contains(&n), "{}: {n} steps, expected 3 to 6", lesson.id);
+        assert!((3..=7).contains(&n), "{}: {n} steps, expected 3 to 7", lesson.id);
     }
 }
 

@@ -108,8 +108,13 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         // With front faces culled the map holds the object's far side: the lit surface (before
         // the contact) is never compared with itself, whatever the bias; the blocker still is.
         let self_test = x <= v.contact;
-        let shadowed = !(inp.cull_front_faces && self_test) && v.surf(x) - bias_tx > v.stored(i) + 1e-4;
-        let verdict = match (x > v.contact, shadowed) {
+        // The receiver-plane bias compares every point of a texel at the texel's centre.
+        let receiver = if inp.receiver_plane { v.surf(i as f32 + 0.5) } else { v.surf(x) };
+        let shadowed = !(inp.cull_front_faces && self_test) && receiver - bias_tx > v.stored(i) + 1e-4;
+        // With the plane, a point before the contact is shadowed only by a texel the object
+        // covers: a real (if quantised) shadow, not acne.
+        let before_contact = x <= v.contact && !(inp.receiver_plane && i as f32 + 0.5 >= v.contact);
+        let verdict = match (!before_contact, shadowed) {
             (false, false) => Verdict::Lit,
             (false, true) => Verdict::Acne,
             (true, true) => Verdict::Shadow,
@@ -132,12 +137,16 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         }
         prev = Some((pt, verdict));
     }
-    // Stored steps, and the same steps moved down by the bias.
+    // Stored steps, and the same steps moved down by the bias; with the receiver plane, what
+    // each texel's points are compared with: the plane at the centre, less the bias (on the step).
     let shift_px = (bias_tx * tpx).min(PLOT[3] * 2.0);
     for i in 0..n {
         let (a, b, y) = (v.sx(i as f32), v.sx(i as f32 + 1.0), v.sy(v.stored(i)));
         c.line([a, y], [b, y], col(pal::BLOCKER, 1.0), 3.5);
-        if shift_px > 0.5 {
+        if inp.receiver_plane && i as f32 + 0.5 < v.contact {
+            let y = v.sy(v.surf(i as f32 + 0.5)) - shift_px - 4.0;
+            c.dashed([a, y], [b, y], col(pal::SEARCH, 1.0), 3.0, 7.0);
+        } else if !inp.receiver_plane && shift_px > 0.5 {
             c.dashed([a, y + shift_px], [b, y + shift_px], col(pal::SEARCH, 1.0), 3.0, 7.0);
         }
     }
@@ -151,7 +160,7 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     c.label("shadow-map texels", [v.sx(0.0), PLOT[1] - 30.0], Anchor::BottomLeft, FS_SMALL);
     // Bias arrow on the first visible texel.
     let first = (0..n).find(|&i| v.sy(v.stored(i)) > PLOT[1] + 6.0).unwrap_or(0);
-    if shift_px > 0.5 {
+    if shift_px > 0.5 && !inp.receiver_plane {
         let (x, y) = (v.sx(first as f32 + 0.75), v.sy(v.stored(first)));
         let y_end = (y + shift_px).min(PLOT[1] + PLOT[3] - 4.0);
         c.arrow([x, y], [x, y_end], col(pal::SEARCH, 1.0), 2.5, false);
@@ -204,6 +213,8 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     text.y += 10.0;
     let (verdict, vc) = if inp.cull_front_faces {
         (["front faces culled: the map holds", "back faces, so no acne here"], pal::LIT)
+    } else if inp.receiver_plane && bias_eff > 0.0 {
+        (["receiver plane: each point is tested", "at its texel's centre: no acne"], pal::LIT)
     } else if bias_eff < needed * 0.999 {
         (["too little bias:", "acne (self-shadowing stripes)"], pal::BLOCKED)
     } else if bias_eff > needed * 3.0 {
@@ -220,7 +231,10 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         (Swatch::Line(pal::BLOCKED), "acne"),
         (Swatch::Line(pal::SHADOW), "shadow"),
         (Swatch::Line(pal::BLOCKER), "stored depth"),
-        (Swatch::Dashed(pal::SEARCH), "stored + bias"),
+        (
+            Swatch::Dashed(pal::SEARCH),
+            if inp.receiver_plane { "plane at texel centre" } else { "stored + bias" },
+        ),
         (Swatch::Fill(pal::BLOCKER, 1.0), "object"),
     ];
     c.legend_row(&items, [480.0, 530.0]);

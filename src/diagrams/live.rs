@@ -38,6 +38,7 @@ pub fn inputs_from_scene(
         camera_xz: [scene.camera.position.x, scene.camera.position.z],
         clamp_outside: scene.shadow.clamp_outside,
         cull_front_faces: scene.shadow.cull_front_faces,
+        receiver_plane: scene.shadow.bias_mode == BiasMode::ReceiverPlane,
         ..DiagramInputs::default()
     };
     let shadow = &scene.shadow;
@@ -273,6 +274,7 @@ normal_offset_texels = 0.5
             stored_depth_ndc: 0.4,
             stored_depth_linear: 41.0,
             bias_ndc: 0.001,
+            receiver_plane_depth_per_texel_world: None,
             blocker_search_radius_uv: 0.0,
             blocker_search_radius_texels: 0.0,
             blockers_found: 0,

@@ -132,6 +132,9 @@ pub struct DiagramInputs {
     /// The shadow pass culls front faces: closed objects store their back faces, so a lit
     /// surface is never compared with itself (`cull_front_faces`).
     pub cull_front_faces: bool,
+    /// Receiver-plane bias: each tap is compared with the receiver's plane at the centre of
+    /// the texel it reads, less the constant bias.
+    pub receiver_plane: bool,
     pub lights: Vec<LightTopView>,
     /// Object centre and radius in the XZ plane (world).
     pub objects_xz: Vec<([f32; 2], f32)>,
@@ -183,6 +186,7 @@ impl Default for DiagramInputs {
             outside_frustum: false,
             clamp_outside: true,
             cull_front_faces: false,
+            receiver_plane: false,
             lights: vec![
                 LightTopView {
                     position_xz: [0.0, 80.0],

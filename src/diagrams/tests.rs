@@ -146,6 +146,30 @@ fn acne_bias_changes_with_bias_map_size_and_angle() {
     assert!(differs(&m2048, &render(DiagramKind::AcneBias, &i, 960, 540)) > 1000);
 }
 
+/// With the receiver-plane bias a tiny constant is enough at any slope: no acne in the drawing
+/// and a verdict that says why; the same constant without the plane is too little.
+#[test]
+fn acne_bias_with_the_receiver_plane_shows_no_acne_at_a_grazing_angle() {
+    let magenta =
+        |pm: &Pixmap| pm.pixels().iter().filter(|p| p.red() > 170 && p.green() < 60 && p.blue() > 90).count();
+    let mut i = DiagramInputs { bias_ndc: 0.0001, light_angle_deg: 79.0, ..DiagramInputs::default() };
+    let texts = |i: &DiagramInputs| {
+        let (pm, texts) = draw_traced(DiagramKind::AcneBias, i, Lang::En, [960, 540], 0.0).expect("draw");
+        (magenta(&pm), texts.into_iter().map(|(t, _)| t).collect::<Vec<_>>())
+    };
+    let (acne_pixels, constant) = texts(&i);
+    assert!(constant.iter().any(|t| t == "too little bias:"), "{constant:?}");
+    i.receiver_plane = true;
+    let (plane_pixels, plane) = texts(&i);
+    assert!(plane.iter().any(|t| t == "receiver plane: each point is tested"), "{plane:?}");
+    assert!(plane.iter().any(|t| t == "plane at texel centre"), "{plane:?}");
+    assert!(!plane.iter().any(|t| t.starts_with("acne (")), "{plane:?}");
+    assert!(
+        acne_pixels > plane_pixels + 200,
+        "acne drawn: {acne_pixels} without, {plane_pixels} with the plane"
+    );
+}
+
 #[test]
 fn pcf_blocked_flags_change_sample_colours() {
     let base = DiagramInputs::default();

@@ -56,6 +56,9 @@ pub(super) const DIAGRAMS: &[(&str, &str)] = &[
     ("lit", "受光"),
     ("acne", "阴影失真"),
     ("stored + bias", "存储深度 + 偏移"),
+    ("plane at texel centre", "纹素中心处的平面"),
+    ("receiver plane: each point is tested", "接收平面：每个点都在所在纹素的"),
+    ("at its texel's centre: no acne", "中心处比较：没有阴影失真"),
     ("object", "物体"),
     // PCF kernel.
     ("filter r = {} texels", "滤波半径 r = {} 纹素"),

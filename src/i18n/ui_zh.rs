@@ -138,6 +138,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("receiver depth", "接收点深度"),
     ("stored depth", "存储的深度"),
     ("bias", "偏移"),
+    ("receiver plane", "接收平面"),
     ("N·L", "N·L（法线·光线）"),
     ("blocker search", "遮挡物搜索"),
     ("avg blocker depth", "平均遮挡深度"),

@@ -18,6 +18,8 @@ enum Quantity {
     /// Receiver minus stored depth, world units (> 0: the stored surface is nearer the light).
     DepthGapWorld,
     BiasNdc,
+    /// Receiver-plane bias: the plane's depth change per texel, world units.
+    PlaneDepthPerTexelWorld,
     NDotL,
     UvX,
     UvY,
@@ -42,13 +44,14 @@ enum Quantity {
     Object,
 }
 
-const QUANTITIES: [(&str, Quantity); 23] = [
+const QUANTITIES: [(&str, Quantity); 24] = [
     ("receiver_depth_ndc", Quantity::ReceiverDepthNdc),
     ("stored_depth_ndc", Quantity::StoredDepthNdc),
     ("receiver_depth_world", Quantity::ReceiverDepthWorld),
     ("stored_depth_world", Quantity::StoredDepthWorld),
     ("depth_gap_world", Quantity::DepthGapWorld),
     ("bias_ndc", Quantity::BiasNdc),
+    ("plane_depth_per_texel_world", Quantity::PlaneDepthPerTexelWorld),
     ("n_dot_l", Quantity::NDotL),
     ("uv_x", Quantity::UvX),
     ("uv_y", Quantity::UvY),
@@ -197,6 +200,7 @@ fn value(q: Quantity, report: &ProbeReport, l: &LightProbe, lang: Lang) -> Optio
         Quantity::StoredDepthWorld => float(l.stored_depth_linear),
         Quantity::DepthGapWorld => float(l.receiver_depth_linear - l.stored_depth_linear),
         Quantity::BiasNdc => float(l.bias_ndc),
+        Quantity::PlaneDepthPerTexelWorld => l.receiver_plane_depth_per_texel_world.and_then(float),
         Quantity::NDotL => float(l.n_dot_l),
         Quantity::UvX => float(l.shadow_map_uv[0]),
         Quantity::UvY => float(l.shadow_map_uv[1]),
@@ -270,6 +274,7 @@ mod tests {
             stored_depth_ndc: 0.25,
             stored_depth_linear: 100.0,
             bias_ndc: 0.001,
+            receiver_plane_depth_per_texel_world: None,
             blocker_search_radius_uv: 0.0,
             blocker_search_radius_texels: 94.625,
             blockers_found: 20,

@@ -382,6 +382,9 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
             format!("{:.4} NDC · {:.3} {}", l.stored_depth_ndc, l.stored_depth_linear, tr("world")),
         );
         row(tr("bias"), format!("{:.6} NDC", l.bias_ndc));
+        if let Some(per_texel) = l.receiver_plane_depth_per_texel_world {
+            row(tr("receiver plane"), format!("{per_texel:.4} {} / {}", tr("world"), tr("texel")));
+        }
         row(tr("N·L"), format!("{:.3}", l.n_dot_l));
         row(tr("blocker search"), format!("{:.2} {}", l.blocker_search_radius_texels, tr("texels")));
         row(tr("blockers found"), format!("{} / {}", l.blockers_found, l.blocker_samples));
