@@ -299,7 +299,8 @@ fn rotate_by(p: vec2<f32>, rotation: vec2<f32>) -> vec2<f32> {
 // rotation here:
 //   poisson (GAMES202 poissonDiskSamples): angle i * TAU * 10 / n (NUM_RINGS = 10), radius ((i+1)/n)^0.75;
 //   vogel: angle i * GOLDEN_ANGLE, radius sqrt((i + 0.5) / n);
-//   grid: side x side points over [-1, 1]^2 (LearnOpenGL's 3x3 is side = 3: offsets -1, 0, 1).
+//   grid: side x side points over [-1, 1]^2, not turned (LearnOpenGL's 3x3 is side = 3 with a radius of
+//   one texel: offsets -1, 0, 1).
 // `table_start` is FILTER_TABLE or SEARCH_TABLE.
 fn kernel_offset(kernel: u32, table_start: u32, i: u32, seed: u32, rotation: vec2<f32>) -> vec2<f32> {
     if kernel == KERNEL_UNIFORM {
@@ -311,7 +312,12 @@ fn kernel_offset(kernel: u32, table_start: u32, i: u32, seed: u32, rotation: vec
         return vec2<f32>(cos(TAU * x), sin(TAU * x)) * sqrt(y);
     }
     let taps = kernel_table[i];
-    return rotate_by(select(taps.xy, taps.zw, table_start == SEARCH_TABLE), rotation);
+    let tap = select(taps.xy, taps.zw, table_start == SEARCH_TABLE);
+    if kernel == KERNEL_GRID {
+        // LearnOpenGL's regular grid: axis-aligned texel offsets, never turned.
+        return tap;
+    }
+    return rotate_by(tap, rotation);
 }
 
 fn filter_taps(kernel: u32, samples: u32) -> u32 {

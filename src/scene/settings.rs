@@ -36,7 +36,7 @@ pub enum Kernel {
     Uniform,
     /// Golden-angle (Vogel) spiral.
     Vogel,
-    /// Regular n x n grid (n = floor(sqrt(samples))).
+    /// Regular n x n grid (n = floor(sqrt(samples))), axis-aligned and never rotated.
     Grid,
     /// Vogel positions, each a bilinear 2x2 hardware comparison (`textureSampleCompare`).
     Hardware,

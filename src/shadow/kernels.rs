@@ -86,6 +86,8 @@ pub fn kernel_offset(kernel: Kernel, i: u32, n: u32, seed: u32) -> Vec2 {
             let y = unit_float(pcg_hash(h));
             Vec2::new((TAU * x).cos(), (TAU * x).sin()) * y.sqrt()
         }
+        // LearnOpenGL's regular grid: axis-aligned texel offsets, never turned.
+        Kernel::Grid => kernel_base(kernel, i, n),
         _ => rotate_by(kernel_base(kernel, i, n), pixel_rotation(seed)),
     }
 }
@@ -109,6 +111,18 @@ mod tests {
         }
         assert_eq!(filter_taps(Kernel::Grid, 9), 9);
         assert_eq!(filter_taps(Kernel::Vogel, 9), 9);
+    }
+
+    /// LearnOpenGL's 3x3 grid: offsets -1, 0, 1 on both axes, whatever the pixel's rotation.
+    #[test]
+    fn the_grid_is_axis_aligned_and_never_turned() {
+        let expected: Vec<Vec2> =
+            (0..9).map(|i| Vec2::new((i % 3) as f32 - 1.0, (i / 3) as f32 - 1.0)).collect();
+        for seed in [0, 1, 12345, pcg_hash(7)] {
+            assert_eq!(kernel_points(Kernel::Grid, 9, seed), expected, "seed {seed}");
+        }
+        // The disks do turn with the seed.
+        assert_ne!(kernel_points(Kernel::Vogel, 9, 1), kernel_points(Kernel::Vogel, 9, 12345));
     }
 
     #[test]
