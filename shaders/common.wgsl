@@ -13,6 +13,8 @@ const BIAS_CONSTANT: u32 = 1u;
 const BIAS_SLOPE: u32 = 2u;
 const BIAS_ADAPTIVE: u32 = 3u;
 const BIAS_RECEIVER_PLANE: u32 = 4u;
+const DEPTH_FLOAT32: u32 = 0u;
+const DEPTH_RGBA8: u32 = 1u;
 const KERNEL_POISSON: u32 = 0u;
 const KERNEL_UNIFORM: u32 = 1u;
 const KERNEL_VOGEL: u32 = 2u;
@@ -69,8 +71,12 @@ struct ShadowParamsGpu {
     blocker_samples: u32,
     min_filter_radius_texels: f32,
     clamp_outside: u32,
+    search_radius_scale: f32,     // blocker search, times the light's cone
+    depth_storage: u32,           // DEPTH_*
+    ortho_near_factor: u32,       // 1: NVIDIA's near / d_receiver on orthographic maps too (the bug)
     _pad0: u32,
     _pad1: u32,
+    _pad2: u32,
 }
 
 struct ObjectGpu {

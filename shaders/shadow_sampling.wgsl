@@ -24,6 +24,7 @@ override SPEC_TECHNIQUE: u32 = 0u;
 override SPEC_KERNEL: u32 = 0u;
 override SPEC_BIAS_MODE: u32 = 0u;
 override SPEC_CLAMP_OUTSIDE: u32 = 1u;
+override SPEC_DEPTH_STORAGE: u32 = 0u;
 // What every light of the scene shares: SPEC_ALL_* (or SPEC_MIXED: read it from the light).
 override SPEC_PROJECTION: u32 = 0u;
 override SPEC_SIZE_MODEL: u32 = 0u;
@@ -59,6 +60,13 @@ fn clamp_outside() -> u32 {
         return SPEC_CLAMP_OUTSIDE;
     }
     return params.clamp_outside;
+}
+
+fn depth_storage() -> u32 {
+    if SPECIALISED {
+        return SPEC_DEPTH_STORAGE;
+    }
+    return params.depth_storage;
 }
 
 fn is_orthographic(light: LightGpu) -> bool {
@@ -215,6 +223,26 @@ fn outside_frustum(coord: ShadowCoord) -> bool {
     return outside_map(coord.uv) || outside_depth(coord.depth_ndc);
 }
 
+// The GAMES202 framework's RGBA8 depth: `pack` splits the depth over the four 8-bit channels of
+// a colour target, which keeps each as round(255 v) / 255 like any RGBA8 target, and `unpack`
+// sums them back. Without three.js's 256/255 correction the round trip is off by up to about
+// 1/255: too far below half the depth range, too near above it. Texels nothing was drawn to hold
+// the clear colour, white: unpack(1, 1, 1, 1).
+fn rgba8_round_trip(depth_ndc: f32) -> f32 {
+    if depth_ndc >= 1.0 {
+        return ((1.0 + 1.0 / 256.0) + 1.0 / 65536.0) + 1.0 / 16777216.0;
+    }
+    // pack: fract(depth * (1, 256, 256², 256³)), each channel less the next one's share.
+    let scaled = fract(depth_ndc * vec4<f32>(1.0, 256.0, 65536.0, 16777216.0));
+    let next = vec4<f32>(scaled.y, scaled.z, scaled.w, 0.0);
+    let rgba = scaled - next * (1.0 / 256.0);
+    // The RGBA8 target keeps round(255 v) of each channel.
+    let stored = round(saturate(rgba) * 255.0) * (1.0 / 255.0);
+    // unpack: dot with (1, 1/256, 1/256², 1/256³), summed in order.
+    let parts = stored * vec4<f32>(1.0, 1.0 / 256.0, 1.0 / 65536.0, 1.0 / 16777216.0);
+    return ((parts.x + parts.y) + parts.z) + parts.w;
+}
+
 // Stored depth at a uv, point-sampled. Without clamping the lookup wraps, the classic bug.
 fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
     var lookup = uv;
@@ -223,7 +251,11 @@ fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
     }
     let size = i32(light.map_size_texels);
     let texel = clamp(vec2<i32>(floor(lookup * light.map_size_texels)), vec2<i32>(0), vec2<i32>(size - 1));
-    return textureLoad(shadow_maps, texel, i32(light.layer), 0);
+    let depth = textureLoad(shadow_maps, texel, i32(light.layer), 0);
+    if depth_storage() == DEPTH_RGBA8 {
+        return rgba8_round_trip(depth);
+    }
+    return depth;
 }
 
 // The depth a tap at `uv` compares the map's with: the receiver's, less the bias. With the
@@ -375,7 +407,7 @@ fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSea
     } else {
         radius_world = 0.5 * light.light_width_world * (d_r - light.near) / d_r;
     }
-    let radius_uv = max(radius_world, 0.0) / light.frustum_width_world;
+    let radius_uv = max(radius_world, 0.0) * params.search_radius_scale / light.frustum_width_world;
     out.radius_texels = radius_uv * light.map_size_texels;
     let search_kernel = select(kernel(), KERNEL_VOGEL, kernel() == KERNEL_HARDWARE);
     let n = filter_taps(search_kernel, params.blocker_samples);
@@ -418,7 +450,7 @@ fn estimate_penumbra(light: LightGpu, coord: ShadowCoord, d_blocker: f32) -> Pen
         out.width_world = light.light_width_world * gap / max(d_blocker, 1e-6);
     }
     var radius_uv = 0.5 * out.width_world / light.frustum_width_world;
-    if !is_orthographic(light) {
+    if !is_orthographic(light) || params.ortho_near_factor == 1u {
         radius_uv = radius_uv * light.near / d_r;
     }
     out.filter_radius_texels = max(radius_uv * light.map_size_texels, params.min_filter_radius_texels);

@@ -2,7 +2,7 @@
 //! GPU's analysis pass, the CPU twin (every intermediate value and tap) and the ground truth.
 
 use crate::render::{FrameRequest, RenderError, Renderer};
-use crate::scene::{BiasMode, Scene, Technique};
+use crate::scene::{BiasMode, DepthStorage, Scene, Technique};
 use crate::shadow::{TapKind, Twin, kernels};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
@@ -32,6 +32,10 @@ pub struct LightProbe {
     /// of the map, along its steepest direction, world units (what the per-tap plane adds).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub receiver_plane_depth_per_texel_world: Option<f32>,
+    /// RGBA8 depth storage only: the stored depth after the pack / 8-bit / unpack round trip
+    /// minus the float depth the shadow pass wrote, NDC.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stored_depth_rgba8_error_ndc: Option<f32>,
     pub blocker_search_radius_uv: f32,
     pub blocker_search_radius_texels: f32,
     pub blockers_found: u32,
@@ -151,6 +155,8 @@ pub fn probe(
             stored_depth_ndc: stored,
             stored_depth_linear: crate::shadow::depth_linear_from_ndc(&light_gpu, stored),
             bias_ndc: twin.receiver_bias_ndc(&coord, filter_radius_texels),
+            stored_depth_rgba8_error_ndc: (scene.shadow.depth_storage == DepthStorage::Rgba8)
+                .then(|| stored - twin.stored_depth_float_ndc(coord.uv)),
             receiver_plane_depth_per_texel_world: (scene.shadow.bias_mode == BiasMode::ReceiverPlane).then(
                 || {
                     coord.depth_gradient.length()

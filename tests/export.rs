@@ -226,18 +226,18 @@ fn a_slide_too_small_to_read_is_refused() {
 
 #[test]
 fn a_steps_overlays_are_on_its_camera_picture() {
-    // Hard-shadows step 3 names the outside-the-frustum tint and the frustum wireframe; step 2
-    // names no analysis overlay. The camera picture of step 3 carries both, as the app shows them.
+    // Hard-shadows step 4 names the outside-the-frustum tint and the frustum wireframe. Its
+    // camera picture carries both, as the app shows them.
     let dir = english().join(LESSON);
-    let step3 = decode(&dir.join("step-03-camera.png"));
+    let outside = decode(&dir.join("step-04-camera.png"));
     let frame = |p: &image::Rgba<u8>| {
         let [r, g, b, _] = p.0;
         r > 230 && (180..=220).contains(&g) && b < 110
     };
-    let frame_pixels = step3.pixels().filter(|p| frame(p)).count();
+    let frame_pixels = outside.pixels().filter(|p| frame(p)).count();
     assert!(frame_pixels > 100, "no frustum wireframe on the slide's camera picture ({frame_pixels} pixels)");
     // The orange tint over the floor outside the frustum: warm pixels far from grey.
     let orange =
-        step3.pixels().filter(|p| p[0] > p[2].saturating_add(60) && p[1] > p[2].saturating_add(20)).count();
+        outside.pixels().filter(|p| p[0] > p[2].saturating_add(60) && p[1] > p[2].saturating_add(20)).count();
     assert!(orange > 5000, "no outside-the-frustum tint ({orange} orange pixels)");
 }

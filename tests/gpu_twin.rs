@@ -175,6 +175,29 @@ fn every_shipped_scene_matches_twin_in_both_bias_families() {
     }
 }
 
+/// The homework's RGBA8 depth (the same round trip on both sides) and a wider blocker search.
+#[test]
+fn rgba8_depth_and_search_radius_scale_match_twin() {
+    assert_agrees(
+        "hard rgba8",
+        &[("technique", "hard"), ("depth_storage", "rgba8"), ("light.0.far", "200")],
+        1e-3,
+    );
+    assert_agrees("pcss rgba8", &[("technique", "pcss"), ("depth_storage", "rgba8")], 1e-3);
+    assert_agrees("pcss search x2", &[("technique", "pcss"), ("search_radius_scale", "2")], 1e-3);
+    // NVIDIA's near / d on an orthographic map: the filter shrinks to nothing, on both sides.
+    let (_ctx, mut renderer) = common::gpu();
+    let scene = common::scene("games202", &[("technique", "pcss"), ("ortho_near_factor", "true")]);
+    let a = compare_scene(&mut renderer, &scene, 1e-3);
+    eprintln!("pcss ortho near factor: {}/{} within 1e-3, {} partial", a.within, a.compared, a.partial);
+    assert!(a.within * 1000 >= a.compared * 995, "only {}/{} agree", a.within, a.compared);
+    assert!(
+        a.partial * 100 < a.compared,
+        "the factor should leave hardly any soft pixel ({} partial)",
+        a.partial
+    );
+}
+
 #[test]
 fn unclamped_lookups_match_twin() {
     assert_agrees(
@@ -229,4 +252,52 @@ fn a_one_pixel_analysis_pass_gives_that_pixels_full_frame_values() {
         compared += usize::from(full.hit(i));
     }
     assert!(compared >= 4, "most of the chosen pixels should be on a surface ({compared})");
+}
+
+/// The blocker-depth view recovers d_blocker from the analysis pass's penumbra width: it equals
+/// the twin's average of the blockers it found, for a width light and for an angular one.
+#[test]
+fn the_blocker_depth_view_gives_the_twins_average_blocker_depth() {
+    let (_ctx, mut renderer) = common::gpu();
+    for name in ["contact", "lesson_pcss_sun"] {
+        let scene = common::scene(
+            name,
+            &[("technique", "pcss"), ("bias_mode", "receiver_plane"), ("bias", "0.0001")],
+        );
+        let frame = renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
+        let analysis = renderer.read_analysis().expect("analysis");
+        let map = renderer.read_shadow_map(0).expect("shadow map");
+        let (light, params) = (frame.lights[0], frame.params);
+        let mut twin = Twin::new(&light, &params, &map);
+        let (mut compared, mut worst) = (0, 0.0f32);
+        for y in 0..analysis.height {
+            for x in 0..analysis.width {
+                let i = analysis.index(x, y);
+                let Some(derived) = shadowlab::views::blocker_depth_at(&analysis, i, &light, &params) else {
+                    continue;
+                };
+                let position = Vec3::from_slice(&analysis.position[i][..3]);
+                let normal = Vec3::from_slice(&analysis.normal[i][..3]);
+                let (_, result) = twin.analysis_at((x, y), position, normal);
+                // A tap decided by the last bit changes the count and the average: compare
+                // only where the GPU and the twin found the same blockers.
+                if result.search.found as f32 != analysis.shadow[i][3] {
+                    continue;
+                }
+                // Blockers averaging at or behind the receiver (the plane bias on a curved
+                // surface) leave no gap and no penumbra: the view shows d_receiver there.
+                if result.penumbra.width_world == 0.0 {
+                    assert!(derived <= result.search.avg_depth_linear * (1.0 + 1e-4), "{x},{y}");
+                    continue;
+                }
+                let relative =
+                    (derived - result.search.avg_depth_linear).abs() / result.search.avg_depth_linear;
+                worst = worst.max(relative);
+                compared += 1;
+            }
+        }
+        eprintln!("{name}: {compared} pixels with blockers, worst relative difference {worst:.2e}");
+        assert!(compared > 500, "{name}: too few pixels with blockers ({compared})");
+        assert!(worst < 1e-3, "{name}: derived d_blocker differs by {worst:.2e}");
+    }
 }

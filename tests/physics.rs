@@ -315,6 +315,48 @@ fn the_receiver_plane_bias_gives_pcss_the_ground_truths_penumbra_on_a_tilted_flo
     eprintln!("{}", report.join("\n"));
 }
 
+/// The angular model's similar triangles: w_penumbra = gap * 2 tan(theta / 2), the gap along
+/// the light alone, for the ground truth and for PCSS (with the receiver-plane bias, so the floor
+/// does not count itself). The sun is 18° off vertical, so the slab edges' shadows fall on open
+/// floor; there a gap of h / cos 18° is seen stretched by 1 / cos 18° across the edge.
+#[test]
+fn an_angular_lights_penumbra_grows_with_the_gap_as_its_formula_says() {
+    let (_ctx, mut renderer) = common::gpu();
+    let path = common::repo_path("tests/data/scenes/slab_edges_sun.toml");
+    let overrides: Vec<(String, String)> =
+        [("light.0.angular_diameter_deg", "6"), ("bias_mode", "receiver_plane"), ("bias", "0.0002")]
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.to_string()))
+            .collect();
+    let scene = shadowlab::scene::load_scene(&path, &overrides).expect("scene");
+    let tan_half = (3.0f32).to_radians().tan();
+    let cos_tilt = (18.0f32).to_radians().cos();
+    let mut widths = Vec::new();
+    for (x, top) in [(-6.0f32, 5.2f32), (6.0, 10.2)] {
+        let expected = top / cos_tilt * 2.0 * tan_half / cos_tilt;
+        let on_floor = edge_shadow_on_floor(&scene, glam::Vec3::new(x, top, -8.0));
+        let measure = |renderer: &mut Renderer, reference| {
+            measured_penumbra_in(renderer, scene.clone(), on_floor.x, on_floor.z, 4.0, reference)
+        };
+        let truth = measure(&mut renderer, true);
+        let pcss = measure(&mut renderer, false);
+        eprintln!(
+            "edge {top} up: formula {expected:.3}, ground truth {truth:.3}, PCSS {pcss:.3} (world units)"
+        );
+        for (what, measured) in [("ground truth", truth), ("PCSS", pcss)] {
+            let ratio = measured / expected;
+            assert!(
+                (0.8..=1.2).contains(&ratio),
+                "{what}: penumbra {measured:.3} vs formula {expected:.3} for an edge {top} up"
+            );
+        }
+        widths.push(pcss);
+    }
+    // About twice the gap, about twice the penumbra (no d_blocker in the angular model).
+    let ratio = widths[1] / widths[0];
+    assert!((1.6..=2.4).contains(&ratio), "penumbra ratio {ratio:.2} for edges 10.2 / 5.2 up: {widths:?}");
+}
+
 #[test]
 fn a_directional_lights_ground_truth_tends_to_its_hard_shadow() {
     // The width is turned into the angle it subtends at the target, and the reference tilts the

@@ -10,6 +10,9 @@ use std::time::{Duration, Instant};
 
 type Outcome = Arc<Mutex<Option<Result<AppReport, String>>>>;
 
+/// Frames of wheel scrolling allowed to bring the slider into view.
+const SCROLL_FRAMES: u32 = 240;
+
 enum Stage {
     /// Wait for the first full frame of the lesson step.
     Starting,
@@ -59,6 +62,28 @@ impl Session {
         }
     }
 
+    /// True when landmark `name` lies inside the window; otherwise a wheel step over it (its
+    /// panel scrolls, the pointer stays over that panel) is queued for the next frame.
+    fn scroll_into_view(&mut self, ctx: &egui::Context, name: &'static str) -> bool {
+        let Some(rect) = landmark(ctx, name) else { return false };
+        let window = ctx.content_rect();
+        if window.contains(rect.left_center() + egui::vec2(8.0, 0.0)) {
+            return true;
+        }
+        let over =
+            egui::pos2(rect.center().x, rect.center().y.clamp(window.top() + 40.0, window.bottom() - 40.0));
+        let delta = if rect.center().y > window.bottom() { -60.0 } else { 60.0 };
+        self.pending.push(egui::Event::PointerMoved(over));
+        self.pending.push(egui::Event::MouseWheel {
+            unit: egui::MouseWheelUnit::Point,
+            delta: egui::vec2(0.0, delta),
+            phase: egui::TouchPhase::Move,
+            source: egui::MouseWheelSource::Unknown,
+            modifiers: Default::default(),
+        });
+        false
+    }
+
     fn start_phase(&mut self, ctx: &egui::Context, phase: usize) -> Result<(), String> {
         let (name, offset): (_, fn(egui::Rect) -> egui::Pos2) = match phase {
             0 => (LANDMARK_LIGHT_WIDTH, |r| r.left_center() + egui::vec2(8.0, 0.0)),
@@ -103,7 +128,15 @@ impl Session {
                 if *frames == IDLE_FRAMES {
                     self.report.idle_ui_frame_ms =
                         since.elapsed().as_secs_f64() * 1e3 / f64::from(IDLE_FRAMES);
-                    self.start_phase(ctx, 0)?;
+                }
+                // Then scroll the inspector, as a user would, until the slider is in view.
+                if *frames >= IDLE_FRAMES {
+                    let waited = *frames - IDLE_FRAMES;
+                    if self.scroll_into_view(ctx, LANDMARK_LIGHT_WIDTH) {
+                        self.start_phase(ctx, 0)?;
+                    } else if waited > SCROLL_FRAMES {
+                        return Err(format!("the {LANDMARK_LIGHT_WIDTH} stays outside the window"));
+                    }
                 }
             }
             Stage::Dragging { phase, from, since, frames, slowest, shown_before } => {

@@ -66,8 +66,8 @@ pub struct FrameArgs {
 pub struct RenderArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
-    /// What to show: final, visibility, shadow-map, blocker-radius, penumbra, blockers, reference,
-    /// error (default: final, or the lesson step's view).
+    /// What to show: final, visibility, shadow-map, blocker-radius, penumbra, blockers,
+    /// blocker-depth, reference, error (default: final, or the lesson step's view).
     #[arg(long, value_parser = parse_view)]
     pub view: Option<View>,
     /// The light the debug views describe (default: 0, or the lesson step's light).

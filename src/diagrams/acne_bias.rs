@@ -57,11 +57,14 @@ impl View {
 pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let map = inp.shadow_map_size_texels.max(1) as f32;
     let w_frustum = fin(inp.frustum_width_world, 200.0).abs().max(1e-6);
-    let texel = w_frustum / map;
+    let recv = fin(inp.receiver_depth_linear, 113.0);
+    // One texel's footprint at the receiver: W / map for an orthographic map; a perspective
+    // map's W is its near-plane width, so the footprint grows with depth, times d / near.
+    let near = fin(inp.light_near, 1.0).abs().max(1e-6);
+    let texel = if inp.orthographic { w_frustum / map } else { w_frustum / map * recv.abs() / near };
     let angle = fin(inp.light_angle_deg, 45.0).abs().min(89.9);
     let slope = angle.to_radians().tan();
     let slope_draw = angle.min(85.0).to_radians().tan();
-    let recv = fin(inp.receiver_depth_linear, 113.0);
     let k_normal = fin(inp.normal_offset_texels, 0.0).max(0.0);
     // A normal offset of k texels acts as an extra depth bias of k * texel / cos(angle).
     let normal_world = k_normal * texel / angle.min(85.0).to_radians().cos();
@@ -177,8 +180,11 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     if leak_end > v.contact + 0.02 {
         let gap_w = if slope > 1e-6 { (bias_eff - PLATE * texel).max(0.0) / slope } else { f32::INFINITY };
         let end = leak_end.min(nf);
+        // A dimension line across the light (the gap is measured across it, not along the
+        // slope), under the surface's deeper end.
         let (a, b) = (v.at(v.contact), v.at(end));
-        let (a, b) = ([a[0], a[1] + 26.0], [b[0], b[1] + 26.0]);
+        let y = a[1].max(b[1]) + 26.0;
+        let (a, b) = ([a[0], y], [b[0], y]);
         c.arrow(a, b, col(pal::PENUMBRA, 1.0), 3.0, true);
         let t = match leak_end >= nf - 0.01 {
             true => c.fill("peter panning gap = {} world, beyond view", &[&num(gap_w)]),
@@ -195,9 +201,18 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     // Numbers, in a column on the right.
     let npw = ndc_per_world(inp, recv);
     let mut text = Column::new(600.0, PLOT[1] + 4.0);
-    text.line(c, "texel = W / map size");
-    let t = c.fill("   = {} / {} = {} world", &[&num(w_frustum), &(map as u32), &num(texel)]);
-    text.line(c, &t);
+    if inp.orthographic {
+        text.line(c, "texel = W / map size");
+        let t = c.fill("   = {} / {} = {} world", &[&num(w_frustum), &(map as u32), &num(texel)]);
+        text.line(c, &t);
+    } else {
+        text.line(c, "texel = W_near / map size · d / near");
+        let t = c.fill(
+            "   = {} / {} · {} / {} = {} world",
+            &[&num(w_frustum), &(map as u32), &num(recv), &num(near), &num(texel)],
+        );
+        text.line(c, &t);
+    }
     let t = c.fill("slope = tan({}°) = {}", &[&format!("{angle:.0}"), &format!("{slope:.2}")]);
     text.line(c, &t);
     text.line(c, "needed bias ≈ texel/2 · slope");

@@ -91,6 +91,8 @@ pub fn inputs_from_scene(
             out.search_radius_texels = p.blocker_search_radius_texels;
             out.filter_radius_texels = p.filter_radius_texels;
             let centre = Vec2::from(p.shadow_map_uv);
+            let in_texel = centre * map - (centre * map).floor();
+            out.probe_in_texel = in_texel.to_array();
             let filter: Vec<_> = p.taps.iter().filter(|t| t.kind == "filter").collect();
             out.pcf_samples = filter
                 .iter()
@@ -121,7 +123,7 @@ pub fn inputs_from_scene(
                 Technique::Pcss => shadow.min_filter_radius_texels,
             };
             out.search_radius_texels = match shadow.technique {
-                Technique::Pcss => search_radius_uv(light, d) * map,
+                Technique::Pcss => search_radius_uv(light, d) * shadow.search_radius_scale * map,
                 _ => 0.0,
             };
             let texel_world = light.texel_world_at(d);
@@ -275,6 +277,7 @@ normal_offset_texels = 0.5
             stored_depth_linear: 41.0,
             bias_ndc: 0.001,
             receiver_plane_depth_per_texel_world: None,
+            stored_depth_rgba8_error_ndc: None,
             blocker_search_radius_uv: 0.0,
             blocker_search_radius_texels: 0.0,
             blockers_found: 0,

@@ -118,6 +118,8 @@ pub struct DiagramInputs {
     pub penumbra_width_world: f32,
     pub search_radius_texels: f32,
     pub filter_radius_texels: f32,
+    /// Where the probe's lookup lies inside its texel, 0..1 on each axis (0.5 = the centre).
+    pub probe_in_texel: [f32; 2],
     /// PCF sample offsets in the unit disk.
     pub pcf_samples: Vec<[f32; 2]>,
     /// Per sample: true = blocked (same length as `pcf_samples`).
@@ -178,6 +180,7 @@ impl Default for DiagramInputs {
             penumbra_width_world: 0.26,
             search_radius_texels: 10.0,
             filter_radius_texels: 5.0,
+            probe_in_texel: [0.5, 0.5],
             pcf_samples,
             sample_blocked,
             blockers_found: 8,

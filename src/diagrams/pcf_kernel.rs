@@ -36,16 +36,17 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     }
     c.rect([gx, gy, side, side], Some(col(pal::BG, 1.0)), None);
     c.set_clip(Some([gx, gy, side, side]));
-    // The probe sits at the centre of its texel, so texel edges are at +-0.5 + integers.
-    let first = -((half + 0.5) / k).ceil();
-    for j in 0..((2.0 * half + 1.0) / k).ceil() as i32 + 2 {
-        let t = (first + j as f32) * k + 0.5;
-        let (x, y) = (centre[0] + t * ppt, centre[1] + t * ppt);
+    // The probe lies at (fx, fy) inside its texel, so texel edges are at integers - (fx, fy).
+    let [fx, fy] = inp.probe_in_texel.map(|f| if f.is_finite() { f.clamp(0.0, 1.0) } else { 0.5 });
+    let first = -((half + 1.0) / k).ceil();
+    for j in 0..((2.0 * half + 2.0) / k).ceil() as i32 + 2 {
+        let m = (first + j as f32) * k;
+        let (x, y) = (centre[0] + (m + 1.0 - fx) * ppt, centre[1] + (m + 1.0 - fy) * ppt);
         c.line([x, gy], [x, gy + side], col(pal::GRID, 1.0), 1.2);
         c.line([gx, y], [gx + side, y], col(pal::GRID, 1.0), 1.2);
     }
     let tp = ppt.max(3.0);
-    c.rect([centre[0] - tp * 0.5, centre[1] - tp * 0.5, tp, tp], Some(col(pal::LIGHT, 0.45)), None);
+    c.rect([centre[0] - tp * fx, centre[1] - tp * fy, tp, tp], Some(col(pal::LIGHT, 0.45)), None);
     // Search region (dashed) and filter circle.
     c.circle(centre, (r_s * ppt).max(1.0), Some(col(pal::SEARCH, 0.14)), None);
     if let Some(p) = Canvas::poly(&circle_pts(centre, r_s * ppt), true) {

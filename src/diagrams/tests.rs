@@ -170,6 +170,36 @@ fn acne_bias_with_the_receiver_plane_shows_no_acne_at_a_grazing_angle() {
     );
 }
 
+/// The texel grid is drawn where the probe's lookup really lies inside its texel.
+#[test]
+fn the_pcf_grid_follows_the_probe_inside_its_texel() {
+    let centred =
+        DiagramInputs { filter_radius_texels: 2.0, search_radius_texels: 2.0, ..DiagramInputs::default() };
+    let corner = DiagramInputs { probe_in_texel: [0.1, 0.9], ..centred.clone() };
+    let a = render(DiagramKind::PcfKernel, &centred, 960, 540);
+    let b = render(DiagramKind::PcfKernel, &corner, 960, 540);
+    assert!(differs(&a, &b) > 1000, "moving the probe inside its texel must move the grid");
+}
+
+/// A perspective map's texel grows with depth: the acne diagram uses the footprint at the
+/// receiver (W_near / map * d / near), not at the near plane.
+#[test]
+fn the_acne_diagram_uses_the_texel_at_the_receivers_depth_for_a_perspective_map() {
+    let i = DiagramInputs {
+        orthographic: false,
+        frustum_width_world: 28.0,
+        light_near: 20.0,
+        receiver_depth_linear: 56.0,
+        shadow_map_size_texels: 2048,
+        ..DiagramInputs::default()
+    };
+    let (_, texts) = draw_traced(DiagramKind::AcneBias, &i, Lang::En, [960, 540], 0.0).expect("draw");
+    let texts: Vec<String> = texts.into_iter().map(|(t, _)| t).collect();
+    assert!(texts.iter().any(|t| t == "texel = W_near / map size · d / near"), "{texts:?}");
+    // 28 / 2048 * 56 / 20 = 0.0383 world units.
+    assert!(texts.iter().any(|t| t.contains("= 0.038 world")), "{texts:?}");
+}
+
 #[test]
 fn pcf_blocked_flags_change_sample_colours() {
     let base = DiagramInputs::default();

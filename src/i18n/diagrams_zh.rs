@@ -38,6 +38,8 @@ pub(super) const DIAGRAMS: &[(&str, &str)] = &[
     ("peter panning gap = {} world, beyond view", "彼得潘（悬浮）间隙 = {} 世界单位，超出视图"),
     ("contact", "接触点"),
     ("texel = W / map size", "纹素 = W / 贴图尺寸"),
+    ("texel = W_near / map size · d / near", "纹素 = W_near / 贴图尺寸 · d / 近平面"),
+    ("   = {} / {} · {} / {} = {} world", "   = {} / {} · {} / {} = {} 世界单位"),
     ("   = {} / {} = {} world", "   = {} / {} = {} 世界单位"),
     ("slope = tan({}°) = {}", "斜率 = tan({}°) = {}"),
     ("needed bias ≈ texel/2 · slope", "所需偏移 ≈ 纹素/2 · 斜率"),

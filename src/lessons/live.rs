@@ -20,6 +20,8 @@ enum Quantity {
     BiasNdc,
     /// Receiver-plane bias: the plane's depth change per texel, world units.
     PlaneDepthPerTexelWorld,
+    /// RGBA8 depth storage: the stored depth's round-trip error, NDC.
+    Rgba8ErrorNdc,
     NDotL,
     UvX,
     UvY,
@@ -44,7 +46,7 @@ enum Quantity {
     Object,
 }
 
-const QUANTITIES: [(&str, Quantity); 24] = [
+const QUANTITIES: [(&str, Quantity); 25] = [
     ("receiver_depth_ndc", Quantity::ReceiverDepthNdc),
     ("stored_depth_ndc", Quantity::StoredDepthNdc),
     ("receiver_depth_world", Quantity::ReceiverDepthWorld),
@@ -52,6 +54,7 @@ const QUANTITIES: [(&str, Quantity); 24] = [
     ("depth_gap_world", Quantity::DepthGapWorld),
     ("bias_ndc", Quantity::BiasNdc),
     ("plane_depth_per_texel_world", Quantity::PlaneDepthPerTexelWorld),
+    ("rgba8_error_ndc", Quantity::Rgba8ErrorNdc),
     ("n_dot_l", Quantity::NDotL),
     ("uv_x", Quantity::UvX),
     ("uv_y", Quantity::UvY),
@@ -201,6 +204,7 @@ fn value(q: Quantity, report: &ProbeReport, l: &LightProbe, lang: Lang) -> Optio
         Quantity::DepthGapWorld => float(l.receiver_depth_linear - l.stored_depth_linear),
         Quantity::BiasNdc => float(l.bias_ndc),
         Quantity::PlaneDepthPerTexelWorld => l.receiver_plane_depth_per_texel_world.and_then(float),
+        Quantity::Rgba8ErrorNdc => l.stored_depth_rgba8_error_ndc.and_then(float),
         Quantity::NDotL => float(l.n_dot_l),
         Quantity::UvX => float(l.shadow_map_uv[0]),
         Quantity::UvY => float(l.shadow_map_uv[1]),
@@ -275,6 +279,7 @@ mod tests {
             stored_depth_linear: 100.0,
             bias_ndc: 0.001,
             receiver_plane_depth_per_texel_world: None,
+            stored_depth_rgba8_error_ndc: None,
             blocker_search_radius_uv: 0.0,
             blocker_search_radius_texels: 94.625,
             blockers_found: 20,

@@ -5,7 +5,7 @@
 //! REFERENCES "Ground truth for soft shadows"; published comparisons use 1024 hard shadows.
 
 use crate::render::LightGpu;
-use crate::scene::{BiasMode, Light, LightKind, LightSize, ShadowSettings, Technique};
+use crate::scene::{BiasMode, DepthStorage, Light, LightKind, LightSize, ShadowSettings, Technique};
 use glam::{Mat4, Vec2, Vec3};
 
 const GOLDEN_ANGLE: f32 = 2.399_963_2;
@@ -71,7 +71,8 @@ pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightGpu> {
 
 /// Settings the ground truth's hard shadows use: the user's bias is replaced by a robust one
 /// (half a texel plus a one-texel normal offset), so acne or peter panning in the technique
-/// shows up as error instead of being copied into the reference.
+/// shows up as error instead of being copied into the reference; and the depths are kept as
+/// floats, so an RGBA8 map's rounding does too.
 pub fn reference_settings(user: &ShadowSettings) -> ShadowSettings {
     ShadowSettings {
         technique: Technique::Hard,
@@ -79,6 +80,7 @@ pub fn reference_settings(user: &ShadowSettings) -> ShadowSettings {
         adaptive_c: 1.0,
         normal_offset_texels: 1.0,
         clamp_outside: true,
+        depth_storage: DepthStorage::Float32,
         ..*user
     }
 }

@@ -181,6 +181,7 @@ pub struct CameraPipelineKey {
     pub kernel: u32,
     pub bias_mode: u32,
     pub clamp_outside: u32,
+    pub depth_storage: u32,
     /// What all lights share (SPEC_* in the shader; 0 = mixed).
     pub projection: u32,
     pub size_model: u32,
@@ -212,6 +213,7 @@ impl CameraPipelineKey {
             kernel: params.kernel,
             bias_mode: params.bias_mode,
             clamp_outside: params.clamp_outside,
+            depth_storage: params.depth_storage,
             // SPEC_ALL_ORTHOGRAPHIC = 1, SPEC_ALL_PERSPECTIVE = 2.
             projection: shared(|l| 1 - l.orthographic.min(1)),
             // SPEC_ALL_WIDTH = 1, SPEC_ALL_ANGULAR = 2.
@@ -369,6 +371,7 @@ impl Pipelines {
                 ("SPEC_KERNEL", f64::from(key.kernel)),
                 ("SPEC_BIAS_MODE", f64::from(key.bias_mode)),
                 ("SPEC_CLAMP_OUTSIDE", f64::from(key.clamp_outside)),
+                ("SPEC_DEPTH_STORAGE", f64::from(key.depth_storage)),
                 ("SPEC_PROJECTION", f64::from(key.projection)),
                 ("SPEC_SIZE_MODEL", f64::from(key.size_model)),
                 ("SPEC_LIGHT_COUNT", f64::from(key.light_count)),

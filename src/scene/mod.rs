@@ -15,7 +15,8 @@ pub use file::{SceneError, load_scene, parse_scene_str};
 pub use light::{Light, LightKind, LightSize, safe_up as safe_up_for};
 pub use mesh::{Material, Mesh, MeshError, MeshPart, TextureImage, Vertex};
 pub use settings::{
-    BiasMode, Kernel, MAX_TAPS, ShadowSettings, Technique, effective_samples, filter_taps, grid_side,
+    BiasMode, DepthStorage, Kernel, MAX_TAPS, ShadowSettings, Technique, effective_samples, filter_taps,
+    grid_side,
 };
 
 use glam::{Mat4, Quat, Vec3};

@@ -3,7 +3,7 @@
 //! that shaders/common.wgsl shares (one source here; tests/shaders.rs holds the WGSL to it).
 //! Keep the structs in sync with shaders/common.wgsl (sizes asserted below).
 
-use crate::scene::{BiasMode, Kernel, Light, LightKind, LightSize, ShadowSettings, Technique};
+use crate::scene::{BiasMode, DepthStorage, Kernel, Light, LightKind, LightSize, ShadowSettings, Technique};
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 
@@ -16,6 +16,8 @@ pub const BIAS_CONSTANT: u32 = 1;
 pub const BIAS_SLOPE: u32 = 2;
 pub const BIAS_ADAPTIVE: u32 = 3;
 pub const BIAS_RECEIVER_PLANE: u32 = 4;
+pub const DEPTH_FLOAT32: u32 = 0;
+pub const DEPTH_RGBA8: u32 = 1;
 pub const KERNEL_POISSON: u32 = 0;
 pub const KERNEL_UNIFORM: u32 = 1;
 pub const KERNEL_VOGEL: u32 = 2;
@@ -25,7 +27,7 @@ pub const SIZE_MODEL_WIDTH: u32 = 0;
 pub const SIZE_MODEL_ANGULAR: u32 = 1;
 
 /// Every shared constant by its WGSL name, for the test that holds shaders/common.wgsl to them.
-pub const SHARED_CONSTANTS: [(&str, u32); 16] = [
+pub const SHARED_CONSTANTS: [(&str, u32); 18] = [
     ("TECHNIQUE_HARD", TECHNIQUE_HARD),
     ("TECHNIQUE_PCF", TECHNIQUE_PCF),
     ("TECHNIQUE_PCSS", TECHNIQUE_PCSS),
@@ -35,6 +37,8 @@ pub const SHARED_CONSTANTS: [(&str, u32); 16] = [
     ("BIAS_SLOPE", BIAS_SLOPE),
     ("BIAS_ADAPTIVE", BIAS_ADAPTIVE),
     ("BIAS_RECEIVER_PLANE", BIAS_RECEIVER_PLANE),
+    ("DEPTH_FLOAT32", DEPTH_FLOAT32),
+    ("DEPTH_RGBA8", DEPTH_RGBA8),
     ("KERNEL_POISSON", KERNEL_POISSON),
     ("KERNEL_UNIFORM", KERNEL_UNIFORM),
     ("KERNEL_VOGEL", KERNEL_VOGEL),
@@ -60,6 +64,13 @@ pub fn bias_mode_id(b: BiasMode) -> u32 {
         BiasMode::Slope => BIAS_SLOPE,
         BiasMode::Adaptive => BIAS_ADAPTIVE,
         BiasMode::ReceiverPlane => BIAS_RECEIVER_PLANE,
+    }
+}
+
+pub fn depth_storage_id(d: DepthStorage) -> u32 {
+    match d {
+        DepthStorage::Float32 => DEPTH_FLOAT32,
+        DepthStorage::Rgba8 => DEPTH_RGBA8,
     }
 }
 
@@ -122,11 +133,14 @@ pub struct ShadowParamsGpu {
     pub blocker_samples: u32,
     pub min_filter_radius_texels: f32,
     pub clamp_outside: u32,
-    pub _pad: [u32; 2],
+    pub search_radius_scale: f32,
+    pub depth_storage: u32,
+    pub ortho_near_factor: u32,
+    pub _pad: [u32; 3],
 }
 
 const _: () = assert!(std::mem::size_of::<LightGpu>() == 160);
-const _: () = assert!(std::mem::size_of::<ShadowParamsGpu>() == 64);
+const _: () = assert!(std::mem::size_of::<ShadowParamsGpu>() == 80);
 
 impl ShadowParamsGpu {
     pub fn new(s: &ShadowSettings) -> Self {
@@ -145,7 +159,10 @@ impl ShadowParamsGpu {
             blocker_samples: s.blocker_samples,
             min_filter_radius_texels: s.min_filter_radius_texels,
             clamp_outside: u32::from(s.clamp_outside),
-            _pad: [0; 2],
+            search_radius_scale: s.search_radius_scale,
+            depth_storage: depth_storage_id(s.depth_storage),
+            ortho_near_factor: u32::from(s.ortho_near_factor),
+            _pad: [0; 3],
         }
     }
 }

@@ -8,7 +8,7 @@ pub mod kernels;
 use crate::scene::Kernel;
 use glam::{Vec2, Vec3, Vec4};
 pub use gpu::{
-    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, LightGpu, SIZE_MODEL_ANGULAR,
+    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, DEPTH_RGBA8, LightGpu, SIZE_MODEL_ANGULAR,
     ShadowParamsGpu, TECHNIQUE_HARD, TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS, kernel_from_id,
 };
 use kernels::{filter_taps, kernel_offset};
@@ -152,6 +152,21 @@ pub fn receiver_plane_gradient(light: &LightGpu, p: Vec3, n: Vec3, s: Vec3) -> V
     Vec2::new(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det
 }
 
+/// The GAMES202 framework's RGBA8 depth round trip (`pack`, 8-bit storage, `unpack`); see the
+/// shader's `rgba8_round_trip`.
+pub fn rgba8_round_trip(depth_ndc: f32) -> f32 {
+    let unpack_shift = Vec4::new(1.0, 1.0 / 256.0, 1.0 / 65_536.0, 1.0 / 16_777_216.0);
+    if depth_ndc >= 1.0 {
+        return ((unpack_shift.x + unpack_shift.y) + unpack_shift.z) + unpack_shift.w;
+    }
+    let scaled = depth_ndc * Vec4::new(1.0, 256.0, 65_536.0, 16_777_216.0);
+    let mut rgba = scaled - scaled.floor();
+    rgba -= Vec4::new(rgba.y, rgba.z, rgba.w, rgba.w) * Vec4::new(1.0 / 256.0, 1.0 / 256.0, 1.0 / 256.0, 0.0);
+    let quantised = (rgba.clamp(Vec4::ZERO, Vec4::ONE) * 255.0).to_array().map(f32::round_ties_even);
+    let parts = Vec4::from_array(quantised) * (1.0 / 255.0) * unpack_shift;
+    ((parts.x + parts.y) + parts.z) + parts.w
+}
+
 /// WGSL `fract`: x - floor(x) (Rust's `f32::fract` truncates towards zero instead).
 fn wgsl_fract(v: Vec2) -> Vec2 {
     v - v.floor()
@@ -216,6 +231,12 @@ impl<'a> Twin<'a> {
     }
 
     pub fn stored_depth_ndc(&self, uv: Vec2) -> f32 {
+        let depth = self.stored_depth_float_ndc(uv);
+        if self.params.depth_storage == DEPTH_RGBA8 { rgba8_round_trip(depth) } else { depth }
+    }
+
+    /// The depth the shadow pass wrote at a uv, before any RGBA8 round trip.
+    pub fn stored_depth_float_ndc(&self, uv: Vec2) -> f32 {
         let lookup = if self.params.clamp_outside == 0 { wgsl_fract(uv) } else { uv };
         let size = self.light.map_size_texels as i32;
         let t = (lookup * self.light.map_size_texels).floor();
@@ -307,7 +328,7 @@ impl<'a> Twin<'a> {
         } else {
             0.5 * light.light_width_world * (d_r - light.near) / d_r
         };
-        let radius_uv = radius_world.max(0.0) / light.frustum_width_world;
+        let radius_uv = radius_world.max(0.0) * self.params.search_radius_scale / light.frustum_width_world;
         out.radius_texels = radius_uv * light.map_size_texels;
         let mut kernel = kernel_from_id(self.params.kernel);
         if kernel == Kernel::Hardware {
@@ -346,7 +367,7 @@ impl<'a> Twin<'a> {
             light.light_width_world * gap / d_blocker.max(1e-6)
         };
         let mut radius_uv = 0.5 * width_world / light.frustum_width_world;
-        if !orthographic(light) {
+        if !orthographic(light) || self.params.ortho_near_factor == 1 {
             radius_uv = radius_uv * light.near / d_r;
         }
         Penumbra {
@@ -396,6 +417,28 @@ impl<'a> Twin<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The homework's pack / RGBA8 / unpack round trip: channels in 1/256 steps kept in 1/255
+    /// steps give +z/255 below the middle of the depth range and -(1 - z)/255 above it; the
+    /// clear colour, white, reads back just past 1.
+    #[test]
+    fn the_rgba8_round_trip_is_off_by_about_a_255th_with_a_sign_change_at_half_depth() {
+        for z in [0.05f32, 0.2, 0.3, 0.45, 0.5] {
+            let error = rgba8_round_trip(z) - z;
+            assert!((error - z / 255.0).abs() < 2e-5, "z {z}: error {error}");
+        }
+        for z in [0.51f32, 0.6, 0.8, 0.99] {
+            let error = rgba8_round_trip(z) - z;
+            assert!((error + (1.0 - z) / 255.0).abs() < 2e-5, "z {z}: error {error}");
+        }
+        let white = 1.0 + 1.0 / 256.0 + 1.0 / 65_536.0 + 1.0 / 16_777_216.0;
+        assert_eq!(rgba8_round_trip(1.0), white);
+        // Monotone within each half: a nearer depth never reads back farther.
+        let samples: Vec<f32> = (0..2000).map(|i| i as f32 / 4000.0).collect();
+        for w in samples.windows(2) {
+            assert!(rgba8_round_trip(w[0]) <= rgba8_round_trip(w[1]), "{w:?}");
+        }
+    }
 
     #[test]
     fn nan_counts_as_outside_the_map_as_in_the_shader() {

@@ -4,7 +4,7 @@
 use super::{AbSplit, ShadowlabApp};
 use crate::i18n::tr as translate;
 use crate::lessons::{Lang, Overlay};
-use crate::scene::{BiasMode, Kernel, LightKind, LightSize, Projection, Technique};
+use crate::scene::{BiasMode, DepthStorage, Kernel, LightKind, LightSize, Projection, Technique};
 use egui::{Slider, Ui};
 
 fn combo<T: Copy + PartialEq>(
@@ -48,6 +48,9 @@ const CONTROLS: &[(&str, &str)] = &[
     ("rotate_per_pixel", "rotate the pattern per pixel"),
     ("blocker_samples", "blocker samples"),
     ("min_filter_radius_texels", "min filter radius (texels)"),
+    ("search_radius_scale", "search radius (× light cone)"),
+    ("depth_storage", "depth storage"),
+    ("ortho_near_factor", "near / d on orthographic maps (NVIDIA's factor)"),
     ("reference_samples", "ground-truth samples"),
     ("light.N.shadow_map_size", "shadow map (texels)"),
     ("light.N.extent", "half-width (world units)"),
@@ -143,6 +146,15 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         .checkbox(&mut s.clamp_outside, tr("outside the light frustum = lit"))
         .on_hover_text(key_hint(lang, "clamp_outside"))
         .changed();
+    changed |= combo(
+        lang,
+        ui,
+        tr("depth storage"),
+        &mut s.depth_storage,
+        DepthStorage::ALL,
+        DepthStorage::name,
+        Some("depth_storage"),
+    );
 
     ui.separator();
     ui.heading(tr("PCF"));
@@ -179,6 +191,14 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     changed |= ui
         .add(Slider::new(&mut s.min_filter_radius_texels, 0.0..=16.0).text(tr("min filter radius (texels)")))
         .on_hover_text(key_hint(lang, "min_filter_radius_texels"))
+        .changed();
+    changed |= ui
+        .add(Slider::new(&mut s.search_radius_scale, 0.25..=4.0).text(tr("search radius (× light cone)")))
+        .on_hover_text(key_hint(lang, "search_radius_scale"))
+        .changed();
+    changed |= ui
+        .checkbox(&mut s.ortho_near_factor, tr("near / d on orthographic maps (NVIDIA's factor)"))
+        .on_hover_text(key_hint(lang, "ortho_near_factor"))
         .changed();
     changed |= ui
         .add(
@@ -381,6 +401,9 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
             tr("stored depth"),
             format!("{:.4} NDC · {:.3} {}", l.stored_depth_ndc, l.stored_depth_linear, tr("world")),
         );
+        if let Some(error) = l.stored_depth_rgba8_error_ndc {
+            row(tr("RGBA8 round trip"), format!("{error:+.6} NDC"));
+        }
         row(tr("bias"), format!("{:.6} NDC", l.bias_ndc));
         if let Some(per_texel) = l.receiver_plane_depth_per_texel_world {
             row(tr("receiver plane"), format!("{per_texel:.4} {} / {}", tr("world"), tr("texel")));

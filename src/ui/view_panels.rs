@@ -77,9 +77,16 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     app.view_state.overlay_picture = None;
     if let Some(analysis) = &app.analysis {
         let samples = app.scene.shadow.reference_samples;
-        if let Some((image, legend)) =
-            crate::views::analysis_view(app.view, analysis, app.reference.as_deref(), samples, app.lang)
-        {
+        let params = crate::render::ShadowParamsGpu::new(&app.scene.shadow);
+        let light_and_params = light.as_ref().map(|l| (l, &params));
+        if let Some((image, legend)) = crate::views::analysis_view(
+            app.view,
+            analysis,
+            app.reference.as_deref(),
+            samples,
+            light_and_params,
+            app.lang,
+        ) {
             app.view_state.view_image =
                 Some(ctx.load_texture("debug view", color_image(&image), egui::TextureOptions::NEAREST));
             app.view_state.view_legend = Some(legend);

@@ -16,18 +16,21 @@ pub enum View {
     BlockerRadius,
     Penumbra,
     Blockers,
+    /// PCSS step 1's result: the average depth of the blockers found, world units.
+    BlockerDepth,
     Reference,
     Error,
 }
 
 impl View {
-    pub const ALL: [View; 8] = [
+    pub const ALL: [View; 9] = [
         View::Final,
         View::Visibility,
         View::ShadowMap,
         View::BlockerRadius,
         View::Penumbra,
         View::Blockers,
+        View::BlockerDepth,
         View::Reference,
         View::Error,
     ];
@@ -40,6 +43,7 @@ impl View {
             View::BlockerRadius => "blocker-radius",
             View::Penumbra => "penumbra",
             View::Blockers => "blockers",
+            View::BlockerDepth => "blocker-depth",
             View::Reference => "reference",
             View::Error => "error",
         }
@@ -152,6 +156,69 @@ pub fn shadow_map_image(map: &DepthImage, light: &LightGpu) -> (RgbaImage, Legen
     )
 }
 
+/// Pixels where the blocker search found nothing (or there was none) in the blocker-depth view.
+const NO_BLOCKER: Rgba<u8> = Rgba([120, 120, 120, 255]);
+
+/// d_blocker per pixel, world units from the light, recovered from what the analysis pass
+/// wrote: the penumbra width w_p (texels on the receiver, times the texel's world size at the
+/// receiver's depth d_r) inverts the similar-triangle step exactly, d_blocker = w_L d_r / (w_p + w_L)
+/// for a width, d_r - w_p / (2 tan(theta / 2)) for an angle. None where nothing was found, or
+/// where the light has no size (w_p is then 0 whatever d_blocker is). Where the blockers average
+/// at or behind the receiver (the receiver-plane bias on a curved surface) there is no gap and
+/// no penumbra, and this gives d_r.
+pub fn blocker_depth_at(
+    analysis: &Analysis,
+    i: usize,
+    light: &LightGpu,
+    params: &crate::render::ShadowParamsGpu,
+) -> Option<f32> {
+    if !analysis.hit(i) || analysis.shadow[i][3] < 0.5 {
+        return None;
+    }
+    let map = DepthImage { size: 1, depth_ndc: vec![1.0] };
+    let twin = crate::shadow::Twin::new(light, params, &map);
+    let position = glam::Vec3::from_slice(&analysis.position[i][..3]);
+    let normal = glam::Vec3::from_slice(&analysis.normal[i][..3]);
+    let d_r = twin.light_space_lookup(position, normal).depth_linear;
+    let w_p = analysis.shadow[i][2] * crate::shadow::texel_world_at(light, d_r);
+    let d_b = if light.size_model == crate::shadow::SIZE_MODEL_ANGULAR {
+        (light.tan_half_angle > 0.0).then(|| d_r - w_p / (2.0 * light.tan_half_angle))
+    } else {
+        (light.light_width_world > 0.0)
+            .then(|| light.light_width_world * d_r / (w_p + light.light_width_world))
+    };
+    d_b.filter(|d| d.is_finite())
+}
+
+/// The blocker-depth view: d_blocker as a heatmap over its own range, grey where none was found.
+pub fn blocker_depth_image(
+    analysis: &Analysis,
+    light: &LightGpu,
+    params: &crate::render::ShadowParamsGpu,
+) -> (RgbaImage, Legend) {
+    let depths: Vec<Option<f32>> =
+        (0..analysis.shadow.len()).map(|i| blocker_depth_at(analysis, i, light, params)).collect();
+    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+    for d in depths.iter().flatten() {
+        lo = lo.min(*d);
+        hi = hi.max(*d);
+    }
+    if !lo.is_finite() {
+        (lo, hi) = (0.0, 0.0);
+    }
+    let span = (hi - lo).max(1e-6);
+    let image = RgbaImage::from_fn(analysis.width, analysis.height, |x, y| {
+        let i = analysis.index(x, y);
+        match depths[i] {
+            Some(d) => heat_color((d - lo) / span),
+            None if analysis.hit(i) => NO_BLOCKER,
+            None => NO_SURFACE,
+        }
+    });
+    let unit = "world units from the light (grey: no blocker)";
+    (image, Legend { label: "average blocker depth", min: lo, max: hi, unit })
+}
+
 /// |technique - reference| over the surfaces, and its mean.
 pub fn error_image(analysis: &Analysis, reference: &[f32]) -> (RgbaImage, Legend, f32) {
     let mut sum = 0.0f64;
@@ -201,10 +268,12 @@ pub fn render_view(
             let reference =
                 if view.needs_reference() { Some(renderer.render_reference(scene, light)?) } else { None };
             let samples = scene.shadow.reference_samples;
-            let (image, legend) = analysis_view(view, &a, reference.as_deref(), samples, Lang::En)
-                .ok_or_else(|| {
-                    crate::render::RenderError::Usage(format!("view {} has no image", view.name()))
-                })?;
+            let light_and_params = frame.lights.get(light).map(|l| (l, &frame.params));
+            let (image, legend) =
+                analysis_view(view, &a, reference.as_deref(), samples, light_and_params, Lang::En)
+                    .ok_or_else(|| {
+                        crate::render::RenderError::Usage(format!("view {} has no image", view.name()))
+                    })?;
             (image, Some(legend))
         }
     })
@@ -218,11 +287,25 @@ pub fn analysis_view(
     a: &Analysis,
     reference: Option<&[f32]>,
     reference_samples: u32,
+    light: Option<(&LightGpu, &crate::render::ShadowParamsGpu)>,
     lang: Lang,
 ) -> Option<(RgbaImage, String)> {
     let zh = lang == Lang::Zh;
     match view {
         View::Final | View::ShadowMap => None,
+        View::BlockerDepth => {
+            let (light, params) = light?;
+            let (image, legend) = blocker_depth_image(a, light, params);
+            let text = if zh {
+                format!(
+                    "平均遮挡深度：{:.2} .. {:.2} 到光源的世界单位（深蓝 .. 黄；灰：没有遮挡物）",
+                    legend.min, legend.max
+                )
+            } else {
+                legend.to_string()
+            };
+            Some((image, text))
+        }
         View::Visibility => {
             let legend = if zh {
                 "可见性：黑 = 处于阴影中，白 = 受光"
