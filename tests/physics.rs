@@ -191,6 +191,18 @@ fn measured_penumbra_in(
     ((z90 - z10).abs() as f64 * 2.0 / radius_units) as f32
 }
 
+/// The ground truth's and PCSS's penumbra widths both within 20% of the formula's.
+fn assert_near_formula(case: &str, expected: f32, truth: f32, pcss: f32) {
+    eprintln!("{case}: formula {expected:.3}, ground truth {truth:.3}, PCSS {pcss:.3} (world units)");
+    for (what, measured) in [("ground truth", truth), ("PCSS", pcss)] {
+        let ratio = measured / expected;
+        assert!(
+            (0.8..=1.2).contains(&ratio),
+            "{case}: {what}'s penumbra {measured:.3} vs formula {expected:.3}"
+        );
+    }
+}
+
 #[test]
 fn penumbra_grows_with_blocker_distance_as_similar_triangles_say() {
     // Light straight above the slabs, so depths along its axis are heights and the formula is
@@ -221,16 +233,7 @@ fn penumbra_grows_with_blocker_distance_as_similar_triangles_say() {
         let scene = common::scene("contact", &overhead);
         let pcss = measured_penumbra(&mut renderer, scene.clone(), shadow_x, shadow_z, false);
         let truth = measured_penumbra(&mut renderer, scene, shadow_x, shadow_z, true);
-        eprintln!(
-            "blocker at height {height}: formula {expected:.3}, ground truth {truth:.3}, PCSS {pcss:.3} (world units)"
-        );
-        for (what, measured) in [("ground truth", truth), ("PCSS", pcss)] {
-            let ratio = measured / expected;
-            assert!(
-                (0.8..=1.2).contains(&ratio),
-                "{what}: penumbra {measured:.3} vs formula {expected:.3} at height {height}"
-            );
-        }
+        assert_near_formula(&format!("blocker at height {height}"), expected, truth, pcss);
         widths.push(pcss);
     }
     assert!(widths[1] > 3.0 * widths[0], "the higher slab's penumbra must be much wider: {widths:?}");
@@ -340,16 +343,7 @@ fn an_angular_lights_penumbra_grows_with_the_gap_as_its_formula_says() {
         };
         let truth = measure(&mut renderer, true);
         let pcss = measure(&mut renderer, false);
-        eprintln!(
-            "edge {top} up: formula {expected:.3}, ground truth {truth:.3}, PCSS {pcss:.3} (world units)"
-        );
-        for (what, measured) in [("ground truth", truth), ("PCSS", pcss)] {
-            let ratio = measured / expected;
-            assert!(
-                (0.8..=1.2).contains(&ratio),
-                "{what}: penumbra {measured:.3} vs formula {expected:.3} for an edge {top} up"
-            );
-        }
+        assert_near_formula(&format!("edge {top} up"), expected, truth, pcss);
         widths.push(pcss);
     }
     // About twice the gap, about twice the penumbra (no d_blocker in the angular model).
