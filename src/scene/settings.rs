@@ -34,7 +34,9 @@ pub enum DepthStorage {
     Float32,
     /// The GAMES202 framework's way: the depth split over the four 8-bit channels of an RGBA8
     /// colour target by its `pack`, read back by `unpack` (without the 256/255 correction
-    /// three.js applies, so the stored depth is off by up to about 1/255).
+    /// three.js applies, so the stored depth is off by up to about 1/255). Point-sampled taps
+    /// only: the hardware kernel's comparison sampler reads the float map, as no sampler can
+    /// compare an RGBA8 texture.
     Rgba8,
 }
 
