@@ -24,6 +24,7 @@ const TECHNIQUE_HARD: u32 = 0u;
 const TECHNIQUE_PCF: u32 = 1u;
 const TECHNIQUE_PCSS: u32 = 2u;
 const TECHNIQUE_NONE: u32 = 3u;
+const TECHNIQUE_VSM: u32 = 4u;
 const SIZE_MODEL_WIDTH: u32 = 0u;
 const SIZE_MODEL_ANGULAR: u32 = 1u;
 
@@ -53,7 +54,7 @@ struct LightGpu {
     map_size_texels: f32,
     layer: u32,                   // shadow-map array layer
     atlas_scale: f32,             // map_size / array texture size
-    _pad: u32,
+    moments_block: u32,           // map texels per side of a level-0 VSM moments texel
 }
 
 struct ShadowParamsGpu {
@@ -74,9 +75,9 @@ struct ShadowParamsGpu {
     search_radius_scale: f32,     // blocker search, times the light's cone
     depth_storage: u32,           // DEPTH_*
     ortho_near_factor: u32,       // 1: NVIDIA's near / d_receiver on orthographic maps too (the bug)
+    vsm_min_variance: f32,        // NDC depth squared
     _pad0: u32,
     _pad1: u32,
-    _pad2: u32,
 }
 
 struct ObjectGpu {

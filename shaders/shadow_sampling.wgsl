@@ -13,6 +13,8 @@
 @group(1) @binding(4) var<uniform> kernel_table: array<vec4<f32>, MAX_TAPS>;
 const FILTER_TABLE: u32 = 0u;
 const SEARCH_TABLE: u32 = 1u;
+// VSM: (depth, depth²) averaged per block of map texels, a mip chain (shaders/moments.wgsl).
+@group(1) @binding(5) var moments: texture_2d_array<f32>;
 
 // ---------------------------------------------------------------- pipeline specialisation
 // The camera pipelines are built once per technique, kernel, bias mode and clamping, with these
@@ -476,6 +478,50 @@ fn visibility_pcss(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult
     return out;
 }
 
+// ---------------------------------------------------------------- variance shadow maps
+
+// Mean depth and mean squared depth around uv over about 2 r map texels: the moments level whose
+// texels span at least that (level 0 spans `moments_block` map texels, each level twice the one
+// before), interpolated bilinearly between its four nearest texels. A box of the level's texel
+// size rather than the disk PCF uses, and only up to a factor 2 of the asked width.
+fn filtered_moments(light: LightGpu, uv: vec2<f32>, radius_texels: f32) -> vec2<f32> {
+    let block = f32(light.moments_block);
+    // ceil(log2(n)) for the footprint n in level-0 texels, in integers (no log2 rounding).
+    let n = u32(ceil(max(2.0 * radius_texels / block, 1.0)));
+    let widest = i32(textureNumLevels(moments)) - 1;
+    let level = min(select(i32(firstLeadingBit(n - 1u)) + 1, 0, n <= 1u), widest);
+    let texel_span = block * f32(1u << u32(level));
+    let p = uv * light.map_size_texels / texel_span - 0.5;
+    let i0 = vec2<i32>(floor(p));
+    let f = p - floor(p);
+    let last = vec2<i32>(textureDimensions(moments, level)) - 1;
+    let layer = i32(light.layer);
+    let m00 = textureLoad(moments, clamp(i0, vec2<i32>(0), last), layer, level).xy;
+    let m10 = textureLoad(moments, clamp(i0 + vec2<i32>(1, 0), vec2<i32>(0), last), layer, level).xy;
+    let m01 = textureLoad(moments, clamp(i0 + vec2<i32>(0, 1), vec2<i32>(0), last), layer, level).xy;
+    let m11 = textureLoad(moments, clamp(i0 + vec2<i32>(1, 1), vec2<i32>(0), last), layer, level).xy;
+    let top = m00 * (1.0 - f.x) + m10 * f.x;
+    let bottom = m01 * (1.0 - f.x) + m11 * f.x;
+    return top * (1.0 - f.y) + bottom * f.y;
+}
+
+// VSM (Donnelly & Lauritzen 2006): with mean mu and variance sigma² of the depths around the
+// lookup, Chebyshev's one-sided bound P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu
+// is taken as the lit fraction; t <= mu is lit.
+fn visibility_vsm(light: LightGpu, coord: ShadowCoord) -> f32 {
+    if clamp_outside() == 1u && outside_frustum(coord) {
+        return 1.0;
+    }
+    let m = filtered_moments(light, coord.uv, params.radius_texels);
+    let t = coord.depth_ndc - receiver_bias_ndc(light, coord, params.radius_texels);
+    if t <= m.x {
+        return 1.0;
+    }
+    let variance = max(m.y - m.x * m.x, params.vsm_min_variance);
+    let d = t - m.x;
+    return variance / (variance + d * d);
+}
+
 // The selected technique, with PCSS's intermediate values for the debug views.
 fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult {
     var out: PcssResult;
@@ -488,6 +534,9 @@ fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResu
         }
         case TECHNIQUE_NONE: {
             out.visibility = 1.0;
+        }
+        case TECHNIQUE_VSM: {
+            out.visibility = visibility_vsm(light, coord);
         }
         default: {
             out.visibility = visibility_hard(light, coord);

@@ -125,7 +125,7 @@ pub fn probe(
         let (coord, result) = twin.analysis_at(pixel, position, normal);
         let filter_radius_texels = match scene.shadow.technique {
             Technique::None | Technique::Hard => 0.0,
-            Technique::Pcf => scene.shadow.radius_texels,
+            Technique::Pcf | Technique::Vsm => scene.shadow.radius_texels,
             Technique::Pcss if result.search.found > 0 => result.penumbra.filter_radius_texels,
             Technique::Pcss => 0.0,
         };
@@ -182,6 +182,8 @@ pub fn probe(
             filter_samples: match scene.shadow.technique {
                 Technique::None => 0,
                 Technique::Hard => 1,
+                // Four moments texels, interpolated.
+                Technique::Vsm => 4,
                 Technique::Pcss if result.search.found == 0 => 0,
                 _ => scene.shadow.effective_samples(),
             },

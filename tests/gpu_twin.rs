@@ -301,3 +301,70 @@ fn the_blocker_depth_view_gives_the_twins_average_blocker_depth() {
         assert!(worst < 1e-3, "{name}: derived d_blocker differs by {worst:.2e}");
     }
 }
+
+/// VSM on the GPU and in the twin: the same moments chain, the same lookup, the same bound; for
+/// an orthographic and a spot light, and a map smaller than the array it shares.
+#[test]
+fn vsm_matches_twin() {
+    let (_ctx, mut renderer) = common::gpu();
+    for (name, radius) in [("games202", "6"), ("contact", "3"), ("multi_light", "10")] {
+        let scene = common::scene(name, &[("technique", "vsm"), ("radius_texels", radius)]);
+        let a = compare_scene(&mut renderer, &scene, 1e-3);
+        eprintln!(
+            "{name} vsm: {}/{} within 1e-3, max diff {:.4}, {} partial",
+            a.within, a.compared, a.max_diff, a.partial
+        );
+        assert!(a.within * 1000 >= a.compared * 995, "{name}: only {}/{} agree", a.within, a.compared);
+        assert!(a.partial > 20, "{name}: VSM should give soft edges ({} partial pixels)", a.partial);
+    }
+}
+
+/// Chebyshev's one-sided inequality: the VSM visibility is never below the true fraction of the
+/// filtered depths at or behind the receiver, weighted as the lookup weights them.
+#[test]
+fn vsm_is_never_below_the_true_lit_fraction() {
+    let (_ctx, mut renderer) = common::gpu();
+    let scene =
+        common::scene("games202", &[("technique", "vsm"), ("radius_texels", "6"), ("bias_mode", "none")]);
+    let frame = renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
+    let analysis = renderer.read_analysis().expect("analysis");
+    let map = renderer.read_shadow_map(0).expect("shadow map");
+    let (light, params) = (frame.lights[0], frame.params);
+    let mut twin = Twin::new(&light, &params, &map);
+    let mut compared = 0;
+    for y in (0..analysis.height).step_by(2) {
+        for x in (0..analysis.width).step_by(2) {
+            let i = analysis.index(x, y);
+            if !analysis.hit(i) {
+                continue;
+            }
+            let position = Vec3::from_slice(&analysis.position[i][..3]);
+            let normal = Vec3::from_slice(&analysis.normal[i][..3]);
+            let (coord, result) = twin.analysis_at((x, y), position, normal);
+            if shadowlab::shadow::outside_frustum(&coord) {
+                continue;
+            }
+            let fp = twin.moments().footprint(&light, coord.uv, params.radius_texels);
+            let mut lit = 0.0f64;
+            for (texel, (wx, wy)) in fp.texels.iter().zip(fp.weights) {
+                let (x0, y0) = (texel[0] * fp.span, texel[1] * fp.span);
+                let mut behind = 0usize;
+                for my in y0..y0 + fp.span {
+                    for mx in x0..x0 + fp.span {
+                        let z =
+                            map.depth_ndc[(my.min(map.size - 1) * map.size + mx.min(map.size - 1)) as usize];
+                        behind += usize::from(z >= coord.depth_ndc);
+                    }
+                }
+                lit += f64::from(wx * wy) * behind as f64 / f64::from(fp.span * fp.span);
+            }
+            assert!(
+                f64::from(result.visibility) >= lit - 1e-4,
+                "pixel {x},{y}: VSM {} below the true lit fraction {lit}",
+                result.visibility
+            );
+            compared += 1;
+        }
+    }
+    assert!(compared > 4000, "too few pixels ({compared})");
+}

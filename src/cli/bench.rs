@@ -65,7 +65,7 @@ struct Case {
 
 /// The rows: `none` (shading without any shadow lookup: the per-pixel floor), hard, PCF and PCSS
 /// at 16 and 32 samples, and both at the scene's own sample counts (50 + 50 on the homework);
-/// then those two again with the receiver-plane bias, where the scene uses another. With a bias
+/// then VSM, and PCF and PCSS again with the receiver-plane bias, where the scene uses another. With a bias
 /// that does not grow with the kernel, a floor tilted to the light finds itself in the blocker
 /// search, so PCSS filters every pixel; with the plane it filters only near real blockers.
 fn cases(scene: &Scene) -> Vec<Case> {
@@ -95,6 +95,8 @@ fn cases(scene: &Scene) -> Vec<Case> {
     for (s, b) in pcss_counts {
         out.push(case(format!("pcss {b}+{s}"), Technique::Pcss, Some(s), Some(b)));
     }
+    // VSM filters over the PCF radius with four reads of the moments, whatever the radius.
+    out.push(case("vsm".into(), Technique::Vsm, None, None));
     if scene.shadow.bias_mode != BiasMode::ReceiverPlane {
         let plane = Some(BiasMode::ReceiverPlane);
         out.push(Case {

@@ -119,7 +119,7 @@ pub fn inputs_from_scene(
             out.penumbra_width_world = 0.0;
             out.filter_radius_texels = match shadow.technique {
                 Technique::None | Technique::Hard => 0.0,
-                Technique::Pcf => shadow.radius_texels,
+                Technique::Pcf | Technique::Vsm => shadow.radius_texels,
                 Technique::Pcss => shadow.min_filter_radius_texels,
             };
             out.search_radius_texels = match shadow.technique {
@@ -138,7 +138,7 @@ pub fn inputs_from_scene(
             };
             let seed = kernels::pixel_seed((0, 0), shadow.noise_seed, false);
             out.pcf_samples = match shadow.technique {
-                Technique::None | Technique::Hard => vec![[0.0, 0.0]],
+                Technique::None | Technique::Hard | Technique::Vsm => vec![[0.0, 0.0]],
                 _ => kernels::kernel_points(shadow.pcf_kernel, shadow.samples, seed)
                     .iter()
                     .map(|p| p.to_array())

@@ -494,6 +494,7 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
         Technique::Hard => tr(lang, "hard shadows", "硬阴影"),
         Technique::Pcf => "PCF",
         Technique::Pcss => "PCSS",
+        Technique::Vsm => "VSM",
     };
     let tx = r.x as f32 + pad + u(30.0) + p.width(title, head) + u(14.0);
     let tech = p.fit(technique_name, u(22.0), r.right() - pad - tx);
@@ -539,6 +540,12 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
                         format!("{} {texels}", short_num(l.filter_radius_texels)),
                     ));
                     rows.push((tr(lang, "samples", "采样数"), l.filter_samples.to_string()));
+                }
+                Technique::Vsm => {
+                    rows.push((
+                        tr(lang, "filter radius", "滤波半径"),
+                        format!("{} {texels}", short_num(l.filter_radius_texels)),
+                    ));
                 }
                 Technique::Pcss => {
                     rows.push((

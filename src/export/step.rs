@@ -51,7 +51,7 @@ pub fn diagram_for(lesson: &Lesson, step_index: usize, scene: &Scene) -> Diagram
         } else {
             match scene.shadow.technique {
                 Technique::None | Technique::Hard => DiagramKind::TwoPass,
-                Technique::Pcf => DiagramKind::PcfKernel,
+                Technique::Pcf | Technique::Vsm => DiagramKind::PcfKernel,
                 Technique::Pcss => DiagramKind::PcssTriangles,
             }
         },

@@ -98,6 +98,8 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("min filter radius (texels)", "最小滤波半径（纹素）"),
     ("search radius (× light cone)", "搜索半径（× 光源锥）"),
     ("depth storage", "深度存储方式"),
+    ("VSM min variance (NDC²)", "VSM 最小方差（NDC²）"),
+    ("VSM", "VSM 方差阴影"),
     ("near / d on orthographic maps (NVIDIA's factor)", "正交贴图也乘 near / d（NVIDIA 的因子）"),
     ("RGBA8 round trip", "RGBA8 往返误差"),
     ("ground-truth samples", "真实结果采样数"),

@@ -4,6 +4,7 @@
 mod camera_pass;
 mod context;
 pub mod gpu_types;
+mod moments;
 mod pipelines;
 pub mod readback;
 mod reference_pass;
@@ -22,6 +23,7 @@ pub use timing::PassTimes;
 use crate::scene::{Kernel, MAX_LIGHTS, Scene, ShadowSettings, Technique};
 use crate::shadow::kernels::{MAX_TAPS, filter_taps, kernel_table};
 use gpu_types::{DYNAMIC_STRIDE, FrameGpu, ShadowViewGpu};
+use moments::Moments;
 use pipelines::{CameraOutputs, CameraPipelineKey, Layouts, Pipelines, ShadowPipelineKey};
 use scene_gpu::SceneGpu;
 use targets::{ShadowMaps, ShadowMapsKey, ViewTargets};
@@ -123,6 +125,8 @@ pub struct Renderer {
     albedo_placeholder: targets::AlbedoCache,
     compare_sampler: wgpu::Sampler,
     shadow_maps: Option<ShadowMaps>,
+    /// The maps' VSM moments, made with them and rebuilt for frames that use VSM.
+    moments: Option<Moments>,
     lights_bind_group: Option<wgpu::BindGroup>,
     scene_gpu: Option<SceneGpu>,
     targets: Option<ViewTargets>,
@@ -146,6 +150,8 @@ pub struct Frame {
     pub albedo_from_cache: bool,
     /// The shadow maps were kept from an earlier frame: nothing they depend on had changed.
     pub shadow_maps_kept: bool,
+    /// The VSM moments were rebuilt this frame.
+    pub moments_built: bool,
 }
 
 fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
@@ -219,6 +225,7 @@ impl Renderer {
             frame_bind_group,
             shadow_view_bind_group,
             shadow_maps: None,
+            moments: None,
             lights_bind_group: None,
             scene_gpu: None,
             targets: None,
@@ -348,6 +355,7 @@ impl Renderer {
         let timer = self.timer.as_ref().filter(|_| request.timestamps);
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
+        let vsm = scene.shadow.technique == Technique::Vsm;
         if !shadow_maps_kept {
             shadow_pass::encode(
                 &mut encoder,
@@ -357,7 +365,18 @@ impl Renderer {
                 &shadow_pipeline,
                 &self.shadow_view_bind_group,
                 timer,
+                !vsm,
             );
+        }
+        let mut moments_built = false;
+        if let Some(moments) = &mut self.moments {
+            if !shadow_maps_kept {
+                moments.current = false;
+            }
+            if vsm && !moments.current {
+                moments.encode(&mut encoder, &self.pipelines.moments, maps.layers, timer, shadow_maps_kept);
+                moments_built = true;
+            }
         }
         let camera = camera_pass::CameraPasses {
             depth_only: &self.pipelines.camera_depth,
@@ -379,7 +398,8 @@ impl Renderer {
         if let Some(maps) = &mut self.shadow_maps {
             maps.drawn_for = Some(maps_key);
         }
-        let frame = Frame { request: *request, lights, params, albedo_from_cache, shadow_maps_kept };
+        let frame =
+            Frame { request: *request, lights, params, albedo_from_cache, shadow_maps_kept, moments_built };
         self.last_frame = Some(frame.clone());
         Ok(frame)
     }
@@ -387,7 +407,7 @@ impl Renderer {
     /// GPU time of the shadow passes and the camera passes of the last frame rendered with
     /// `timestamps: true` (None where the adapter has no timestamp queries).
     pub fn last_pass_times(&self) -> Result<Option<PassTimes>, RenderError> {
-        let kept = self.last_frame.as_ref().is_some_and(|f| f.shadow_maps_kept);
+        let kept = self.last_frame.as_ref().is_some_and(|f| f.shadow_maps_kept && !f.moments_built);
         match &self.timer {
             // Kept maps cost nothing this frame (and wrote no timestamps).
             Some(t) => t.read(&self.device, &self.queue).map(|times| {
@@ -435,13 +455,16 @@ impl Renderer {
         let layers = scene.lights.len().max(1) as u32;
         if !self.shadow_maps.as_ref().is_some_and(|m| m.atlas_size == atlas_size && m.layers == layers) {
             let maps = ShadowMaps::new(device, atlas_size, layers);
+            let moments = Moments::new(device, &self.pipelines.moments, &maps);
             self.lights_bind_group = Some(self.shadow_inputs_group(
                 &self.layouts.lights,
                 self.lights_buffer.as_entire_binding(),
                 &self.params_buffer,
                 &maps,
+                Some(&moments),
             ));
             self.shadow_maps = Some(maps);
+            self.moments = Some(moments);
         }
         if self.targets.as_ref().is_none_or(|t| t.size != request.size) {
             let reuse = self.spare_targets.take().filter(|t| t.size == request.size);
@@ -501,30 +524,39 @@ impl Renderer {
     }
 
     /// Group 1 of the camera and reference shaders: light(s), parameters, maps, compare sampler,
-    /// kernel table.
+    /// kernel table, and the VSM moments where the layout has them (the camera's).
     fn shadow_inputs_group(
         &self,
         layout: &wgpu::BindGroupLayout,
         lights: wgpu::BindingResource<'_>,
         params: &wgpu::Buffer,
         maps: &ShadowMaps,
+        moments: Option<&Moments>,
     ) -> wgpu::BindGroup {
+        let moments = moments.map(|m| wgpu::BindGroupEntry {
+            binding: 5,
+            resource: wgpu::BindingResource::TextureView(&m.view),
+        });
+        let entries: Vec<_> = [
+            wgpu::BindGroupEntry { binding: 0, resource: lights },
+            wgpu::BindGroupEntry { binding: 1, resource: params.as_entire_binding() },
+            wgpu::BindGroupEntry {
+                binding: 2,
+                resource: wgpu::BindingResource::TextureView(&maps.array_view),
+            },
+            wgpu::BindGroupEntry {
+                binding: 3,
+                resource: wgpu::BindingResource::Sampler(&self.compare_sampler),
+            },
+            wgpu::BindGroupEntry { binding: 4, resource: self.kernel_table_buffer.as_entire_binding() },
+        ]
+        .into_iter()
+        .chain(moments)
+        .collect();
         self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("shadow inputs"),
             layout,
-            entries: &[
-                wgpu::BindGroupEntry { binding: 0, resource: lights },
-                wgpu::BindGroupEntry { binding: 1, resource: params.as_entire_binding() },
-                wgpu::BindGroupEntry {
-                    binding: 2,
-                    resource: wgpu::BindingResource::TextureView(&maps.array_view),
-                },
-                wgpu::BindGroupEntry {
-                    binding: 3,
-                    resource: wgpu::BindingResource::Sampler(&self.compare_sampler),
-                },
-                wgpu::BindGroupEntry { binding: 4, resource: self.kernel_table_buffer.as_entire_binding() },
-            ],
+            entries: &entries,
         })
     }
 

@@ -2,6 +2,7 @@
 //! shadow maps, 2 per object (the shadow pass uses 0 = light view, 1 = object).
 
 use super::gpu_types::{LightGpu, ShadowParamsGpu};
+use super::moments::MomentsPipelines;
 use super::shaders;
 use crate::scene::Vertex;
 use std::collections::HashMap;
@@ -66,28 +67,35 @@ fn sampler_entry(
 }
 
 /// Group 1 of the camera and reference shaders: light(s), params, shadow maps, compare sampler,
-/// kernel table.
-fn shadow_inputs_layout(device: &wgpu::Device, label: &str, dynamic_light: bool) -> wgpu::BindGroupLayout {
+/// kernel table, and for the camera (`with_moments`) the maps' VSM moments.
+fn shadow_inputs_layout(
+    device: &wgpu::Device,
+    label: &str,
+    dynamic_light: bool,
+    with_moments: bool,
+) -> wgpu::BindGroupLayout {
     let all = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
-    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
-        label: Some(label),
-        entries: &[
-            uniform_entry(0, all, dynamic_light),
-            uniform_entry(1, all, false),
-            texture_entry(2, all, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
-            sampler_entry(3, all, wgpu::SamplerBindingType::Comparison),
-            wgpu::BindGroupLayoutEntry {
-                binding: 4,
-                visibility: all,
-                ty: wgpu::BindingType::Buffer {
-                    ty: wgpu::BufferBindingType::Uniform,
-                    has_dynamic_offset: false,
-                    min_binding_size: None,
-                },
-                count: None,
+    let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
+    let moments = texture_entry(5, all, unfilterable, wgpu::TextureViewDimension::D2Array);
+    let entries = [
+        uniform_entry(0, all, dynamic_light),
+        uniform_entry(1, all, false),
+        texture_entry(2, all, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
+        sampler_entry(3, all, wgpu::SamplerBindingType::Comparison),
+        wgpu::BindGroupLayoutEntry {
+            binding: 4,
+            visibility: all,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Uniform,
+                has_dynamic_offset: false,
+                min_binding_size: None,
             },
-        ],
-    })
+            count: None,
+        },
+        moments,
+    ];
+    let used = if with_moments { &entries[..] } else { &entries[..5] };
+    device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: used })
 }
 
 impl Layouts {
@@ -99,7 +107,7 @@ impl Layouts {
                 label: Some("frame"),
                 entries: &[uniform_entry(0, vf, false)],
             }),
-            lights: shadow_inputs_layout(device, "lights", false),
+            lights: shadow_inputs_layout(device, "lights", false, true),
             albedo_cache: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("albedo cache"),
                 entries: &[texture_entry(
@@ -149,7 +157,7 @@ impl Layouts {
                     uniform_entry(3, wgpu::ShaderStages::COMPUTE, false),
                 ],
             }),
-            reference_light: shadow_inputs_layout(device, "reference light", true),
+            reference_light: shadow_inputs_layout(device, "reference light", true, false),
         }
     }
 }
@@ -238,6 +246,7 @@ pub struct Pipelines {
     /// Fills the view's albedo cache (`fs_albedo`).
     pub camera_albedo: wgpu::RenderPipeline,
     pub reference: wgpu::ComputePipeline,
+    pub moments: MomentsPipelines,
 }
 
 fn vertex_layout() -> wgpu::VertexBufferLayout<'static> {
@@ -284,6 +293,7 @@ impl Pipelines {
         let shadow_module = module(device, shaders::shadow_pass());
         let camera_module = module(device, shaders::camera());
         let reference_module = module(device, shaders::reference());
+        let moments = MomentsPipelines::new(device, &module(device, shaders::moments()));
         let shadow_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
             label: Some("shadow pass"),
             bind_group_layouts: &[Some(&layouts.shadow_view), Some(&layouts.object)],
@@ -351,6 +361,7 @@ impl Pipelines {
             camera_depth,
             camera_albedo,
             reference,
+            moments,
         };
         // Build the default variants now, so that a device that cannot compile them fails here.
         let defaults = ShadowParamsGpu::new(&Default::default());

@@ -131,6 +131,7 @@ impl Renderer {
             }),
             &params,
             &maps,
+            None,
         );
         let view_group = shadow_view_group(&device, &self.layouts, &view_buffer);
         // The reference's own shadow pass: no hardware bias and no culling, whatever the user

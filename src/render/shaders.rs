@@ -4,6 +4,7 @@ const COMMON: &str = include_str!("../../shaders/common.wgsl");
 const SHADOW_SAMPLING: &str = include_str!("../../shaders/shadow_sampling.wgsl");
 const SHADOW_PASS: &str = include_str!("../../shaders/shadow_pass.wgsl");
 const CAMERA: &str = include_str!("../../shaders/camera.wgsl");
+const MOMENTS: &str = include_str!("../../shaders/moments.wgsl");
 const REFERENCE: &str = include_str!("../../shaders/reference.wgsl");
 
 /// A composed shader module: its name (for errors and labels) and its full source.
@@ -38,6 +39,10 @@ pub fn camera() -> ShaderSource {
     )
 }
 
+pub fn moments() -> ShaderSource {
+    compose("moments", &[("moments.wgsl", MOMENTS)])
+}
+
 pub fn reference() -> ShaderSource {
     compose(
         "reference",
@@ -47,5 +52,5 @@ pub fn reference() -> ShaderSource {
 
 /// Every module the renderer builds (the naga validation test walks this list).
 pub fn all() -> Vec<ShaderSource> {
-    vec![shadow_pass(), camera(), reference()]
+    vec![shadow_pass(), camera(), moments(), reference()]
 }

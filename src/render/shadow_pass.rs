@@ -10,7 +10,8 @@ use super::timing::Timer;
 use crate::scene::Scene;
 
 /// Record one depth pass per light: clear to far (1.0), draw every object. `view_group` holds
-/// the lights' view matrices at DYNAMIC_STRIDE apart. The passes make span 0 of `timer`.
+/// the lights' view matrices at DYNAMIC_STRIDE apart. The passes begin span 0 of `timer`, and
+/// end it unless the VSM moments built from the maps do (`ends_span`).
 #[allow(clippy::too_many_arguments)]
 pub fn encode(
     encoder: &mut wgpu::CommandEncoder,
@@ -20,6 +21,7 @@ pub fn encode(
     pipeline: &wgpu::RenderPipeline,
     view_group: &wgpu::BindGroup,
     timer: Option<&Timer>,
+    ends_span: bool,
 ) {
     let layers = scene.lights.len().max(1);
     for layer in 0..layers {
@@ -34,7 +36,8 @@ pub fn encode(
                 }),
                 stencil_ops: None,
             }),
-            timestamp_writes: timer.and_then(|t| t.span_writes(0, layer == 0, layer + 1 == layers)),
+            timestamp_writes: timer
+                .and_then(|t| t.span_writes(0, layer == 0, ends_span && layer + 1 == layers)),
             occlusion_query_set: None,
             multiview_mask: None,
         });

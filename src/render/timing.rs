@@ -60,6 +60,20 @@ impl Timer {
         })
     }
 
+    /// The same for a compute pass.
+    pub fn compute_span_writes(
+        &self,
+        span: u32,
+        first: bool,
+        last: bool,
+    ) -> Option<wgpu::ComputePassTimestampWrites<'_>> {
+        (first || last).then_some(wgpu::ComputePassTimestampWrites {
+            query_set: &self.queries,
+            beginning_of_pass_write_index: first.then_some(2 * span),
+            end_of_pass_write_index: last.then_some(2 * span + 1),
+        })
+    }
+
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.resolve_query_set(&self.queries, 0..QUERY_COUNT, &self.resolve, 0);
         encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, BYTES);

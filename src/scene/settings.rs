@@ -11,6 +11,8 @@ pub enum Technique {
     Hard,
     Pcf,
     Pcss,
+    /// Variance shadow maps: Chebyshev's bound on the filtered mean and mean square of depth.
+    Vsm,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -70,7 +72,7 @@ macro_rules! enum_names {
         }
     };
 }
-enum_names!(Technique, None => "none", Hard => "hard", Pcf => "pcf", Pcss => "pcss");
+enum_names!(Technique, None => "none", Hard => "hard", Pcf => "pcf", Pcss => "pcss", Vsm => "vsm");
 enum_names!(
     BiasMode,
     None => "none",
@@ -126,6 +128,9 @@ pub struct ShadowSettings {
     /// sample does for every light (the copied bug: that factor carries a perspective light's
     /// penumbra onto its near plane; an orthographic map's uv are the same at every depth).
     pub ortho_near_factor: bool,
+    /// VSM: the least variance Chebyshev's bound uses, NDC depth squared (keeps a flat receiver
+    /// from shadowing itself where its filtered variance rounds to 0).
+    pub vsm_min_variance: f32,
     /// True: points outside the light frustum are lit. False shows the classic bug (wrapped
     /// lookups and a dark band past the far plane).
     pub clamp_outside: bool,
@@ -155,6 +160,7 @@ impl Default for ShadowSettings {
             search_radius_scale: 1.0,
             depth_storage: DepthStorage::Float32,
             ortho_near_factor: false,
+            vsm_min_variance: 1e-6,
             clamp_outside: true,
             reference_samples: 256,
         }
@@ -178,6 +184,7 @@ impl ShadowSettings {
             ("radius_texels", self.radius_texels),
             ("min_filter_radius_texels", self.min_filter_radius_texels),
             ("search_radius_scale", self.search_radius_scale),
+            ("vsm_min_variance", self.vsm_min_variance),
         ];
         for (key, v) in finite {
             if !v.is_finite() {
@@ -193,6 +200,7 @@ impl ShadowSettings {
             ("radius_texels", self.radius_texels, 0.0, 256.0),
             ("min_filter_radius_texels", self.min_filter_radius_texels, 0.0, 256.0),
             ("search_radius_scale", self.search_radius_scale, 0.0, 8.0),
+            ("vsm_min_variance", self.vsm_min_variance, 0.0, 1.0),
         ];
         for (key, v, lo, hi) in ranged {
             if !(lo..=hi).contains(&v) {

@@ -11,6 +11,7 @@ pub const TECHNIQUE_HARD: u32 = 0;
 pub const TECHNIQUE_PCF: u32 = 1;
 pub const TECHNIQUE_PCSS: u32 = 2;
 pub const TECHNIQUE_NONE: u32 = 3;
+pub const TECHNIQUE_VSM: u32 = 4;
 pub const BIAS_NONE: u32 = 0;
 pub const BIAS_CONSTANT: u32 = 1;
 pub const BIAS_SLOPE: u32 = 2;
@@ -27,10 +28,11 @@ pub const SIZE_MODEL_WIDTH: u32 = 0;
 pub const SIZE_MODEL_ANGULAR: u32 = 1;
 
 /// Every shared constant by its WGSL name, for the test that holds shaders/common.wgsl to them.
-pub const SHARED_CONSTANTS: [(&str, u32); 18] = [
+pub const SHARED_CONSTANTS: [(&str, u32); 19] = [
     ("TECHNIQUE_HARD", TECHNIQUE_HARD),
     ("TECHNIQUE_PCF", TECHNIQUE_PCF),
     ("TECHNIQUE_PCSS", TECHNIQUE_PCSS),
+    ("TECHNIQUE_VSM", TECHNIQUE_VSM),
     ("TECHNIQUE_NONE", TECHNIQUE_NONE),
     ("BIAS_NONE", BIAS_NONE),
     ("BIAS_CONSTANT", BIAS_CONSTANT),
@@ -54,6 +56,7 @@ pub fn technique_id(t: Technique) -> u32 {
         Technique::Pcf => TECHNIQUE_PCF,
         Technique::Pcss => TECHNIQUE_PCSS,
         Technique::None => TECHNIQUE_NONE,
+        Technique::Vsm => TECHNIQUE_VSM,
     }
 }
 
@@ -113,7 +116,8 @@ pub struct LightGpu {
     pub map_size_texels: f32,
     pub layer: u32,
     pub atlas_scale: f32,
-    pub _pad: u32,
+    /// Map texels per side of one level-0 texel of the VSM moments (1 up to MOMENTS_MAX_SIDE).
+    pub moments_block: u32,
 }
 
 #[repr(C)]
@@ -136,7 +140,8 @@ pub struct ShadowParamsGpu {
     pub search_radius_scale: f32,
     pub depth_storage: u32,
     pub ortho_near_factor: u32,
-    pub _pad: [u32; 3],
+    pub vsm_min_variance: f32,
+    pub _pad: [u32; 2],
 }
 
 const _: () = assert!(std::mem::size_of::<LightGpu>() == 160);
@@ -162,9 +167,19 @@ impl ShadowParamsGpu {
             search_radius_scale: s.search_radius_scale,
             depth_storage: depth_storage_id(s.depth_storage),
             ortho_near_factor: u32::from(s.ortho_near_factor),
-            _pad: [0; 3],
+            vsm_min_variance: s.vsm_min_variance,
+            _pad: [0; 2],
         }
     }
+}
+
+/// The VSM moments keep at most this many texels per side at level 0; larger maps are averaged
+/// in blocks (see shaders/moments.wgsl).
+pub const MOMENTS_MAX_SIDE: u32 = 2048;
+
+/// Map texels per side of a level-0 moments texel for an array `atlas_size` texels wide.
+pub fn moments_block(atlas_size: u32) -> u32 {
+    atlas_size.div_ceil(MOMENTS_MAX_SIDE).max(1)
 }
 
 impl LightGpu {
@@ -215,7 +230,7 @@ impl LightGpu {
             map_size_texels: light.shadow_map_size as f32,
             layer,
             atlas_scale: light.shadow_map_size as f32 / atlas_size as f32,
-            _pad: 0,
+            moments_block: moments_block(atlas_size),
         }
     }
 }

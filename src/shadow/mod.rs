@@ -4,12 +4,14 @@
 
 pub mod gpu;
 pub mod kernels;
+pub mod moments;
 
 use crate::scene::Kernel;
 use glam::{Vec2, Vec3, Vec4};
 pub use gpu::{
     BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, DEPTH_RGBA8, LightGpu, SIZE_MODEL_ANGULAR,
-    ShadowParamsGpu, TECHNIQUE_HARD, TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS, kernel_from_id,
+    ShadowParamsGpu, TECHNIQUE_HARD, TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS, TECHNIQUE_VSM,
+    kernel_from_id,
 };
 use kernels::{filter_taps, kernel_offset};
 
@@ -73,6 +75,8 @@ pub struct Twin<'a> {
     pub map: &'a DepthImage,
     /// When Some, every lookup is recorded.
     pub trace: Option<Vec<Tap>>,
+    /// The VSM moments of `map`, built on first use.
+    moments: std::cell::OnceCell<moments::MomentsChain>,
 }
 
 fn orthographic(light: &LightGpu) -> bool {
@@ -174,7 +178,7 @@ fn wgsl_fract(v: Vec2) -> Vec2 {
 
 impl<'a> Twin<'a> {
     pub fn new(light: &'a LightGpu, params: &'a ShadowParamsGpu, map: &'a DepthImage) -> Self {
-        Self { light, params, map, trace: None }
+        Self { light, params, map, trace: None, moments: std::cell::OnceCell::new() }
     }
 
     fn record(&mut self, kind: TapKind, uv: Vec2, value: f32) {
@@ -388,6 +392,30 @@ impl<'a> Twin<'a> {
         out
     }
 
+    /// The VSM moments of the map, built on first use.
+    pub fn moments(&self) -> &moments::MomentsChain {
+        let (light, map) = (self.light, self.map);
+        let atlas = (light.map_size_texels / light.atlas_scale).round() as u32;
+        self.moments.get_or_init(|| moments::MomentsChain::new(map, atlas, light.moments_block))
+    }
+
+    /// VSM: Chebyshev's one-sided bound on the filtered moments (the shader's `visibility_vsm`).
+    pub fn visibility_vsm(&mut self, coord: &ShadowCoord) -> f32 {
+        let p = self.params;
+        if p.clamp_outside == 1 && outside_frustum(coord) {
+            return 1.0;
+        }
+        let m = self.moments().filtered(self.light, coord.uv, p.radius_texels);
+        self.record(TapKind::Filter, coord.uv, 1.0);
+        let t = coord.depth_ndc - self.receiver_bias_ndc(coord, p.radius_texels);
+        if t <= m.x {
+            return 1.0;
+        }
+        let variance = (m.y - m.x * m.x).max(p.vsm_min_variance);
+        let d = t - m.x;
+        variance / (variance + d * d)
+    }
+
     pub fn shadow_visibility(&mut self, coord: &ShadowCoord, seed: u32) -> PcssResult {
         match self.params.technique {
             TECHNIQUE_PCF => PcssResult {
@@ -396,6 +424,7 @@ impl<'a> Twin<'a> {
             },
             TECHNIQUE_PCSS => self.visibility_pcss(coord, seed),
             TECHNIQUE_NONE => PcssResult { visibility: 1.0, ..Default::default() },
+            TECHNIQUE_VSM => PcssResult { visibility: self.visibility_vsm(coord), ..Default::default() },
             _ => PcssResult { visibility: self.visibility_hard(coord), ..Default::default() },
         }
     }

@@ -51,6 +51,7 @@ const CONTROLS: &[(&str, &str)] = &[
     ("search_radius_scale", "search radius (× light cone)"),
     ("depth_storage", "depth storage"),
     ("ortho_near_factor", "near / d on orthographic maps (NVIDIA's factor)"),
+    ("vsm_min_variance", "VSM min variance (NDC²)"),
     ("reference_samples", "ground-truth samples"),
     ("light.N.shadow_map_size", "shadow map (texels)"),
     ("light.N.extent", "half-width (world units)"),
@@ -200,6 +201,17 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         .checkbox(&mut s.ortho_near_factor, tr("near / d on orthographic maps (NVIDIA's factor)"))
         .on_hover_text(key_hint(lang, "ortho_near_factor"))
         .changed();
+    ui.separator();
+    ui.heading(tr("VSM"));
+    changed |= ui
+        .add(
+            Slider::new(&mut s.vsm_min_variance, 0.0..=1e-3)
+                .logarithmic(true)
+                .text(tr("VSM min variance (NDC²)")),
+        )
+        .on_hover_text(key_hint(lang, "vsm_min_variance"))
+        .changed();
+    ui.separator();
     changed |= ui
         .add(
             Slider::new(&mut s.reference_samples, 1..=1024)

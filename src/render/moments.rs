@@ -1,0 +1,193 @@
+//! The VSM moments (shaders/moments.wgsl): (depth, depth²) per block of shadow-map texels, as a
+//! mip chain built by compute passes after the shadow pass, for frames that use VSM.
+
+use super::targets::ShadowMaps;
+use super::timing::Timer;
+use crate::shadow::gpu::moments_block;
+
+pub const MOMENTS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
+/// The compute shaders' workgroup side.
+const WORKGROUP: u32 = 8;
+
+/// The two compute pipelines: level 0 from the depth maps, each further level from the one before.
+pub struct MomentsPipelines {
+    from_depth_layout: wgpu::BindGroupLayout,
+    reduce_layout: wgpu::BindGroupLayout,
+    from_depth: wgpu::ComputePipeline,
+    reduce: wgpu::ComputePipeline,
+}
+
+fn texture_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::Texture {
+            sample_type,
+            view_dimension: wgpu::TextureViewDimension::D2Array,
+            multisampled: false,
+        },
+        count: None,
+    }
+}
+
+const OUTPUT_ENTRY: wgpu::BindGroupLayoutEntry = wgpu::BindGroupLayoutEntry {
+    binding: 2,
+    visibility: wgpu::ShaderStages::COMPUTE,
+    ty: wgpu::BindingType::StorageTexture {
+        access: wgpu::StorageTextureAccess::WriteOnly,
+        format: MOMENTS_FORMAT,
+        view_dimension: wgpu::TextureViewDimension::D2Array,
+    },
+    count: None,
+};
+
+const INFO_ENTRY: wgpu::BindGroupLayoutEntry = wgpu::BindGroupLayoutEntry {
+    binding: 3,
+    visibility: wgpu::ShaderStages::COMPUTE,
+    ty: wgpu::BindingType::Buffer {
+        ty: wgpu::BufferBindingType::Uniform,
+        has_dynamic_offset: false,
+        min_binding_size: None,
+    },
+    count: None,
+};
+
+impl MomentsPipelines {
+    pub fn new(device: &wgpu::Device, module: &wgpu::ShaderModule) -> Self {
+        let from_depth_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("moments from depth"),
+            entries: &[texture_entry(0, wgpu::TextureSampleType::Depth), OUTPUT_ENTRY, INFO_ENTRY],
+        });
+        let reduce_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("moments reduce"),
+            entries: &[texture_entry(1, wgpu::TextureSampleType::Float { filterable: false }), OUTPUT_ENTRY],
+        });
+        let pipeline = |label, layout: &wgpu::BindGroupLayout, entry_point| {
+            let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+                label: Some(label),
+                bind_group_layouts: &[Some(layout)],
+                immediate_size: 0,
+            });
+            device.create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                label: Some(label),
+                layout: Some(&pipeline_layout),
+                module,
+                entry_point: Some(entry_point),
+                compilation_options: Default::default(),
+                cache: None,
+            })
+        };
+        let from_depth = pipeline("moments from depth", &from_depth_layout, "cs_moments_from_depth");
+        let reduce = pipeline("moments reduce", &reduce_layout, "cs_moments_reduce");
+        Self { from_depth_layout, reduce_layout, from_depth, reduce }
+    }
+}
+
+/// The moments of one shadow-map array.
+pub struct Moments {
+    /// Every level, for the camera pass (group 1, binding 5).
+    pub view: wgpu::TextureView,
+    /// Per level: what writes it (the maps or the level before) and its size in texels.
+    levels: Vec<(wgpu::BindGroup, u32)>,
+    /// The moments describe the maps as drawn (false once the maps are redrawn without them).
+    pub current: bool,
+}
+
+impl Moments {
+    pub fn new(device: &wgpu::Device, pipelines: &MomentsPipelines, maps: &ShadowMaps) -> Self {
+        let block = moments_block(maps.atlas_size);
+        let side = maps.atlas_size.div_ceil(block);
+        let level_count = side.ilog2() + 1;
+        let texture = device.create_texture(&wgpu::TextureDescriptor {
+            label: Some("vsm moments"),
+            size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: maps.layers },
+            mip_level_count: level_count,
+            sample_count: 1,
+            dimension: wgpu::TextureDimension::D2,
+            format: MOMENTS_FORMAT,
+            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            view_formats: &[],
+        });
+        let info = device.create_buffer(&wgpu::BufferDescriptor {
+            label: Some("moments info"),
+            size: 16,
+            usage: wgpu::BufferUsages::UNIFORM,
+            mapped_at_creation: true,
+        });
+        if let Ok(mut range) = info.slice(..).get_mapped_range_mut() {
+            range.copy_from_slice(bytemuck::cast_slice(&[block, 0u32, 0, 0]));
+        }
+        info.unmap();
+        let level_view = |level| {
+            texture.create_view(&wgpu::TextureViewDescriptor {
+                dimension: Some(wgpu::TextureViewDimension::D2Array),
+                base_mip_level: level,
+                mip_level_count: Some(1),
+                ..Default::default()
+            })
+        };
+        let views: Vec<_> = (0..level_count).map(level_view).collect();
+        let levels = (0..level_count as usize)
+            .map(|level| {
+                let output = wgpu::BindGroupEntry {
+                    binding: 2,
+                    resource: wgpu::BindingResource::TextureView(&views[level]),
+                };
+                let group = match level {
+                    0 => device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("moments level 0"),
+                        layout: &pipelines.from_depth_layout,
+                        entries: &[
+                            wgpu::BindGroupEntry {
+                                binding: 0,
+                                resource: wgpu::BindingResource::TextureView(&maps.array_view),
+                            },
+                            output,
+                            wgpu::BindGroupEntry { binding: 3, resource: info.as_entire_binding() },
+                        ],
+                    }),
+                    _ => device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("moments level"),
+                        layout: &pipelines.reduce_layout,
+                        entries: &[
+                            wgpu::BindGroupEntry {
+                                binding: 1,
+                                resource: wgpu::BindingResource::TextureView(&views[level - 1]),
+                            },
+                            output,
+                        ],
+                    }),
+                };
+                (group, (side >> level).max(1))
+            })
+            .collect();
+        let view = texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        Self { view, levels, current: false }
+    }
+
+    /// Rebuild every level for the first `layers` maps. With `timer`, the pass writes the end of
+    /// span 0 (and its beginning when `begins_span`, where no shadow pass ran before it).
+    pub fn encode(
+        &mut self,
+        encoder: &mut wgpu::CommandEncoder,
+        pipelines: &MomentsPipelines,
+        layers: u32,
+        timer: Option<&Timer>,
+        begins_span: bool,
+    ) {
+        let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {
+            label: Some("vsm moments"),
+            timestamp_writes: timer.and_then(|t| t.compute_span_writes(0, begins_span, true)),
+        });
+        for (level, (group, side)) in self.levels.iter().enumerate() {
+            pass.set_pipeline(if level == 0 { &pipelines.from_depth } else { &pipelines.reduce });
+            pass.set_bind_group(0, group, &[]);
+            let groups = side.div_ceil(WORKGROUP);
+            pass.dispatch_workgroups(groups, groups, layers);
+        }
+        self.current = true;
+    }
+}
