@@ -25,6 +25,7 @@ const TECHNIQUE_PCF: u32 = 1u;
 const TECHNIQUE_PCSS: u32 = 2u;
 const TECHNIQUE_NONE: u32 = 3u;
 const TECHNIQUE_VSM: u32 = 4u;
+const TECHNIQUE_VSSM: u32 = 5u;
 const SIZE_MODEL_WIDTH: u32 = 0u;
 const SIZE_MODEL_ANGULAR: u32 = 1u;
 

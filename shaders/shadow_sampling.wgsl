@@ -394,6 +394,23 @@ struct BlockerSearch {
     avg_depth_linear: f32,    // d_blocker, world units (0 when none found)
 }
 
+// The blocker search's radius in uv: the cone from the receiver to the light's area, cut at
+// the near plane, times `search_radius_scale`.
+fn blocker_search_radius_uv(light: LightGpu, coord: ShadowCoord) -> f32 {
+    let d_r = coord.depth_linear;
+    var radius_world = 0.0;
+    if is_angular(light) {
+        radius_world = (d_r - light.near) * light.tan_half_angle;
+    } else {
+        radius_world = 0.5 * light.light_width_world * (d_r - light.near) / d_r;
+    }
+    return max(radius_world, 0.0) * params.search_radius_scale / light.frustum_width_world;
+}
+
+fn blocker_search_radius_texels(light: LightGpu, coord: ShadowCoord) -> f32 {
+    return blocker_search_radius_uv(light, coord) * light.map_size_texels;
+}
+
 // PCSS step 1: blocker search. The region is the cone from the receiver to the light's area,
 // cut at the near plane (NVIDIA: w_search = w_light * (d_r - near) / d_r, in uv / W_near).
 fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSearch {
@@ -402,14 +419,7 @@ fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSea
     if clamp_outside() == 1u && outside_frustum(coord) {
         return out;
     }
-    let d_r = coord.depth_linear;
-    var radius_world = 0.0;
-    if is_angular(light) {
-        radius_world = (d_r - light.near) * light.tan_half_angle;
-    } else {
-        radius_world = 0.5 * light.light_width_world * (d_r - light.near) / d_r;
-    }
-    let radius_uv = max(radius_world, 0.0) * params.search_radius_scale / light.frustum_width_world;
+    let radius_uv = blocker_search_radius_uv(light, coord);
     out.radius_texels = radius_uv * light.map_size_texels;
     let search_kernel = select(kernel(), KERNEL_VOGEL, kernel() == KERNEL_HARDWARE);
     let n = filter_taps(search_kernel, params.blocker_samples);
@@ -480,17 +490,22 @@ fn visibility_pcss(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult
 
 // ---------------------------------------------------------------- variance shadow maps
 
-// Mean depth and mean squared depth around uv over about 2 r map texels: the moments level whose
-// texels span at least that (level 0 spans `moments_block` map texels, each level twice the one
-// before), interpolated bilinearly between its four nearest texels. A box of the level's texel
-// size rather than the disk PCF uses, and only up to a factor 2 of the asked width.
+// Mean depth and mean squared depth around uv for a filter of radius r map texels: the moments
+// at the (fractional) level whose texels span r map texels (level 0 spans `moments_block` map
+// texels, each level twice the one before), bilinear within the two nearest levels and linear
+// between them; a tent about as wide as the disk PCF uses, without seams where the level changes.
 fn filtered_moments(light: LightGpu, uv: vec2<f32>, radius_texels: f32) -> vec2<f32> {
-    let block = f32(light.moments_block);
-    // ceil(log2(n)) for the footprint n in level-0 texels, in integers (no log2 rounding).
-    let n = u32(ceil(max(2.0 * radius_texels / block, 1.0)));
-    let widest = i32(textureNumLevels(moments)) - 1;
-    let level = min(select(i32(firstLeadingBit(n - 1u)) + 1, 0, n <= 1u), widest);
-    let texel_span = block * f32(1u << u32(level));
+    let widest = f32(textureNumLevels(moments) - 1u);
+    let level = clamp(log2(max(radius_texels / f32(light.moments_block), 1.0)), 0.0, widest);
+    let finer = floor(level);
+    let coarser = min(finer + 1.0, widest);
+    return mix(moments_at_level(light, uv, finer), moments_at_level(light, uv, coarser), level - finer);
+}
+
+// The moments at one level, bilinear between its four texels nearest to uv.
+fn moments_at_level(light: LightGpu, uv: vec2<f32>, level_f: f32) -> vec2<f32> {
+    let level = i32(level_f);
+    let texel_span = f32(light.moments_block) * exp2(level_f);
     let p = uv * light.map_size_texels / texel_span - 0.5;
     let i0 = vec2<i32>(floor(p));
     let f = p - floor(p);
@@ -508,12 +523,17 @@ fn filtered_moments(light: LightGpu, uv: vec2<f32>, radius_texels: f32) -> vec2<
 // VSM (Donnelly & Lauritzen 2006): with mean mu and variance sigma² of the depths around the
 // lookup, Chebyshev's one-sided bound P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu
 // is taken as the lit fraction; t <= mu is lit.
-fn visibility_vsm(light: LightGpu, coord: ShadowCoord) -> f32 {
+fn visibility_vsm(light: LightGpu, coord: ShadowCoord, radius_texels: f32) -> f32 {
     if clamp_outside() == 1u && outside_frustum(coord) {
         return 1.0;
     }
-    let m = filtered_moments(light, coord.uv, params.radius_texels);
-    let t = coord.depth_ndc - receiver_bias_ndc(light, coord, params.radius_texels);
+    let m = filtered_moments(light, coord.uv, radius_texels);
+    let t = coord.depth_ndc - receiver_bias_ndc(light, coord, radius_texels);
+    return chebyshev_upper_bound(m, t);
+}
+
+// P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu; 1 for t <= mu.
+fn chebyshev_upper_bound(m: vec2<f32>, t: f32) -> f32 {
     if t <= m.x {
         return 1.0;
     }
@@ -521,6 +541,34 @@ fn visibility_vsm(light: LightGpu, coord: ShadowCoord) -> f32 {
     let d = t - m.x;
     return variance / (variance + d * d);
 }
+
+// VSSM (Yang et al. 2010): over PCSS's search region, the moments give the mean depth z_avg
+// and Chebyshev's bound P of the unoccluded share; with the unoccluded depths taken as the
+// receiver's, z_avg = P t + (1 - P) z_occ gives z_occ = (z_avg - P t) / (1 - P), the average
+// blocker depth (NDC, then linear). Then PCSS's similar triangles, and a VSM filter of half the
+// penumbra. `found` is 1 where blockers were estimated (the count has no meaning here).
+fn visibility_vssm(light: LightGpu, coord: ShadowCoord) -> PcssResult {
+    var out: PcssResult;
+    out.visibility = 1.0;
+    if clamp_outside() == 1u && outside_frustum(coord) {
+        return out;
+    }
+    out.search.radius_texels = blocker_search_radius_texels(light, coord);
+    let m = filtered_moments(light, coord.uv, out.search.radius_texels);
+    let t = coord.depth_ndc - receiver_bias_ndc(light, coord, 0.0);
+    let unoccluded = chebyshev_upper_bound(m, t);
+    if unoccluded >= 1.0 {
+        return out;
+    }
+    let z_occ = (m.x - unoccluded * t) / (1.0 - unoccluded);
+    out.search.found = 1u;
+    out.search.avg_depth_linear = depth_linear_from_ndc(light, clamp(z_occ, 0.0, 1.0));
+    out.penumbra = estimate_penumbra(light, coord, out.search.avg_depth_linear);
+    out.visibility = visibility_vsm(light, coord, out.penumbra.filter_radius_texels);
+    return out;
+}
+
+// The selected technique, with PCSS's intermediate values for the debug views.
 
 // The selected technique, with PCSS's intermediate values for the debug views.
 fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult {
@@ -536,7 +584,10 @@ fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResu
             out.visibility = 1.0;
         }
         case TECHNIQUE_VSM: {
-            out.visibility = visibility_vsm(light, coord);
+            out.visibility = visibility_vsm(light, coord, params.radius_texels);
+        }
+        case TECHNIQUE_VSSM: {
+            out = visibility_vssm(light, coord);
         }
         default: {
             out.visibility = visibility_hard(light, coord);

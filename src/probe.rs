@@ -126,8 +126,10 @@ pub fn probe(
         let filter_radius_texels = match scene.shadow.technique {
             Technique::None | Technique::Hard => 0.0,
             Technique::Pcf | Technique::Vsm => scene.shadow.radius_texels,
-            Technique::Pcss if result.search.found > 0 => result.penumbra.filter_radius_texels,
-            Technique::Pcss => 0.0,
+            Technique::Pcss | Technique::Vssm if result.search.found > 0 => {
+                result.penumbra.filter_radius_texels
+            }
+            Technique::Pcss | Technique::Vssm => 0.0,
         };
         let map_size = light_gpu.map_size_texels;
         let stored = twin.stored_depth_ndc(coord.uv);
@@ -182,8 +184,10 @@ pub fn probe(
             filter_samples: match scene.shadow.technique {
                 Technique::None => 0,
                 Technique::Hard => 1,
-                // Four moments texels, interpolated.
-                Technique::Vsm => 4,
+                // Four moments texels on each of two levels, interpolated.
+                Technique::Vsm => 8,
+                Technique::Vssm if result.search.found == 0 => 0,
+                Technique::Vssm => 8,
                 Technique::Pcss if result.search.found == 0 => 0,
                 _ => scene.shadow.effective_samples(),
             },

@@ -693,6 +693,7 @@ fn bench_json_has_a_row_per_technique_with_every_frame_and_the_adapter() {
             "pcss 16+16",
             "pcss 32+32",
             "vsm",
+            "vssm",
             "pcf 32 plane-bias",
             "pcss 32+32 plane-bias"
         ],

@@ -351,6 +351,33 @@ fn an_angular_lights_penumbra_grows_with_the_gap_as_its_formula_says() {
     assert!((1.6..=2.4).contains(&ratio), "penumbra ratio {ratio:.2} for edges 10.2 / 5.2 up: {widths:?}");
 }
 
+/// VSSM's penumbra against the ground truth on the slab edges: the blocker depth comes from the
+/// moments over the search region and the filter from a mip chain, so it is looser than PCSS
+/// with the receiver-plane bias; it stays within a factor 1.6 either way.
+#[test]
+fn vssm_penumbrae_stay_within_a_factor_of_the_ground_truth() {
+    let (_ctx, mut renderer) = common::gpu();
+    let mut report = Vec::new();
+    for file in ["slab_edges_sun", "slab_edges_spot"] {
+        let path = common::repo_path(&format!("tests/data/scenes/{file}.toml"));
+        let overrides = vec![("technique".to_string(), "vssm".to_string())];
+        let scene = shadowlab::scene::load_scene(&path, &overrides).expect("scene");
+        for (x, top) in [(-6.0f32, 5.2f32), (6.0, 10.2)] {
+            let on_floor = edge_shadow_on_floor(&scene, glam::Vec3::new(x, top, -8.0));
+            let measure = |renderer: &mut Renderer, reference| {
+                measured_penumbra_in(renderer, scene.clone(), on_floor.x, on_floor.z, 8.0, reference)
+            };
+            let truth = measure(&mut renderer, true);
+            let vssm = measure(&mut renderer, false);
+            report
+                .push(format!("{file}, edge {top} up: ground truth {truth:.2}, VSSM {vssm:.2} world units"));
+            let ratio = vssm / truth;
+            assert!((1.0 / 1.6..=1.6).contains(&ratio), "{}", report.join("\n"));
+        }
+    }
+    eprintln!("{}", report.join("\n"));
+}
+
 #[test]
 fn a_directional_lights_ground_truth_tends_to_its_hard_shadow() {
     // The width is turned into the angle it subtends at the target, and the reference tilts the

@@ -95,8 +95,9 @@ fn cases(scene: &Scene) -> Vec<Case> {
     for (s, b) in pcss_counts {
         out.push(case(format!("pcss {b}+{s}"), Technique::Pcss, Some(s), Some(b)));
     }
-    // VSM filters over the PCF radius with four reads of the moments, whatever the radius.
+    // VSM filters over the PCF radius with eight reads of the moments, whatever the radius.
     out.push(case("vsm".into(), Technique::Vsm, None, None));
+    out.push(case("vssm".into(), Technique::Vssm, None, None));
     if scene.shadow.bias_mode != BiasMode::ReceiverPlane {
         let plane = Some(BiasMode::ReceiverPlane);
         out.push(Case {

@@ -80,7 +80,7 @@ pub fn inputs_from_scene(
             out.receiver_depth_linear = p.receiver_depth_linear;
             out.stored_depth_linear = p.stored_depth_linear;
             out.blocker_depth_linear = match shadow.technique {
-                Technique::Pcss => p.avg_blocker_depth_linear,
+                Technique::Pcss | Technique::Vssm => p.avg_blocker_depth_linear,
                 // No blocker search: the blocker is the surface stored in the probe's texel,
                 // when it is in front of the receiver.
                 _ => {
@@ -120,10 +120,12 @@ pub fn inputs_from_scene(
             out.filter_radius_texels = match shadow.technique {
                 Technique::None | Technique::Hard => 0.0,
                 Technique::Pcf | Technique::Vsm => shadow.radius_texels,
-                Technique::Pcss => shadow.min_filter_radius_texels,
+                Technique::Pcss | Technique::Vssm => shadow.min_filter_radius_texels,
             };
             out.search_radius_texels = match shadow.technique {
-                Technique::Pcss => search_radius_uv(light, d) * shadow.search_radius_scale * map,
+                Technique::Pcss | Technique::Vssm => {
+                    search_radius_uv(light, d) * shadow.search_radius_scale * map
+                }
                 _ => 0.0,
             };
             let texel_world = light.texel_world_at(d);
@@ -138,7 +140,7 @@ pub fn inputs_from_scene(
             };
             let seed = kernels::pixel_seed((0, 0), shadow.noise_seed, false);
             out.pcf_samples = match shadow.technique {
-                Technique::None | Technique::Hard | Technique::Vsm => vec![[0.0, 0.0]],
+                Technique::None | Technique::Hard | Technique::Vsm | Technique::Vssm => vec![[0.0, 0.0]],
                 _ => kernels::kernel_points(shadow.pcf_kernel, shadow.samples, seed)
                     .iter()
                     .map(|p| p.to_array())

@@ -495,6 +495,7 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
         Technique::Pcf => "PCF",
         Technique::Pcss => "PCSS",
         Technique::Vsm => "VSM",
+        Technique::Vssm => "VSSM",
     };
     let tx = r.x as f32 + pad + u(30.0) + p.width(title, head) + u(14.0);
     let tech = p.fit(technique_name, u(22.0), r.right() - pad - tx);
@@ -547,7 +548,7 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
                         format!("{} {texels}", short_num(l.filter_radius_texels)),
                     ));
                 }
-                Technique::Pcss => {
+                Technique::Pcss | Technique::Vssm => {
                     rows.push((
                         tr(lang, "blockers", "遮挡物"),
                         format!("{} / {}", l.blockers_found, l.blocker_samples),

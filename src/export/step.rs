@@ -52,7 +52,7 @@ pub fn diagram_for(lesson: &Lesson, step_index: usize, scene: &Scene) -> Diagram
             match scene.shadow.technique {
                 Technique::None | Technique::Hard => DiagramKind::TwoPass,
                 Technique::Pcf | Technique::Vsm => DiagramKind::PcfKernel,
-                Technique::Pcss => DiagramKind::PcssTriangles,
+                Technique::Pcss | Technique::Vssm => DiagramKind::PcssTriangles,
             }
         },
     )

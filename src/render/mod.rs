@@ -355,7 +355,7 @@ impl Renderer {
         let timer = self.timer.as_ref().filter(|_| request.timestamps);
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
-        let vsm = scene.shadow.technique == Technique::Vsm;
+        let vsm = matches!(scene.shadow.technique, Technique::Vsm | Technique::Vssm);
         if !shadow_maps_kept {
             shadow_pass::encode(
                 &mut encoder,

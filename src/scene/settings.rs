@@ -13,6 +13,10 @@ pub enum Technique {
     Pcss,
     /// Variance shadow maps: Chebyshev's bound on the filtered mean and mean square of depth.
     Vsm,
+    /// Variance soft shadow mapping: PCSS's three steps with VSM's moments (the average blocker
+    /// depth estimated from the moments over the search region, then a VSM filter of the
+    /// penumbra's size).
+    Vssm,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -72,7 +76,15 @@ macro_rules! enum_names {
         }
     };
 }
-enum_names!(Technique, None => "none", Hard => "hard", Pcf => "pcf", Pcss => "pcss", Vsm => "vsm");
+enum_names!(
+    Technique,
+    None => "none",
+    Hard => "hard",
+    Pcf => "pcf",
+    Pcss => "pcss",
+    Vsm => "vsm",
+    Vssm => "vssm"
+);
 enum_names!(
     BiasMode,
     None => "none",

@@ -12,6 +12,7 @@ pub const TECHNIQUE_PCF: u32 = 1;
 pub const TECHNIQUE_PCSS: u32 = 2;
 pub const TECHNIQUE_NONE: u32 = 3;
 pub const TECHNIQUE_VSM: u32 = 4;
+pub const TECHNIQUE_VSSM: u32 = 5;
 pub const BIAS_NONE: u32 = 0;
 pub const BIAS_CONSTANT: u32 = 1;
 pub const BIAS_SLOPE: u32 = 2;
@@ -28,11 +29,12 @@ pub const SIZE_MODEL_WIDTH: u32 = 0;
 pub const SIZE_MODEL_ANGULAR: u32 = 1;
 
 /// Every shared constant by its WGSL name, for the test that holds shaders/common.wgsl to them.
-pub const SHARED_CONSTANTS: [(&str, u32); 19] = [
+pub const SHARED_CONSTANTS: [(&str, u32); 20] = [
     ("TECHNIQUE_HARD", TECHNIQUE_HARD),
     ("TECHNIQUE_PCF", TECHNIQUE_PCF),
     ("TECHNIQUE_PCSS", TECHNIQUE_PCSS),
     ("TECHNIQUE_VSM", TECHNIQUE_VSM),
+    ("TECHNIQUE_VSSM", TECHNIQUE_VSSM),
     ("TECHNIQUE_NONE", TECHNIQUE_NONE),
     ("BIAS_NONE", BIAS_NONE),
     ("BIAS_CONSTANT", BIAS_CONSTANT),
@@ -57,6 +59,7 @@ pub fn technique_id(t: Technique) -> u32 {
         Technique::Pcss => TECHNIQUE_PCSS,
         Technique::None => TECHNIQUE_NONE,
         Technique::Vsm => TECHNIQUE_VSM,
+        Technique::Vssm => TECHNIQUE_VSSM,
     }
 }
 

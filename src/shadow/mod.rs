@@ -11,7 +11,7 @@ use glam::{Vec2, Vec3, Vec4};
 pub use gpu::{
     BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, DEPTH_RGBA8, LightGpu, SIZE_MODEL_ANGULAR,
     ShadowParamsGpu, TECHNIQUE_HARD, TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS, TECHNIQUE_VSM,
-    kernel_from_id,
+    TECHNIQUE_VSSM, kernel_from_id,
 };
 use kernels::{filter_taps, kernel_offset};
 
@@ -320,19 +320,25 @@ impl<'a> Twin<'a> {
         lit / n as f32
     }
 
-    pub fn search_blockers(&mut self, coord: &ShadowCoord, seed: u32) -> BlockerSearch {
+    /// The blocker search's radius in uv (the shader's `blocker_search_radius_uv`).
+    pub fn blocker_search_radius_uv(&self, coord: &ShadowCoord) -> f32 {
         let light = self.light;
-        let mut out = BlockerSearch::default();
-        if self.params.clamp_outside == 1 && outside_frustum(coord) {
-            return out;
-        }
         let d_r = coord.depth_linear;
         let radius_world = if light.size_model == SIZE_MODEL_ANGULAR {
             (d_r - light.near) * light.tan_half_angle
         } else {
             0.5 * light.light_width_world * (d_r - light.near) / d_r
         };
-        let radius_uv = radius_world.max(0.0) * self.params.search_radius_scale / light.frustum_width_world;
+        radius_world.max(0.0) * self.params.search_radius_scale / light.frustum_width_world
+    }
+
+    pub fn search_blockers(&mut self, coord: &ShadowCoord, seed: u32) -> BlockerSearch {
+        let light = self.light;
+        let mut out = BlockerSearch::default();
+        if self.params.clamp_outside == 1 && outside_frustum(coord) {
+            return out;
+        }
+        let radius_uv = self.blocker_search_radius_uv(coord);
         out.radius_texels = radius_uv * light.map_size_texels;
         let mut kernel = kernel_from_id(self.params.kernel);
         if kernel == Kernel::Hardware {
@@ -400,20 +406,49 @@ impl<'a> Twin<'a> {
     }
 
     /// VSM: Chebyshev's one-sided bound on the filtered moments (the shader's `visibility_vsm`).
-    pub fn visibility_vsm(&mut self, coord: &ShadowCoord) -> f32 {
-        let p = self.params;
-        if p.clamp_outside == 1 && outside_frustum(coord) {
+    pub fn visibility_vsm(&mut self, coord: &ShadowCoord, radius_texels: f32) -> f32 {
+        if self.params.clamp_outside == 1 && outside_frustum(coord) {
             return 1.0;
         }
-        let m = self.moments().filtered(self.light, coord.uv, p.radius_texels);
-        self.record(TapKind::Filter, coord.uv, 1.0);
-        let t = coord.depth_ndc - self.receiver_bias_ndc(coord, p.radius_texels);
+        let m = self.moments().filtered(self.light, coord.uv, radius_texels);
+        let t = coord.depth_ndc - self.receiver_bias_ndc(coord, radius_texels);
+        let v = self.chebyshev_upper_bound(m, t);
+        self.record(TapKind::Filter, coord.uv, v);
+        v
+    }
+
+    /// P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu; 1 for t <= mu.
+    fn chebyshev_upper_bound(&self, m: Vec2, t: f32) -> f32 {
         if t <= m.x {
             return 1.0;
         }
-        let variance = (m.y - m.x * m.x).max(p.vsm_min_variance);
+        let variance = (m.y - m.x * m.x).max(self.params.vsm_min_variance);
         let d = t - m.x;
         variance / (variance + d * d)
+    }
+
+    /// VSSM (the shader's `visibility_vssm`): the average blocker depth from the moments over
+    /// the search region, PCSS's similar triangles, a VSM filter of half the penumbra.
+    pub fn visibility_vssm(&mut self, coord: &ShadowCoord) -> PcssResult {
+        let mut out = PcssResult { visibility: 1.0, ..Default::default() };
+        if self.params.clamp_outside == 1 && outside_frustum(coord) {
+            return out;
+        }
+        let light = self.light;
+        out.search.radius_texels = self.blocker_search_radius_uv(coord) * light.map_size_texels;
+        let m = self.moments().filtered(light, coord.uv, out.search.radius_texels);
+        let t = coord.depth_ndc - self.receiver_bias_ndc(coord, 0.0);
+        let unoccluded = self.chebyshev_upper_bound(m, t);
+        self.record(TapKind::BlockerSearch, coord.uv, 1.0 - unoccluded);
+        if unoccluded >= 1.0 {
+            return out;
+        }
+        let z_occ = (m.x - unoccluded * t) / (1.0 - unoccluded);
+        out.search.found = 1;
+        out.search.avg_depth_linear = depth_linear_from_ndc(light, z_occ.clamp(0.0, 1.0));
+        out.penumbra = self.estimate_penumbra(coord, out.search.avg_depth_linear);
+        out.visibility = self.visibility_vsm(coord, out.penumbra.filter_radius_texels);
+        out
     }
 
     pub fn shadow_visibility(&mut self, coord: &ShadowCoord, seed: u32) -> PcssResult {
@@ -424,7 +459,11 @@ impl<'a> Twin<'a> {
             },
             TECHNIQUE_PCSS => self.visibility_pcss(coord, seed),
             TECHNIQUE_NONE => PcssResult { visibility: 1.0, ..Default::default() },
-            TECHNIQUE_VSM => PcssResult { visibility: self.visibility_vsm(coord), ..Default::default() },
+            TECHNIQUE_VSM => PcssResult {
+                visibility: self.visibility_vsm(coord, self.params.radius_texels),
+                ..Default::default()
+            },
+            TECHNIQUE_VSSM => self.visibility_vssm(coord),
             _ => PcssResult { visibility: self.visibility_hard(coord), ..Default::default() },
         }
     }

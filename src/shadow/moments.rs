@@ -50,16 +50,22 @@ impl MomentsChain {
         Self { levels }
     }
 
-    /// Which texels `filtered_moments` reads at `uv` for a filter radius in map texels: the
-    /// level, how many map texels one of its texels spans per side, and the four texels with
-    /// their bilinear weights (00, 10, 01, 11).
-    pub fn footprint(&self, light: &LightGpu, uv: Vec2, radius_texels: f32) -> Footprint {
-        let block = light.moments_block as f32;
-        let n = (2.0 * radius_texels / block).max(1.0).ceil() as u32;
-        let widest = self.levels.len() - 1;
-        let level = if n <= 1 { 0 } else { ((n - 1).ilog2() + 1) as usize }.min(widest);
+    /// The lookup of `filtered_moments`: the fractional level for a filter radius in map texels,
+    /// and the two levels it blends with their weights.
+    pub fn levels_for(&self, light: &LightGpu, radius_texels: f32) -> [(usize, f32); 2] {
+        let widest = (self.levels.len() - 1) as f32;
+        let level = (radius_texels / light.moments_block as f32).max(1.0).log2().clamp(0.0, widest);
+        let finer = level.floor();
+        let coarser = (finer + 1.0).min(widest);
+        [(finer as usize, 1.0 - (level - finer)), (coarser as usize, level - finer)]
+    }
+
+    /// Which texels a lookup reads at one level: its span in map texels per side, and the four
+    /// texels with their bilinear weights (00, 10, 01, 11).
+    pub fn footprint(&self, light: &LightGpu, uv: Vec2, level: usize) -> Footprint {
         let span = light.moments_block << level;
-        let p = uv * light.map_size_texels / span as f32 - Vec2::splat(0.5);
+        let p = uv * light.map_size_texels / (light.moments_block as f32 * (level as f32).exp2())
+            - Vec2::splat(0.5);
         let i0 = p.floor();
         let f = p - i0;
         let last = self.levels[level].0 as i32 - 1;
@@ -74,16 +80,22 @@ impl MomentsChain {
         }
     }
 
-    /// What `filtered_moments` reads at `uv` for a filter radius in map texels.
-    pub fn filtered(&self, light: &LightGpu, uv: Vec2, radius_texels: f32) -> Vec2 {
-        let fp = self.footprint(light, uv, radius_texels);
-        let (side, texels) = &self.levels[fp.level];
+    fn at_level(&self, light: &LightGpu, uv: Vec2, level: usize) -> Vec2 {
+        let fp = self.footprint(light, uv, level);
+        let (side, texels) = &self.levels[level];
         let m = |i: usize| texels[(fp.texels[i][1] * side + fp.texels[i][0]) as usize];
         // In the shader's order: across, then down.
         let (fx, fy) = (fp.weights[1].0, fp.weights[2].1);
         let top = m(0) * (1.0 - fx) + m(1) * fx;
         let bottom = m(2) * (1.0 - fx) + m(3) * fx;
         top * (1.0 - fy) + bottom * fy
+    }
+
+    /// What `filtered_moments` reads at `uv` for a filter radius in map texels.
+    pub fn filtered(&self, light: &LightGpu, uv: Vec2, radius_texels: f32) -> Vec2 {
+        let [(finer, _), (coarser, t)] = self.levels_for(light, radius_texels);
+        // WGSL mix(a, b, t) = a * (1 - t) + b * t.
+        self.at_level(light, uv, finer) * (1.0 - t) + self.at_level(light, uv, coarser) * t
     }
 }
 
