@@ -36,6 +36,10 @@ pub struct LightProbe {
     /// minus the float depth the shadow pass wrote, NDC.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stored_depth_rgba8_error_ndc: Option<f32>,
+    /// VSM and VSSM only: the filter's moments lookup, Chebyshev's bound and the true lit
+    /// fraction of the same footprint.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vsm: Option<VsmProbe>,
     pub blocker_search_radius_uv: f32,
     pub blocker_search_radius_texels: f32,
     pub blockers_found: u32,
@@ -50,6 +54,20 @@ pub struct LightProbe {
     pub visibility_twin: f32,
     pub visibility_reference: Option<f32>,
     pub taps: Vec<TapReport>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct VsmProbe {
+    pub mean_depth_ndc: f32,
+    /// sigma² = E[z²] - E[z]², NDC² (before the minimum variance).
+    pub variance_ndc2: f32,
+    /// The depth tested (the receiver's less the bias), NDC.
+    pub tested_depth_ndc: f32,
+    /// Chebyshev's one-sided bound: the visibility VSM gives.
+    pub chebyshev_bound: f32,
+    /// The share of the same footprint's depths at or behind the tested depth; the bound is
+    /// never below it, and the difference is light bleeding.
+    pub true_lit_fraction: f32,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -157,6 +175,13 @@ pub fn probe(
             stored_depth_ndc: stored,
             stored_depth_linear: crate::shadow::depth_linear_from_ndc(&light_gpu, stored),
             bias_ndc: twin.receiver_bias_ndc(&coord, filter_radius_texels),
+            vsm: match scene.shadow.technique {
+                Technique::Vsm => Some(vsm_probe(&twin, &coord, scene.shadow.radius_texels)),
+                Technique::Vssm if result.search.found > 0 => {
+                    Some(vsm_probe(&twin, &coord, result.penumbra.filter_radius_texels))
+                }
+                _ => None,
+            },
             stored_depth_rgba8_error_ndc: (scene.shadow.depth_storage == DepthStorage::Rgba8)
                 .then(|| stored - twin.stored_depth_float_ndc(coord.uv)),
             receiver_plane_depth_per_texel_world: (scene.shadow.bias_mode == BiasMode::ReceiverPlane).then(
@@ -209,4 +234,15 @@ pub fn probe(
         });
     }
     Ok(report)
+}
+
+fn vsm_probe(twin: &Twin<'_>, coord: &crate::shadow::ShadowCoord, radius_texels: f32) -> VsmProbe {
+    let lookup = twin.vsm_lookup(coord, radius_texels);
+    VsmProbe {
+        mean_depth_ndc: lookup.moments.x,
+        variance_ndc2: lookup.moments.y - lookup.moments.x * lookup.moments.x,
+        tested_depth_ndc: lookup.t,
+        chebyshev_bound: lookup.bound,
+        true_lit_fraction: lookup.true_lit_fraction,
+    }
 }

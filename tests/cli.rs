@@ -830,3 +830,30 @@ fn bench_app_drives_the_app_and_reports_what_a_student_feels() {
         }
     }
 }
+
+/// A VSM probe reports the moments it read, Chebyshev's bound (the visibility) and the true lit
+/// share of the same footprint, which the bound never falls below.
+#[test]
+fn a_vsm_probe_reports_the_bound_and_the_true_share() {
+    let mut shadowed = 0;
+    for pixel in ["108,33", "70,40", "80,45", "95,50", "110,35"] {
+        let json = probe_json(&[
+            "--pixel",
+            pixel,
+            "--no-reference",
+            "--set",
+            "technique=vsm",
+            "--set",
+            "radius_texels=8",
+        ]);
+        let light = &json["lights"][0];
+        let vsm = &light["vsm"];
+        let number = |v: &Value| v.as_f64().unwrap_or_else(|| panic!("{pixel}: not a number in {vsm}"));
+        let (bound, truth) = (number(&vsm["chebyshev_bound"]), number(&vsm["true_lit_fraction"]));
+        assert_eq!(bound, number(&light["visibility_twin"]), "{pixel}: the bound is the visibility");
+        assert!(bound >= truth - 1e-4, "{pixel}: bound {bound} below the true share {truth}");
+        assert!(number(&vsm["variance_ndc2"]) >= -1e-6, "{vsm}");
+        shadowed += usize::from(bound < 0.999);
+    }
+    assert!(shadowed > 0, "no probe landed in a VSM shadow");
+}

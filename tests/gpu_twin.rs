@@ -344,23 +344,9 @@ fn vsm_is_never_below_the_true_lit_fraction() {
             if shadowlab::shadow::outside_frustum(&coord) {
                 continue;
             }
-            let chain = twin.moments();
-            let mut lit = 0.0f64;
-            for (level, level_weight) in chain.levels_for(&light, params.radius_texels) {
-                let fp = chain.footprint(&light, coord.uv, level);
-                for (texel, (wx, wy)) in fp.texels.iter().zip(fp.weights) {
-                    let (x0, y0) = (texel[0] * fp.span, texel[1] * fp.span);
-                    let mut behind = 0usize;
-                    for my in y0..y0 + fp.span {
-                        for mx in x0..x0 + fp.span {
-                            let at = my.min(map.size - 1) * map.size + mx.min(map.size - 1);
-                            behind += usize::from(map.depth_ndc[at as usize] >= coord.depth_ndc);
-                        }
-                    }
-                    let weight = f64::from(level_weight * wx * wy);
-                    lit += weight * behind as f64 / f64::from(fp.span * fp.span);
-                }
-            }
+            let lookup = twin.vsm_lookup(&coord, params.radius_texels);
+            assert_eq!(lookup.bound, result.visibility, "pixel {x},{y}: the lookup is the filter's");
+            let lit = f64::from(lookup.true_lit_fraction);
             assert!(
                 f64::from(result.visibility) >= lit - 1e-4,
                 "pixel {x},{y}: VSM {} below the true lit fraction {lit}",

@@ -280,6 +280,7 @@ normal_offset_texels = 0.5
             bias_ndc: 0.001,
             receiver_plane_depth_per_texel_world: None,
             stored_depth_rgba8_error_ndc: None,
+            vsm: None,
             blocker_search_radius_uv: 0.0,
             blocker_search_radius_texels: 0.0,
             blockers_found: 0,

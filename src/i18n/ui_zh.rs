@@ -100,6 +100,8 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("depth storage", "深度存储方式"),
     ("VSM min variance (NDC²)", "VSM 最小方差（NDC²）"),
     ("VSM", "VSM 方差阴影"),
+    ("VSM mean, variance", "VSM 均值、方差"),
+    ("Chebyshev bound / true share", "切比雪夫上界 / 真实比例"),
     ("near / d on orthographic maps (NVIDIA's factor)", "正交贴图也乘 near / d（NVIDIA 的因子）"),
     ("RGBA8 round trip", "RGBA8 往返误差"),
     ("ground-truth samples", "真实结果采样数"),

@@ -280,6 +280,7 @@ mod tests {
             bias_ndc: 0.001,
             receiver_plane_depth_per_texel_world: None,
             stored_depth_rgba8_error_ndc: None,
+            vsm: None,
             blocker_search_radius_uv: 0.0,
             blocker_search_radius_texels: 94.625,
             blockers_found: 20,

@@ -52,6 +52,19 @@ pub struct PcssResult {
     pub penumbra: Penumbra,
 }
 
+/// A VSM lookup seen in full (`Twin::vsm_lookup`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VsmLookup {
+    /// (mean depth, mean squared depth), NDC.
+    pub moments: Vec2,
+    /// The depth tested: the receiver's less the bias, NDC.
+    pub t: f32,
+    /// Chebyshev's one-sided bound: the VSM visibility.
+    pub bound: f32,
+    /// The share of the same footprint's depths at or behind t.
+    pub true_lit_fraction: f32,
+}
+
 /// Which loop a traced tap came from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum TapKind {
@@ -415,6 +428,32 @@ impl<'a> Twin<'a> {
         let v = self.chebyshev_upper_bound(m, t);
         self.record(TapKind::Filter, coord.uv, v);
         v
+    }
+
+    /// What a VSM lookup of `radius_texels` at the coord sees: the filtered moments, the
+    /// depth t it tests, Chebyshev's bound, and the true lit fraction of the same footprint (the
+    /// map texels at or behind t, weighted as the lookup weights them).
+    pub fn vsm_lookup(&self, coord: &ShadowCoord, radius_texels: f32) -> VsmLookup {
+        let light = self.light;
+        let chain = self.moments();
+        let moments = chain.filtered(light, coord.uv, radius_texels);
+        let t = coord.depth_ndc - self.receiver_bias_ndc(coord, radius_texels);
+        let mut lit = 0.0f64;
+        for (level, level_weight) in chain.levels_for(light, radius_texels) {
+            let fp = chain.footprint(light, coord.uv, level);
+            for (texel, (wx, wy)) in fp.texels.iter().zip(fp.weights) {
+                let (x0, y0) = (texel[0] * fp.span, texel[1] * fp.span);
+                let mut behind = 0usize;
+                for y in y0..y0 + fp.span {
+                    for x in x0..x0 + fp.span {
+                        let atlas = (light.map_size_texels / light.atlas_scale).round() as i32 - 1;
+                        behind += usize::from(self.texel((x as i32).min(atlas), (y as i32).min(atlas)) >= t);
+                    }
+                }
+                lit += f64::from(level_weight * wx * wy) * behind as f64 / f64::from(fp.span * fp.span);
+            }
+        }
+        VsmLookup { moments, t, bound: self.chebyshev_upper_bound(moments, t), true_lit_fraction: lit as f32 }
     }
 
     /// P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu; 1 for t <= mu.

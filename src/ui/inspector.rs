@@ -413,6 +413,16 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
             tr("stored depth"),
             format!("{:.4} NDC · {:.3} {}", l.stored_depth_ndc, l.stored_depth_linear, tr("world")),
         );
+        if let Some(v) = &l.vsm {
+            row(
+                tr("VSM mean, variance"),
+                format!("{:.4} NDC, {:.2e} NDC²", v.mean_depth_ndc, v.variance_ndc2),
+            );
+            row(
+                tr("Chebyshev bound / true share"),
+                format!("{:.3} / {:.3}", v.chebyshev_bound, v.true_lit_fraction),
+            );
+        }
         if let Some(error) = l.stored_depth_rgba8_error_ndc {
             row(tr("RGBA8 round trip"), format!("{error:+.6} NDC"));
         }
