@@ -1,6 +1,7 @@
 //! The VSM moments (shaders/moments.wgsl): (depth, depth²) per block of shadow-map texels, as a
 //! mip chain built by compute passes after the shadow pass, for frames that use VSM.
 
+use super::pipelines::texture_entry;
 use super::targets::ShadowMaps;
 use super::timing::Timer;
 use crate::shadow::gpu::moments_block;
@@ -17,17 +18,9 @@ pub struct MomentsPipelines {
     reduce: wgpu::ComputePipeline,
 }
 
-fn texture_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::BindGroupLayoutEntry {
-    wgpu::BindGroupLayoutEntry {
-        binding,
-        visibility: wgpu::ShaderStages::COMPUTE,
-        ty: wgpu::BindingType::Texture {
-            sample_type,
-            view_dimension: wgpu::TextureViewDimension::D2Array,
-            multisampled: false,
-        },
-        count: None,
-    }
+/// A texture array the compute passes read.
+fn input_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::BindGroupLayoutEntry {
+    texture_entry(binding, wgpu::ShaderStages::COMPUTE, sample_type, wgpu::TextureViewDimension::D2Array)
 }
 
 const OUTPUT_ENTRY: wgpu::BindGroupLayoutEntry = wgpu::BindGroupLayoutEntry {
@@ -56,11 +49,11 @@ impl MomentsPipelines {
     pub fn new(device: &wgpu::Device, module: &wgpu::ShaderModule) -> Self {
         let from_depth_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("moments from depth"),
-            entries: &[texture_entry(0, wgpu::TextureSampleType::Depth), OUTPUT_ENTRY, INFO_ENTRY],
+            entries: &[input_entry(0, wgpu::TextureSampleType::Depth), OUTPUT_ENTRY, INFO_ENTRY],
         });
         let reduce_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("moments reduce"),
-            entries: &[texture_entry(1, wgpu::TextureSampleType::Float { filterable: false }), OUTPUT_ENTRY],
+            entries: &[input_entry(1, wgpu::TextureSampleType::Float { filterable: false }), OUTPUT_ENTRY],
         });
         let pipeline = |label, layout: &wgpu::BindGroupLayout, entry_point| {
             let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {

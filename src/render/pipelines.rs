@@ -44,7 +44,7 @@ fn uniform_entry(binding: u32, visibility: wgpu::ShaderStages, dynamic: bool) ->
     }
 }
 
-fn texture_entry(
+pub(super) fn texture_entry(
     binding: u32,
     visibility: wgpu::ShaderStages,
     sample_type: wgpu::TextureSampleType,

@@ -184,6 +184,30 @@ pub fn rgba8_round_trip(depth_ndc: f32) -> f32 {
     ((parts.x + parts.y) + parts.z) + parts.w
 }
 
+/// The light-space lookup of a surface point (the shader's `light_space_lookup`): it needs the
+/// light and the parameters, not the map.
+pub fn light_space_lookup(
+    light: &LightGpu,
+    params: &ShadowParamsGpu,
+    world_pos: Vec3,
+    normal: Vec3,
+) -> ShadowCoord {
+    let mut out = ShadowCoord { n_dot_l: normal.dot(light_dir_to(light, world_pos)), ..Default::default() };
+    let mut p = world_pos;
+    if params.normal_offset_texels > 0.0 {
+        let d = depth_linear_from_ndc(light, project_to_light(light, world_pos).z);
+        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(light, d));
+    }
+    let s = project_to_light(light, p);
+    out.uv = Vec2::new(s.x, s.y);
+    out.depth_ndc = s.z;
+    out.depth_linear = depth_linear_from_ndc(light, s.z);
+    if params.bias_mode == BIAS_RECEIVER_PLANE {
+        out.depth_gradient = receiver_plane_gradient(light, p, normal, s);
+    }
+    out
+}
+
 /// WGSL `fract`: x - floor(x) (Rust's `f32::fract` truncates towards zero instead).
 fn wgsl_fract(v: Vec2) -> Vec2 {
     v - v.floor()
@@ -201,22 +225,12 @@ impl<'a> Twin<'a> {
     }
 
     pub fn light_space_lookup(&self, world_pos: Vec3, normal: Vec3) -> ShadowCoord {
-        let light = self.light;
-        let mut out =
-            ShadowCoord { n_dot_l: normal.dot(light_dir_to(light, world_pos)), ..Default::default() };
-        let mut p = world_pos;
-        if self.params.normal_offset_texels > 0.0 {
-            let d = depth_linear_from_ndc(light, project_to_light(light, world_pos).z);
-            p = world_pos + normal * (self.params.normal_offset_texels * texel_world_at(light, d));
-        }
-        let s = project_to_light(light, p);
-        out.uv = Vec2::new(s.x, s.y);
-        out.depth_ndc = s.z;
-        out.depth_linear = depth_linear_from_ndc(light, s.z);
-        if self.params.bias_mode == BIAS_RECEIVER_PLANE {
-            out.depth_gradient = receiver_plane_gradient(light, p, normal, s);
-        }
-        out
+        light_space_lookup(self.light, self.params, world_pos, normal)
+    }
+
+    /// Texels per side of the array the light's map shares (its map is the top-left corner).
+    fn atlas_size(&self) -> u32 {
+        (self.light.map_size_texels / self.light.atlas_scale).round() as u32
     }
 
     pub fn receiver_bias_ndc(&self, coord: &ShadowCoord, filter_radius_texels: f32) -> f32 {
@@ -262,7 +276,7 @@ impl<'a> Twin<'a> {
 
     /// The comparison sampler's bilinear 2x2 test (clamp to edge over the whole array layer).
     fn hardware_compare(&self, uv: Vec2, reference: f32) -> f32 {
-        let atlas = (self.light.map_size_texels / self.light.atlas_scale).round();
+        let atlas = self.atlas_size() as f32;
         let p = uv * self.light.atlas_scale * atlas - Vec2::splat(0.5);
         let i0 = p.floor();
         let f = p - i0;
@@ -413,9 +427,8 @@ impl<'a> Twin<'a> {
 
     /// The VSM moments of the map, built on first use.
     pub fn moments(&self) -> &moments::MomentsChain {
-        let (light, map) = (self.light, self.map);
-        let atlas = (light.map_size_texels / light.atlas_scale).round() as u32;
-        self.moments.get_or_init(|| moments::MomentsChain::new(map, atlas, light.moments_block))
+        let (atlas, map, block) = (self.atlas_size(), self.map, self.light.moments_block);
+        self.moments.get_or_init(|| moments::MomentsChain::new(map, atlas, block))
     }
 
     /// VSM: Chebyshev's one-sided bound on the filtered moments (the shader's `visibility_vsm`).
@@ -423,21 +436,25 @@ impl<'a> Twin<'a> {
         if self.params.clamp_outside == 1 && outside_frustum(coord) {
             return 1.0;
         }
-        let m = self.moments().filtered(self.light, coord.uv, radius_texels);
-        let t = coord.depth_ndc - self.receiver_bias_ndc(coord, radius_texels);
-        let v = self.chebyshev_upper_bound(m, t);
+        let (_, _, v) = self.vsm_filter(coord, radius_texels);
         self.record(TapKind::Filter, coord.uv, v);
         v
+    }
+
+    /// One VSM filter: the filtered moments, the depth tested (the receiver's less the bias) and
+    /// Chebyshev's bound.
+    fn vsm_filter(&self, coord: &ShadowCoord, radius_texels: f32) -> (Vec2, f32, f32) {
+        let m = self.moments().filtered(self.light, coord.uv, radius_texels);
+        let t = coord.depth_ndc - self.receiver_bias_ndc(coord, radius_texels);
+        (m, t, self.chebyshev_upper_bound(m, t))
     }
 
     /// What a VSM lookup of `radius_texels` at the coord sees: the filtered moments, the
     /// depth t it tests, Chebyshev's bound, and the true lit fraction of the same footprint (the
     /// map texels at or behind t, weighted as the lookup weights them).
     pub fn vsm_lookup(&self, coord: &ShadowCoord, radius_texels: f32) -> VsmLookup {
-        let light = self.light;
-        let chain = self.moments();
-        let moments = chain.filtered(light, coord.uv, radius_texels);
-        let t = coord.depth_ndc - self.receiver_bias_ndc(coord, radius_texels);
+        let (light, chain, atlas) = (self.light, self.moments(), self.atlas_size());
+        let (moments, t, bound) = self.vsm_filter(coord, radius_texels);
         let mut lit = 0.0f64;
         for (level, level_weight) in chain.levels_for(light, radius_texels) {
             let fp = chain.footprint(light, coord.uv, level);
@@ -446,14 +463,13 @@ impl<'a> Twin<'a> {
                 let mut behind = 0usize;
                 for y in y0..y0 + fp.span {
                     for x in x0..x0 + fp.span {
-                        let atlas = (light.map_size_texels / light.atlas_scale).round() as i32 - 1;
-                        behind += usize::from(self.texel((x as i32).min(atlas), (y as i32).min(atlas)) >= t);
+                        behind += usize::from(moments::atlas_depth(self.map, atlas, x, y) >= t);
                     }
                 }
                 lit += f64::from(level_weight * wx * wy) * behind as f64 / f64::from(fp.span * fp.span);
             }
         }
-        VsmLookup { moments, t, bound: self.chebyshev_upper_bound(moments, t), true_lit_fraction: lit as f32 }
+        VsmLookup { moments, t, bound, true_lit_fraction: lit as f32 }
     }
 
     /// P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu; 1 for t <= mu.

@@ -4,6 +4,14 @@
 use super::{DepthImage, LightGpu};
 use glam::Vec2;
 
+/// Texel (x, y) of the array layer holding `map` in its top-left corner, as the moments pass
+/// reads it: coordinates past the array's edge repeat its last row or column, and texels
+/// beyond the map hold the clear value 1.
+pub fn atlas_depth(map: &DepthImage, atlas: u32, x: u32, y: u32) -> f32 {
+    let (x, y) = (x.min(atlas - 1), y.min(atlas - 1));
+    if x >= map.size || y >= map.size { 1.0 } else { map.depth_ndc[(y * map.size + x) as usize] }
+}
+
 /// (mean depth, mean squared depth) per texel, level 0 first; each level `side` x `side`.
 pub struct MomentsChain {
     pub levels: Vec<(u32, Vec<Vec2>)>,
@@ -13,10 +21,7 @@ impl MomentsChain {
     /// The chain of one light's map inside an array `atlas` texels wide: texels of the array
     /// beyond the light's map hold the clear value 1, as on the GPU.
     pub fn new(map: &DepthImage, atlas: u32, block: u32) -> Self {
-        let depth = |x: u32, y: u32| -> f32 {
-            let (x, y) = (x.min(atlas - 1), y.min(atlas - 1));
-            if x >= map.size || y >= map.size { 1.0 } else { map.depth_ndc[(y * map.size + x) as usize] }
-        };
+        let depth = |x: u32, y: u32| atlas_depth(map, atlas, x, y);
         let side = atlas.div_ceil(block);
         let mut level0 = Vec::with_capacity((side * side) as usize);
         for y in 0..side {

@@ -175,11 +175,9 @@ pub fn blocker_depth_at(
     if !analysis.hit(i) || analysis.shadow[i][3] < 0.5 {
         return None;
     }
-    let map = DepthImage { size: 1, depth_ndc: vec![1.0] };
-    let twin = crate::shadow::Twin::new(light, params, &map);
     let position = glam::Vec3::from_slice(&analysis.position[i][..3]);
     let normal = glam::Vec3::from_slice(&analysis.normal[i][..3]);
-    let d_r = twin.light_space_lookup(position, normal).depth_linear;
+    let d_r = crate::shadow::light_space_lookup(light, params, position, normal).depth_linear;
     let w_p = analysis.shadow[i][2] * crate::shadow::texel_world_at(light, d_r);
     let d_b = if light.size_model == crate::shadow::SIZE_MODEL_ANGULAR {
         (light.tan_half_angle > 0.0).then(|| d_r - w_p / (2.0 * light.tan_half_angle))
