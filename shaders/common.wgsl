@@ -77,8 +77,8 @@ struct ShadowParamsGpu {
     depth_storage: u32,           // DEPTH_*
     ortho_near_factor: u32,       // 1: NVIDIA's near / d_receiver on orthographic maps too (the bug)
     vsm_min_variance: f32,        // NDC depth squared
+    vsm_bleed_reduction: f32,     // dimensionless, 0 = off
     _pad0: u32,
-    _pad1: u32,
 }
 
 struct ObjectGpu {

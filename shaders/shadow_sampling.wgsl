@@ -529,7 +529,15 @@ fn visibility_vsm(light: LightGpu, coord: ShadowCoord, radius_texels: f32) -> f3
     }
     let m = filtered_moments(light, coord.uv, radius_texels);
     let t = coord.depth_ndc - receiver_bias_ndc(light, coord, radius_texels);
-    return chebyshev_upper_bound(m, t);
+    return reduce_light_bleeding(chebyshev_upper_bound(m, t));
+}
+
+// Light-bleeding reduction (Lauritzen, GPU Gems 3 ch. 8): bounds up to a are taken as shadow
+// and the rest stretched back over 0..1. Removes the bleeding where the bound stays below a,
+// and darkens real penumbrae a little too.
+fn reduce_light_bleeding(p: f32) -> f32 {
+    let a = params.vsm_bleed_reduction;
+    return clamp((p - a) / (1.0 - a), 0.0, 1.0);
 }
 
 // P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu; 1 for t <= mu.
@@ -567,8 +575,6 @@ fn visibility_vssm(light: LightGpu, coord: ShadowCoord) -> PcssResult {
     out.visibility = visibility_vsm(light, coord, out.penumbra.filter_radius_texels);
     return out;
 }
-
-// The selected technique, with PCSS's intermediate values for the debug views.
 
 // The selected technique, with PCSS's intermediate values for the debug views.
 fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult {

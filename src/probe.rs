@@ -40,6 +40,10 @@ pub struct LightProbe {
     /// fraction of the same footprint.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub vsm: Option<VsmProbe>,
+    /// VSSM only: its blocker-depth estimate beside the true average of the same search
+    /// footprint and PCSS's sampled average.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub vssm: Option<VssmProbe>,
     pub blocker_search_radius_uv: f32,
     pub blocker_search_radius_texels: f32,
     pub blockers_found: u32,
@@ -63,11 +67,34 @@ pub struct VsmProbe {
     pub variance_ndc2: f32,
     /// The depth tested (the receiver's less the bias), NDC.
     pub tested_depth_ndc: f32,
-    /// Chebyshev's one-sided bound: the visibility VSM gives.
+    /// Chebyshev's one-sided bound.
     pub chebyshev_bound: f32,
+    /// The visibility VSM gives: the bound after the bleed reduction (the bound when it is off).
+    pub visibility: f32,
     /// The share of the same footprint's depths at or behind the tested depth; the bound is
     /// never below it, and the difference is light bleeding.
     pub true_lit_fraction: f32,
+    /// The footprint's depth distribution: `HISTOGRAM_BINS` weights (summing to 1) over
+    /// `histogram_range_ndc`, which also spans the tested depth.
+    pub histogram_range_ndc: [f32; 2],
+    pub histogram: Vec<f32>,
+}
+
+/// Bins of [`VsmProbe::histogram`].
+pub const HISTOGRAM_BINS: usize = 48;
+
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct VssmProbe {
+    /// Chebyshev's bound on the unoccluded share over the search region.
+    pub unoccluded_bound: f32,
+    /// z_occ = (z_avg - P t) / (1 - P), as a linear depth: VSSM's average blocker depth, world units.
+    pub estimated_blocker_depth_linear: f32,
+    /// The true average depth of the texels nearer than t in the same footprint, world units;
+    /// None where there are none.
+    pub footprint_blocker_depth_linear: Option<f32>,
+    /// PCSS's sampled blocker average at this pixel with the same settings, world units; None
+    /// where its search finds nothing.
+    pub pcss_blocker_depth_linear: Option<f32>,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -152,6 +179,8 @@ pub fn probe(
         let map_size = light_gpu.map_size_texels;
         let stored = twin.stored_depth_ndc(coord.uv);
         let taps = twin.trace.take().unwrap_or_default();
+        let vssm = (scene.shadow.technique == Technique::Vssm && result.search.found > 0)
+            .then(|| vssm_probe(&mut twin, &coord, &result, pixel));
         let reference = if with_reference {
             let i = (pixel.1 * w + pixel.0) as usize;
             Some(renderer.render_reference(scene, light_index)?[i])
@@ -182,6 +211,7 @@ pub fn probe(
                 }
                 _ => None,
             },
+            vssm,
             stored_depth_rgba8_error_ndc: (scene.shadow.depth_storage == DepthStorage::Rgba8)
                 .then(|| stored - twin.stored_depth_float_ndc(coord.uv)),
             receiver_plane_depth_per_texel_world: (scene.shadow.bias_mode == BiasMode::ReceiverPlane).then(
@@ -238,11 +268,61 @@ pub fn probe(
 
 fn vsm_probe(twin: &Twin<'_>, coord: &crate::shadow::ShadowCoord, radius_texels: f32) -> VsmProbe {
     let lookup = twin.vsm_lookup(coord, radius_texels);
+    let (histogram_range_ndc, histogram) = histogram(&lookup.depths, lookup.t);
     VsmProbe {
         mean_depth_ndc: lookup.moments.x,
         variance_ndc2: lookup.moments.y - lookup.moments.x * lookup.moments.x,
         tested_depth_ndc: lookup.t,
         chebyshev_bound: lookup.bound,
+        visibility: lookup.visibility,
         true_lit_fraction: lookup.true_lit_fraction,
+        histogram_range_ndc,
+        histogram,
+    }
+}
+
+/// Weighted depths binned over their range widened to take in `t` (at least 1e-4 NDC wide).
+fn histogram(depths: &[(f32, f32)], t: f32) -> ([f32; 2], Vec<f32>) {
+    let (mut lo, mut hi) = (t, t);
+    for (z, _) in depths {
+        lo = lo.min(*z);
+        hi = hi.max(*z);
+    }
+    let pad = ((hi - lo) * 0.05).max(5e-5);
+    let (lo, hi) = (lo - pad, hi + pad);
+    let mut bins = vec![0.0f32; HISTOGRAM_BINS];
+    for (z, w) in depths {
+        let i = ((z - lo) / (hi - lo) * HISTOGRAM_BINS as f32) as usize;
+        bins[i.min(HISTOGRAM_BINS - 1)] += w;
+    }
+    ([lo, hi], bins)
+}
+
+/// VSSM's blocker estimate at the pixel beside the truth of its footprint and PCSS's search.
+fn vssm_probe(
+    twin: &mut Twin<'_>,
+    coord: &crate::shadow::ShadowCoord,
+    result: &crate::shadow::PcssResult,
+    pixel: (u32, u32),
+) -> VssmProbe {
+    let (light, params) = (*twin.light, *twin.params);
+    // As the shader's search: the bias of a zero radius.
+    let radius = result.search.radius_texels;
+    let t = coord.depth_ndc - twin.receiver_bias_ndc(coord, 0.0);
+    let unoccluded_bound = twin.chebyshev_upper_bound(twin.moments().filtered(&light, coord.uv, radius), t);
+    let (mut sum, mut weight) = (0.0f64, 0.0f64);
+    for (z, w) in twin.vsm_footprint_depths(coord, radius).iter().filter(|(z, _)| *z < t) {
+        sum += f64::from(z * w);
+        weight += f64::from(*w);
+    }
+    let footprint_blocker_depth_linear =
+        (weight > 0.0).then(|| crate::shadow::depth_linear_from_ndc(&light, (sum / weight) as f32));
+    let seed = kernels::pixel_seed(pixel, params.noise_seed, params.rotate_per_pixel == 1);
+    let pcss = twin.search_blockers(coord, seed);
+    VssmProbe {
+        unoccluded_bound,
+        estimated_blocker_depth_linear: result.search.avg_depth_linear,
+        footprint_blocker_depth_linear,
+        pcss_blocker_depth_linear: (pcss.found > 0).then_some(pcss.avg_depth_linear),
     }
 }

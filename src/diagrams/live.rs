@@ -39,6 +39,8 @@ pub fn inputs_from_scene(
         clamp_outside: scene.shadow.clamp_outside,
         cull_front_faces: scene.shadow.cull_front_faces,
         receiver_plane: scene.shadow.bias_mode == BiasMode::ReceiverPlane,
+        // Only a VSM probe fills it; the diagram marks its example as one.
+        vsm: None,
         ..DiagramInputs::default()
     };
     let shadow = &scene.shadow;
@@ -109,6 +111,19 @@ pub fn inputs_from_scene(
             out.blocker_samples = p.blocker_samples;
             out.visibility = p.visibility_twin;
             out.outside_frustum = !p.inside_light_frustum;
+            out.vsm = p.vsm.as_ref().map(|v| super::VsmPlot {
+                histogram_range_ndc: v.histogram_range_ndc,
+                histogram: v.histogram.clone(),
+                mean_ndc: v.mean_depth_ndc,
+                variance_ndc2: v.variance_ndc2,
+                min_variance_ndc2: shadow.vsm_min_variance,
+                tested_ndc: v.tested_depth_ndc,
+                chebyshev_bound: v.chebyshev_bound,
+                visibility: v.visibility,
+                true_lit_fraction: v.true_lit_fraction,
+                bleed_reduction: shadow.vsm_bleed_reduction,
+                filter_radius_texels: p.filter_radius_texels,
+            });
         }
         None => {
             // The receiver at the light's target, lit, with the scene's own parameters.
@@ -281,6 +296,7 @@ normal_offset_texels = 0.5
             receiver_plane_depth_per_texel_world: None,
             stored_depth_rgba8_error_ndc: None,
             vsm: None,
+            vssm: None,
             blocker_search_radius_uv: 0.0,
             blocker_search_radius_texels: 0.0,
             blockers_found: 0,

@@ -5,6 +5,7 @@
 
 mod acne_bias;
 mod canvas;
+mod chebyshev;
 pub mod live;
 mod multi_light;
 mod pcf_kernel;
@@ -43,15 +44,17 @@ pub enum DiagramKind {
     PcfKernel,
     PcssTriangles,
     MultiLight,
+    Chebyshev,
 }
 
 impl DiagramKind {
-    pub const ALL: [DiagramKind; 5] = [
+    pub const ALL: [DiagramKind; 6] = [
         DiagramKind::TwoPass,
         DiagramKind::AcneBias,
         DiagramKind::PcfKernel,
         DiagramKind::PcssTriangles,
         DiagramKind::MultiLight,
+        DiagramKind::Chebyshev,
     ];
 
     /// Stable identifier (file names, command line).
@@ -62,6 +65,7 @@ impl DiagramKind {
             DiagramKind::PcfKernel => "pcf-kernel",
             DiagramKind::PcssTriangles => "pcss",
             DiagramKind::MultiLight => "multi-light",
+            DiagramKind::Chebyshev => "chebyshev",
         }
     }
 
@@ -77,6 +81,7 @@ impl DiagramKind {
             DiagramKind::PcfKernel => "PCF: the filter kernel on the shadow map",
             DiagramKind::PcssTriangles => "PCSS: penumbra width from similar triangles",
             DiagramKind::MultiLight => "Several lights: one shadow map each (top view)",
+            DiagramKind::Chebyshev => "VSM: Chebyshev's bound on the depths in the filter window",
         }
     }
 }
@@ -138,9 +143,63 @@ pub struct DiagramInputs {
     /// the texel it reads, less the constant bias.
     pub receiver_plane: bool,
     pub lights: Vec<LightTopView>,
+    /// VSM and VSSM: what the probe's filter lookup read. None draws an example, marked so.
+    pub vsm: Option<VsmPlot>,
     /// Object centre and radius in the XZ plane (world).
     pub objects_xz: Vec<([f32; 2], f32)>,
     pub camera_xz: [f32; 2],
+}
+
+/// One VSM lookup for [`DiagramKind::Chebyshev`] (see `crate::probe::VsmProbe`). Depths are NDC.
+#[derive(Clone, Debug, PartialEq)]
+pub struct VsmPlot {
+    pub histogram_range_ndc: [f32; 2],
+    /// Shares of the window's depths in equal bins over the range (summing to 1).
+    pub histogram: Vec<f32>,
+    pub mean_ndc: f32,
+    pub variance_ndc2: f32,
+    pub min_variance_ndc2: f32,
+    pub tested_ndc: f32,
+    pub chebyshev_bound: f32,
+    /// After the bleed reduction.
+    pub visibility: f32,
+    pub true_lit_fraction: f32,
+    /// 0 = off.
+    pub bleed_reduction: f32,
+    pub filter_radius_texels: f32,
+}
+
+impl VsmPlot {
+    /// Two slabs' depths in one window, the receiver behind both: the true lit share is 0, the
+    /// bound is not (the light-bleeding case).
+    pub fn example() -> Self {
+        let (lo, hi, bins) = (0.28f32, 0.62f32, 48usize);
+        let mut histogram = vec![0.0; bins];
+        let bin = |z: f32| (((z - lo) / (hi - lo)) * bins as f32) as usize;
+        for (z, share) in [(0.30, 0.35), (0.305, 0.15), (0.55, 0.3), (0.555, 0.2)] {
+            histogram[bin(z).min(bins - 1)] += share;
+        }
+        let depths = [(0.30f32, 0.35f32), (0.305, 0.15), (0.55, 0.3), (0.555, 0.2)];
+        let mean: f32 = depths.iter().map(|(z, w)| z * w).sum();
+        let square: f32 = depths.iter().map(|(z, w)| z * z * w).sum();
+        let variance = square - mean * mean;
+        let t = 0.60;
+        let d = t - mean;
+        let bound = variance / (variance + d * d);
+        Self {
+            histogram_range_ndc: [lo, hi],
+            histogram,
+            mean_ndc: mean,
+            variance_ndc2: variance,
+            min_variance_ndc2: 1e-6,
+            tested_ndc: t,
+            chebyshev_bound: bound,
+            visibility: bound,
+            true_lit_fraction: 0.0,
+            bleed_reduction: 0.0,
+            filter_radius_texels: 8.0,
+        }
+    }
 }
 
 /// `n` points of a Vogel (golden-angle) disk in the unit disk.
@@ -206,6 +265,7 @@ impl Default for DiagramInputs {
                     color_rgb: [1.0, 0.55, 0.2],
                 },
             ],
+            vsm: Some(VsmPlot::example()),
             objects_xz: vec![([0.0, 0.0], 10.0), ([40.0, 0.0], 10.0), ([-30.0, 25.0], 6.0)],
             camera_xz: [30.0, 30.0],
         }
@@ -281,6 +341,7 @@ pub fn draw_traced(
         DiagramKind::PcfKernel => pcf_kernel::draw(&mut c, inputs),
         DiagramKind::PcssTriangles => pcss::draw(&mut c, inputs),
         DiagramKind::MultiLight => multi_light::draw(&mut c, inputs),
+        DiagramKind::Chebyshev => chebyshev::draw(&mut c, inputs),
     }
     Ok((c.pixmap, c.drawn))
 }

@@ -84,7 +84,7 @@ fn bad_sizes_are_errors() {
 #[test]
 fn ids_titles_and_round_trip() {
     let ids: Vec<&str> = DiagramKind::ALL.iter().map(|k| k.id()).collect();
-    assert_eq!(ids, ["two-pass", "acne-bias", "pcf-kernel", "pcss", "multi-light"]);
+    assert_eq!(ids, ["two-pass", "acne-bias", "pcf-kernel", "pcss", "multi-light", "chebyshev"]);
     for kind in DiagramKind::ALL {
         assert_eq!(DiagramKind::from_id(kind.id()), Some(kind));
         assert!(!kind.title().is_empty());
@@ -483,7 +483,7 @@ fn label_cases() -> Vec<(&'static str, DiagramInputs)> {
 /// Words of English left in a Chinese label: ASCII words of three letters or more that are not
 /// symbols (`d_receiver`), units shared by both languages (NDC, UV) or technique names.
 fn english_words(label: &str) -> Vec<String> {
-    const SHARED: [&str; 6] = ["NDC", "UV", "uv", "PCF", "PCSS", "tan"];
+    const SHARED: [&str; 8] = ["NDC", "UV", "uv", "PCF", "PCSS", "VSM", "VSSM", "tan"];
     label
         .split(|c: char| !(c.is_ascii_alphanumeric() || c == '_'))
         .filter(|w| w.len() >= 3 && !w.contains('_') && w.chars().all(|c| c.is_ascii_alphabetic()))

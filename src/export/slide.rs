@@ -143,6 +143,7 @@ pub fn view_label(view: View, lang: Lang) -> &'static str {
         View::Penumbra => tr(lang, "penumbra width", "半影宽度"),
         View::Blockers => tr(lang, "blockers found", "找到的遮挡物"),
         View::BlockerDepth => tr(lang, "average blocker depth", "平均遮挡深度"),
+        View::Moments => tr(lang, "VSM moments", "VSM 矩"),
         View::Reference => tr(lang, "ground truth", "参考真值"),
         View::Error => tr(lang, "error vs ground truth", "与参考真值的误差"),
     }

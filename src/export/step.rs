@@ -37,7 +37,10 @@ pub struct StepPictures {
 /// panel (the camera panel then shows the shaded scene) and a scene without lights has only
 /// the shaded view.
 pub fn camera_view(step: &Step, scene: &Scene) -> View {
-    if step.view == View::ShadowMap || scene.lights.is_empty() { View::Final } else { step.view }
+    // The slide's camera panel has the camera's frame; the map has a panel of its own and the
+    // moments' two square panels would not fit.
+    let own_frame = matches!(step.view, View::ShadowMap | View::Moments);
+    if own_frame || scene.lights.is_empty() { View::Final } else { step.view }
 }
 
 /// The step's diagram; a step without one keeps the previous step's, and a lesson that names
@@ -150,7 +153,7 @@ pub fn render_step(
         };
         let frame = renderer.render(scene, &request)?;
         let analysis = renderer.read_analysis()?;
-        let reference = if analysis_overlays.contains(&Overlay::Error) {
+        let reference = if analysis_overlays.iter().any(|o| o.needs_reference()) {
             Some(renderer.render_reference(scene, light)?)
         } else {
             None

@@ -281,6 +281,7 @@ mod tests {
             receiver_plane_depth_per_texel_world: None,
             stored_depth_rgba8_error_ndc: None,
             vsm: None,
+            vssm: None,
             blocker_search_radius_uv: 0.0,
             blocker_search_radius_texels: 94.625,
             blockers_found: 20,

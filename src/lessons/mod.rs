@@ -89,17 +89,20 @@ pub enum Overlay {
     TexelGrid,
     OutsideFrustum,
     Error,
+    /// Where the technique lets through light the ground truth blocks (VSM's light bleeding).
+    Bleeding,
     LightFrustum,
 }
 
 impl Overlay {
-    pub const ALL: [Overlay; 7] = [
+    pub const ALL: [Overlay; 8] = [
         Overlay::BlockerRadius,
         Overlay::Penumbra,
         Overlay::Blockers,
         Overlay::TexelGrid,
         Overlay::OutsideFrustum,
         Overlay::Error,
+        Overlay::Bleeding,
         Overlay::LightFrustum,
     ];
     pub fn name(self) -> &'static str {
@@ -110,8 +113,14 @@ impl Overlay {
             Overlay::TexelGrid => "shadow-map texel grid",
             Overlay::OutsideFrustum => "outside the light frustum",
             Overlay::Error => "error vs ground truth",
+            Overlay::Bleeding => "light bleeding",
             Overlay::LightFrustum => "light frustum wireframe",
         }
+    }
+
+    /// Drawn against the ground truth.
+    pub fn needs_reference(self) -> bool {
+        matches!(self, Overlay::Error | Overlay::Bleeding)
     }
 }
 

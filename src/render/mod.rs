@@ -97,6 +97,21 @@ pub struct Analysis {
     pub position: Vec<[f32; 4]>,
     /// Shading normal; w = object index.
     pub normal: Vec<[f32; 4]>,
+    /// The level of the selected light's VSM moments the filter reads, when it was asked for
+    /// (`Renderer::read_moments_for_radius`).
+    pub moments: Option<MomentsLevel>,
+}
+
+/// One level of one light's VSM moments, read back.
+#[derive(Clone, Debug)]
+pub struct MomentsLevel {
+    pub level: u32,
+    /// Map texels per side of one texel of this level.
+    pub span_texels: u32,
+    /// Texels per side of the light's part.
+    pub side: u32,
+    /// (mean depth, mean squared depth) per texel, NDC, rows first.
+    pub texels: Vec<[f32; 2]>,
 }
 
 impl Analysis {
@@ -453,17 +468,28 @@ impl Renderer {
         }
         let atlas_size = scene.lights.iter().map(|l| l.shadow_map_size).max().unwrap_or(256);
         let layers = scene.lights.len().max(1) as u32;
-        if !self.shadow_maps.as_ref().is_some_and(|m| m.atlas_size == atlas_size && m.layers == layers) {
-            let maps = ShadowMaps::new(device, atlas_size, layers);
-            let moments = Moments::new(device, &self.pipelines.moments, &maps);
+        let maps_changed =
+            !self.shadow_maps.as_ref().is_some_and(|m| m.atlas_size == atlas_size && m.layers == layers);
+        if maps_changed {
+            self.shadow_maps = Some(ShadowMaps::new(device, atlas_size, layers));
+        }
+        // The moments are made the first time a frame uses VSM (and kept after), a placeholder
+        // stands in before.
+        let vsm = matches!(scene.shadow.technique, Technique::Vsm | Technique::Vssm);
+        let moments_wanted = vsm && self.moments.as_ref().is_none_or(Moments::is_placeholder);
+        if let Some(maps) = self.shadow_maps.as_ref().filter(|_| maps_changed || moments_wanted) {
+            let moments = if vsm {
+                Moments::new(device, &self.pipelines.moments, maps)
+            } else {
+                Moments::placeholder(device)
+            };
             self.lights_bind_group = Some(self.shadow_inputs_group(
                 &self.layouts.lights,
                 self.lights_buffer.as_entire_binding(),
                 &self.params_buffer,
-                &maps,
+                maps,
                 Some(&moments),
             ));
-            self.shadow_maps = Some(maps);
             self.moments = Some(moments);
         }
         if self.targets.as_ref().is_none_or(|t| t.size != request.size) {
@@ -594,6 +620,7 @@ impl Renderer {
             let mut plane = Vec::with_capacity((width * height) as usize);
             let region = readback::Region {
                 layer: 0,
+                mip_level: 0,
                 origin: (0, 0),
                 size: targets.size,
                 bytes_per_texel: 16,
@@ -610,7 +637,7 @@ impl Renderer {
         let normal = planes.pop().unwrap_or_default();
         let position = planes.pop().unwrap_or_default();
         let shadow = planes.pop().unwrap_or_default();
-        Ok(Analysis { width, height, shadow, position, normal })
+        Ok(Analysis { width, height, shadow, position, normal, moments: None })
     }
 
     /// The analysis targets at one pixel of the last frame (a 1x1 read-back each).
@@ -640,6 +667,60 @@ impl Renderer {
     }
 
     /// The shadow map of light `index` as rendered in the last frame.
+    /// The finer of the two levels of light `index`'s moments a VSM filter of `radius_texels`
+    /// reads (`filtered_moments` in shaders/shadow_sampling.wgsl), as the last frame left it.
+    pub fn read_moments_for_radius(
+        &self,
+        index: usize,
+        radius_texels: f32,
+    ) -> Result<MomentsLevel, RenderError> {
+        let moments = self.moments.as_ref().filter(|m| !m.is_placeholder());
+        let (block, levels) = moments.map_or((1, 1), |m| (m.block, m.texture.mip_level_count()));
+        let level =
+            (radius_texels / block as f32).max(1.0).log2().floor().clamp(0.0, (levels - 1) as f32) as u32;
+        let (side, texels) = self.read_moments(index, level)?;
+        Ok(MomentsLevel { level, span_texels: block << level, side, texels })
+    }
+
+    /// Level `level` of light `index`'s VSM moments as the last frame left them: the side of
+    /// the light's part in texels, and (mean depth, mean squared depth) per texel, NDC, rows
+    /// first. Each texel covers `moments_block << level` map texels per side.
+    pub fn read_moments(&self, index: usize, level: u32) -> Result<(u32, Vec<[f32; 2]>), RenderError> {
+        let moments =
+            self.moments.as_ref().filter(|m| m.current && !m.is_placeholder()).ok_or_else(|| {
+                RenderError::Usage("the moments exist for the vsm and vssm techniques only".into())
+            })?;
+        let lights = self.last_frame.as_ref().map_or(&[][..], |f| &f.lights[..]);
+        let light = lights.get(index).ok_or_else(|| {
+            RenderError::Usage(format!("light {index} does not exist (the scene has {})", lights.len()))
+        })?;
+        let levels = moments.texture.mip_level_count();
+        if level >= levels {
+            return Err(RenderError::Usage(format!(
+                "the moments have levels 0..{}, not {level}",
+                levels - 1
+            )));
+        }
+        let level_side = (moments.texture.width() >> level).max(1);
+        let side = (light.map_size_texels as u32).div_ceil(moments.block << level).clamp(1, level_side);
+        let region = readback::Region {
+            layer: index as u32,
+            mip_level: level,
+            origin: (0, 0),
+            size: (side, side),
+            bytes_per_texel: 8,
+            aspect: wgpu::TextureAspect::All,
+        };
+        let mut texels = Vec::with_capacity((side * side) as usize);
+        readback::for_each_row(&self.device, &self.queue, &moments.texture, region, |row| {
+            texels.extend(row.chunks_exact(8).map(|t| {
+                let mut m = readback::f32s(t);
+                [m.next().unwrap_or_default(), m.next().unwrap_or_default()]
+            }));
+        })?;
+        Ok((side, texels))
+    }
+
     pub fn read_shadow_map(&self, index: usize) -> Result<DepthImage, RenderError> {
         let maps =
             self.shadow_maps.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
@@ -653,6 +734,7 @@ impl Renderer {
         let atlas = maps.atlas_size;
         let region = readback::Region {
             layer: index as u32,
+            mip_level: 0,
             origin: (0, 0),
             size: (atlas, atlas),
             bytes_per_texel: 4,

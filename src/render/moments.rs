@@ -84,23 +84,49 @@ pub struct Moments {
     levels: Vec<(wgpu::BindGroup, u32)>,
     /// The moments describe the maps as drawn (false once the maps are redrawn without them).
     pub current: bool,
+    /// The texture, for read-back (`Renderer::read_moments`).
+    pub texture: wgpu::Texture,
+    /// Map texels per side of one level-0 texel.
+    pub block: u32,
 }
 
 impl Moments {
-    pub fn new(device: &wgpu::Device, pipelines: &MomentsPipelines, maps: &ShadowMaps) -> Self {
-        let block = moments_block(maps.atlas_size);
-        let side = maps.atlas_size.div_ceil(block);
-        let level_count = side.ilog2() + 1;
-        let texture = device.create_texture(&wgpu::TextureDescriptor {
+    /// A single texel that stands in until a frame uses VSM: the camera pass's layout has a
+    /// binding for the moments, and a 2048² array of them is about 43 MB a layer.
+    pub fn placeholder(device: &wgpu::Device) -> Self {
+        let texture = Self::texture(device, 1, 1, 1);
+        let view = texture.create_view(&wgpu::TextureViewDescriptor {
+            dimension: Some(wgpu::TextureViewDimension::D2Array),
+            ..Default::default()
+        });
+        Self { view, levels: Vec::new(), current: false, texture, block: 0 }
+    }
+
+    /// Nothing but the placeholder's single texel.
+    pub fn is_placeholder(&self) -> bool {
+        self.levels.is_empty()
+    }
+
+    fn texture(device: &wgpu::Device, side: u32, layers: u32, level_count: u32) -> wgpu::Texture {
+        device.create_texture(&wgpu::TextureDescriptor {
             label: Some("vsm moments"),
-            size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: maps.layers },
+            size: wgpu::Extent3d { width: side, height: side, depth_or_array_layers: layers },
             mip_level_count: level_count,
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: MOMENTS_FORMAT,
-            usage: wgpu::TextureUsages::STORAGE_BINDING | wgpu::TextureUsages::TEXTURE_BINDING,
+            usage: wgpu::TextureUsages::STORAGE_BINDING
+                | wgpu::TextureUsages::TEXTURE_BINDING
+                | wgpu::TextureUsages::COPY_SRC,
             view_formats: &[],
-        });
+        })
+    }
+
+    pub fn new(device: &wgpu::Device, pipelines: &MomentsPipelines, maps: &ShadowMaps) -> Self {
+        let block = moments_block(maps.atlas_size);
+        let side = maps.atlas_size.div_ceil(block);
+        let level_count = side.ilog2() + 1;
+        let texture = Self::texture(device, side, maps.layers, level_count);
         let info = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("moments info"),
             size: 16,
@@ -158,7 +184,7 @@ impl Moments {
             dimension: Some(wgpu::TextureViewDimension::D2Array),
             ..Default::default()
         });
-        Self { view, levels, current: false }
+        Self { view, levels, current: false, texture, block }
     }
 
     /// Rebuild every level for the first `layers` maps. With `timer`, the pass writes the end of

@@ -28,7 +28,7 @@ pub fn read_texture_region(
     aspect: wgpu::TextureAspect,
 ) -> Result<Vec<u8>, RenderError> {
     let mut out = Vec::with_capacity((size.0 * size.1 * bytes_per_texel) as usize);
-    let region = Region { layer, origin, size, bytes_per_texel, aspect };
+    let region = Region { layer, mip_level: 0, origin, size, bytes_per_texel, aspect };
     for_each_row(device, queue, texture, region, |row| out.extend_from_slice(row))?;
     Ok(out)
 }
@@ -37,6 +37,7 @@ pub fn read_texture_region(
 #[derive(Clone, Copy)]
 pub struct Region {
     pub layer: u32,
+    pub mip_level: u32,
     pub origin: (u32, u32),
     pub size: (u32, u32),
     pub bytes_per_texel: u32,
@@ -67,7 +68,7 @@ pub fn for_each_row(
     encoder.copy_texture_to_buffer(
         wgpu::TexelCopyTextureInfo {
             texture,
-            mip_level: 0,
+            mip_level: region.mip_level,
             origin: wgpu::Origin3d { x: region.origin.0, y: region.origin.1, z: region.layer },
             aspect: region.aspect,
         },

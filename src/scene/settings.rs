@@ -143,6 +143,9 @@ pub struct ShadowSettings {
     /// VSM: the least variance Chebyshev's bound uses, NDC depth squared (keeps a flat receiver
     /// from shadowing itself where its filtered variance rounds to 0).
     pub vsm_min_variance: f32,
+    /// VSM light-bleeding reduction: bounds below this are taken as shadow and the rest are
+    /// stretched back over 0..1, (p - a) / (1 - a). Dimensionless, 0 (off) ..= 0.95.
+    pub vsm_bleed_reduction: f32,
     /// True: points outside the light frustum are lit. False shows the classic bug (wrapped
     /// lookups and a dark band past the far plane).
     pub clamp_outside: bool,
@@ -173,6 +176,7 @@ impl Default for ShadowSettings {
             depth_storage: DepthStorage::Float32,
             ortho_near_factor: false,
             vsm_min_variance: 1e-6,
+            vsm_bleed_reduction: 0.0,
             clamp_outside: true,
             reference_samples: 256,
         }
@@ -197,6 +201,7 @@ impl ShadowSettings {
             ("min_filter_radius_texels", self.min_filter_radius_texels),
             ("search_radius_scale", self.search_radius_scale),
             ("vsm_min_variance", self.vsm_min_variance),
+            ("vsm_bleed_reduction", self.vsm_bleed_reduction),
         ];
         for (key, v) in finite {
             if !v.is_finite() {
@@ -213,6 +218,7 @@ impl ShadowSettings {
             ("min_filter_radius_texels", self.min_filter_radius_texels, 0.0, 256.0),
             ("search_radius_scale", self.search_radius_scale, 0.0, 8.0),
             ("vsm_min_variance", self.vsm_min_variance, 0.0, 1.0),
+            ("vsm_bleed_reduction", self.vsm_bleed_reduction, 0.0, 0.95),
         ];
         for (key, v, lo, hi) in ranged {
             if !(lo..=hi).contains(&v) {

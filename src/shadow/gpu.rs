@@ -144,7 +144,8 @@ pub struct ShadowParamsGpu {
     pub depth_storage: u32,
     pub ortho_near_factor: u32,
     pub vsm_min_variance: f32,
-    pub _pad: [u32; 2],
+    pub vsm_bleed_reduction: f32,
+    pub _pad: u32,
 }
 
 const _: () = assert!(std::mem::size_of::<LightGpu>() == 160);
@@ -171,7 +172,8 @@ impl ShadowParamsGpu {
             depth_storage: depth_storage_id(s.depth_storage),
             ortho_near_factor: u32::from(s.ortho_near_factor),
             vsm_min_variance: s.vsm_min_variance,
-            _pad: [0; 2],
+            vsm_bleed_reduction: s.vsm_bleed_reduction,
+            _pad: 0,
         }
     }
 }

@@ -53,16 +53,20 @@ pub struct PcssResult {
 }
 
 /// A VSM lookup seen in full (`Twin::vsm_lookup`).
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct VsmLookup {
     /// (mean depth, mean squared depth), NDC.
     pub moments: Vec2,
     /// The depth tested: the receiver's less the bias, NDC.
     pub t: f32,
-    /// Chebyshev's one-sided bound: the VSM visibility.
+    /// Chebyshev's one-sided bound.
     pub bound: f32,
+    /// What VSM returns: the bound after the bleed reduction (the bound itself when it is off).
+    pub visibility: f32,
     /// The share of the same footprint's depths at or behind t.
     pub true_lit_fraction: f32,
+    /// The footprint's depths with their weights (`Twin::vsm_footprint_depths`).
+    pub depths: Vec<(f32, f32)>,
 }
 
 /// Which loop a traced tap came from.
@@ -436,44 +440,74 @@ impl<'a> Twin<'a> {
         if self.params.clamp_outside == 1 && outside_frustum(coord) {
             return 1.0;
         }
-        let (_, _, v) = self.vsm_filter(coord, radius_texels);
+        let (_, _, bound) = self.vsm_filter(coord, radius_texels);
+        let v = self.reduce_light_bleeding(bound);
         self.record(TapKind::Filter, coord.uv, v);
         v
     }
 
     /// One VSM filter: the filtered moments, the depth tested (the receiver's less the bias) and
-    /// Chebyshev's bound.
+    /// Chebyshev's bound (before any bleed reduction).
     fn vsm_filter(&self, coord: &ShadowCoord, radius_texels: f32) -> (Vec2, f32, f32) {
         let m = self.moments().filtered(self.light, coord.uv, radius_texels);
         let t = coord.depth_ndc - self.receiver_bias_ndc(coord, radius_texels);
         (m, t, self.chebyshev_upper_bound(m, t))
     }
 
+    /// The shader's `reduce_light_bleeding`: bounds up to a are shadow, the rest stretched
+    /// back over 0..1.
+    pub fn reduce_light_bleeding(&self, p: f32) -> f32 {
+        let a = self.params.vsm_bleed_reduction;
+        ((p - a) / (1.0 - a)).clamp(0.0, 1.0)
+    }
+
     /// What a VSM lookup of `radius_texels` at the coord sees: the filtered moments, the
     /// depth t it tests, Chebyshev's bound, and the true lit fraction of the same footprint (the
     /// map texels at or behind t, weighted as the lookup weights them).
     pub fn vsm_lookup(&self, coord: &ShadowCoord, radius_texels: f32) -> VsmLookup {
-        let (light, chain, atlas) = (self.light, self.moments(), self.atlas_size());
         let (moments, t, bound) = self.vsm_filter(coord, radius_texels);
-        let mut lit = 0.0f64;
+        let depths = self.vsm_footprint_depths(coord, radius_texels);
+        let lit: f64 = depths.iter().filter(|(z, _)| *z >= t).map(|(_, w)| f64::from(*w)).sum();
+        VsmLookup {
+            moments,
+            t,
+            bound,
+            visibility: self.reduce_light_bleeding(bound),
+            true_lit_fraction: lit as f32,
+            depths,
+        }
+    }
+
+    /// Every map depth a VSM lookup of `radius_texels` averages, with its weight in the
+    /// lookup (NDC, weights summing to 1): the distribution whose mean and variance the
+    /// filtered moments hold.
+    pub fn vsm_footprint_depths(&self, coord: &ShadowCoord, radius_texels: f32) -> Vec<(f32, f32)> {
+        let (light, chain, atlas) = (self.light, self.moments(), self.atlas_size());
+        let mut depths = Vec::new();
         for (level, level_weight) in chain.levels_for(light, radius_texels) {
+            if level_weight == 0.0 {
+                continue;
+            }
             let fp = chain.footprint(light, coord.uv, level);
+            let per_texel = 1.0 / (fp.span * fp.span) as f32;
             for (texel, (wx, wy)) in fp.texels.iter().zip(fp.weights) {
+                let w = level_weight * wx * wy * per_texel;
+                if w == 0.0 {
+                    continue;
+                }
                 let (x0, y0) = (texel[0] * fp.span, texel[1] * fp.span);
-                let mut behind = 0usize;
                 for y in y0..y0 + fp.span {
                     for x in x0..x0 + fp.span {
-                        behind += usize::from(moments::atlas_depth(self.map, atlas, x, y) >= t);
+                        depths.push((moments::atlas_depth(self.map, atlas, x, y), w));
                     }
                 }
-                lit += f64::from(level_weight * wx * wy) * behind as f64 / f64::from(fp.span * fp.span);
             }
         }
-        VsmLookup { moments, t, bound, true_lit_fraction: lit as f32 }
+        depths
     }
 
     /// P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu; 1 for t <= mu.
-    fn chebyshev_upper_bound(&self, m: Vec2, t: f32) -> f32 {
+    pub fn chebyshev_upper_bound(&self, m: Vec2, t: f32) -> f32 {
         if t <= m.x {
             return 1.0;
         }

@@ -52,6 +52,7 @@ const CONTROLS: &[(&str, &str)] = &[
     ("depth_storage", "depth storage"),
     ("ortho_near_factor", "near / d on orthographic maps (NVIDIA's factor)"),
     ("vsm_min_variance", "VSM min variance (NDC²)"),
+    ("vsm_bleed_reduction", "VSM bleed reduction"),
     ("reference_samples", "ground-truth samples"),
     ("light.N.shadow_map_size", "shadow map (texels)"),
     ("light.N.extent", "half-width (world units)"),
@@ -210,6 +211,10 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
                 .text(tr("VSM min variance (NDC²)")),
         )
         .on_hover_text(key_hint(lang, "vsm_min_variance"))
+        .changed();
+    changed |= ui
+        .add(Slider::new(&mut s.vsm_bleed_reduction, 0.0..=0.95).text(tr("VSM bleed reduction")))
+        .on_hover_text(key_hint(lang, "vsm_bleed_reduction"))
         .changed();
     ui.separator();
     changed |= ui
@@ -422,6 +427,9 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
                 tr("Chebyshev bound / true share"),
                 format!("{:.3} / {:.3}", v.chebyshev_bound, v.true_lit_fraction),
             );
+            if v.visibility != v.chebyshev_bound {
+                row(tr("after bleed reduction"), format!("{:.3}", v.visibility));
+            }
         }
         if let Some(error) = l.stored_depth_rgba8_error_ndc {
             row(tr("RGBA8 round trip"), format!("{error:+.6} NDC"));
@@ -437,6 +445,19 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
             tr("avg blocker depth"),
             l.avg_blocker_depth_linear.map_or(tr("none").into(), |d| format!("{d:.3} {}", tr("world"))),
         );
+        if let Some(v) = &l.vssm {
+            let depth = |d: Option<f32>| d.map_or(tr("none").into(), |d| format!("{d:.3}"));
+            row(
+                tr("VSSM / true / PCSS blocker depth"),
+                format!(
+                    "{:.3} / {} / {} {}",
+                    v.estimated_blocker_depth_linear,
+                    depth(v.footprint_blocker_depth_linear),
+                    depth(v.pcss_blocker_depth_linear),
+                    tr("world")
+                ),
+            );
+        }
         row(tr("penumbra width"), format!("{:.4} {}", l.penumbra_width_world, tr("world")));
         row(
             tr("filter radius"),

@@ -241,7 +241,9 @@ impl ShadowlabApp {
             },
             probe,
             analysis,
-            reference: analysis && (self.overlays.contains(&Overlay::Error) || self.view.needs_reference()),
+            reference: analysis
+                && (self.overlays.iter().any(|o| o.needs_reference()) || self.view.needs_reference()),
+            moments: analysis && self.view == View::Moments,
             technique_b: self.ab.as_ref().map(|ab| ab.b),
             thumbnails: full_detail,
             preview,

@@ -91,6 +91,9 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
                 Some(ctx.load_texture("debug view", color_image(&image), egui::TextureOptions::NEAREST));
             app.view_state.view_legend = Some(legend);
             app.view_state.view_picture = Some(image);
+        } else if app.view == View::Moments {
+            app.view_state.view_legend =
+                Some(tr(app.lang, "the moments view needs the vsm or vssm technique").into());
         }
     }
     // Overlays from the analysis pass.
@@ -275,6 +278,18 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             painter.rect_filled(rect, 0.0, Color32::from_gray(20));
             let square = Rect::from_center_size(rect.center(), Vec2::splat(rect.width().min(rect.height())));
             painter.image(texture.id(), square, uv, Color32::WHITE);
+        }
+        (View::Moments, Some(texture), _) => {
+            // Two square panels side by side, their shape kept, in the middle of the panel.
+            painter.rect_filled(rect, 0.0, Color32::from_gray(20));
+            let [w, h] = texture.size().map(|s| s as f32);
+            let scale = (rect.width() / w).min(rect.height() / h);
+            painter.image(
+                texture.id(),
+                Rect::from_center_size(rect.center(), vec2(w, h) * scale),
+                uv,
+                Color32::WHITE,
+            );
         }
         (View::Final, ..) | (View::ShadowMap, _, None) | (_, None, _) => {
             if let Some(texture) = &app.shown.camera {

@@ -27,6 +27,9 @@ pub struct RenderJob {
     pub analysis: bool,
     /// Accumulate the ground truth of the selected light (needs `analysis`).
     pub reference: bool,
+    /// Read back the level of the selected light's VSM moments the filter reads (needs
+    /// `analysis`; VSM techniques only).
+    pub moments: bool,
     /// The A/B split's right side: the same frame with this technique.
     pub technique_b: Option<Technique>,
     /// A small picture of every light's map (several lights, full quality).
@@ -422,7 +425,12 @@ impl Renderers {
     /// view's analysis, so it is drawn again after a probe when the ground truth is wanted.
     fn details(&mut self, job: &RenderJob) -> Result<(ProbeOutcome, Option<Analysis>), RenderError> {
         let scene = &job.scene;
-        let analysis = if job.analysis { Some(self.a.read_analysis()?) } else { None };
+        let mut analysis = if job.analysis { Some(self.a.read_analysis()?) } else { None };
+        if let Some(analysis) = analysis.as_mut().filter(|_| job.moments) {
+            let light = job.request.selected_light;
+            // Techniques without moments leave them out; the view says so.
+            analysis.moments = self.a.read_moments_for_radius(light, scene.shadow.radius_texels).ok();
+        }
         let request = FrameRequest { final_color: false, analysis: true, timestamps: false, ..job.request };
         let probe = job.probe.map(|spot| {
             let frame = FrameRequest { size: spot.frame, ..request };

@@ -18,12 +18,14 @@ pub enum View {
     Blockers,
     /// PCSS step 1's result: the average depth of the blockers found, world units.
     BlockerDepth,
+    /// The VSM moments the filter reads: mean depth and standard deviation per texel.
+    Moments,
     Reference,
     Error,
 }
 
 impl View {
-    pub const ALL: [View; 9] = [
+    pub const ALL: [View; 10] = [
         View::Final,
         View::Visibility,
         View::ShadowMap,
@@ -31,6 +33,7 @@ impl View {
         View::Penumbra,
         View::Blockers,
         View::BlockerDepth,
+        View::Moments,
         View::Reference,
         View::Error,
     ];
@@ -44,6 +47,7 @@ impl View {
             View::Penumbra => "penumbra",
             View::Blockers => "blockers",
             View::BlockerDepth => "blocker-depth",
+            View::Moments => "moments",
             View::Reference => "reference",
             View::Error => "error",
         }
@@ -217,6 +221,53 @@ pub fn blocker_depth_image(
     (image, Legend { label: "average blocker depth", min: lo, max: hi, unit })
 }
 
+/// The moments view: one level of a light's VSM moments as two panels side by side, the mean
+/// depth (left) and the standard deviation of the depths each texel averages (right), both as
+/// world units along the light (sigma through the depth curve's slope at the mean, exact for an
+/// orthographic light). Panels are enlarged to at least 256 px a side, texels kept square.
+pub fn moments_image(moments: &crate::render::MomentsLevel, light: &LightGpu) -> (RgbaImage, Legend, Legend) {
+    let side = moments.side.max(1);
+    let stats: Vec<(f32, f32)> = moments
+        .texels
+        .iter()
+        .map(|&[m1, m2]| {
+            let mean = depth_linear_from_ndc(light, m1.clamp(0.0, 1.0));
+            let sigma_ndc = (m2 - m1 * m1).max(0.0).sqrt();
+            (mean, sigma_ndc / crate::shadow::ndc_per_world(light, mean))
+        })
+        .collect();
+    let (mut lo, mut hi, mut sigma_max) = (f32::INFINITY, f32::NEG_INFINITY, 0.0f32);
+    for (mean, sigma) in &stats {
+        lo = lo.min(*mean);
+        hi = hi.max(*mean);
+        sigma_max = sigma_max.max(*sigma);
+    }
+    if !lo.is_finite() {
+        (lo, hi) = (light.near, light.far);
+    }
+    let span = (hi - lo).max(1e-6);
+    let scale = 256u32.div_ceil(side).max(1);
+    let (panel, gap) = (side * scale, 8);
+    let image = RgbaImage::from_fn(2 * panel + gap, panel, |x, y| {
+        let (column, x) = if x < panel { (0, x) } else { (1, x.saturating_sub(panel + gap)) };
+        if x >= panel {
+            return NO_SURFACE;
+        }
+        let (mean, sigma) = stats.get(((y / scale) * side + x / scale) as usize).copied().unwrap_or_default();
+        match column {
+            0 => heat_color((mean - lo) / span),
+            _ if sigma_max > 0.0 => heat_color(sigma / sigma_max),
+            _ => heat_color(0.0),
+        }
+    });
+    let unit = "world units from the light";
+    (
+        image,
+        Legend { label: "mean depth (left)", min: lo, max: hi, unit },
+        Legend { label: "standard deviation (right)", min: 0.0, max: sigma_max, unit: "world units" },
+    )
+}
+
 /// |technique - reference| over the surfaces, and its mean.
 pub fn error_image(analysis: &Analysis, reference: &[f32]) -> (RgbaImage, Legend, f32) {
     let mut sum = 0.0f64;
@@ -262,7 +313,10 @@ pub fn render_view(
             (image, Some(legend.to_string()))
         }
         _ => {
-            let a = renderer.read_analysis()?;
+            let mut a = renderer.read_analysis()?;
+            if view == View::Moments {
+                a.moments = Some(renderer.read_moments_for_radius(light, frame.params.radius_texels)?);
+            }
             let reference =
                 if view.needs_reference() { Some(renderer.render_reference(scene, light)?) } else { None };
             let samples = scene.shadow.reference_samples;
@@ -291,6 +345,23 @@ pub fn analysis_view(
     let zh = lang == Lang::Zh;
     match view {
         View::Final | View::ShadowMap => None,
+        View::Moments => {
+            let (light, _) = light?;
+            let moments = a.moments.as_ref()?;
+            let (image, mean, sigma) = moments_image(moments, light);
+            let text = if zh {
+                format!(
+                    "VSM 矩，第 {} 级（每个纹素平均 {}×{} 个贴图纹素）\n左：平均深度 {:.2} .. {:.2}；右：标准差 0 .. {:.3}（世界单位，深蓝 .. 黄）",
+                    moments.level, moments.span_texels, moments.span_texels, mean.min, mean.max, sigma.max
+                )
+            } else {
+                format!(
+                    "VSM moments, level {} (each texel averages {}x{} map texels), dark blue .. yellow\nleft: mean depth {:.2} .. {:.2} world units from the light; right: standard deviation 0 .. {:.3} world units",
+                    moments.level, moments.span_texels, moments.span_texels, mean.min, mean.max, sigma.max
+                )
+            };
+            Some((image, text))
+        }
         View::BlockerDepth => {
             let (light, params) = light?;
             let (image, legend) = blocker_depth_image(a, light, params);

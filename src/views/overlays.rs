@@ -113,10 +113,78 @@ pub fn compose(
                     (e > 0.02).then(|| with_alpha(heat_color(e), 200))
                 });
             }
+            Overlay::Bleeding => {
+                let Some(reference) = reference else {
+                    legends.push(
+                        match lang {
+                            Lang::En => "light bleeding: computing the ground truth...",
+                            Lang::Zh => "漏光：正在计算真实结果……",
+                        }
+                        .into(),
+                    );
+                    continue;
+                };
+                let bleed = light_bleeding(analysis, reference, light);
+                legends.push(match lang {
+                    Lang::En => format!(
+                        "magenta: lighter than the ground truth by {BLEED_THRESHOLD} or more, up to {:.2}; {:.1} % of the surface",
+                        bleed.max,
+                        100.0 * bleed.share
+                    ),
+                    Lang::Zh => format!(
+                        "品红：比真实结果亮 {BLEED_THRESHOLD} 以上的地方，最多亮 {:.2}；占表面的 {:.1} %",
+                        bleed.max,
+                        100.0 * bleed.share
+                    ),
+                });
+                paint(&mut image, analysis, |i| {
+                    let excess = bleeding_at(analysis, reference, light, i);
+                    (excess >= BLEED_THRESHOLD)
+                        .then(|| Rgba([255, 0, 200, (90.0 + 165.0 * excess.min(1.0)).round() as u8]))
+                });
+            }
             Overlay::LightFrustum => {}
         }
     }
     (image, legends)
+}
+
+/// Visibility above the ground truth by this much counts as light bleeding (below it is the
+/// noise of the ground truth's finite samples and the filters' slightly different footprints).
+pub const BLEED_THRESHOLD: f32 = 0.05;
+
+/// How much light a technique lets through that the ground truth blocks.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Bleeding {
+    /// The largest visibility - ground truth over the surfaces.
+    pub max: f32,
+    /// The share of surface pixels lighter than the ground truth by `BLEED_THRESHOLD` or more.
+    pub share: f32,
+}
+
+/// Visibility minus the ground truth at pixel `i`, on surfaces that face the light (0
+/// elsewhere: a face turned away is dark whatever its shadow term says).
+pub fn bleeding_at(analysis: &Analysis, reference: &[f32], light: Option<&LightGpu>, i: usize) -> f32 {
+    let position = Vec3::from_slice(&analysis.position[i][..3]);
+    let normal = Vec3::from_slice(&analysis.normal[i][..3]);
+    let facing = light.is_none_or(|l| normal.dot(crate::shadow::light_dir_to(l, position)) > 0.0);
+    match reference.get(i) {
+        Some(truth) if facing && analysis.hit(i) => analysis.shadow[i][0] - truth,
+        _ => 0.0,
+    }
+}
+
+pub fn light_bleeding(analysis: &Analysis, reference: &[f32], light: Option<&LightGpu>) -> Bleeding {
+    let (mut max, mut bleeding, mut surface) = (0.0f32, 0usize, 0usize);
+    for i in 0..analysis.shadow.len().min(reference.len()) {
+        if analysis.hit(i) {
+            let excess = bleeding_at(analysis, reference, light, i);
+            max = max.max(excess);
+            surface += 1;
+            bleeding += usize::from(excess >= BLEED_THRESHOLD);
+        }
+    }
+    Bleeding { max, share: if surface > 0 { bleeding as f32 / surface as f32 } else { 0.0 } }
 }
 
 fn with_alpha(c: Rgba<u8>, a: u8) -> Rgba<u8> {
