@@ -72,8 +72,12 @@ pub struct VsmProbe {
     /// The visibility VSM gives: the bound after the bleed reduction (the bound when it is off).
     pub visibility: f32,
     /// The share of the same footprint's depths at or behind the tested depth; the bound is
-    /// never below it, and the difference is light bleeding.
+    /// never below it.
     pub true_lit_fraction: f32,
+    /// The share of the same footprint not nearer than the receiver's own plane at each texel
+    /// (less the bias): an exact filter of the window that does not shadow a tilted receiver
+    /// with itself. The visibility above it is light bleeding.
+    pub plane_lit_fraction: f32,
     /// The footprint's depth distribution: `HISTOGRAM_BINS` weights (summing to 1) over
     /// `histogram_range_ndc`, which also spans the tested depth.
     pub histogram_range_ndc: [f32; 2],
@@ -205,9 +209,11 @@ pub fn probe(
             stored_depth_linear: crate::shadow::depth_linear_from_ndc(&light_gpu, stored),
             bias_ndc: twin.receiver_bias_ndc(&coord, filter_radius_texels),
             vsm: match scene.shadow.technique {
-                Technique::Vsm => Some(vsm_probe(&twin, &coord, scene.shadow.radius_texels)),
+                Technique::Vsm => {
+                    Some(vsm_probe(&twin, &coord, (position, normal), scene.shadow.radius_texels))
+                }
                 Technique::Vssm if result.search.found > 0 => {
-                    Some(vsm_probe(&twin, &coord, result.penumbra.filter_radius_texels))
+                    Some(vsm_probe(&twin, &coord, (position, normal), result.penumbra.filter_radius_texels))
                 }
                 _ => None,
             },
@@ -266,8 +272,14 @@ pub fn probe(
     Ok(report)
 }
 
-fn vsm_probe(twin: &Twin<'_>, coord: &crate::shadow::ShadowCoord, radius_texels: f32) -> VsmProbe {
+fn vsm_probe(
+    twin: &Twin<'_>,
+    coord: &crate::shadow::ShadowCoord,
+    (position, normal): (Vec3, Vec3),
+    radius_texels: f32,
+) -> VsmProbe {
     let lookup = twin.vsm_lookup(coord, radius_texels);
+    let bias = twin.receiver_bias_ndc(coord, radius_texels);
     let (histogram_range_ndc, histogram) = histogram(&lookup.depths, lookup.t);
     VsmProbe {
         mean_depth_ndc: lookup.moments.x,
@@ -276,6 +288,7 @@ fn vsm_probe(twin: &Twin<'_>, coord: &crate::shadow::ShadowCoord, radius_texels:
         chebyshev_bound: lookup.bound,
         visibility: lookup.visibility,
         true_lit_fraction: lookup.true_lit_fraction,
+        plane_lit_fraction: twin.vsm_plane_lit_fraction(position, normal, radius_texels, bias),
         histogram_range_ndc,
         histogram,
     }

@@ -857,3 +857,44 @@ fn a_vsm_probe_reports_the_bound_and_the_true_share() {
     }
     assert!(shadowed > 0, "no probe landed in a VSM shadow");
 }
+
+/// The moments view: the level of the VSM moments the filter reads, as two square panels (mean
+/// depth, standard deviation) with a legend naming the level; refused for techniques without
+/// moments.
+#[test]
+fn the_moments_view_shows_the_level_the_filter_reads_and_needs_vsm() {
+    let (image, stdout) = render_view("moments", &["--set", "technique=vsm", "--set", "radius_texels=6"]);
+    // contact.toml's map is 2048 texels: radius 6 reads levels 2 and 3; the view shows level 2,
+    // 512 texels a side.
+    assert!(stdout.contains("VSM moments, level 2 (each texel averages 4x4 map texels)"), "{stdout}");
+    assert_eq!((image.width(), image.height()), (2 * 512 + 8, 512));
+    let right_panel_varies = (0..512).any(|y| image.get_pixel(520 + 256, y) != image.get_pixel(520 + 256, 0));
+    assert!(right_panel_varies, "the standard deviation panel is flat");
+    let scratch = Scratch::new();
+    let run = render(&scratch, &contact(), &["--view", "moments", "--set", "technique=pcf"]);
+    assert_bad_input(&run, &["moments", "vsm", "vssm"]);
+    scratch.assert_no_output("out.png");
+}
+
+/// A VSSM probe sets its blocker estimate beside the true average of the same footprint and
+/// PCSS's sampled average, each a depth between the light's near plane and the receiver.
+#[test]
+fn a_vssm_probe_compares_its_blocker_depth_with_the_footprint_and_pcss() {
+    let mut estimated = 0;
+    for pixel in ["108,33", "70,40", "80,45", "95,50", "110,35"] {
+        let json = probe_json(&["--pixel", pixel, "--no-reference", "--set", "technique=vssm"]);
+        let light = &json["lights"][0];
+        let Some(vssm) = light.get("vssm") else { continue };
+        estimated += 1;
+        let receiver = light["receiver_depth_linear"].as_f64().expect("receiver depth");
+        let estimate = vssm["estimated_blocker_depth_linear"].as_f64().expect("estimate");
+        assert_eq!(Some(estimate), light["avg_blocker_depth_linear"].as_f64(), "{pixel}: {vssm}");
+        assert!((20.0..=receiver).contains(&estimate), "{pixel}: estimate {estimate}, receiver {receiver}");
+        if let Some(truth) = vssm["footprint_blocker_depth_linear"].as_f64() {
+            assert!((20.0..=receiver).contains(&truth), "{pixel}: footprint average {truth}");
+        }
+        let bound = vssm["unoccluded_bound"].as_f64().expect("bound");
+        assert!((0.0..1.0).contains(&bound), "{pixel}: blockers estimated with bound {bound}");
+    }
+    assert!(estimated > 0, "no probe found VSSM blockers");
+}

@@ -307,8 +307,16 @@ fn the_blocker_depth_view_gives_the_twins_average_blocker_depth() {
 #[test]
 fn vsm_matches_twin() {
     let (_ctx, mut renderer) = common::gpu();
-    for (name, radius) in [("games202", "6"), ("contact", "8"), ("multi_light", "10")] {
-        let scene = common::scene(name, &[("technique", "vsm"), ("radius_texels", radius)]);
+    let cases = [
+        ("games202", "6", "0"),
+        ("contact", "8", "0"),
+        ("multi_light", "10", "0"),
+        // Two occluders in one window, with the bleed reduction.
+        ("bleeding", "12", "0.4"),
+    ];
+    for (name, radius, reduction) in cases {
+        let overrides = [("technique", "vsm"), ("radius_texels", radius), ("vsm_bleed_reduction", reduction)];
+        let scene = common::scene(name, &overrides);
         let a = compare_scene(&mut renderer, &scene, 1e-3);
         eprintln!(
             "{name} vsm: {}/{} within 1e-3, max diff {:.4}, {} partial",
@@ -373,5 +381,31 @@ fn vssm_matches_twin() {
         );
         assert!(a.within * 1000 >= a.compared * 995, "{name}: only {}/{} agree", a.within, a.compared);
         assert!(a.partial > 50, "{name}: VSSM should give soft edges ({} partial pixels)", a.partial);
+    }
+}
+
+/// The moments read back from the GPU are the twin's chain of the read-back map, level by level.
+#[test]
+fn the_moments_read_back_are_the_twins_chain() {
+    let (_ctx, mut renderer) = common::gpu();
+    let scene = common::scene("bleeding", &[]);
+    let frame = renderer.render(&scene, &common::analysis_request((160, 90), 0)).expect("render");
+    let map = renderer.read_shadow_map(0).expect("map");
+    let (light, params) = (frame.lights[0], frame.params);
+    let twin = Twin::new(&light, &params, &map);
+    let chain = twin.moments();
+    for radius in [1.0, 6.0, 40.0] {
+        let level = renderer.read_moments_for_radius(0, radius).expect("moments");
+        let (side, texels) = &chain.levels[level.level as usize];
+        assert_eq!(level.span_texels, light.moments_block << level.level);
+        let mut max_diff = 0.0f32;
+        for y in 0..level.side {
+            for x in 0..level.side {
+                let gpu = level.texels[(y * level.side + x) as usize];
+                let cpu = texels[(y * side + x) as usize];
+                max_diff = max_diff.max((gpu[0] - cpu.x).abs()).max((gpu[1] - cpu.y).abs());
+            }
+        }
+        assert!(max_diff < 1e-5, "radius {radius}: level {} differs by {max_diff}", level.level);
     }
 }

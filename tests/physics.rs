@@ -406,3 +406,88 @@ fn a_directional_lights_ground_truth_tends_to_its_hard_shadow() {
     assert!(errors[0] < 0.01, "a tiny light's ground truth should be its hard shadow: {errors:?}");
     assert!(errors[1] > 3.0 * errors[0], "a wide light's ground truth should be soft: {errors:?}");
 }
+
+/// Light bleeding (Lauritzen 2007): Chebyshev's bound is exact for one occluder over a planar
+/// receiver, and lets light through where a filter window holds two occluders at very different
+/// depths with the receiver just behind the farther one. On bleeding.toml a wide slab 2 units up
+/// lies in the shadow of a small one 14 units up: the bleeding must appear there and only there,
+/// and vanish when the high slab is taken away.
+#[test]
+fn vsm_light_bleeding_appears_where_two_occluders_share_a_window_and_nowhere_else() {
+    use glam::Vec3;
+    use shadowlab::views::overlays::{BLEED_THRESHOLD, vsm_light_bleeding};
+    let (_ctx, mut renderer) = common::gpu();
+    let size = (480, 270);
+    let bleeding_of = |renderer: &mut Renderer, scene: &Scene| {
+        let frame = renderer.render(scene, &common::analysis_request(size, 0)).expect("render");
+        let analysis = renderer.read_analysis().expect("analysis");
+        let map = renderer.read_shadow_map(0).expect("map");
+        let bleeding = vsm_light_bleeding(&analysis, &map, &frame.lights[0], &frame.params);
+        (analysis, map, frame.lights[0], frame.params, bleeding)
+    };
+    let both = common::scene("bleeding", &[]);
+    let (analysis, map, light, params, bleeding) = bleeding_of(&mut renderer, &both);
+    let twin = shadowlab::shadow::Twin::new(&light, &params, &map);
+    // The height of the surface a map texel stores: its light-space point taken back to the world.
+    let world_from_clip = glam::Mat4::from_cols_array_2d(&light.clip_from_world).inverse();
+    let height_of = |[x, y]: [u32; 2], z: f32| {
+        let uv = (glam::Vec2::new(x as f32, y as f32) + 0.5) / light.map_size_texels;
+        world_from_clip.project_point3(Vec3::new(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, z)).y
+    };
+    let mut strong = 0;
+    for (i, excess) in bleeding.iter().enumerate() {
+        if *excess < 0.3 {
+            continue;
+        }
+        strong += 1;
+        // Every strongly bleeding window holds texels of both slabs.
+        let position = Vec3::from_slice(&analysis.position[i][..3]);
+        let normal = Vec3::from_slice(&analysis.normal[i][..3]);
+        let coord = shadowlab::shadow::light_space_lookup(&light, &params, position, normal);
+        let (mut high, mut wide) = (0.0, 0.0);
+        twin.for_each_footprint_depth(&coord, params.radius_texels, |texel, z, w| {
+            match height_of(texel, z) {
+                h if (h - 14.2).abs() < 0.05 => high += w,
+                h if (h - 2.2).abs() < 0.05 => wide += w,
+                _ => {}
+            }
+        });
+        // A sliver of the far occluder is enough: its distance makes the variance.
+        assert!(
+            high > 1e-4 && wide > 0.05,
+            "pixel {i}: bleeding {excess:.2} with window shares {high:.4} (high slab), {wide:.4} (wide slab)"
+        );
+    }
+    assert!(strong > 200, "only {strong} pixels bleed 0.3 or more");
+    let max = bleeding.iter().copied().fold(0.0f32, f32::max);
+    // With the high slab gone, each window holds one occluder over the floor: the bound is exact
+    // but for the tilted floor's own spread of depths.
+    let mut one = both.clone();
+    one.objects.retain(|o| o.name != "high slab");
+    let (_, _, _, _, alone) = bleeding_of(&mut renderer, &one);
+    let max_alone = alone.iter().copied().fold(0.0f32, f32::max);
+    let share_alone = alone.iter().filter(|e| **e >= BLEED_THRESHOLD).count() as f32 / alone.len() as f32;
+    eprintln!(
+        "light bleeding: max {max:.3}, {strong} pixels ≥ 0.3; one slab: max {max_alone:.3}, {:.2} % ≥ {BLEED_THRESHOLD}",
+        100.0 * share_alone
+    );
+    assert!(max > 0.45, "the two slabs bleed only {max:.3}");
+    // What is left is the floor's own spread of depths in each window (it is tilted to the light).
+    assert!(max_alone < 0.15, "one slab bleeds up to {max_alone:.3}");
+}
+
+/// The bleed reduction turns every bound up to a into shadow and rescales the rest.
+#[test]
+fn the_bleed_reduction_darkens_the_bound_as_its_formula_says() {
+    let (_ctx, mut renderer) = common::gpu();
+    let plain = visibility(&mut renderer, &common::scene("bleeding", &[]), (240, 136));
+    let reduced =
+        visibility(&mut renderer, &common::scene("bleeding", &[("vsm_bleed_reduction", "0.4")]), (240, 136));
+    let mut partial = 0;
+    for (p, r) in plain.shadow.iter().zip(&reduced.shadow) {
+        let expected = ((p[0] - 0.4) / 0.6).clamp(0.0, 1.0);
+        assert!((r[0] - expected).abs() < 2e-5, "bound {} reduced to {}, expected {expected}", p[0], r[0]);
+        partial += usize::from(p[0] > 0.05 && p[0] < 0.95);
+    }
+    assert!(partial > 100, "only {partial} soft pixels to check");
+}

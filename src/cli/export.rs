@@ -151,7 +151,7 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
                     i + 1,
                     lesson.steps.len()
                 ));
-                let pictures = render_step(&mut renderer, lesson, i, scene, camera_size)?;
+                let pictures = render_step(&mut renderer, lesson, i, scene, camera_size, args.lang)?;
                 let map_panel = pictures.shadow_map.as_ref().map(|(img, _)| {
                     resize(img, layout.shadow_map.w, layout.shadow_map.h, FilterType::Triangle)
                 });

@@ -126,15 +126,19 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let xt = x_of(n.t).clamp(px, px + pw);
     c.line([xt, py], [xt, py + ph], ink, 2.5);
     c.text("t", [xt, py - 4.0], Anchor::BottomCenter, Style::em(FS_LABEL, pal::INK));
-    let (yb, yt) = (y_of(n.bound), y_of(n.truth));
-    if n.bound - n.truth > 0.01 {
-        c.line([xt, yb], [xt, yt], col(pal::BLOCKED, 1.0), 6.0);
-        let t = c.fill("bleeding {}", &[&format!("{:.2}", n.bound - n.truth)]);
+    // Light bleeding: what the lookup returns (the bound, or the reduced bound) above the truth.
+    let (yv, yt) = (y_of(n.visibility), y_of(n.truth));
+    if n.visibility - n.truth > 0.01 {
+        c.line([xt, yv], [xt, yt], col(pal::BLOCKED, 1.0), 6.0);
+        let t = c.fill("bleeding {}", &[&format!("{:.2}", n.visibility - n.truth)]);
         let anchor = if xt > px + pw * 0.6 { Anchor::MidRight } else { Anchor::MidLeft };
         let dx = if anchor == Anchor::MidRight { -10.0 } else { 10.0 };
-        c.text(&t, [xt + dx, (yb + yt) * 0.5], anchor, Style::em(FS_SMALL, pal::BLOCKED));
+        c.text(&t, [xt + dx, (yv + yt) * 0.5], anchor, Style::em(FS_SMALL, pal::BLOCKED));
     }
-    c.circle([xt, yb], 6.0, Some(col(pal::PENUMBRA, 1.0)), Some((ink, 1.5)));
+    c.circle([xt, y_of(n.bound)], 6.0, Some(col(pal::PENUMBRA, 1.0)), Some((ink, 1.5)));
+    if n.visibility != n.bound {
+        c.circle([xt, yv], 6.0, Some(col(pal::BG, 1.0)), Some((col(pal::PENUMBRA, 1.0), 2.5)));
+    }
     c.circle([xt, yt], 6.0, Some(col(pal::LIT, 1.0)), Some((ink, 1.5)));
     // Axes.
     c.label("1", [px - 6.0, py], Anchor::MidRight, FS_SMALL);
@@ -162,7 +166,7 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     text.tint(c, &t, pal::PENUMBRA);
     let t = c.fill("true lit share = {}", &[&format!("{:.3}", n.truth)]);
     text.tint(c, &t, pal::LIT);
-    let t = c.fill("light bleeding = {}", &[&format!("{:.3}", (n.bound - n.truth).max(0.0))]);
+    let t = c.fill("light bleeding = {}", &[&format!("{:.3}", (n.visibility - n.truth).max(0.0))]);
     text.tint(c, &t, pal::BLOCKED);
     if n.reduction > 0.0 {
         let t = c.fill("bleed reduction a = {}: (p − a) / (1 − a)", &[&format!("{:.2}", n.reduction)]);

@@ -219,7 +219,11 @@ fn formulas(c: &mut Canvas, inp: &DiagramInputs, n: &Numbers, scale_note: &str) 
     let t = c.fill("search radius = {} texels", &[&r_s]);
     col_.line(c, &t);
     let (found, total) = (inp.blockers_found, inp.blocker_samples);
-    let t = c.fill("blockers found: {} / {}", &[&found, &total]);
+    // VSSM takes no taps: its blockers come from the moments.
+    let t = match total {
+        0 if found > 0 => c.fill("blockers: estimated from the moments", &[]),
+        _ => c.fill("blockers found: {} / {}", &[&found, &total]),
+    };
     col_.line(c, &t);
     let r_f = num(fin(inp.filter_radius_texels, 0.0));
     let t = c.fill("filter radius = {} texels", &[&r_f]);

@@ -548,12 +548,21 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
                         tr(lang, "filter radius", "滤波半径"),
                         format!("{} {texels}", short_num(l.filter_radius_texels)),
                     ));
+                    if let Some(v) = &l.vsm {
+                        rows.push((
+                            tr(lang, "bound / true", "上界 / 真实"),
+                            format!("{:.3} / {:.3}", v.chebyshev_bound, v.true_lit_fraction),
+                        ));
+                    }
                 }
                 Technique::Pcss | Technique::Vssm => {
-                    rows.push((
-                        tr(lang, "blockers", "遮挡物"),
-                        format!("{} / {}", l.blockers_found, l.blocker_samples),
-                    ));
+                    // VSSM estimates its blockers from the moments: there is no count.
+                    if technique == Technique::Pcss {
+                        rows.push((
+                            tr(lang, "blockers", "遮挡物"),
+                            format!("{} / {}", l.blockers_found, l.blocker_samples),
+                        ));
+                    }
                     if let Some(d) = l.avg_blocker_depth_linear {
                         rows.push((tr(lang, "blocker depth", "遮挡物深度"), depth_num(d)));
                     }

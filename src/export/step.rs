@@ -95,13 +95,14 @@ pub fn pick_probe_pixel(a: &Analysis) -> Option<(u32, u32)> {
 }
 
 /// Render step `step_index` of `lesson` (whose scene, overrides applied, is `scene`) with the
-/// camera view at `size`, and probe it for the diagram.
+/// camera view at `size`, and probe it for the diagram; overlay legends in `lang`.
 pub fn render_step(
     renderer: &mut Renderer,
     lesson: &Lesson,
     step_index: usize,
     scene: &Scene,
     size: (u32, u32),
+    lang: Lang,
 ) -> Result<StepPictures, RenderError> {
     let step = lesson.steps.get(step_index).ok_or_else(|| {
         RenderError::Usage(format!("lesson `{}` has no step {}", lesson.id, step_index + 1))
@@ -152,7 +153,10 @@ pub fn render_step(
             ..Default::default()
         };
         let frame = renderer.render(scene, &request)?;
-        let analysis = renderer.read_analysis()?;
+        let mut analysis = renderer.read_analysis()?;
+        if analysis_overlays.contains(&Overlay::Bleeding) {
+            analysis.bleeding = views::overlays::bleeding_of_last_frame(renderer, &analysis, light)?;
+        }
         let reference = if analysis_overlays.iter().any(|o| o.needs_reference()) {
             Some(renderer.render_reference(scene, light)?)
         } else {
@@ -160,7 +164,7 @@ pub fn render_step(
         };
         let light_gpu = frame.lights.get(light).copied();
         let (image, legends) = views::overlays::compose(
-            Lang::En,
+            lang,
             &analysis_overlays,
             &analysis,
             light_gpu.as_ref(),

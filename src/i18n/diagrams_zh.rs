@@ -101,6 +101,7 @@ pub(super) const DIAGRAMS: &[(&str, &str)] = &[
     ("w_search = (d_r − near) · 2·tan(θ/2)", "w_search = (d_r − d_近) · 2·tan(θ/2)"),
     ("  = {} world on the near plane", "  = 近平面上的 {} 世界单位"),
     ("blockers found: {} / {}", "找到的遮挡物：{} / {}"),
+    ("blockers: estimated from the moments", "遮挡物：由矩估计"),
     ("filter radius = {} texels", "滤波半径 = {} 纹素"),
     ("(shader's w_penumbra: {} world)", "（着色器的 w_penumbra：{} 世界单位）"),
     // Several lights.

@@ -40,13 +40,26 @@ enum Quantity {
     /// The GPU's visibility, 0 (shadowed) .. 1 (lit).
     Visibility,
     VisibilityReference,
+    /// VSM: the filter window's mean depth (NDC) and variance (NDC²).
+    VsmMeanNdc,
+    VsmVarianceNdc2,
+    /// VSM: Chebyshev's bound, the true lit share of the same window, and the visibility's
+    /// excess over it (light bleeding).
+    ChebyshevBound,
+    TrueLitFraction,
+    LightBleeding,
+    /// VSSM: its blocker-depth estimate, the true average of the same footprint, PCSS's
+    /// sampled average (world units).
+    VssmBlockerDepthWorld,
+    FootprintBlockerDepthWorld,
+    PcssBlockerDepthWorld,
     /// "lit", "shadowed" or "partly lit", in the text's language.
     Verdict,
     /// The object under the probe.
     Object,
 }
 
-const QUANTITIES: [(&str, Quantity); 25] = [
+const QUANTITIES: [(&str, Quantity); 33] = [
     ("receiver_depth_ndc", Quantity::ReceiverDepthNdc),
     ("stored_depth_ndc", Quantity::StoredDepthNdc),
     ("receiver_depth_world", Quantity::ReceiverDepthWorld),
@@ -70,6 +83,14 @@ const QUANTITIES: [(&str, Quantity); 25] = [
     ("filter_samples", Quantity::FilterSamples),
     ("visibility", Quantity::Visibility),
     ("visibility_reference", Quantity::VisibilityReference),
+    ("vsm_mean_ndc", Quantity::VsmMeanNdc),
+    ("vsm_variance_ndc2", Quantity::VsmVarianceNdc2),
+    ("chebyshev_bound", Quantity::ChebyshevBound),
+    ("true_lit_fraction", Quantity::TrueLitFraction),
+    ("light_bleeding", Quantity::LightBleeding),
+    ("vssm_blocker_depth_world", Quantity::VssmBlockerDepthWorld),
+    ("footprint_blocker_depth_world", Quantity::FootprintBlockerDepthWorld),
+    ("pcss_blocker_depth_world", Quantity::PcssBlockerDepthWorld),
     ("verdict", Quantity::Verdict),
     ("object", Quantity::Object),
 ];
@@ -222,6 +243,22 @@ fn value(q: Quantity, report: &ProbeReport, l: &LightProbe, lang: Lang) -> Optio
         Quantity::FilterSamples => int(f64::from(l.filter_samples)),
         Quantity::Visibility => float(l.visibility_gpu),
         Quantity::VisibilityReference => l.visibility_reference.and_then(float),
+        Quantity::VsmMeanNdc => l.vsm.as_ref().and_then(|v| float(v.mean_depth_ndc)),
+        Quantity::VsmVarianceNdc2 => l.vsm.as_ref().and_then(|v| float(v.variance_ndc2)),
+        Quantity::ChebyshevBound => l.vsm.as_ref().and_then(|v| float(v.chebyshev_bound)),
+        Quantity::TrueLitFraction => l.vsm.as_ref().and_then(|v| float(v.true_lit_fraction)),
+        Quantity::LightBleeding => {
+            l.vsm.as_ref().and_then(|v| float((v.visibility - v.plane_lit_fraction).max(0.0)))
+        }
+        Quantity::VssmBlockerDepthWorld => {
+            l.vssm.as_ref().and_then(|v| float(v.estimated_blocker_depth_linear))
+        }
+        Quantity::FootprintBlockerDepthWorld => {
+            l.vssm.as_ref().and_then(|v| v.footprint_blocker_depth_linear).and_then(float)
+        }
+        Quantity::PcssBlockerDepthWorld => {
+            l.vssm.as_ref().and_then(|v| v.pcss_blocker_depth_linear).and_then(float)
+        }
         Quantity::Verdict => Some(Value::Text(Verdict::of(l.visibility_gpu).name(lang).into())),
         Quantity::Object => report.object.clone().map(Value::Text),
     }

@@ -89,7 +89,7 @@ pub enum Overlay {
     TexelGrid,
     OutsideFrustum,
     Error,
-    /// Where the technique lets through light the ground truth blocks (VSM's light bleeding).
+    /// Where VSM's bound lets through light that the same filter window blocks (light bleeding).
     Bleeding,
     LightFrustum,
 }
@@ -120,7 +120,7 @@ impl Overlay {
 
     /// Drawn against the ground truth.
     pub fn needs_reference(self) -> bool {
-        matches!(self, Overlay::Error | Overlay::Bleeding)
+        self == Overlay::Error
     }
 }
 

@@ -100,6 +100,8 @@ pub struct Analysis {
     /// The level of the selected light's VSM moments the filter reads, when it was asked for
     /// (`Renderer::read_moments_for_radius`).
     pub moments: Option<MomentsLevel>,
+    /// VSM's light bleeding per pixel, when it was asked for (`views::overlays::vsm_light_bleeding`).
+    pub bleeding: Option<Vec<f32>>,
 }
 
 /// One level of one light's VSM moments, read back.
@@ -637,7 +639,7 @@ impl Renderer {
         let normal = planes.pop().unwrap_or_default();
         let position = planes.pop().unwrap_or_default();
         let shadow = planes.pop().unwrap_or_default();
-        Ok(Analysis { width, height, shadow, position, normal, moments: None })
+        Ok(Analysis { width, height, shadow, position, normal, moments: None, bleeding: None })
     }
 
     /// The analysis targets at one pixel of the last frame (a 1x1 read-back each).

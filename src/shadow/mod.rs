@@ -467,23 +467,70 @@ impl<'a> Twin<'a> {
     pub fn vsm_lookup(&self, coord: &ShadowCoord, radius_texels: f32) -> VsmLookup {
         let (moments, t, bound) = self.vsm_filter(coord, radius_texels);
         let depths = self.vsm_footprint_depths(coord, radius_texels);
-        let lit: f64 = depths.iter().filter(|(z, _)| *z >= t).map(|(_, w)| f64::from(*w)).sum();
         VsmLookup {
             moments,
             t,
             bound,
             visibility: self.reduce_light_bleeding(bound),
-            true_lit_fraction: lit as f32,
+            true_lit_fraction: self.vsm_true_lit_fraction(coord, radius_texels, t),
             depths,
         }
+    }
+
+    /// The share of a VSM lookup's footprint at or behind `t`, weighted as the lookup weights
+    /// its texels: what an exact filter of the same window would give.
+    pub fn vsm_true_lit_fraction(&self, coord: &ShadowCoord, radius_texels: f32, t: f32) -> f32 {
+        let mut lit = 0.0f64;
+        self.for_each_footprint_depth(coord, radius_texels, |_, z, w| {
+            if z >= t {
+                lit += f64::from(w);
+            }
+        });
+        lit as f32
+    }
+
+    /// The share of a VSM lookup's footprint that is not nearer than the receiver's own plane
+    /// (less `bias_ndc`) at each texel's centre: what an exact filter of the same window gives
+    /// without shadowing a tilted receiver with itself. VSM's visibility above it is light
+    /// bleeding.
+    pub fn vsm_plane_lit_fraction(
+        &self,
+        world_pos: Vec3,
+        normal: Vec3,
+        radius_texels: f32,
+        bias_ndc: f32,
+    ) -> f32 {
+        let plane_params = ShadowParamsGpu { bias_mode: BIAS_RECEIVER_PLANE, ..*self.params };
+        let coord = light_space_lookup(self.light, &plane_params, world_pos, normal);
+        let size = self.light.map_size_texels;
+        let mut lit = 0.0f64;
+        self.for_each_footprint_depth(&coord, radius_texels, |[x, y], z, w| {
+            let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) / size;
+            if z >= coord.depth_ndc + coord.depth_gradient.dot(centre - coord.uv) - bias_ndc {
+                lit += f64::from(w);
+            }
+        });
+        lit as f32
     }
 
     /// Every map depth a VSM lookup of `radius_texels` averages, with its weight in the
     /// lookup (NDC, weights summing to 1): the distribution whose mean and variance the
     /// filtered moments hold.
     pub fn vsm_footprint_depths(&self, coord: &ShadowCoord, radius_texels: f32) -> Vec<(f32, f32)> {
-        let (light, chain, atlas) = (self.light, self.moments(), self.atlas_size());
         let mut depths = Vec::new();
+        self.for_each_footprint_depth(coord, radius_texels, |_, z, w| depths.push((z, w)));
+        depths
+    }
+
+    /// Calls `visit(texel, depth, weight)` for every map texel a VSM lookup averages (texels
+    /// of the light's map, depths NDC, weights summing to 1).
+    pub fn for_each_footprint_depth(
+        &self,
+        coord: &ShadowCoord,
+        radius_texels: f32,
+        mut visit: impl FnMut([u32; 2], f32, f32),
+    ) {
+        let (light, chain, atlas) = (self.light, self.moments(), self.atlas_size());
         for (level, level_weight) in chain.levels_for(light, radius_texels) {
             if level_weight == 0.0 {
                 continue;
@@ -498,12 +545,29 @@ impl<'a> Twin<'a> {
                 let (x0, y0) = (texel[0] * fp.span, texel[1] * fp.span);
                 for y in y0..y0 + fp.span {
                     for x in x0..x0 + fp.span {
-                        depths.push((moments::atlas_depth(self.map, atlas, x, y), w));
+                        visit([x, y], moments::atlas_depth(self.map, atlas, x, y), w);
                     }
                 }
             }
         }
-        depths
+    }
+
+    /// Light bleeding at one surface point: VSM's (or VSSM's) visibility minus the lit share
+    /// of the window its filter read, each texel tested against the receiver's plane
+    /// (`vsm_plane_lit_fraction`); 0 where the technique is neither, or the point is outside
+    /// the frustum and lit anyway.
+    pub fn vsm_light_bleeding_at(&mut self, pixel: (u32, u32), world_pos: Vec3, normal: Vec3) -> f32 {
+        let (coord, result) = self.analysis_at(pixel, world_pos, normal);
+        let radius = match self.params.technique {
+            TECHNIQUE_VSM => self.params.radius_texels,
+            TECHNIQUE_VSSM if result.search.found > 0 => result.penumbra.filter_radius_texels,
+            _ => return 0.0,
+        };
+        if self.params.clamp_outside == 1 && outside_frustum(&coord) {
+            return 0.0;
+        }
+        let bias = self.receiver_bias_ndc(&coord, radius);
+        result.visibility - self.vsm_plane_lit_fraction(world_pos, normal, radius, bias)
     }
 
     /// P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu; 1 for t <= mu.

@@ -244,6 +244,7 @@ impl ShadowlabApp {
             reference: analysis
                 && (self.overlays.iter().any(|o| o.needs_reference()) || self.view.needs_reference()),
             moments: analysis && self.view == View::Moments,
+            bleeding: analysis && self.overlays.contains(&Overlay::Bleeding),
             technique_b: self.ab.as_ref().map(|ab| ab.b),
             thumbnails: full_detail,
             preview,

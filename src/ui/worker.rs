@@ -27,6 +27,8 @@ pub struct RenderJob {
     pub analysis: bool,
     /// Accumulate the ground truth of the selected light (needs `analysis`).
     pub reference: bool,
+    /// Work out VSM's light bleeding for the selected light (needs `analysis`).
+    pub bleeding: bool,
     /// Read back the level of the selected light's VSM moments the filter reads (needs
     /// `analysis`; VSM techniques only).
     pub moments: bool,
@@ -430,6 +432,10 @@ impl Renderers {
             let light = job.request.selected_light;
             // Techniques without moments leave them out; the view says so.
             analysis.moments = self.a.read_moments_for_radius(light, scene.shadow.radius_texels).ok();
+        }
+        if let Some(analysis) = analysis.as_mut().filter(|_| job.bleeding) {
+            let light = job.request.selected_light;
+            analysis.bleeding = crate::views::overlays::bleeding_of_last_frame(&self.a, analysis, light)?;
         }
         let request = FrameRequest { final_color: false, analysis: true, timestamps: false, ..job.request };
         let probe = job.probe.map(|spot| {

@@ -114,33 +114,37 @@ pub fn compose(
                 });
             }
             Overlay::Bleeding => {
-                let Some(reference) = reference else {
+                let Some(bleeding) = analysis.bleeding.as_deref() else {
                     legends.push(
                         match lang {
-                            Lang::En => "light bleeding: computing the ground truth...",
-                            Lang::Zh => "漏光：正在计算真实结果……",
+                            Lang::En => "light bleeding: only VSM and VSSM bound their lit share",
+                            Lang::Zh => "漏光：只有 VSM 和 VSSM 用上界估计受光比例",
                         }
                         .into(),
                     );
                     continue;
                 };
-                let bleed = light_bleeding(analysis, reference, light);
+                let summary = light_bleeding(analysis, bleeding);
                 legends.push(match lang {
                     Lang::En => format!(
-                        "magenta: lighter than the ground truth by {BLEED_THRESHOLD} or more, up to {:.2}; {:.1} % of the surface",
-                        bleed.max,
-                        100.0 * bleed.share
+                        "magenta stripes: light bleeding ≥ {BLEED_THRESHOLD}, up to {:.2}; {:.1} % of the surface",
+                        summary.max,
+                        100.0 * summary.share
                     ),
                     Lang::Zh => format!(
-                        "品红：比真实结果亮 {BLEED_THRESHOLD} 以上的地方，最多亮 {:.2}；占表面的 {:.1} %",
-                        bleed.max,
-                        100.0 * bleed.share
+                        "品红条纹：漏光 ≥ {BLEED_THRESHOLD}，最多 {:.2}；占表面的 {:.1} %",
+                        summary.max,
+                        100.0 * summary.share
                     ),
                 });
+                // Hatched, so the light that bleeds stays visible between the stripes; the
+                // stripes' opacity grows with the amount.
+                let width = analysis.width as usize;
                 paint(&mut image, analysis, |i| {
-                    let excess = bleeding_at(analysis, reference, light, i);
-                    (excess >= BLEED_THRESHOLD)
-                        .then(|| Rgba([255, 0, 200, (90.0 + 165.0 * excess.min(1.0)).round() as u8]))
+                    let excess = bleeding.get(i).copied().unwrap_or(0.0);
+                    let stripe = (i % width + i / width) % 8 < 4;
+                    (stripe && excess >= BLEED_THRESHOLD)
+                        .then(|| Rgba([255, 0, 200, (110.0 + 145.0 * excess.min(1.0)).round() as u8]))
                 });
             }
             Overlay::LightFrustum => {}
@@ -149,42 +153,68 @@ pub fn compose(
     (image, legends)
 }
 
-/// Visibility above the ground truth by this much counts as light bleeding (below it is the
-/// noise of the ground truth's finite samples and the filters' slightly different footprints).
+/// Light bleeding of at least this much is painted (below it, the bound's small excess over a
+/// receiver's own depths spread around t).
 pub const BLEED_THRESHOLD: f32 = 0.05;
 
-/// How much light a technique lets through that the ground truth blocks.
+/// How much light VSM lets through that the same window blocks.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Bleeding {
-    /// The largest visibility - ground truth over the surfaces.
+    /// The largest light bleeding over the surfaces.
     pub max: f32,
-    /// The share of surface pixels lighter than the ground truth by `BLEED_THRESHOLD` or more.
+    /// The share of surface pixels with `BLEED_THRESHOLD` or more.
     pub share: f32,
 }
 
-/// Visibility minus the ground truth at pixel `i`, on surfaces that face the light (0
-/// elsewhere: a face turned away is dark whatever its shadow term says).
-pub fn bleeding_at(analysis: &Analysis, reference: &[f32], light: Option<&LightGpu>, i: usize) -> f32 {
-    let position = Vec3::from_slice(&analysis.position[i][..3]);
-    let normal = Vec3::from_slice(&analysis.normal[i][..3]);
-    let facing = light.is_none_or(|l| normal.dot(crate::shadow::light_dir_to(l, position)) > 0.0);
-    match reference.get(i) {
-        Some(truth) if facing && analysis.hit(i) => analysis.shadow[i][0] - truth,
-        _ => 0.0,
-    }
-}
-
-pub fn light_bleeding(analysis: &Analysis, reference: &[f32], light: Option<&LightGpu>) -> Bleeding {
-    let (mut max, mut bleeding, mut surface) = (0.0f32, 0usize, 0usize);
-    for i in 0..analysis.shadow.len().min(reference.len()) {
+pub fn light_bleeding(analysis: &Analysis, bleeding: &[f32]) -> Bleeding {
+    let (mut max, mut count, mut surface) = (0.0f32, 0usize, 0usize);
+    for (i, excess) in bleeding.iter().enumerate().take(analysis.shadow.len()) {
         if analysis.hit(i) {
-            let excess = bleeding_at(analysis, reference, light, i);
-            max = max.max(excess);
+            max = max.max(*excess);
             surface += 1;
-            bleeding += usize::from(excess >= BLEED_THRESHOLD);
+            count += usize::from(*excess >= BLEED_THRESHOLD);
         }
     }
-    Bleeding { max, share: if surface > 0 { bleeding as f32 / surface as f32 } else { 0.0 } }
+    Bleeding { max, share: if surface > 0 { count as f32 / surface as f32 } else { 0.0 } }
+}
+
+/// The light bleeding of the renderer's last frame, for its analysis `analysis` of light
+/// `light`: None unless that frame used VSM or VSSM.
+pub fn bleeding_of_last_frame(
+    renderer: &crate::render::Renderer,
+    analysis: &Analysis,
+    light: usize,
+) -> Result<Option<Vec<f32>>, crate::render::RenderError> {
+    let Some(frame) = renderer.last_frame() else { return Ok(None) };
+    let vsm = [crate::shadow::TECHNIQUE_VSM, crate::shadow::TECHNIQUE_VSSM].contains(&frame.params.technique);
+    let Some(light_gpu) = frame.lights.get(light).copied().filter(|_| vsm) else { return Ok(None) };
+    let params = frame.params;
+    let map = renderer.read_shadow_map(light)?;
+    Ok(Some(vsm_light_bleeding(analysis, &map, &light_gpu, &params)))
+}
+
+/// Light bleeding per pixel of `analysis` (`Twin::vsm_light_bleeding_at`): VSM's or VSSM's
+/// visibility minus the true lit share of the window its filter read, worked out by the CPU
+/// twin on `map`. Only pixels that are neither fully lit nor dark can bleed; the rest are 0.
+pub fn vsm_light_bleeding(
+    analysis: &Analysis,
+    map: &crate::render::DepthImage,
+    light: &LightGpu,
+    params: &crate::render::ShadowParamsGpu,
+) -> Vec<f32> {
+    let mut twin = crate::shadow::Twin::new(light, params, map);
+    (0..analysis.shadow.len())
+        .map(|i| {
+            let v = analysis.shadow[i][0];
+            if !analysis.hit(i) || !(BLEED_THRESHOLD..1.0).contains(&v) {
+                return 0.0;
+            }
+            let pixel = ((i % analysis.width as usize) as u32, (i / analysis.width as usize) as u32);
+            let position = Vec3::from_slice(&analysis.position[i][..3]);
+            let normal = Vec3::from_slice(&analysis.normal[i][..3]);
+            twin.vsm_light_bleeding_at(pixel, position, normal)
+        })
+        .collect()
 }
 
 fn with_alpha(c: Rgba<u8>, a: u8) -> Rgba<u8> {
