@@ -478,7 +478,9 @@ fn allowed_in_chinese(word: &str) -> bool {
         .map(|t| t.name())
         .chain(Kernel::ALL.iter().map(|k| k.name()))
         .chain(BiasMode::ALL.iter().map(|b| b.name()))
-        .chain(shadowlab::views::View::ALL.iter().map(|v| v.name()));
+        .chain(shadowlab::views::View::ALL.iter().map(|v| v.name()))
+        // The diagram picker shows the diagrams' ids, as the lesson files name them.
+        .chain(shadowlab::diagrams::DiagramKind::ALL.iter().map(|k| k.id()));
     // "screenshots" is the screenshot folder's default path; x, y and z name coordinates.
     let fixed = [
         "shadowlab",
@@ -770,4 +772,40 @@ fn every_try_this_apply_button_sets_what_its_prompt_says() {
         }
     }
     assert!(pressed >= 30, "only {pressed} Apply buttons pressed");
+}
+
+/// Lesson 6 as a student meets it: the bleeding overlay and its legend on the two-slab scene, the
+/// probe's Chebyshev rows, then the moments view picked from the view menu, and what it says
+/// once the technique has no moments.
+#[test]
+fn the_vsm_lesson_shows_light_bleeding_and_the_view_menu_shows_the_moments() {
+    let mut h = harness();
+    let lesson = h.state().lessons.iter().position(|l| l.id == "vsm").expect("lesson 6");
+    h.state_mut().go_to_step(lesson, 2);
+    settle(&mut h);
+    let legends = h.state().legend_lines();
+    assert!(legends.iter().any(|l| l.starts_with("magenta stripes: light bleeding")), "{legends:?}");
+    let overlay = h.state().overlay_image().expect("the bleeding overlay");
+    let magenta = overlay.pixels().filter(|p| p[0] == 255 && p[1] == 0 && p[2] == 200 && p[3] > 0).count();
+    assert!(magenta > 500, "only {magenta} magenta overlay pixels");
+    assert!(
+        h.query_all_by_label("Chebyshev bound / true share").count() > 0,
+        "no Chebyshev row in the probe"
+    );
+    h.get_by_value("view: final").click();
+    h.run_steps(2);
+    h.get_by_label("moments").click();
+    settle(&mut h);
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::Moments);
+    let legends = h.state().legend_lines();
+    assert!(
+        legends.iter().any(|l| l.starts_with("VSM moments, level 3 (each texel averages 8x8")),
+        "{legends:?}"
+    );
+    h.state_mut().scene.shadow.technique = shadowlab::scene::Technique::Pcf;
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    let legends = h.state().legend_lines();
+    assert!(legends.iter().any(|l| l == "the moments view needs the vsm or vssm technique"), "{legends:?}");
+    assert!(legends.iter().any(|l| l.contains("only VSM and VSSM")), "{legends:?}");
 }

@@ -123,8 +123,6 @@ pub(super) const DIAGRAMS: &[(&str, &str)] = &[
     ("NDC depth (nearer the light ←)", "NDC 深度（← 离光源更近）"),
     ("an example: probe a pixel with VSM or VSSM", "示例：在 VSM 或 VSSM 下探测一个像素"),
     ("filter window: {} texels radius", "滤波窗口：半径 {} 纹素"),
-    ("μ = E[z] = {}", "μ = E[z] = {}"),
-    ("σ² = E[z²] − μ² = {}", "σ² = E[z²] − μ² = {}"),
     ("t = receiver − bias = {}", "t = 接收点 − 偏移 = {}"),
     ("bound = {}", "上界 = {}"),
     ("true lit share = {}", "真实受光比例 = {}"),

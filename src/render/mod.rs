@@ -688,10 +688,14 @@ impl Renderer {
     /// the light's part in texels, and (mean depth, mean squared depth) per texel, NDC, rows
     /// first. Each texel covers `moments_block << level` map texels per side.
     pub fn read_moments(&self, index: usize, level: u32) -> Result<(u32, Vec<[f32; 2]>), RenderError> {
-        let moments =
-            self.moments.as_ref().filter(|m| m.current && !m.is_placeholder()).ok_or_else(|| {
-                RenderError::Usage("the moments exist for the vsm and vssm techniques only".into())
-            })?;
+        // Only for a frame that filtered with them: the view shows what VSM's lookups read.
+        let vsm_frame = self.last_frame.as_ref().is_some_and(|f| {
+            [crate::shadow::TECHNIQUE_VSM, crate::shadow::TECHNIQUE_VSSM].contains(&f.params.technique)
+        });
+        let moments = self.moments.as_ref().filter(|m| vsm_frame && m.current && !m.is_placeholder());
+        let moments = moments.ok_or_else(|| {
+            RenderError::Usage("the moments exist for the vsm and vssm techniques only".into())
+        })?;
         let lights = self.last_frame.as_ref().map_or(&[][..], |f| &f.lights[..]);
         let light = lights.get(index).ok_or_else(|| {
             RenderError::Usage(format!("light {index} does not exist (the scene has {})", lights.len()))

@@ -425,6 +425,16 @@ impl ShadowlabApp {
         self.shown.color.clone()
     }
 
+    /// The lines under the camera view: the view's legend, then the overlays' (as painted).
+    pub fn legend_lines(&self) -> Vec<String> {
+        self.view_state.legend_lines()
+    }
+
+    /// The overlays as last composed over the camera view (translucent), if any is on.
+    pub fn overlay_image(&self) -> Option<&image::RgbaImage> {
+        self.view_state.overlay_picture.as_ref()
+    }
+
     /// The B side of the A/B split as last rendered, when the split is on.
     pub fn camera_image_b(&self) -> Option<image::RgbaImage> {
         self.ab.as_ref()?;

@@ -123,6 +123,12 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
 }
 
 impl ViewState {
+    /// The view's legend lines, then the overlays'.
+    pub fn legend_lines(&self) -> Vec<String> {
+        let view = self.view_legend.iter().flat_map(|l| l.lines()).map(String::from);
+        view.chain(self.legends.iter().cloned()).collect()
+    }
+
     /// Show a new shadow-map picture (from the render worker).
     pub fn set_map(&mut self, ctx: &egui::Context, map: MapView) {
         self.map_range = map.range;
