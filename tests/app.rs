@@ -788,6 +788,13 @@ fn the_vsm_lesson_shows_light_bleeding_and_the_view_menu_shows_the_moments() {
     let overlay = h.state().overlay_image().expect("the bleeding overlay");
     let magenta = overlay.pixels().filter(|p| p[0] == 255 && p[1] == 0 && p[2] == 200 && p[3] > 0).count();
     assert!(magenta > 500, "only {magenta} magenta overlay pixels");
+    // A new language writes the legends again.
+    h.state_mut().lang = Lang::Zh;
+    h.run_steps(2);
+    let legends = h.state().legend_lines();
+    assert!(legends.iter().any(|l| l.starts_with("品红条纹：漏光")), "{legends:?}");
+    h.state_mut().lang = Lang::En;
+    h.run_steps(2);
     assert!(
         h.query_all_by_label("Chebyshev bound / true share").count() > 0,
         "no Chebyshev row in the probe"

@@ -145,7 +145,8 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     c.label("0", [px - 6.0, py + ph], Anchor::MidRight, FS_SMALL);
     c.label(&format!("{:.4}", n.lo), [px, py + ph + 6.0], Anchor::TopLeft, FS_SMALL);
     c.label(&format!("{:.4}", n.hi), [px + pw, py + ph + 6.0], Anchor::TopRight, FS_SMALL);
-    c.label("NDC depth (nearer the light ←)", [px + pw * 0.5, py + ph + 6.0], Anchor::TopCenter, FS_SMALL);
+    // Below the end labels: a panel's grown text would run into them on one row.
+    c.label("NDC depth (nearer the light ←)", [px + pw * 0.5, py + ph + 30.0], Anchor::TopCenter, FS_SMALL);
 
     // Numbers on the right.
     let mut text = Column::new(580.0, 70.0);

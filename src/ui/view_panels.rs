@@ -22,6 +22,8 @@ pub struct ViewState {
     /// The camera panel's debug view (visibility, heatmaps, reference, error) and its legend.
     view_image: Option<egui::TextureHandle>,
     view_legend: Option<String>,
+    /// The language the legends were written in (a new language writes them again).
+    legend_lang: Option<Lang>,
     /// The pictures behind `view_image` and `overlay`, for the per-view screenshot.
     pub(super) view_picture: Option<image::RgbaImage>,
     pub(super) overlay_picture: Option<image::RgbaImage>,
@@ -65,10 +67,11 @@ fn color_image(image: &image::RgbaImage) -> egui::ColorImage {
 }
 
 fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
-    if !app.view_state.stale {
+    if !app.view_state.stale && app.view_state.legend_lang == Some(app.lang) {
         return;
     }
     app.view_state.stale = false;
+    app.view_state.legend_lang = Some(app.lang);
     let light = app.shown.lights.get(app.selected_light).copied();
     // The debug view from the analysis pass (and the ground truth).
     app.view_state.view_image = None;
