@@ -71,6 +71,9 @@ pub struct VsmProbe {
     pub chebyshev_bound: f32,
     /// The visibility VSM gives: the bound after the bleed reduction (the bound when it is off).
     pub visibility: f32,
+    /// The settings the bound was taken with: the least variance (NDC²) and the bleed reduction.
+    pub min_variance_ndc2: f32,
+    pub bleed_reduction: f32,
     /// The share of the same footprint's depths at or behind the tested depth; the bound is
     /// never below it.
     pub true_lit_fraction: f32,
@@ -287,6 +290,8 @@ fn vsm_probe(
         tested_depth_ndc: lookup.t,
         chebyshev_bound: lookup.bound,
         visibility: lookup.visibility,
+        min_variance_ndc2: twin.params.vsm_min_variance,
+        bleed_reduction: twin.params.vsm_bleed_reduction,
         true_lit_fraction: lookup.true_lit_fraction,
         plane_lit_fraction: twin.vsm_plane_lit_fraction(position, normal, radius_texels, bias),
         histogram_range_ndc,

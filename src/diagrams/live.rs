@@ -116,12 +116,12 @@ pub fn inputs_from_scene(
                 histogram: v.histogram.clone(),
                 mean_ndc: v.mean_depth_ndc,
                 variance_ndc2: v.variance_ndc2,
-                min_variance_ndc2: shadow.vsm_min_variance,
+                min_variance_ndc2: v.min_variance_ndc2,
                 tested_ndc: v.tested_depth_ndc,
                 chebyshev_bound: v.chebyshev_bound,
                 visibility: v.visibility,
                 true_lit_fraction: v.true_lit_fraction,
-                bleed_reduction: shadow.vsm_bleed_reduction,
+                bleed_reduction: v.bleed_reduction,
                 filter_radius_texels: p.filter_radius_texels,
             });
         }

@@ -248,7 +248,8 @@ fn value(q: Quantity, report: &ProbeReport, l: &LightProbe, lang: Lang) -> Optio
         Quantity::ChebyshevBound => l.vsm.as_ref().and_then(|v| float(v.chebyshev_bound)),
         Quantity::TrueLitFraction => l.vsm.as_ref().and_then(|v| float(v.true_lit_fraction)),
         Quantity::LightBleeding => {
-            l.vsm.as_ref().and_then(|v| float((v.visibility - v.plane_lit_fraction).max(0.0)))
+            // As the Chebyshev diagram draws it: against the window's depths at or behind t.
+            l.vsm.as_ref().and_then(|v| float((v.visibility - v.true_lit_fraction).max(0.0)))
         }
         Quantity::VssmBlockerDepthWorld => {
             l.vssm.as_ref().and_then(|v| float(v.estimated_blocker_depth_linear))
