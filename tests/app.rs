@@ -816,3 +816,28 @@ fn the_vsm_lesson_shows_light_bleeding_and_the_view_menu_shows_the_moments() {
     assert!(legends.iter().any(|l| l == "the moments view needs the vsm or vssm technique"), "{legends:?}");
     assert!(legends.iter().any(|l| l.contains("only VSM and VSSM")), "{legends:?}");
 }
+
+/// What `shadowlab FILE`, `--lesson ID --step N` and `--lang zh` open, as the window shows it:
+/// a scene, a model on a floor, a shipped lesson at a step, in Chinese.
+#[test]
+fn the_command_line_opens_a_scene_a_model_or_a_lesson_in_a_language() {
+    use shadowlab::ui::launch::resolve;
+    let mut h = harness();
+    let repo = |p: &str| format!("{}/{p}", env!("CARGO_MANIFEST_DIR"));
+    let bleeding = repo("assets/scenes/bleeding.toml");
+    h.state_mut().apply_launch(resolve(Some(&bleeding), None, None, None).expect("a scene"));
+    settle(&mut h);
+    assert!(h.state().scene.objects.iter().any(|o| o.name == "high slab"), "bleeding.toml is open");
+    assert!(h.state().current_step().is_none());
+    let obj = repo("tests/data/obj/blender_export.obj");
+    h.state_mut().apply_launch(resolve(Some(&obj), None, None, None).expect("a model"));
+    settle(&mut h);
+    assert!(h.state().scene.objects.len() >= 2, "the model stands on a floor");
+    let launch = resolve(None, Some("vsm"), Some(4), Some(Lang::Zh)).expect("a lesson");
+    h.state_mut().apply_launch(launch);
+    settle(&mut h);
+    let (lesson, step, index) = h.state().current_step().expect("a lesson step");
+    assert_eq!((lesson.id.as_str(), index), ("vsm", 3));
+    assert_eq!(h.state().lang, Lang::Zh);
+    h.get_by_label(&step.title.zh);
+}

@@ -898,3 +898,68 @@ fn a_vssm_probe_compares_its_blocker_depth_with_the_footprint_and_pcss() {
     }
     assert!(estimated > 0, "no probe found VSSM blockers");
 }
+
+// ---------------------------------------------------------------------------------------------
+// The app's arguments: `shadowlab [FILE] [--lesson ID [--step N]] [--lang zh]`, checked before a
+// window opens.
+
+/// `shadowlab` with no display: the process the tests run has none, so a good argument ends at
+/// the display check, a bad one before it.
+fn app(args: &[&str]) -> Run {
+    common::run(common::shadowlab_command().args(args).env_remove("DISPLAY").env_remove("WAYLAND_DISPLAY"))
+}
+
+#[test]
+fn a_bad_app_argument_is_one_line_and_exit_2_before_any_window() {
+    let scratch = Scratch::new();
+    let broken = scratch.scene("broken.toml", "[camera\n");
+    let notes = scratch.scene("notes.txt", "hello");
+    let contact = contact();
+    let cases: [(Vec<&str>, Vec<&str>); 7] = [
+        (vec!["no_such_scene.toml"], vec!["no_such_scene.toml", "no such file", "pcss"]),
+        (vec![&broken], vec!["broken.toml:1:", "unclosed table"]),
+        (vec![&notes], vec!["notes.txt", ".toml", ".obj"]),
+        (vec!["--lesson", "nope"], vec!["nope", "hard-shadows"]),
+        (vec!["pcss", "--step", "99"], vec!["pcss", "1 to 8", "99"]),
+        (vec![&contact, "--step", "2"], vec!["contact.toml", "--step"]),
+        (vec!["--step", "2"], vec!["--step", "--lesson"]),
+    ];
+    for (args, needles) in cases {
+        let run = app(&args);
+        assert_bad_input(&run, &needles);
+    }
+    let run = app(&["--lang", "fr"]);
+    assert_eq!(run.code, Some(2), "{run}");
+    assert!(run.stderr.contains("fr") && run.stderr.contains("en or zh"), "{run}");
+}
+
+#[test]
+fn a_good_app_argument_reaches_the_display_check() {
+    let scratch = Scratch::new();
+    let lesson = scratch.scene(
+        "my_lesson.toml",
+        &format!(
+            r#"id = "mine"
+order = 9
+title = {{ en = "Mine", zh = "我的" }}
+summary = {{ en = "One step.", zh = "一步。" }}
+
+[[step]]
+title = {{ en = "Poles", zh = "柱子" }}
+text = {{ en = "Look at the poles.", zh = "看柱子。" }}
+try_this = [ {{ en = "Set “radius” to 6.", zh = "把「半径」改成 6。", set = {{ radius_texels = 6 }} }} ]
+scene = "{}"
+probe = [480, 300]
+"#,
+            contact().replace('\\', "/")
+        ),
+    );
+    let obj = repo_path("tests/data/obj/blender_export.obj").display().to_string();
+    for args in [vec![contact()], vec![obj], vec![lesson], vec!["vsm".into(), "--step".into(), "3".into()]] {
+        let args: Vec<&str> = args.iter().map(String::as_str).collect();
+        let run = app(&args);
+        assert_bad_input(&run, &["no display found", "xvfb-run"]);
+    }
+    let run = app(&["--lesson", "6", "--step", "2", "--lang", "zh"]);
+    assert_bad_input(&run, &["no display found"]);
+}

@@ -18,7 +18,7 @@ use std::io::{IsTerminal, Write};
 use std::path::Path;
 
 pub fn parse_lang(s: &str) -> Result<Lang, String> {
-    Lang::from_code(s).ok_or_else(|| format!("`{s}` is not a slide language (expected en or zh)"))
+    Lang::from_code(s).ok_or_else(|| format!("`{s}` is not a language shadowlab speaks (expected en or zh)"))
 }
 
 /// Lesson ids become folder names: keep them to letters, digits, `-` and `_`.

@@ -19,11 +19,32 @@ use std::path::{Path, PathBuf};
 #[command(
     name = "shadowlab",
     version,
-    about = "Learn real-time shadows: shadow maps, bias, PCF, PCSS. With no command, opens the app."
+    about = "Learn real-time shadows: shadow maps, bias, PCF, PCSS, VSM. With no command, opens the app.",
+    args_conflicts_with_subcommands = true
 )]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
+    #[command(flatten)]
+    pub open: OpenArgs,
+}
+
+/// What the app opens on (no command given).
+#[derive(Args, Debug, Default)]
+pub struct OpenArgs {
+    /// Open this in the app: a scene (.toml), a lesson (its id or number, or a lesson .toml) or a
+    /// model (.obj).
+    #[arg(value_name = "FILE")]
+    pub file: Option<String>,
+    /// Open the app on this lesson (id or number, see `shadowlab lessons`).
+    #[arg(long)]
+    pub lesson: Option<String>,
+    /// The lesson's step, from 1.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..))]
+    pub step: Option<u32>,
+    /// The app's language: en or zh.
+    #[arg(long, value_parser = export_cmd::parse_lang)]
+    pub lang: Option<crate::lessons::Lang>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -67,7 +88,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
     /// What to show: final, visibility, shadow-map, blocker-radius, penumbra, blockers,
-    /// blocker-depth, reference, error (default: final, or the lesson step's view).
+    /// blocker-depth, moments, reference, error (default: final, or the lesson step's view).
     #[arg(long, value_parser = parse_view)]
     pub view: Option<View>,
     /// The light the debug views describe (default: 0, or the lesson step's light).
@@ -105,7 +126,7 @@ pub struct BenchArgs {
     /// Keep the scene time fixed (by default each frame advances it by 1/30 s).
     #[arg(long)]
     pub still: bool,
-    /// Only these rows: a label ("pcss 50+50") or a technique (none, hard, pcf, pcss); comma-separated.
+    /// Only these rows: a label ("pcss 50+50") or a technique (none, hard, pcf, pcss, vsm, vssm); comma-separated.
     #[arg(long, value_delimiter = ',')]
     pub only: Vec<String>,
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]

@@ -3,6 +3,7 @@
 
 mod bars;
 mod inspector;
+pub mod launch;
 mod lesson_panel;
 mod panels;
 mod rendering;

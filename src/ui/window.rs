@@ -47,8 +47,9 @@ pub fn display_available() -> bool {
         || ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()))
 }
 
-/// Open the app. Returns a one-line reason where no window can be opened.
-pub fn run() -> Result<(), String> {
+/// Open the app on what `launch` asks for. Returns a one-line reason where no window can be
+/// opened.
+pub fn run(launch: super::launch::Launch) -> Result<(), String> {
     if !display_available() {
         return Err("no display found (DISPLAY and WAYLAND_DISPLAY are unset): run it on a desktop, under \
                     `xvfb-run -a`, or use `shadowlab render`/`shadowlab export`, which need no display"
@@ -60,11 +61,11 @@ pub fn run() -> Result<(), String> {
         eframe::Renderer::Wgpu => eframe::Renderer::Glow,
     };
     // Where the chosen painter cannot open a window (no OpenGL, no Vulkan surface), the other may.
-    let first_error = match open_window(first) {
+    let first_error = match open_window(first, launch.clone()) {
         Ok(()) => return Ok(()),
         Err(e) => e,
     };
-    open_window(second).map_err(|second_error| {
+    open_window(second, launch).map_err(|second_error| {
         format!(
             "could not open the window ({first}: {first_error}; {second}: {second_error}); install a \
              Vulkan driver (apt-get install mesa-vulkan-drivers) or use `shadowlab render`"
@@ -72,12 +73,13 @@ pub fn run() -> Result<(), String> {
     })
 }
 
-fn open_window(painter: eframe::Renderer) -> Result<(), String> {
+fn open_window(painter: eframe::Renderer, launch: super::launch::Launch) -> Result<(), String> {
     eframe::run_native(
         "shadowlab",
         window_options(painter),
         Box::new(|cc| {
-            let app = ShadowlabApp::new(cc);
+            let mut app = ShadowlabApp::new(cc);
+            app.apply_launch(launch);
             clear_paints_panels(&cc.egui_ctx);
             Ok(Box::new(app))
         }),
