@@ -963,3 +963,44 @@ probe = [480, 300]
     let run = app(&["--lesson", "6", "--step", "2", "--lang", "zh"]);
     assert_bad_input(&run, &["no display found"]);
 }
+
+/// On a terminal, export and the ground truth show progress bars with a rate and the time left
+/// (the tests' own output is not a terminal: `script` gives the command one).
+#[test]
+fn on_a_terminal_export_and_the_ground_truth_show_progress_bars() {
+    let Ok(probe) = std::process::Command::new("script").arg("--version").output() else {
+        panic!("`script` (util-linux) runs a command on a pseudo-terminal; install bsdutils");
+    };
+    assert!(probe.status.success());
+    let scratch = Scratch::new();
+    let out = scratch.arg("slides");
+    let image = scratch.arg("truth.png");
+    let exe = env!("CARGO_BIN_EXE_shadowlab");
+    let on_terminal = |command: String| {
+        let mut script = std::process::Command::new("script");
+        script.args(["-qec", &command, "/dev/null"]);
+        script.current_dir(env!("CARGO_MANIFEST_DIR")).env("XDG_RUNTIME_DIR", common::runtime_dir());
+        let run = common::run(&mut script);
+        assert_eq!(run.code, Some(0), "{command}:\n{run}");
+        // Without the terminal's colour and cursor codes.
+        let mut plain = String::new();
+        let mut escape = false;
+        for c in run.stdout.chars() {
+            match (escape, c) {
+                (false, '\u{1b}') => escape = true,
+                (true, c) if c.is_ascii_alphabetic() => escape = false,
+                (true, _) => {}
+                (false, c) => plain.push(c),
+            }
+        }
+        plain
+    };
+    let export = on_terminal(format!("{exe} export --lesson bias --size 640x360 --out {out}"));
+    let bar = export.contains("6/7 slides · ") && export.contains("bias step 7/7");
+    assert!(bar && export.contains("/s · ") && export.contains(" left · "), "{export}");
+    assert!(!export.contains("[1/7]"), "a terminal gets the bar, not the log lines:\n{export}");
+    let contact = contact();
+    let truth =
+        on_terminal(format!("{exe} render --scene {contact} --view reference --size 160x90 --out {image}"));
+    assert!(truth.contains("ground truth ") && truth.contains("256/256 hard shadows · "), "{truth}");
+}

@@ -36,38 +36,55 @@ fn check_id(lesson: &Lesson) -> Result<(), CliError> {
     }
 }
 
-/// The progress line: rewritten in place on a terminal, one line each otherwise.
-struct Progress {
-    terminal: bool,
-    width: usize,
+/// Export progress: a bar with the rate and the time left on a terminal, one line per step
+/// otherwise (logs, CI).
+enum Progress {
+    Bar(indicatif::ProgressBar),
+    Lines,
 }
 
 impl Progress {
-    fn show(&mut self, line: &str) {
-        let mut err = std::io::stderr().lock();
-        if self.terminal {
-            let pad = self.width.saturating_sub(line.chars().count());
-            let _ = write!(err, "\r{line}{}", " ".repeat(pad));
-            self.width = line.chars().count();
-        } else {
-            let _ = writeln!(err, "{line}");
+    fn new(total: usize) -> Self {
+        if !std::io::stderr().is_terminal() {
+            return Progress::Lines;
         }
-        let _ = err.flush();
+        let bar = indicatif::ProgressBar::new(total as u64);
+        let style = indicatif::ProgressStyle::with_template(
+            "{bar:30.cyan/blue} {pos}/{len} slides · {rate} · {eta} left · {msg}",
+        );
+        if let Ok(style) = style {
+            bar.set_style(style.progress_chars("█▌ ").with_key("rate", super::per_second_decimal));
+        }
+        Progress::Bar(bar)
     }
 
-    /// A warning on its own line (the progress line is redrawn by the next step).
-    fn warn(&mut self, message: &str) {
-        let mut err = std::io::stderr().lock();
-        if self.terminal {
-            let _ = write!(err, "\r{}\r", " ".repeat(self.width));
-            self.width = 0;
+    /// Step `done` (from 1) of `total` is starting.
+    fn start(&mut self, done: usize, total: usize, line: &str) {
+        match self {
+            Progress::Bar(bar) => {
+                bar.set_position(done.saturating_sub(1) as u64);
+                bar.set_message(line.to_string());
+            }
+            Progress::Lines => {
+                let mut err = std::io::stderr().lock();
+                let _ = writeln!(err, "[{done}/{total}] {line}");
+                let _ = err.flush();
+            }
         }
-        let _ = writeln!(err, "shadowlab: warning: {message}");
+    }
+
+    /// A warning on its own line (the bar is drawn again below it).
+    fn warn(&mut self, message: &str) {
+        let line = format!("shadowlab: warning: {message}");
+        match self {
+            Progress::Bar(bar) => bar.println(line),
+            Progress::Lines => eprintln!("{line}"),
+        }
     }
 
     fn finish(&self) {
-        if self.terminal {
-            let _ = writeln!(std::io::stderr());
+        if let Progress::Bar(bar) = self {
+            bar.finish_and_clear();
         }
     }
 }
@@ -134,7 +151,7 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
     let layout = SlideLayout::new(w, h);
     let camera_size = (layout.camera.w, layout.camera.h);
     let total: usize = selected.iter().map(|l| l.steps.len()).sum();
-    let mut progress = Progress { terminal: std::io::stderr().is_terminal(), width: 0 };
+    let mut progress = Progress::new(total);
     let mut done = 0;
     // On failure the progress line is finished before the error is printed.
     let mut export_all = || -> Result<Vec<LessonEntry>, CliError> {
@@ -145,12 +162,7 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
             let mut slides = Vec::with_capacity(lesson.steps.len());
             for (i, (step, scene)) in lesson.steps.iter().zip(scenes).enumerate() {
                 done += 1;
-                progress.show(&format!(
-                    "[{done}/{total}] {} step {}/{}",
-                    lesson.id,
-                    i + 1,
-                    lesson.steps.len()
-                ));
+                progress.start(done, total, &format!("{} step {}/{}", lesson.id, i + 1, lesson.steps.len()));
                 let pictures = render_step(&mut renderer, lesson, i, scene, camera_size, args.lang)?;
                 let map_panel = pictures.shadow_map.as_ref().map(|(img, _)| {
                     resize(img, layout.shadow_map.w, layout.shadow_map.h, FilterType::Triangle)

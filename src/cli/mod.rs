@@ -304,6 +304,44 @@ pub fn gpu() -> Result<(GpuContext, Renderer), CliError> {
     Ok((ctx, renderer))
 }
 
+/// A progress bar's rate as a whole number per second.
+pub(crate) fn per_second(state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write) {
+    let _ = write!(w, "{:.0}/s", state.per_sec());
+}
+
+/// A progress bar's rate with one decimal (slides come a few a second).
+pub(crate) fn per_second_decimal(state: &indicatif::ProgressState, w: &mut dyn std::fmt::Write) {
+    let _ = write!(w, "{:.1}/s", state.per_sec());
+}
+
+/// On a terminal, a progress bar (samples, rate, time left) while a ground truth accumulates;
+/// nothing where stderr is not a terminal.
+fn show_ground_truth_progress(renderer: &mut Renderer) {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return;
+    }
+    let mut bar: Option<indicatif::ProgressBar> = None;
+    renderer.set_reference_ticker(Some(Box::new(move |done, total| {
+        // One bar per ground truth (a probe takes one per light).
+        if bar.as_ref().is_some_and(indicatif::ProgressBar::is_finished) {
+            bar = None;
+        }
+        let bar = bar.get_or_insert_with(|| {
+            let bar = indicatif::ProgressBar::new(u64::from(total));
+            let template = "ground truth {bar:30.cyan/blue} {pos}/{len} hard shadows · {rate} · {eta} left";
+            if let Ok(style) = indicatif::ProgressStyle::with_template(template) {
+                bar.set_style(style.progress_chars("█▌ ").with_key("rate", per_second));
+            }
+            bar
+        });
+        bar.set_position(u64::from(done));
+        if done >= total {
+            bar.finish_and_clear();
+        }
+    })));
+}
+
 fn check_out_path(out: &Path) -> Result<(), CliError> {
     if out.is_dir() {
         return Err(CliError::input(format!("{}: is a folder, not a file", out.display())));
@@ -362,6 +400,7 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
         )));
     }
     let (_ctx, mut renderer) = gpu()?;
+    show_ground_truth_progress(&mut renderer);
     let (image, summary) =
         views::render_view(&mut renderer, &scene, view, light, resolved.time_s, args.frame.size)?;
     export::write_png(&args.out, &image)?;
@@ -396,6 +435,7 @@ fn probe(args: ProbeArgs) -> Result<(), CliError> {
         return Err(CliError::input(format!("--pixel {},{} is outside the {w}x{h} image", pixel.0, pixel.1)));
     }
     let (_ctx, mut renderer) = gpu()?;
+    show_ground_truth_progress(&mut renderer);
     let request = FrameRequest { time_s: resolved.time_s, size: args.frame.size, ..Default::default() };
     let report = crate::probe::probe(&mut renderer, &scene, &request, pixel, !args.no_reference)?;
     let json =

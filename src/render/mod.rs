@@ -144,6 +144,8 @@ pub struct Renderer {
     shadow_maps: Option<ShadowMaps>,
     /// The maps' VSM moments, made with them and rebuilt for frames that use VSM.
     moments: Option<Moments>,
+    /// Told (samples done, samples in all) as a ground truth accumulates (the CLI's progress bar).
+    reference_ticker: Option<Box<dyn FnMut(u32, u32) + Send>>,
     lights_bind_group: Option<wgpu::BindGroup>,
     scene_gpu: Option<SceneGpu>,
     targets: Option<ViewTargets>,
@@ -243,6 +245,7 @@ impl Renderer {
             shadow_view_bind_group,
             shadow_maps: None,
             moments: None,
+            reference_ticker: None,
             lights_bind_group: None,
             scene_gpu: None,
             targets: None,

@@ -16,6 +16,13 @@ const BATCH: usize = 32;
 pub type ReferenceProgress<'a> = &'a mut dyn FnMut(u32, u32, &[f32]) -> bool;
 
 impl Renderer {
+    /// Have `ticker` told (samples done, samples in all) after each batch of every ground truth
+    /// this renderer accumulates; each batch is then waited for, so the count is what the GPU
+    /// has done.
+    pub fn set_reference_ticker(&mut self, ticker: Option<Box<dyn FnMut(u32, u32) + Send>>) {
+        self.reference_ticker = ticker;
+    }
+
     /// Ground-truth visibility of light `light_index` at every pixel of the last frame (which
     /// must have rendered the analysis targets), averaged over `scene.shadow.reference_samples`
     /// hard shadows from points (width model) or directions (angular model) over the light.
@@ -167,6 +174,9 @@ impl Renderer {
             Ok(readback::f32s_from_bytes(&readback::read_buffer(&device, &readback, pixels * 4)?))
         };
 
+        if let Some(tick) = self.reference_ticker.as_mut() {
+            tick(0, samples.len() as u32);
+        }
         let mut encoder = device.create_command_encoder(&Default::default());
         encoder.clear_buffer(&accumulated, 0, None);
         let mut batch = if progress.is_some() { first_batch.max(1) } else { max_batch.max(1) };
@@ -216,6 +226,10 @@ impl Renderer {
                     }
                     None => {
                         self.queue.submit([finished.finish()]);
+                        if let Some(tick) = self.reference_ticker.as_mut() {
+                            let _ = self.device.poll(wgpu::PollType::wait_indefinitely());
+                            tick(done as u32, samples.len() as u32);
+                        }
                     }
                 }
                 batch = (batch * 2).min(max_batch.max(1));
@@ -223,6 +237,9 @@ impl Renderer {
             }
         }
         let result = finish(&read_sums(encoder)?, samples.len());
+        if let Some(tick) = self.reference_ticker.as_mut() {
+            tick(samples.len() as u32, samples.len() as u32);
+        }
         if let Some(report) = progress.as_mut() {
             report(samples.len() as u32, samples.len() as u32, &result);
         }
