@@ -841,3 +841,34 @@ fn the_command_line_opens_a_scene_a_model_or_a_lesson_in_a_language() {
     assert_eq!(h.state().lang, Lang::Zh);
     h.get_by_label(&step.title.zh);
 }
+
+/// A scene opened from a path comes back from the scene picker's "recent" list.
+#[test]
+fn a_scene_opened_from_a_path_is_listed_under_recent_and_opens_from_there() {
+    let mut h = harness();
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let mine = dir.path().join("my_slabs.toml");
+    let contact = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/contact.toml");
+    std::fs::write(&mine, std::fs::read_to_string(&contact).expect("contact.toml")).expect("write");
+    h.get_by_label("file").click();
+    h.run_steps(1);
+    h.get_by_label("file").type_text(&mine.display().to_string());
+    h.run_steps(1);
+    h.get_by_label("Open").click();
+    settle(&mut h);
+    assert_eq!(h.state().settings.recent_files.first(), Some(&mine));
+    // Another scene from the picker, then the recent one again.
+    h.get_by_value("my_slabs.toml").click();
+    h.run_steps(2);
+    h.get_by_label("games202.toml").click();
+    settle(&mut h);
+    assert!(h.state().scene.path.as_deref().is_some_and(|p| p.ends_with("games202.toml")));
+    h.get_by_value("games202.toml").click();
+    h.run_steps(2);
+    h.get_by_label("recent");
+    h.get_by_label("my_slabs.toml").click();
+    settle(&mut h);
+    assert_eq!(h.state().scene.path.as_deref(), Some(mine.as_path()));
+    // The shipped scenes are not repeated among the recent files.
+    assert_eq!(h.state().settings.recent_files, vec![mine]);
+}

@@ -1004,3 +1004,27 @@ fn on_a_terminal_export_and_the_ground_truth_show_progress_bars() {
         on_terminal(format!("{exe} render --scene {contact} --view reference --size 160x90 --out {image}"));
     assert!(truth.contains("ground truth ") && truth.contains("256/256 hard shadows · "), "{truth}");
 }
+
+/// `cargo install --path .` puts the binary elsewhere: run from another folder, it still finds
+/// its lessons, scenes and meshes (beside it, or in the checkout it was built from).
+#[test]
+fn an_installed_binary_finds_its_lessons_and_scenes_from_any_folder() {
+    let scratch = Scratch::new();
+    let bin = scratch.path("bin");
+    std::fs::create_dir(&bin).expect("bin folder");
+    let installed = bin.join("shadowlab");
+    std::fs::copy(env!("CARGO_BIN_EXE_shadowlab"), &installed).expect("copy the binary");
+    let elsewhere = scratch.path("elsewhere");
+    std::fs::create_dir(&elsewhere).expect("a folder of one's own");
+    let run_there = |args: &[&str]| {
+        let mut command = std::process::Command::new(&installed);
+        command.args(args).current_dir(&elsewhere).env("XDG_RUNTIME_DIR", common::runtime_dir());
+        common::run(&mut command)
+    };
+    let lessons = run_there(&["lessons"]);
+    assert_eq!(lessons.code, Some(0), "{lessons}");
+    assert!(lessons.stdout.contains("vsm") && lessons.stdout.contains("hard-shadows"), "{lessons}");
+    let render = run_there(&["render", "--lesson", "multi-light", "--size", "160x90", "--out", "step.png"]);
+    assert_eq!(render.code, Some(0), "{render}");
+    assert!(elsewhere.join("step.png").is_file(), "{render}");
+}

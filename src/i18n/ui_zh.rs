@@ -4,6 +4,7 @@
 pub(super) const UI: &[(&str, &str)] = &[
     // Top bar, status bar and help.
     ("scene", "场景"),
+    ("recent", "最近打开"),
     ("lesson", "课程"),
     ("(none: explore freely)", "（无：自由探索）"),
     ("Explore freely (no lesson)", "自由探索（不选课程）"),

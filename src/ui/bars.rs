@@ -124,7 +124,8 @@ impl ShadowlabApp {
         let mut choice: Option<PathBuf> = None;
         let label = ui.label(tr("scene"));
         let combo =
-            egui::ComboBox::from_id_salt("source").selected_text(current).width(130.0).show_ui(ui, |ui| {
+            // Tall enough for the shipped scenes and the recent files without scrolling.
+            egui::ComboBox::from_id_salt("source").selected_text(current).width(130.0).height(520.0).show_ui(ui, |ui| {
                 let mut scenes: Vec<PathBuf> = std::fs::read_dir(shipped_path("assets/scenes"))
                     .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
                     .unwrap_or_default();
@@ -134,6 +135,20 @@ impl ShadowlabApp {
                     let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
                     if ui.selectable_label(self.source == Source::Scene(path.clone()), name).clicked() {
                         choice = Some(path);
+                    }
+                }
+                // Files opened from elsewhere (those since moved or deleted are left out).
+                let recent: Vec<&PathBuf> = self.settings.recent_files.iter().filter(|p| p.exists()).collect();
+                if !recent.is_empty() {
+                    ui.separator();
+                    ui.weak(tr("recent"));
+                    for path in recent {
+                        let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
+                        let selected = self.source == Source::Scene(path.clone());
+                        let item = ui.selectable_label(selected, name).on_hover_text(path.display().to_string());
+                        if item.clicked() {
+                            choice = Some(path.clone());
+                        }
                     }
                 }
             });

@@ -255,6 +255,12 @@ impl ShadowlabApp {
                 self.view_state.reset_zoom();
                 self.settings.last_scene = (!is_obj).then(|| path.to_path_buf());
                 self.settings.last_lesson = None;
+                // The shipped scenes are listed anyway; anything else is a recent file.
+                let shipped = std::path::absolute(shipped_path("assets/scenes")).ok();
+                let absolute = std::path::absolute(path).ok();
+                if absolute.zip(shipped).is_none_or(|(p, dir)| p.parent() != Some(dir.as_path())) {
+                    self.settings.remember_file(path);
+                }
                 self.error = None;
                 self.status = format!("{} {}", crate::i18n::tr(self.lang, "opened"), path.display());
             }

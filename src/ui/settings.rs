@@ -8,6 +8,8 @@ use std::path::PathBuf;
 #[serde(default)]
 pub struct Settings {
     pub last_scene: Option<PathBuf>,
+    /// Scenes and models opened from a path (the box, a drop, the command line), newest first.
+    pub recent_files: Vec<PathBuf>,
     /// Lesson id and step index.
     pub last_lesson: Option<(String, usize)>,
     pub overlays: Vec<Overlay>,
@@ -26,6 +28,7 @@ impl Default for Settings {
     fn default() -> Self {
         Self {
             last_scene: None,
+            recent_files: Vec::new(),
             last_lesson: None,
             overlays: Vec::new(),
             lang: Lang::En,
@@ -40,3 +43,17 @@ impl Default for Settings {
 }
 
 pub const STORAGE_KEY: &str = "shadowlab-settings";
+
+/// How many recent files the scene picker lists.
+pub const RECENT_FILES: usize = 8;
+
+impl Settings {
+    /// Put `path` first among the recent files (once, at most `RECENT_FILES` kept). Relative
+    /// paths are kept absolute, so they still open from another folder.
+    pub fn remember_file(&mut self, path: &std::path::Path) {
+        let path = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+        self.recent_files.retain(|p| *p != path);
+        self.recent_files.insert(0, path);
+        self.recent_files.truncate(RECENT_FILES);
+    }
+}
