@@ -872,3 +872,27 @@ fn a_scene_opened_from_a_path_is_listed_under_recent_and_opens_from_there() {
     // The shipped scenes are not repeated among the recent files.
     assert_eq!(h.state().settings.recent_files, vec![mine]);
 }
+
+/// Browse… asks the desktop for its Open dialog; where there is none (no session bus, no
+/// xdg-desktop-portal, as here) the app says so and hands the path box the keyboard.
+#[test]
+fn browse_without_a_dialog_service_points_at_the_path_box() {
+    let mut h = harness();
+    h.get_by_label("Browse…").click();
+    let start = std::time::Instant::now();
+    while h.state().browsing() {
+        h.step();
+        assert!(start.elapsed() < std::time::Duration::from_secs(60), "the dialog check never answered");
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    h.run_steps(2);
+    assert!(h.state().status.starts_with("no file dialog on this desktop"), "{}", h.state().status);
+    assert!(h.get_by_label("file").is_focused(), "the path box has the keyboard");
+    // The box then opens a lesson by its id, as the command line does.
+    h.get_by_label("file").type_text("vsm");
+    h.run_steps(1);
+    h.get_by_label("Open").click();
+    settle(&mut h);
+    let (lesson, _, index) = h.state().current_step().expect("a lesson step");
+    assert_eq!((lesson.id.as_str(), index), ("vsm", 0));
+}

@@ -5,13 +5,22 @@ pub(super) const UI: &[(&str, &str)] = &[
     // Top bar, status bar and help.
     ("scene", "场景"),
     ("recent", "最近打开"),
+    ("Browse…", "浏览…"),
+    (
+        "the desktop's Open dialog: a scene or lesson (.toml) or a model (.obj)",
+        "桌面的打开对话框：场景或课程（.toml）或模型（.obj）",
+    ),
+    (
+        "no file dialog on this desktop (no xdg-desktop-portal): type a path in the box, or drop a file on the window",
+        "这个桌面没有文件对话框（没有 xdg-desktop-portal）：请在输入框里输入路径，或把文件拖到窗口上",
+    ),
     ("lesson", "课程"),
     ("(none: explore freely)", "（无：自由探索）"),
     ("Explore freely (no lesson)", "自由探索（不选课程）"),
     ("Scenes", "场景"),
     ("Lessons", "课程"),
     ("file", "文件"),
-    ("scene .toml or .obj path", "场景 .toml 或 .obj 路径"),
+    ("scene, lesson or .obj path", "场景、课程或 .obj 路径"),
     ("Open", "打开"),
     ("Play", "播放"),
     ("Pause", "暂停"),

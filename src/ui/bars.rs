@@ -19,14 +19,23 @@ impl ShadowlabApp {
             let field = ui
                 .add(
                     egui::TextEdit::singleline(&mut self.open_path)
-                        .hint_text(tr("scene .toml or .obj path"))
+                        .hint_text(tr("scene, lesson or .obj path"))
                         .desired_width(150.0),
                 )
                 .labelled_by(file_label.id);
+            if std::mem::take(&mut self.focus_path_box) {
+                field.request_focus();
+            }
             let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
             if (ui.button(tr("Open")).clicked() || entered) && !self.open_path.trim().is_empty() {
                 let path = PathBuf::from(self.open_path.trim());
-                self.open(&path);
+                self.open_any(&path);
+            }
+            let browse = ui
+                .add_enabled(!self.browsing(), egui::Button::new(tr("Browse…")))
+                .on_hover_text(tr("the desktop's Open dialog: a scene or lesson (.toml) or a model (.obj)"));
+            if browse.clicked() {
+                self.browse(ui.ctx());
             }
             ui.separator();
             let play_label = tr(if self.playing { "Pause" } else { "Play" });

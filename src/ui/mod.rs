@@ -2,6 +2,7 @@
 //! probe with its samples drawn on the map, overlays, lessons and diagrams.
 
 mod bars;
+mod dialog;
 mod inspector;
 pub mod launch;
 mod lesson_panel;
@@ -106,6 +107,10 @@ pub struct ShadowlabApp {
     view_state: view_panels::ViewState,
     panel_state: panels::PanelState,
     open_path: String,
+    /// The Open dialog, while it is up.
+    open_dialog: Option<dialog::OpenDialog>,
+    /// Give the path box the keyboard on the next frame (no dialog here).
+    focus_path_box: bool,
     screenshot: Arc<Mutex<Option<Arc<egui::ColorImage>>>>,
     screenshot_pending: bool,
 }
@@ -229,6 +234,8 @@ impl ShadowlabApp {
             view: View::Final,
             panel_state: Default::default(),
             open_path: String::new(),
+            open_dialog: None,
+            focus_path_box: false,
             screenshot: Arc::new(Mutex::new(None)),
             screenshot_pending: false,
         };
@@ -493,8 +500,54 @@ impl ShadowlabApp {
         let dropped: Vec<PathBuf> =
             ctx.input(|i| i.raw.dropped_files.iter().map(|f| f.path().to_path_buf()).collect());
         if let Some(path) = dropped.last() {
-            self.open(path);
+            self.open_any(path);
         }
+    }
+
+    /// Open what the path box, a drop or the dialog names: a scene or lesson (.toml), a model
+    /// (.obj), or a shipped lesson's id. A bad path keeps what is shown and says why.
+    pub fn open_any(&mut self, path: &Path) {
+        match launch::resolve(Some(&path.to_string_lossy()), None, None, None) {
+            Ok(launch) if matches!(launch.opening, Some(launch::Opening::Lesson { .. })) => {
+                self.apply_launch(launch)
+            }
+            // Scenes and models through `open`, which keeps the old scene if this one fails.
+            Ok(_) => self.open(path),
+            Err(e) => self.error = Some(AppError::new("could not open the scene", e)),
+        }
+    }
+
+    /// Show the desktop's Open dialog; without one, point at the path box.
+    pub fn browse(&mut self, ctx: &egui::Context) {
+        if self.open_dialog.is_some() {
+            return;
+        }
+        let folder = std::path::absolute(shipped_path("assets/scenes")).unwrap_or_default();
+        let ctx = ctx.clone();
+        self.open_dialog = Some(dialog::OpenDialog::open(folder, move || ctx.request_repaint()));
+    }
+
+    /// Act on the dialog's answer once it is in.
+    fn poll_open_dialog(&mut self) {
+        let Some(outcome) = self.open_dialog.as_ref().and_then(dialog::OpenDialog::poll) else { return };
+        self.open_dialog = None;
+        match outcome {
+            dialog::DialogOutcome::Picked(path) => self.open_any(&path),
+            dialog::DialogOutcome::Cancelled => {}
+            dialog::DialogOutcome::Unavailable => {
+                self.status = crate::i18n::tr(
+                    self.lang,
+                    "no file dialog on this desktop (no xdg-desktop-portal): type a path in the box, or drop a file on the window",
+                )
+                .into();
+                self.focus_path_box = true;
+            }
+        }
+    }
+
+    /// The Open dialog is up.
+    pub fn browsing(&self) -> bool {
+        self.open_dialog.is_some()
     }
 }
 
@@ -551,6 +604,7 @@ impl eframe::App for ShadowlabApp {
         let ctx = ui.ctx().clone();
         self.handle_keys(&ctx);
         self.handle_dropped_files(&ctx);
+        self.poll_open_dialog();
         self.save_screenshot_if_ready();
         self.advance_time(std::time::Instant::now());
         self.receive_renders(&ctx);
