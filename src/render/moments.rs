@@ -10,11 +10,14 @@ pub const MOMENTS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rg32Float;
 /// The compute shaders' workgroup side.
 const WORKGROUP: u32 = 8;
 
-/// The two compute pipelines: level 0 from the depth maps, each further level from the one before.
+/// The compute pipelines: levels 0 and 1 together from the depth maps (level 0 alone for a
+/// chain of one level), each further level from the one before.
 pub struct MomentsPipelines {
     from_depth_layout: wgpu::BindGroupLayout,
+    levels_0_1_layout: wgpu::BindGroupLayout,
     reduce_layout: wgpu::BindGroupLayout,
     from_depth: wgpu::ComputePipeline,
+    levels_0_1: wgpu::ComputePipeline,
     reduce: wgpu::ComputePipeline,
 }
 
@@ -23,16 +26,20 @@ fn input_entry(binding: u32, sample_type: wgpu::TextureSampleType) -> wgpu::Bind
     texture_entry(binding, wgpu::ShaderStages::COMPUTE, sample_type, wgpu::TextureViewDimension::D2Array)
 }
 
-const OUTPUT_ENTRY: wgpu::BindGroupLayoutEntry = wgpu::BindGroupLayoutEntry {
-    binding: 2,
-    visibility: wgpu::ShaderStages::COMPUTE,
-    ty: wgpu::BindingType::StorageTexture {
-        access: wgpu::StorageTextureAccess::WriteOnly,
-        format: MOMENTS_FORMAT,
-        view_dimension: wgpu::TextureViewDimension::D2Array,
-    },
-    count: None,
-};
+/// A level the pass writes.
+const fn output_entry(binding: u32) -> wgpu::BindGroupLayoutEntry {
+    wgpu::BindGroupLayoutEntry {
+        binding,
+        visibility: wgpu::ShaderStages::COMPUTE,
+        ty: wgpu::BindingType::StorageTexture {
+            access: wgpu::StorageTextureAccess::WriteOnly,
+            format: MOMENTS_FORMAT,
+            view_dimension: wgpu::TextureViewDimension::D2Array,
+        },
+        count: None,
+    }
+}
+const OUTPUT_ENTRY: wgpu::BindGroupLayoutEntry = output_entry(2);
 
 const INFO_ENTRY: wgpu::BindGroupLayoutEntry = wgpu::BindGroupLayoutEntry {
     binding: 3,
@@ -50,6 +57,15 @@ impl MomentsPipelines {
         let from_depth_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("moments from depth"),
             entries: &[input_entry(0, wgpu::TextureSampleType::Depth), OUTPUT_ENTRY, INFO_ENTRY],
+        });
+        let levels_0_1_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some("moments levels 0 and 1"),
+            entries: &[
+                input_entry(0, wgpu::TextureSampleType::Depth),
+                OUTPUT_ENTRY,
+                INFO_ENTRY,
+                output_entry(4),
+            ],
         });
         let reduce_layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
             label: Some("moments reduce"),
@@ -71,8 +87,9 @@ impl MomentsPipelines {
             })
         };
         let from_depth = pipeline("moments from depth", &from_depth_layout, "cs_moments_from_depth");
+        let levels_0_1 = pipeline("moments levels 0 and 1", &levels_0_1_layout, "cs_moments_levels_0_1");
         let reduce = pipeline("moments reduce", &reduce_layout, "cs_moments_reduce");
-        Self { from_depth_layout, reduce_layout, from_depth, reduce }
+        Self { from_depth_layout, levels_0_1_layout, reduce_layout, from_depth, levels_0_1, reduce }
     }
 }
 
@@ -80,7 +97,8 @@ impl MomentsPipelines {
 pub struct Moments {
     /// Every level, for the camera pass (group 1, binding 5).
     pub view: wgpu::TextureView,
-    /// Per level: what writes it (the maps or the level before) and its size in texels.
+    /// Per level: what writes it (the maps, or the level before; level 1 is written with level 0
+    /// where there is one) and its size in texels.
     levels: Vec<(wgpu::BindGroup, u32)>,
     /// The moments describe the maps as drawn (false once the maps are redrawn without them).
     pub current: bool,
@@ -152,17 +170,28 @@ impl Moments {
                     binding: 2,
                     resource: wgpu::BindingResource::TextureView(&views[level]),
                 };
+                let depth = wgpu::BindGroupEntry {
+                    binding: 0,
+                    resource: wgpu::BindingResource::TextureView(&maps.array_view),
+                };
+                let info_entry = wgpu::BindGroupEntry { binding: 3, resource: info.as_entire_binding() };
                 let group = match level {
-                    0 => device.create_bind_group(&wgpu::BindGroupDescriptor {
+                    0 if level_count == 1 => device.create_bind_group(&wgpu::BindGroupDescriptor {
                         label: Some("moments level 0"),
                         layout: &pipelines.from_depth_layout,
+                        entries: &[depth, output, info_entry],
+                    }),
+                    0 => device.create_bind_group(&wgpu::BindGroupDescriptor {
+                        label: Some("moments levels 0 and 1"),
+                        layout: &pipelines.levels_0_1_layout,
                         entries: &[
-                            wgpu::BindGroupEntry {
-                                binding: 0,
-                                resource: wgpu::BindingResource::TextureView(&maps.array_view),
-                            },
+                            depth,
                             output,
-                            wgpu::BindGroupEntry { binding: 3, resource: info.as_entire_binding() },
+                            info_entry,
+                            wgpu::BindGroupEntry {
+                                binding: 4,
+                                resource: wgpu::BindingResource::TextureView(&views[1]),
+                            },
                         ],
                     }),
                     _ => device.create_bind_group(&wgpu::BindGroupDescriptor {
@@ -201,10 +230,18 @@ impl Moments {
             label: Some("vsm moments"),
             timestamp_writes: timer.and_then(|t| t.compute_span_writes(0, begins_span, true)),
         });
+        let fused = self.levels.len() > 1;
         for (level, (group, side)) in self.levels.iter().enumerate() {
-            pass.set_pipeline(if level == 0 { &pipelines.from_depth } else { &pipelines.reduce });
+            // Level 1 comes with level 0.
+            let (pipeline, invocations) = match level {
+                0 if fused => (&pipelines.levels_0_1, side.div_ceil(2)),
+                0 => (&pipelines.from_depth, *side),
+                1 if fused => continue,
+                _ => (&pipelines.reduce, *side),
+            };
+            pass.set_pipeline(pipeline);
             pass.set_bind_group(0, group, &[]);
-            let groups = side.div_ceil(WORKGROUP);
+            let groups = invocations.div_ceil(WORKGROUP);
             pass.dispatch_workgroups(groups, groups, layers);
         }
         self.current = true;
