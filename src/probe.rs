@@ -96,8 +96,9 @@ pub struct VssmProbe {
     pub unoccluded_bound: f32,
     /// z_occ = (z_avg - P t) / (1 - P), as a linear depth: VSSM's average blocker depth, world units.
     pub estimated_blocker_depth_linear: f32,
-    /// The true average depth of the texels nearer than t in the same footprint, world units;
-    /// None where there are none.
+    /// The true average depth of the texels nearer than t in the same footprint, world units:
+    /// their mean NDC depth taken to a linear depth, as VSSM's own estimate is (so the two differ
+    /// only by the estimate's assumptions); None where there are none.
     pub footprint_blocker_depth_linear: Option<f32>,
     /// PCSS's sampled blocker average at this pixel with the same settings, world units; None
     /// where its search finds nothing.

@@ -32,6 +32,8 @@ struct Numbers {
     bound: f32,
     visibility: f32,
     truth: f32,
+    /// The share against the receiver's plane (light bleeding is measured from it).
+    plane: f32,
     reduction: f32,
 }
 
@@ -50,6 +52,7 @@ fn numbers(p: &VsmPlot) -> Numbers {
         bound: fin(p.chebyshev_bound, 1.0).clamp(0.0, 1.0),
         visibility: fin(p.visibility, 1.0).clamp(0.0, 1.0),
         truth: fin(p.true_lit_fraction, 1.0).clamp(0.0, 1.0),
+        plane: fin(p.plane_lit_fraction, 1.0).clamp(0.0, 1.0),
         reduction: fin(p.bleed_reduction, 0.0).clamp(0.0, 0.99),
     }
 }
@@ -126,11 +129,12 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let xt = x_of(n.t).clamp(px, px + pw);
     c.line([xt, py], [xt, py + ph], ink, 2.5);
     c.text("t", [xt, py - 4.0], Anchor::BottomCenter, Style::em(FS_LABEL, pal::INK));
-    // Light bleeding: what the lookup returns (the bound, or the reduced bound) above the truth.
-    let (yv, yt) = (y_of(n.visibility), y_of(n.truth));
-    if n.visibility - n.truth > 0.01 {
+    // Light bleeding: what the lookup returns (the bound, or the reduced bound) above the lit
+    // share of the window measured against the receiver's plane.
+    let (yv, yt) = (y_of(n.visibility), y_of(n.plane));
+    if n.visibility - n.plane > 0.01 {
         c.line([xt, yv], [xt, yt], col(pal::BLOCKED, 1.0), 6.0);
-        let t = c.fill("bleeding {}", &[&format!("{:.2}", n.visibility - n.truth)]);
+        let t = c.fill("bleeding {}", &[&format!("{:.2}", n.visibility - n.plane)]);
         let anchor = if xt > px + pw * 0.6 { Anchor::MidRight } else { Anchor::MidLeft };
         let dx = if anchor == Anchor::MidRight { -10.0 } else { 10.0 };
         c.text(&t, [xt + dx, (yv + yt) * 0.5], anchor, Style::em(FS_SMALL, pal::BLOCKED));
@@ -139,7 +143,7 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     if n.visibility != n.bound {
         c.circle([xt, yv], 6.0, Some(col(pal::BG, 1.0)), Some((col(pal::PENUMBRA, 1.0), 2.5)));
     }
-    c.circle([xt, yt], 6.0, Some(col(pal::LIT, 1.0)), Some((ink, 1.5)));
+    c.circle([xt, y_of(n.truth)], 6.0, Some(col(pal::LIT, 1.0)), Some((ink, 1.5)));
     // Axes.
     c.label("1", [px - 6.0, py], Anchor::MidRight, FS_SMALL);
     c.label("0", [px - 6.0, py + ph], Anchor::MidRight, FS_SMALL);
@@ -167,7 +171,12 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     text.tint(c, &t, pal::PENUMBRA);
     let t = c.fill("true lit share = {}", &[&format!("{:.3}", n.truth)]);
     text.tint(c, &t, pal::LIT);
-    let t = c.fill("light bleeding = {}", &[&format!("{:.3}", (n.visibility - n.truth).max(0.0))]);
+    if (n.plane - n.truth).abs() >= 0.0005 {
+        // A tilted receiver's own texels nearer than t are lit: measured against its plane.
+        let t = c.fill("against the receiver's plane = {}", &[&format!("{:.3}", n.plane)]);
+        text.tint(c, &t, pal::LIT);
+    }
+    let t = c.fill("light bleeding = {}", &[&format!("{:.3}", (n.visibility - n.plane).max(0.0))]);
     text.tint(c, &t, pal::BLOCKED);
     if n.reduction > 0.0 {
         let t = c.fill("bleed reduction a = {}: (p − a) / (1 − a)", &[&format!("{:.2}", n.reduction)]);

@@ -121,6 +121,7 @@ pub fn inputs_from_scene(
                 chebyshev_bound: v.chebyshev_bound,
                 visibility: v.visibility,
                 true_lit_fraction: v.true_lit_fraction,
+                plane_lit_fraction: v.plane_lit_fraction,
                 bleed_reduction: v.bleed_reduction,
                 filter_radius_texels: p.filter_radius_texels,
             });

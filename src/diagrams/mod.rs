@@ -164,6 +164,9 @@ pub struct VsmPlot {
     /// After the bleed reduction.
     pub visibility: f32,
     pub true_lit_fraction: f32,
+    /// The window's share not nearer than the receiver's own plane: what the visibility is
+    /// measured against for light bleeding.
+    pub plane_lit_fraction: f32,
     /// 0 = off.
     pub bleed_reduction: f32,
     pub filter_radius_texels: f32,
@@ -196,6 +199,7 @@ impl VsmPlot {
             chebyshev_bound: bound,
             visibility: bound,
             true_lit_fraction: 0.0,
+            plane_lit_fraction: 0.0,
             bleed_reduction: 0.0,
             filter_radius_texels: 8.0,
         }

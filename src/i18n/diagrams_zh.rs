@@ -126,6 +126,7 @@ pub(super) const DIAGRAMS: &[(&str, &str)] = &[
     ("t = receiver − bias = {}", "t = 接收点 − 偏移 = {}"),
     ("bound = {}", "上界 = {}"),
     ("true lit share = {}", "真实受光比例 = {}"),
+    ("against the receiver's plane = {}", "按接收平面计 = {}"),
     ("light bleeding = {}", "漏光 = {}"),
     ("bleed reduction a = {}: (p − a) / (1 − a)", "漏光抑制 a = {}：(p − a) / (1 − a)"),
     ("visibility = {}", "可见性 = {}"),

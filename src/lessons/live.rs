@@ -43,8 +43,9 @@ enum Quantity {
     /// VSM: the filter window's mean depth (NDC) and variance (NDC²).
     VsmMeanNdc,
     VsmVarianceNdc2,
-    /// VSM: Chebyshev's bound, the true lit share of the same window, and the visibility's
-    /// excess over it (light bleeding).
+    /// VSM: Chebyshev's bound, the window's share at or behind t (what the bound bounds), and
+    /// the visibility's excess over the share not nearer than the receiver's plane (light
+    /// bleeding, as the overlay paints it).
     ChebyshevBound,
     TrueLitFraction,
     LightBleeding,
@@ -248,8 +249,9 @@ fn value(q: Quantity, report: &ProbeReport, l: &LightProbe, lang: Lang) -> Optio
         Quantity::ChebyshevBound => l.vsm.as_ref().and_then(|v| float(v.chebyshev_bound)),
         Quantity::TrueLitFraction => l.vsm.as_ref().and_then(|v| float(v.true_lit_fraction)),
         Quantity::LightBleeding => {
-            // As the Chebyshev diagram draws it: against the window's depths at or behind t.
-            l.vsm.as_ref().and_then(|v| float((v.visibility - v.true_lit_fraction).max(0.0)))
+            // As the overlay and the Chebyshev diagram measure it: against the window's share
+            // not nearer than the receiver's own plane.
+            l.vsm.as_ref().and_then(|v| float((v.visibility - v.plane_lit_fraction).max(0.0)))
         }
         Quantity::VssmBlockerDepthWorld => {
             l.vssm.as_ref().and_then(|v| float(v.estimated_blocker_depth_linear))

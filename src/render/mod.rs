@@ -110,6 +110,8 @@ pub struct MomentsLevel {
     pub level: u32,
     /// Map texels per side of one texel of this level.
     pub span_texels: u32,
+    /// The filter radius (map texels) whose lookups read this level.
+    pub radius_texels: f32,
     /// Texels per side of the light's part.
     pub side: u32,
     /// (mean depth, mean squared depth) per texel, NDC, rows first.
@@ -671,7 +673,6 @@ impl Renderer {
         Ok(AnalysisPixel { shadow, position, normal })
     }
 
-    /// The shadow map of light `index` as rendered in the last frame.
     /// The finer of the two levels of light `index`'s moments a VSM filter of `radius_texels`
     /// reads (`filtered_moments` in shaders/shadow_sampling.wgsl), as the last frame left it.
     pub fn read_moments_for_radius(
@@ -684,7 +685,7 @@ impl Renderer {
         let level =
             (radius_texels / block as f32).max(1.0).log2().floor().clamp(0.0, (levels - 1) as f32) as u32;
         let (side, texels) = self.read_moments(index, level)?;
-        Ok(MomentsLevel { level, span_texels: block << level, side, texels })
+        Ok(MomentsLevel { level, span_texels: block << level, radius_texels, side, texels })
     }
 
     /// Level `level` of light `index`'s VSM moments as the last frame left them: the side of
@@ -730,6 +731,7 @@ impl Renderer {
         Ok((side, texels))
     }
 
+    /// The shadow map of light `index` as rendered in the last frame.
     pub fn read_shadow_map(&self, index: usize) -> Result<DepthImage, RenderError> {
         let maps =
             self.shadow_maps.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;

@@ -148,12 +148,16 @@ impl ShadowlabApp {
                 }
                 // Files opened from elsewhere (those since moved or deleted are left out).
                 let recent: Vec<&PathBuf> = self.settings.recent_files.iter().filter(|p| p.exists()).collect();
+                let current = match &self.source {
+                    Source::Scene(p) => std::fs::canonicalize(p).ok(),
+                    Source::Lesson { .. } => None,
+                };
                 if !recent.is_empty() {
                     ui.separator();
                     ui.weak(tr("recent"));
                     for path in recent {
                         let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-                        let selected = self.source == Source::Scene(path.clone());
+                        let selected = current.as_ref() == Some(path);
                         let item = ui.selectable_label(selected, name).on_hover_text(path.display().to_string());
                         if item.clicked() {
                             choice = Some(path.clone());

@@ -55,8 +55,12 @@ impl OpenDialog {
         Self { answer }
     }
 
-    /// The answer, once there is one.
+    /// The answer, once there is one (a dialog thread that died counts as cancelled).
     pub fn poll(&self) -> Option<DialogOutcome> {
-        self.answer.try_recv().ok()
+        match self.answer.try_recv() {
+            Ok(outcome) => Some(outcome),
+            Err(std::sync::mpsc::TryRecvError::Empty) => None,
+            Err(std::sync::mpsc::TryRecvError::Disconnected) => Some(DialogOutcome::Cancelled),
+        }
     }
 }

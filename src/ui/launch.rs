@@ -96,7 +96,7 @@ fn open_file(file: &str, step: Option<u32>) -> Result<Opening, String> {
 
 /// A lesson file has `[[step]]` tables; a scene file has none (unreadable files are left to the
 /// scene loader, which names the problem).
-fn is_lesson_file(path: &Path) -> bool {
+pub fn is_lesson_file(path: &Path) -> bool {
     std::fs::read_to_string(path)
         .ok()
         .and_then(|text| text.parse::<toml::Table>().ok())

@@ -263,9 +263,9 @@ impl ShadowlabApp {
                 self.settings.last_scene = (!is_obj).then(|| path.to_path_buf());
                 self.settings.last_lesson = None;
                 // The shipped scenes are listed anyway; anything else is a recent file.
-                let shipped = std::path::absolute(shipped_path("assets/scenes")).ok();
-                let absolute = std::path::absolute(path).ok();
-                if absolute.zip(shipped).is_none_or(|(p, dir)| p.parent() != Some(dir.as_path())) {
+                let shipped = std::fs::canonicalize(shipped_path("assets/scenes")).ok();
+                let canonical = std::fs::canonicalize(path).ok();
+                if canonical.zip(shipped).is_none_or(|(p, dir)| p.parent() != Some(dir.as_path())) {
                     self.settings.remember_file(path);
                 }
                 self.error = None;
@@ -507,12 +507,13 @@ impl ShadowlabApp {
     /// Open what the path box, a drop or the dialog names: a scene or lesson (.toml), a model
     /// (.obj), or a shipped lesson's id. A bad path keeps what is shown and says why.
     pub fn open_any(&mut self, path: &Path) {
+        // Scenes and models through `open` (loaded once, the old scene kept if this one fails);
+        // lesson files and lesson ids as the command line takes them.
+        if path.exists() && !launch::is_lesson_file(path) {
+            return self.open(path);
+        }
         match launch::resolve(Some(&path.to_string_lossy()), None, None, None) {
-            Ok(launch) if matches!(launch.opening, Some(launch::Opening::Lesson { .. })) => {
-                self.apply_launch(launch)
-            }
-            // Scenes and models through `open`, which keeps the old scene if this one fails.
-            Ok(_) => self.open(path),
+            Ok(launch) => self.apply_launch(launch),
             Err(e) => self.error = Some(AppError::new("could not open the scene", e)),
         }
     }

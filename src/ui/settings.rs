@@ -48,10 +48,10 @@ pub const STORAGE_KEY: &str = "shadowlab-settings";
 pub const RECENT_FILES: usize = 8;
 
 impl Settings {
-    /// Put `path` first among the recent files (once, at most `RECENT_FILES` kept). Relative
-    /// paths are kept absolute, so they still open from another folder.
+    /// Put `path` first among the recent files (once, at most `RECENT_FILES` kept), kept as a
+    /// canonical path, so it opens from any folder and is never listed twice.
     pub fn remember_file(&mut self, path: &std::path::Path) {
-        let path = std::path::absolute(path).unwrap_or_else(|_| path.to_path_buf());
+        let path = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
         self.recent_files.retain(|p| *p != path);
         self.recent_files.insert(0, path);
         self.recent_files.truncate(RECENT_FILES);

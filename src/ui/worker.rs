@@ -430,8 +430,13 @@ impl Renderers {
         let mut analysis = if job.analysis { Some(self.a.read_analysis()?) } else { None };
         if let Some(analysis) = analysis.as_mut().filter(|_| job.moments) {
             let light = job.request.selected_light;
-            // Techniques without moments leave them out; the view says so.
-            analysis.moments = self.a.read_moments_for_radius(light, scene.shadow.radius_texels).ok();
+            // Techniques without moments leave them out (the view says so); VSSM's radius varies
+            // per pixel, so the view shows the level of the PCF radius and says which radius.
+            analysis.moments = match self.a.read_moments_for_radius(light, scene.shadow.radius_texels) {
+                Ok(level) => Some(level),
+                Err(RenderError::Usage(_)) => None,
+                Err(e) => return Err(e),
+            };
         }
         if let Some(analysis) = analysis.as_mut().filter(|_| job.bleeding) {
             let light = job.request.selected_light;

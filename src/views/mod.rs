@@ -249,10 +249,11 @@ pub fn moments_image(moments: &crate::render::MomentsLevel, light: &LightGpu) ->
     let scale = 256u32.div_ceil(side).max(1);
     let (panel, gap) = (side * scale, 8);
     let image = RgbaImage::from_fn(2 * panel + gap, panel, |x, y| {
-        let (column, x) = if x < panel { (0, x) } else { (1, x.saturating_sub(panel + gap)) };
-        if x >= panel {
-            return NO_SURFACE;
-        }
+        let (column, x) = match x {
+            x if x < panel => (0, x),
+            x if x < panel + gap => return NO_SURFACE,
+            x => (1, x - panel - gap),
+        };
         let (mean, sigma) = stats.get(((y / scale) * side + x / scale) as usize).copied().unwrap_or_default();
         match column {
             0 => heat_color((mean - lo) / span),
@@ -351,13 +352,25 @@ pub fn analysis_view(
             let (image, mean, sigma) = moments_image(moments, light);
             let text = if zh {
                 format!(
-                    "VSM 矩，第 {} 级（每个纹素平均 {}×{} 个贴图纹素）\n左：平均深度 {:.2} .. {:.2}；右：标准差 0 .. {:.3}（世界单位，深蓝 .. 黄）",
-                    moments.level, moments.span_texels, moments.span_texels, mean.min, mean.max, sigma.max
+                    "VSM 矩，第 {} 级，半径 {:.1} 纹素的滤波读取这一级（每个纹素平均 {}×{} 个贴图纹素）\n左：平均深度 {:.2} .. {:.2}；右：标准差 0 .. {:.3}（世界单位，深蓝 .. 黄）",
+                    moments.level,
+                    moments.radius_texels,
+                    moments.span_texels,
+                    moments.span_texels,
+                    mean.min,
+                    mean.max,
+                    sigma.max
                 )
             } else {
                 format!(
-                    "VSM moments, level {} (each texel averages {}x{} map texels), dark blue .. yellow\nleft: mean depth {:.2} .. {:.2} world units from the light; right: standard deviation 0 .. {:.3} world units",
-                    moments.level, moments.span_texels, moments.span_texels, mean.min, mean.max, sigma.max
+                    "VSM moments, level {} (each texel averages {}x{} map texels), read by a filter of {:.1} texels, dark blue .. yellow\nleft: mean depth {:.2} .. {:.2} world units from the light; right: standard deviation 0 .. {:.3} world units",
+                    moments.level,
+                    moments.span_texels,
+                    moments.span_texels,
+                    moments.radius_texels,
+                    mean.min,
+                    mean.max,
+                    sigma.max
                 )
             };
             Some((image, text))
