@@ -330,10 +330,12 @@ fn vssm_probe(
     let t = coord.depth_ndc - twin.receiver_bias_ndc(coord, 0.0);
     let unoccluded_bound = twin.chebyshev_upper_bound(twin.moments().filtered(&light, coord.uv, radius), t);
     let (mut sum, mut weight) = (0.0f64, 0.0f64);
-    for (z, w) in twin.vsm_footprint_depths(coord, radius).iter().filter(|(z, _)| *z < t) {
-        sum += f64::from(z * w);
-        weight += f64::from(*w);
-    }
+    twin.for_each_footprint_depth(coord, radius, |_, z, w| {
+        if z < t {
+            sum += f64::from(z * w);
+            weight += f64::from(w);
+        }
+    });
     let footprint_blocker_depth_linear =
         (weight > 0.0).then(|| crate::shadow::depth_linear_from_ndc(&light, (sum / weight) as f32));
     let seed = kernels::pixel_seed(pixel, params.noise_seed, params.rotate_per_pixel == 1);

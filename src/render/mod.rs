@@ -377,7 +377,7 @@ impl Renderer {
         let timer = self.timer.as_ref().filter(|_| request.timestamps);
         let mut encoder =
             self.device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("frame") });
-        let vsm = matches!(scene.shadow.technique, Technique::Vsm | Technique::Vssm);
+        let vsm = scene.shadow.technique.uses_moments();
         if !shadow_maps_kept {
             shadow_pass::encode(
                 &mut encoder,
@@ -482,7 +482,7 @@ impl Renderer {
         }
         // The moments are made the first time a frame uses VSM (and kept after), a placeholder
         // stands in before.
-        let vsm = matches!(scene.shadow.technique, Technique::Vsm | Technique::Vssm);
+        let vsm = scene.shadow.technique.uses_moments();
         let moments_wanted = vsm && self.moments.as_ref().is_none_or(Moments::is_placeholder);
         if let Some(maps) = self.shadow_maps.as_ref().filter(|_| maps_changed || moments_wanted) {
             let moments = if vsm {
@@ -682,8 +682,7 @@ impl Renderer {
     ) -> Result<MomentsLevel, RenderError> {
         let moments = self.moments.as_ref().filter(|m| !m.is_placeholder());
         let (block, levels) = moments.map_or((1, 1), |m| (m.block, m.texture.mip_level_count()));
-        let level =
-            (radius_texels / block as f32).max(1.0).log2().floor().clamp(0.0, (levels - 1) as f32) as u32;
+        let level = crate::shadow::moments::level_for_radius(radius_texels, block, levels).floor() as u32;
         let (side, texels) = self.read_moments(index, level)?;
         Ok(MomentsLevel { level, span_texels: block << level, radius_texels, side, texels })
     }
@@ -693,9 +692,7 @@ impl Renderer {
     /// first. Each texel covers `moments_block << level` map texels per side.
     pub fn read_moments(&self, index: usize, level: u32) -> Result<(u32, Vec<[f32; 2]>), RenderError> {
         // Only for a frame that filtered with them: the view shows what VSM's lookups read.
-        let vsm_frame = self.last_frame.as_ref().is_some_and(|f| {
-            [crate::shadow::TECHNIQUE_VSM, crate::shadow::TECHNIQUE_VSSM].contains(&f.params.technique)
-        });
+        let vsm_frame = self.last_frame.as_ref().is_some_and(|f| f.params.uses_moments());
         let moments = self.moments.as_ref().filter(|m| vsm_frame && m.current && !m.is_placeholder());
         let moments = moments.ok_or_else(|| {
             RenderError::Usage("the moments exist for the vsm and vssm techniques only".into())

@@ -76,6 +76,13 @@ macro_rules! enum_names {
         }
     };
 }
+impl Technique {
+    /// Filters with the VSM moments (which are then built after the shadow pass).
+    pub fn uses_moments(self) -> bool {
+        matches!(self, Technique::Vsm | Technique::Vssm)
+    }
+}
+
 enum_names!(
     Technique,
     None => "none",

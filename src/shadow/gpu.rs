@@ -152,6 +152,11 @@ const _: () = assert!(std::mem::size_of::<LightGpu>() == 160);
 const _: () = assert!(std::mem::size_of::<ShadowParamsGpu>() == 80);
 
 impl ShadowParamsGpu {
+    /// The frame filters with the VSM moments (`Technique::uses_moments`).
+    pub fn uses_moments(&self) -> bool {
+        self.technique == TECHNIQUE_VSM || self.technique == TECHNIQUE_VSSM
+    }
+
     pub fn new(s: &ShadowSettings) -> Self {
         Self {
             technique: technique_id(s.technique),

@@ -467,26 +467,16 @@ impl<'a> Twin<'a> {
     pub fn vsm_lookup(&self, coord: &ShadowCoord, radius_texels: f32) -> VsmLookup {
         let (moments, t, bound) = self.vsm_filter(coord, radius_texels);
         let depths = self.vsm_footprint_depths(coord, radius_texels);
+        // Folded from +0.0: an empty f64 sum would be -0.0.
+        let lit = depths.iter().filter(|(z, _)| *z >= t).fold(0.0f64, |sum, (_, w)| sum + f64::from(*w));
         VsmLookup {
             moments,
             t,
             bound,
             visibility: self.reduce_light_bleeding(bound),
-            true_lit_fraction: self.vsm_true_lit_fraction(coord, radius_texels, t),
+            true_lit_fraction: lit as f32,
             depths,
         }
-    }
-
-    /// The share of a VSM lookup's footprint at or behind `t`, weighted as the lookup weights
-    /// its texels: what an exact filter of the same window would give.
-    pub fn vsm_true_lit_fraction(&self, coord: &ShadowCoord, radius_texels: f32, t: f32) -> f32 {
-        let mut lit = 0.0f64;
-        self.for_each_footprint_depth(coord, radius_texels, |_, z, w| {
-            if z >= t {
-                lit += f64::from(w);
-            }
-        });
-        lit as f32
     }
 
     /// The share of a VSM lookup's footprint that is not nearer than the receiver's own plane

@@ -12,6 +12,14 @@ pub fn atlas_depth(map: &DepthImage, atlas: u32, x: u32, y: u32) -> f32 {
     if x >= map.size || y >= map.size { 1.0 } else { map.depth_ndc[(y * map.size + x) as usize] }
 }
 
+/// The fractional level of a chain of `level_count` levels that a filter of `radius_texels`
+/// map texels reads: the level whose texels span the radius (`filtered_moments` in
+/// shaders/shadow_sampling.wgsl). Its floor and the level above are blended.
+pub fn level_for_radius(radius_texels: f32, block: u32, level_count: u32) -> f32 {
+    let widest = level_count.saturating_sub(1) as f32;
+    (radius_texels / block as f32).max(1.0).log2().clamp(0.0, widest)
+}
+
 /// (mean depth, mean squared depth) per texel, level 0 first; each level `side` x `side`.
 pub struct MomentsChain {
     pub levels: Vec<(u32, Vec<Vec2>)>,
@@ -59,7 +67,7 @@ impl MomentsChain {
     /// and the two levels it blends with their weights.
     pub fn levels_for(&self, light: &LightGpu, radius_texels: f32) -> [(usize, f32); 2] {
         let widest = (self.levels.len() - 1) as f32;
-        let level = (radius_texels / light.moments_block as f32).max(1.0).log2().clamp(0.0, widest);
+        let level = level_for_radius(radius_texels, light.moments_block, self.levels.len() as u32);
         let finer = level.floor();
         let coarser = (finer + 1.0).min(widest);
         [(finer as usize, 1.0 - (level - finer)), (coarser as usize, level - finer)]

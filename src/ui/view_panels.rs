@@ -197,12 +197,12 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         if app.interacting { "(overlays refresh when you let go)" } else { "(working out the overlays...)" },
     ))];
     let stale = app.overlays_stale() && (app.view_state.overlay.is_some() || app.view != View::Final);
+    let legend_lines = app.view_state.legend_lines();
     let mut lines: Vec<&str> = Vec::new();
     if stale {
         lines.push(&waiting[0]);
     } else {
-        lines.extend(app.view_state.view_legend.iter().flat_map(|l| l.lines()));
-        lines.extend(app.view_state.legends.iter().map(String::as_str));
+        lines.extend(legend_lines.iter().map(String::as_str));
     }
     // Wrapped to the view's width: a long legend takes a second line rather than being cut.
     for legend in lines {

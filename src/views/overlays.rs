@@ -186,16 +186,17 @@ pub fn bleeding_of_last_frame(
     light: usize,
 ) -> Result<Option<Vec<f32>>, crate::render::RenderError> {
     let Some(frame) = renderer.last_frame() else { return Ok(None) };
-    let vsm = [crate::shadow::TECHNIQUE_VSM, crate::shadow::TECHNIQUE_VSSM].contains(&frame.params.technique);
-    let Some(light_gpu) = frame.lights.get(light).copied().filter(|_| vsm) else { return Ok(None) };
+    let Some(light_gpu) = frame.lights.get(light).copied().filter(|_| frame.params.uses_moments()) else {
+        return Ok(None);
+    };
     let params = frame.params;
     let map = renderer.read_shadow_map(light)?;
     Ok(Some(vsm_light_bleeding(analysis, &map, &light_gpu, &params)))
 }
 
 /// Light bleeding per pixel of `analysis` (`Twin::vsm_light_bleeding_at`): VSM's or VSSM's
-/// visibility minus the true lit share of the window its filter read, worked out by the CPU
-/// twin on `map`. Only pixels that are neither fully lit nor dark can bleed; the rest are 0.
+/// visibility minus the lit share of the window its filter read (each texel against the
+/// receiver's plane), worked out by the CPU twin on `map`. Only pixels that are neither fully lit nor dark can bleed; the rest are 0.
 pub fn vsm_light_bleeding(
     analysis: &Analysis,
     map: &crate::render::DepthImage,
