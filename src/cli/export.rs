@@ -116,8 +116,7 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
     for lesson in &selected {
         check_id(lesson)?;
     }
-    let fonts = TextRenderer::shared();
-    if args.lang == Lang::Zh && !fonts.covers('中') {
+    if args.lang == Lang::Zh && !TextRenderer::shared().covers('中') {
         return Err(CliError::input(
             "Chinese slides need a CJK font and none is installed: \
              install fonts-noto-cjk (apt-get install fonts-noto-cjk)",
@@ -182,7 +181,7 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
                     body: &body,
                     try_this: try_this.iter().map(String::as_str).collect(),
                 };
-                let slide = compose(&layout, &text, &pictures, map_panel.as_ref(), &diagram, fonts)
+                let slide = compose(&layout, &text, &pictures, map_panel.as_ref(), &diagram)
                     .ok_or_else(|| failed("slide", format!("cannot allocate a {w}x{h} image")))?;
 
                 let name = |what: &str| format!("step-{:02}-{what}.png", i + 1);

@@ -1,10 +1,12 @@
-//! Drawing surface for the diagrams: a 960x540 design box scaled uniformly onto the pixmap,
-//! centred vertically and at the left of a wider pixmap (so text columns on the right can run
-//! on), with shape, clip and text primitives in design units.
+//! The one drawing surface for diagrams and slides: shape, clip, picture and text primitives in
+//! canvas units. A diagram's canvas maps a 960x540 design box uniformly onto the pixmap, centred
+//! vertically and at the left of a wider pixmap (so text columns on the right can run on); a
+//! slide's canvas is in pixels, its layout its own.
 
+use image::RgbaImage;
 use tiny_skia::{
     Color, FillRule, GradientStop, LineCap, LineJoin, LinearGradient, Mask, Paint, Path, PathBuilder, Pixmap,
-    Point, SpreadMode, Stroke, StrokeDash, Transform,
+    PixmapPaint, Point, SpreadMode, Stroke, StrokeDash, Transform,
 };
 
 use super::style::{Anchor, Style, col, fin, pal};
@@ -46,6 +48,15 @@ impl Canvas {
         let scale = (pw / 960.0).min(ph / 540.0).max(1e-3);
         let off = [0.0, (ph / scale - 540.0) * 0.5];
         let min_text = fin(min_text_px, 0.0).max(0.0) / scale;
+        Self::with_units(pixmap, lang, scale, off, min_text, col(pal::BG, 1.0))
+    }
+
+    /// A canvas in pixels, filled with `background`, for layouts of their own (the slides).
+    pub fn in_pixels(pixmap: Pixmap, lang: Lang, background: Color) -> Self {
+        Self::with_units(pixmap, lang, 1.0, [0.0, 0.0], 0.0, background)
+    }
+
+    fn with_units(pixmap: Pixmap, lang: Lang, scale: f32, off: [f32; 2], min_text: f32, bg: Color) -> Self {
         let mut c = Self {
             pixmap,
             scale,
@@ -58,7 +69,7 @@ impl Canvas {
             text_right: 0.0,
             text_boxes: Vec::new(),
         };
-        c.pixmap.fill(col(pal::BG, 1.0));
+        c.pixmap.fill(bg);
         c
     }
 
@@ -120,6 +131,24 @@ impl Canvas {
         let paint = Paint { shader, anti_alias: true, ..Paint::default() };
         let t = self.ts();
         self.pixmap.fill_path(&path, &paint, FillRule::Winding, t, self.clip.as_ref());
+    }
+
+    /// Draws `src` unscaled with its top-left corner at `at`.
+    pub fn picture(&mut self, src: &Pixmap, at: [f32; 2]) {
+        let t = self.ts().pre_translate(fin(at[0], 0.0), fin(at[1], 0.0));
+        self.pixmap.draw_pixmap(0, 0, src.as_ref(), &PixmapPaint::default(), t, self.clip.as_ref());
+    }
+
+    /// Draws an opaque image unscaled with its top-left corner at `at`.
+    pub fn image(&mut self, img: &RgbaImage, at: [f32; 2]) {
+        let Some(size) = tiny_skia::IntSize::from_wh(img.width(), img.height()) else {
+            return;
+        };
+        // Opaque pixels: straight and premultiplied alpha are the same bytes.
+        let data: Vec<u8> = img.pixels().flat_map(|p| [p[0], p[1], p[2], 255]).collect();
+        if let Some(src) = Pixmap::from_vec(data, size) {
+            self.picture(&src, at);
+        }
     }
 
     /// Polygon or polyline through `pts` (coordinates clamped to a sane range).
@@ -211,6 +240,37 @@ impl Canvas {
         size.max(self.min_text).min(size * MAX_TEXT_GROWTH)
     }
 
+    /// Width of `s` as given (not translated) at size `size`, canvas units.
+    pub fn text_width(&self, s: &str, size: f32) -> f32 {
+        self.text.measure(s, size * self.scale).width_px / self.scale
+    }
+
+    /// `s` cut to `max_width` at `size` with an ellipsis (as given, not translated).
+    pub fn fit(&self, s: &str, size: f32, max_width: f32) -> String {
+        if self.text_width(s, size) <= max_width {
+            return s.to_string();
+        }
+        let mut out: String = s.to_string();
+        while !out.is_empty() && self.text_width(&format!("{out}…"), size) > max_width {
+            out.pop();
+        }
+        format!("{}…", out.trim_end())
+    }
+
+    /// `s` (as given) broken into lines no wider than `max_width` at `size` (Unicode line breaking).
+    pub fn wrap(&self, s: &str, size: f32, max_width: f32) -> Vec<String> {
+        self.text.wrap(s, size * self.scale, max_width * self.scale)
+    }
+
+    /// Draws `s` as given (not translated, not moved) with its left end at `x` and its baseline
+    /// at `baseline`, at size `size`, canvas units.
+    pub fn text_run(&mut self, s: &str, [x, baseline]: [f32; 2], size: f32, color: Color, bold: bool) {
+        let (sc, [ox, oy]) = (self.scale, self.off);
+        self.drawn.push((s.to_string(), size * sc));
+        let style = TextStyle { px: size * sc, color, bold };
+        self.text.draw(&mut self.pixmap, s, (x + ox) * sc, (baseline + oy) * sc, style);
+    }
+
     pub fn measure(&self, text: &str, size: f32) -> (f32, f32) {
         let text = i18n::tr(self.lang, text);
         let m = self.text.measure(text, self.fs(size) * self.scale);
@@ -231,7 +291,6 @@ impl Canvas {
         let s = i18n::tr(self.lang, s);
         let sc = self.scale;
         let size = self.fs(st.size);
-        self.drawn.push((s.to_string(), size * sc));
         let m = self.text.measure(s, size * sc);
         let (w, asc, h) = (m.width_px / sc, m.ascent_px / sc, m.height_px() / sc);
         use Anchor::*;
@@ -258,9 +317,7 @@ impl Canvas {
             self.rect(plate, Some(col(pal::BG, 0.88)), None);
         }
         self.text_right = self.text_right.max(x + w);
-        let [ox, oy] = self.off;
-        let style = TextStyle { px: size * sc, color: col(st.color, 1.0), bold: st.bold };
-        self.text.draw(&mut self.pixmap, s, (x + ox) * sc, (y + oy + asc) * sc, style);
+        self.text_run(s, [x, y + asc], size, col(st.color, 1.0), st.bold);
         [x, y, w, h]
     }
 

@@ -19,8 +19,8 @@ mod widgets;
 mod tests;
 
 use crate::lessons::Lang;
-pub use canvas::MAX_TEXT_GROWTH;
-pub use text::{CJK_FONT_PATHS, TextMetrics, TextRenderer, TextStyle, load_system_cjk_font};
+pub use canvas::{Canvas, MAX_TEXT_GROWTH};
+pub use text::{CJK_FONT_PATHS, CjkFont, TextMetrics, TextRenderer, TextStyle, is_cjk, load_system_cjk_font};
 
 /// Largest accepted width or height, in pixels.
 pub const MAX_SIDE_PX: u32 = 8192;

@@ -382,7 +382,7 @@ fn text_draws_dark_pixels_where_it_is_drawn() {
 
 #[test]
 fn cjk_fallback_renders_chinese_text() {
-    let Some(bytes) = load_system_cjk_font() else {
+    let Some(cjk) = load_system_cjk_font() else {
         panic!(
             "no CJK font found in {CJK_FONT_PATHS:?}: install the Debian package fonts-noto-cjk \
              (apt-get install -y fonts-noto-cjk) so Chinese labels can render"
@@ -391,7 +391,7 @@ fn cjk_fallback_renders_chinese_text() {
     let primary = epaint_default_fonts::UBUNTU_LIGHT.to_vec();
     let without = TextRenderer::from_font_data(primary.clone(), vec![]).expect("font");
     assert!(!without.covers('阴'));
-    let tr = TextRenderer::from_font_data(primary, vec![bytes]).expect("cjk font");
+    let tr = TextRenderer::from_faces(vec![(primary, 0), (cjk.bytes, cjk.face_index)]).expect("cjk font");
     assert!(tr.covers('阴') && tr.covers('a'));
     assert!(TextRenderer::shared().covers('影'), "shared renderer lacks the CJK fallback");
     let mut pm = Pixmap::new(260, 50).expect("pixmap");
@@ -560,4 +560,67 @@ fn on_a_small_panel_text_grows_to_the_minimum_size() {
             draw_traced(kind, &DiagramInputs::default(), Lang::En, [320, 180], 14.0).expect("draw");
         assert!(smallest(&tiny) < 14.0 && smallest(&tiny) <= 17.0 / 3.0 * MAX_TEXT_GROWTH + 0.01);
     }
+}
+
+#[test]
+fn lines_break_by_the_unicode_rules_and_fit_their_width() {
+    let t = TextRenderer::shared();
+    let s = "The light renders the scene like a camera, but keeps only depth: \
+             for every texel, the distance to the nearest surface.";
+    let lines = t.wrap(s, 20.0, 200.0);
+    assert!(lines.len() > 3, "{lines:?}");
+    for l in &lines {
+        assert!(t.measure(l, 20.0).width_px <= 200.0 + 0.01, "{l}");
+    }
+    // Latin text breaks between words only: the lines join back into the text.
+    assert_eq!(lines.join(" "), s);
+    // A word wider than the line is cut between characters.
+    let long = t.wrap("aaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaaa", 20.0, 100.0);
+    assert!(long.len() > 1 && long.iter().all(|l| t.measure(l, 20.0).width_px <= 100.01), "{long:?}");
+    // Newlines start paragraphs; an empty one stays as an empty line.
+    assert_eq!(t.wrap("one\n\ntwo", 20.0, 500.0), ["one", "", "two"]);
+
+    // Chinese breaks between characters, but never before a closing mark or after an opening
+    // one, and keeps Latin words and numbers whole (UAX #14).
+    let zh = "阴影贴图（shadow map）很重要，偏移 0.002 太小。近处暗，远处亮。";
+    let closing = "，。）、；：！？";
+    for width in (30..=400).step_by(7) {
+        let lines = t.wrap(zh, 20.0, width as f32);
+        assert_eq!(lines.concat().replace(' ', ""), zh.replace(' ', ""), "width {width}: {lines:?}");
+        for l in &lines {
+            assert!(t.measure(l, 20.0).width_px <= width as f32 + 0.01, "width {width}: {lines:?}");
+        }
+        // Narrower than "（shadow", the rules give way to cutting between characters.
+        if width < 100 {
+            continue;
+        }
+        for (i, l) in lines.iter().enumerate() {
+            let first = l.chars().next();
+            assert!(i == 0 || !first.is_some_and(|c| closing.contains(c)), "width {width}: {lines:?}");
+            assert!(!l.ends_with('（'), "width {width}: {lines:?}");
+            for word in ["shadow", "0.002"] {
+                let cut = (1..word.len()).any(|k| l.ends_with(&word[..k]) && !l.ends_with(word));
+                assert!(!cut, "{word} cut at width {width}: {lines:?}");
+            }
+        }
+        if width < 300 {
+            assert!(lines.len() > 1, "width {width}: {lines:?}");
+        }
+    }
+}
+
+#[test]
+fn chinese_text_uses_the_simplified_chinese_face_at_the_latin_em() {
+    let cjk = load_system_cjk_font().expect("a CJK font (fonts-noto-cjk)");
+    let mut db = cosmic_text::fontdb::Database::new();
+    db.load_font_source(cosmic_text::fontdb::Source::Binary(std::sync::Arc::new(cjk.bytes.clone())));
+    let face = db.faces().find(|f| f.index == cjk.face_index).expect("the chosen face");
+    if db.faces().count() > 1 {
+        // A collection: the face for Simplified Chinese, not the first (Japanese) one.
+        assert!(face.families.iter().any(|(n, _)| n.ends_with(" SC")), "{:?}", face.families);
+    }
+    // Full-width characters advance by one em: the fallback font is not rescaled.
+    let t = TextRenderer::shared();
+    let w = t.measure("阴影贴图", 20.0).width_px;
+    assert!((w - 80.0).abs() < 1.0, "four ideographs at 20 px are {w} px wide");
 }

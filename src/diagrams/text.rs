@@ -1,10 +1,15 @@
-//! Text labels for the diagrams: glyphs rasterised with `ab_glyph` and alpha-blended onto a
-//! `tiny_skia::Pixmap`, with per-glyph fallback to further fonts (symbols, CJK).
+//! Text for the diagrams and the slides. cosmic-text shapes each string (harfrust), takes every
+//! character the UI font lacks from the next font that has it (maths symbols, CJK) and breaks
+//! lines by the Unicode rules (UAX #14); each glyph's outline becomes a `tiny_skia::Path`,
+//! filled like every other shape, so text and drawing share one painter and one anti-aliasing.
 
-use std::sync::OnceLock;
+use std::sync::{Mutex, MutexGuard, OnceLock};
 
-use ab_glyph::{Font, FontArc, FontRef, FontVec, GlyphId, PxScale, ScaleFont, point};
-use tiny_skia::{Color, Pixmap, PremultipliedColorU8};
+use cosmic_text::{
+    Attrs, Buffer, CacheKey, CacheKeyFlags, Command, Fallback, Family, FontSystem, Metrics, Shaping,
+    SwashCache, Wrap, fontdb,
+};
+use tiny_skia::{Color, FillRule, LineJoin, Mask, Paint, Path, PathBuilder, Pixmap, Stroke, Transform};
 
 use super::DiagramError;
 
@@ -24,15 +29,49 @@ pub const CJK_FONT_PATHS: [&str; 12] = [
     "/usr/share/fonts/truetype/droid/DroidSansFallbackFull.ttf",
 ];
 
-/// Reads the first CJK font found in [`CJK_FONT_PATHS`]; `None` when none is installed
-/// (on Debian: `apt-get install fonts-noto-cjk`).
-pub fn load_system_cjk_font() -> Option<Vec<u8>> {
+/// A CJK font file and the face in it meant for Simplified Chinese (a `.ttc` such as Noto Sans
+/// CJK holds the Japanese, Korean and Chinese forms of the same characters as separate faces).
+#[derive(Clone)]
+pub struct CjkFont {
+    pub bytes: Vec<u8>,
+    pub face_index: u32,
+}
+
+impl std::fmt::Debug for CjkFont {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("CjkFont")
+            .field("bytes", &self.bytes.len())
+            .field("face_index", &self.face_index)
+            .finish()
+    }
+}
+
+/// Reads the first CJK font found in [`CJK_FONT_PATHS`] and picks its Simplified Chinese face;
+/// `None` when none is installed (on Debian: `apt-get install fonts-noto-cjk`).
+pub fn load_system_cjk_font() -> Option<CjkFont> {
     CJK_FONT_PATHS.iter().find_map(|path| {
         let bytes = std::fs::read(path).ok()?;
-        // Only accept files that parse as a font (index 0 of a collection).
-        FontRef::try_from_slice_and_index(&bytes, 0).ok()?;
-        Some(bytes)
+        let face_index = simplified_chinese_face(&bytes)?;
+        Some(CjkFont { bytes, face_index })
     })
+}
+
+/// Index of the face named "... SC" (Simplified Chinese), else of the first face; `None` when
+/// the data holds no font.
+fn simplified_chinese_face(bytes: &[u8]) -> Option<u32> {
+    let mut db = fontdb::Database::new();
+    db.load_font_source(fontdb::Source::Binary(std::sync::Arc::new(bytes.to_vec())));
+    let faces: Vec<_> =
+        db.faces().map(|f| (f.index, f.families.iter().any(|(n, _)| n.ends_with(" SC")))).collect();
+    faces.iter().find(|(_, sc)| *sc).or(faces.first()).map(|(i, _)| *i)
+}
+
+/// Han ideographs, kana, CJK punctuation and full-width forms: written without spaces between
+/// them (lines of a Chinese paragraph join without one).
+pub fn is_cjk(c: char) -> bool {
+    matches!(c as u32,
+        0x2E80..=0x2FDF | 0x3000..=0x303F | 0x3040..=0x30FF | 0x3400..=0x4DBF | 0x4E00..=0x9FFF
+        | 0xF900..=0xFAFF | 0xFE30..=0xFE4F | 0xFF00..=0xFFEF)
 }
 
 /// Horizontal extent and vertical metrics of a line of text, in pixels.
@@ -57,15 +96,58 @@ pub struct TextStyle {
     pub bold: bool,
 }
 
-/// Draws single-line labels. The first font is the primary one; each character the primary
-/// font lacks is taken from the first fallback font that has it.
+/// Extra stroke around each glyph's outline, as a fraction of the text size: Ubuntu Light is
+/// thin for light-on-dark text at slide sizes, and there is no bold face to switch to.
+const REGULAR_STROKE_EM: f32 = 0.018;
+const BOLD_STROKE_EM: f32 = 0.045;
+
+/// The fonts after the primary one, tried in order for characters it lacks. cosmic-text asks
+/// for `'static` names; the few family names are leaked once per renderer.
+struct FallbackFamilies(Vec<&'static str>);
+
+impl Fallback for FallbackFamilies {
+    fn common_fallback(&self) -> &[&'static str] {
+        &self.0
+    }
+    fn forbidden_fallback(&self) -> &[&'static str] {
+        &[]
+    }
+    fn script_fallback(&self, _script: unicode_script::Script, _locale: &str) -> &[&'static str] {
+        &[]
+    }
+}
+
+/// The shaping state cosmic-text mutates on every call.
+struct Engine {
+    fonts: FontSystem,
+    outlines: SwashCache,
+}
+
+/// A shaped line: each glyph's outline key and pen position (pixels from the line's start on
+/// its baseline), and the advance of the whole line.
+struct ShapedLine {
+    glyphs: Vec<(CacheKey, f32, f32)>,
+    width_px: f32,
+}
+
+/// Shapes, measures, breaks and draws text in a primary font with fallbacks.
 pub struct TextRenderer {
-    fonts: Vec<FontArc>,
+    engine: Mutex<Engine>,
+    primary: String,
+    /// Weight of the primary face (Ubuntu Light is 300): asking for another would match no face.
+    primary_weight: fontdb::Weight,
+    /// Ascent and descent of the primary font, in ems.
+    ascent_em: f32,
+    descent_em: f32,
+    font_count: usize,
 }
 
 impl std::fmt::Debug for TextRenderer {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("TextRenderer").field("fonts", &self.fonts.len()).finish()
+        f.debug_struct("TextRenderer")
+            .field("primary", &self.primary)
+            .field("fonts", &self.font_count)
+            .finish()
     }
 }
 
@@ -78,31 +160,70 @@ impl Default for TextRenderer {
 impl TextRenderer {
     /// Ubuntu Light, then Hack (maths symbols), then a system CJK font when one is installed.
     pub fn new() -> Self {
-        let mut fonts: Vec<FontArc> =
-            [epaint_default_fonts::UBUNTU_LIGHT, epaint_default_fonts::HACK_REGULAR]
-                .into_iter()
-                .filter_map(|bytes| FontArc::try_from_slice(bytes).ok())
-                .collect();
-        if let Some(font) = load_system_cjk_font().and_then(|b| FontVec::try_from_vec_and_index(b, 0).ok()) {
-            fonts.push(FontArc::new(font));
+        let builtin = [epaint_default_fonts::UBUNTU_LIGHT, epaint_default_fonts::HACK_REGULAR]
+            .map(|bytes| (bytes.to_vec(), 0));
+        let cjk = load_system_cjk_font().map(|f| (f.bytes, f.face_index));
+        match Self::from_faces(builtin.into_iter().chain(cjk).collect()) {
+            Ok(renderer) => renderer,
+            // The built-in fonts ship inside egui and always parse.
+            Err(e) => panic!("the built-in UI fonts must load: {e}"),
         }
-        Self { fonts }
     }
 
     /// A renderer from font files (`.ttf`, `.otf`, or index 0 of a `.ttc`).
     pub fn from_font_data(primary: Vec<u8>, fallbacks: Vec<Vec<u8>>) -> Result<Self, DiagramError> {
-        let fonts = std::iter::once(primary)
-            .chain(fallbacks)
-            .map(|bytes| {
-                FontVec::try_from_vec_and_index(bytes, 0)
-                    .map(FontArc::new)
-                    .map_err(|e| DiagramError::Font(e.to_string()))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
-        Ok(Self { fonts })
+        Self::from_faces(std::iter::once(primary).chain(fallbacks).map(|bytes| (bytes, 0)).collect())
     }
 
-    /// The process-wide renderer used by the diagrams (fonts are parsed once).
+    /// A renderer from `(font data, face index)` pairs, the primary face first.
+    pub fn from_faces(faces: Vec<(Vec<u8>, u32)>) -> Result<Self, DiagramError> {
+        let mut db = fontdb::Database::new();
+        let mut families = Vec::new();
+        let mut primary_metrics = None;
+        for (i, (bytes, index)) in faces.into_iter().enumerate() {
+            let source = fontdb::Source::Binary(std::sync::Arc::new(bytes));
+            let ids = db.load_font_source(source);
+            let face = ids
+                .iter()
+                .filter_map(|id| db.face(*id))
+                .find(|f| f.index == index)
+                .ok_or_else(|| DiagramError::Font(format!("font {} has no face {index}", i + 1)))?;
+            let family = face.families.first().map(|(name, _)| name.clone()).unwrap_or_default();
+            if i == 0 {
+                primary_metrics = Some((face.id, face.weight));
+            }
+            // Faces of a collection other than the chosen one would be fallbacks too.
+            let unwanted: Vec<_> = ids.iter().copied().filter(|id| *id != face.id).collect();
+            for id in unwanted {
+                db.remove_face(id);
+            }
+            families.push(family);
+        }
+        let Some((primary_id, primary_weight)) = primary_metrics else {
+            return Err(DiagramError::Font("no font given".into()));
+        };
+        let fallback: Vec<&'static str> =
+            families.iter().skip(1).map(|f| &*Box::leak(f.clone().into_boxed_str())).collect();
+        let font_count = families.len();
+        let mut fonts =
+            FontSystem::new_with_locale_and_db_and_fallback("en-US".into(), db, FallbackFamilies(fallback));
+        let primary_font = fonts
+            .get_font(primary_id, primary_weight)
+            .ok_or_else(|| DiagramError::Font("the primary font does not load".into()))?;
+        let m = primary_font.metrics();
+        let upem = f32::from(m.units_per_em.max(1));
+        let (ascent_em, descent_em) = (m.ascent / upem, -m.descent / upem);
+        Ok(Self {
+            engine: Mutex::new(Engine { fonts, outlines: SwashCache::new() }),
+            primary: families.swap_remove(0),
+            primary_weight,
+            ascent_em,
+            descent_em,
+            font_count,
+        })
+    }
+
+    /// The process-wide renderer used by the diagrams and slides (fonts are parsed once).
     pub fn shared() -> &'static TextRenderer {
         static SHARED: OnceLock<TextRenderer> = OnceLock::new();
         SHARED.get_or_init(TextRenderer::new)
@@ -110,146 +231,155 @@ impl TextRenderer {
 
     /// Number of loaded fonts (primary plus fallbacks).
     pub fn font_count(&self) -> usize {
-        self.fonts.len()
+        self.font_count
+    }
+
+    fn engine(&self) -> MutexGuard<'_, Engine> {
+        // A panic while shaping leaves no half-updated state worth refusing.
+        self.engine.lock().unwrap_or_else(|poisoned| poisoned.into_inner())
     }
 
     /// Whether any loaded font has a glyph for `ch`.
     pub fn covers(&self, ch: char) -> bool {
-        self.fonts.iter().any(|f| f.glyph_id(ch).0 != 0)
+        let mut engine = self.engine();
+        let ids: Vec<_> = engine.fonts.db().faces().map(|f| f.id).collect();
+        ids.into_iter().any(|id| {
+            engine
+                .fonts
+                .get_font(id, fontdb::Weight::NORMAL)
+                .is_some_and(|font| font.as_swash().charmap().map(ch) != 0)
+        })
     }
 
-    /// Index of the font used for `ch`, and its glyph.
-    fn pick(&self, ch: char) -> Option<(usize, GlyphId)> {
-        let found = self.fonts.iter().enumerate().find_map(|(i, f)| {
-            let id = f.glyph_id(ch);
-            (id.0 != 0).then_some((i, id))
-        });
-        found.or_else(|| self.fonts.first().map(|f| (0, f.glyph_id(ch))))
+    /// A buffer holding `text` at `px`, broken to `width_px` when given, shaped.
+    fn shape(&self, engine: &mut Engine, text: &str, px: f32, width_px: Option<f32>) -> Buffer {
+        let mut buffer = Buffer::new(&mut engine.fonts, Metrics::new(px, px * 1.25));
+        buffer.set_wrap(if width_px.is_some() { Wrap::WordOrGlyph } else { Wrap::None });
+        buffer.set_size(width_px, None);
+        let attrs = Attrs::new().family(Family::Name(&self.primary)).weight(self.primary_weight);
+        buffer.set_text(text, &attrs, Shaping::Advanced, None);
+        buffer.shape_until_scroll(&mut engine.fonts, false);
+        buffer
     }
 
-    /// Pixel scale for font `fi` such that its em square matches the primary font's at `px`.
-    fn scale_for(&self, fi: usize, px: f32) -> PxScale {
-        let em_ratio = |f: &FontArc| {
-            let upem = f.units_per_em().unwrap_or(1000.0).max(1.0);
-            (f.height_unscaled() / upem).clamp(0.5, 3.0)
-        };
-        match (self.fonts.first(), self.fonts.get(fi)) {
-            (Some(p), Some(f)) if fi > 0 => PxScale::from(px * em_ratio(f) / em_ratio(p)),
-            _ => PxScale::from(px),
-        }
-    }
-
-    /// Glyph positions (font index, glyph, x offset) and total advance of `text` at `px`.
-    fn layout(&self, text: &str, px: f32) -> (Vec<(usize, GlyphId, f32)>, f32) {
-        let mut x = 0.0;
-        let mut prev: Option<(usize, GlyphId)> = None;
-        let mut out = Vec::with_capacity(text.len());
-        for ch in text.chars().filter(|c| !c.is_control()) {
-            let Some((fi, id)) = self.pick(ch) else {
-                continue;
-            };
-            let font = self.fonts[fi].as_scaled(self.scale_for(fi, px));
-            if let Some((pfi, pid)) = prev
-                && pfi == fi
-            {
-                x += font.kern(pid, id);
+    /// `text` as one line (control characters dropped), shaped at `px`.
+    fn line(&self, text: &str, px: f32) -> ShapedLine {
+        let one_line: String = text.chars().filter(|c| !c.is_control()).collect();
+        let mut engine = self.engine();
+        let buffer = self.shape(&mut engine, &one_line, px, None);
+        let mut line = ShapedLine { glyphs: Vec::new(), width_px: 0.0 };
+        for run in buffer.layout_runs() {
+            line.width_px = line.width_px.max(run.line_w);
+            for g in run.glyphs {
+                let (key, _, _) = CacheKey::new(
+                    g.font_id,
+                    g.glyph_id,
+                    g.font_size,
+                    (0.0, 0.0),
+                    g.font_weight,
+                    g.cache_key_flags | CacheKeyFlags::DISABLE_HINTING,
+                );
+                let x = g.x + g.font_size * g.x_offset;
+                let y = g.y - g.font_size * g.y_offset;
+                line.glyphs.push((key, x, y));
             }
-            out.push((fi, id, x));
-            x += font.h_advance(id);
-            prev = Some((fi, id));
         }
-        (out, x)
+        line
     }
 
     /// Size of `text` at `px` pixels (ascent and descent from the primary font).
     pub fn measure(&self, text: &str, px: f32) -> TextMetrics {
         let px = sane_px(px);
-        let (_, width_px) = self.layout(text, px);
-        let (ascent_px, descent_px) = self.fonts.first().map_or((px * 0.8, px * 0.2), |f| {
-            let s = f.as_scaled(PxScale::from(px));
-            (s.ascent(), -s.descent())
-        });
-        TextMetrics { width_px, ascent_px, descent_px }
+        let width_px = if text.is_empty() { 0.0 } else { self.line(text, px).width_px };
+        TextMetrics { width_px, ascent_px: self.ascent_em * px, descent_px: self.descent_em * px }
+    }
+
+    /// `text` broken into lines no wider than `max_width_px` at `px`, by the Unicode line
+    /// breaking rules (between words, between Chinese characters but not before a closing or
+    /// after an opening mark); a word wider than the line is cut between characters. Newlines
+    /// start new paragraphs.
+    pub fn wrap(&self, text: &str, px: f32, max_width_px: f32) -> Vec<String> {
+        let px = sane_px(px);
+        let width = if max_width_px.is_finite() { max_width_px.max(px) } else { f32::MAX };
+        let mut lines = Vec::new();
+        for paragraph in text.split('\n') {
+            let mut engine = self.engine();
+            let buffer = self.shape(&mut engine, paragraph, px, Some(width));
+            let before = lines.len();
+            for run in buffer.layout_runs() {
+                let start = run.glyphs.iter().map(|g| g.start).min().unwrap_or(0);
+                let end = run.glyphs.iter().map(|g| g.end).max().unwrap_or(0);
+                lines.push(run.text.get(start..end).unwrap_or_default().trim().to_string());
+            }
+            if lines.len() == before {
+                lines.push(String::new());
+            }
+        }
+        lines
+    }
+
+    /// Glyph outlines of `text` at `px`, placed with the line's start at `x` and its baseline
+    /// at `baseline_y` (pixels).
+    pub fn outlines(&self, text: &str, x: f32, baseline_y: f32, px: f32) -> Vec<Path> {
+        if !(x.is_finite() && baseline_y.is_finite()) || text.is_empty() {
+            return Vec::new();
+        }
+        let line = self.line(text, sane_px(px));
+        let mut engine = self.engine();
+        let Engine { fonts, outlines } = &mut *engine;
+        line.glyphs
+            .iter()
+            .filter_map(|&(key, gx, gy)| {
+                let commands = outlines.get_outline_commands(fonts, key)?;
+                glyph_path(commands, x + gx, baseline_y + gy)
+            })
+            .collect()
+    }
+
+    /// Draws `text` with its left end at `x` and its baseline at `baseline_y` (pixels), through
+    /// `transform` and inside `clip`.
+    pub fn draw_with(
+        &self,
+        pixmap: &mut Pixmap,
+        text: &str,
+        [x, baseline_y]: [f32; 2],
+        style: TextStyle,
+        transform: Transform,
+        clip: Option<&Mask>,
+    ) {
+        let px = sane_px(style.px);
+        let mut paint = Paint::default();
+        paint.set_color(style.color);
+        paint.anti_alias = true;
+        let em = if style.bold { BOLD_STROKE_EM } else { REGULAR_STROKE_EM };
+        let stroke = Stroke { width: em * px, line_join: LineJoin::Round, ..Stroke::default() };
+        for path in self.outlines(text, x, baseline_y, px) {
+            pixmap.fill_path(&path, &paint, FillRule::Winding, transform, clip);
+            pixmap.stroke_path(&path, &paint, &stroke, transform, clip);
+        }
     }
 
     /// Draws `text` with its left end at `x` and its baseline at `baseline_y` (pixels).
-    /// `style.bold` thickens strokes by drawing each glyph twice with a small horizontal offset.
     pub fn draw(&self, pixmap: &mut Pixmap, text: &str, x: f32, baseline_y: f32, style: TextStyle) {
-        let TextStyle { px, color, bold } = style;
-        if !(x.is_finite() && baseline_y.is_finite()) {
-            return;
-        }
-        let px = sane_px(px);
-        let (glyphs, _) = self.layout(text, px);
-        let offsets: &[f32] = if bold { &[0.0, 0.045] } else { &[0.0, 0.018] };
-        let outlined: Vec<_> = glyphs
-            .iter()
-            .flat_map(|&(fi, id, gx)| {
-                offsets.iter().filter_map(move |&dx| {
-                    let pos = point(x + gx + dx * px, baseline_y);
-                    let scale = self.scale_for(fi, px);
-                    self.fonts[fi].outline_glyph(id.with_scale_and_position(scale, pos))
-                })
-            })
-            .collect();
-        // Coverage buffer over the union of glyph boxes, clipped to the pixmap.
-        let (pw, ph) = (pixmap.width() as i32, pixmap.height() as i32);
-        let (mut x0, mut y0, mut x1, mut y1) = (pw, ph, 0, 0);
-        for g in &outlined {
-            let b = g.px_bounds();
-            x0 = x0.min((b.min.x as i32).max(0));
-            y0 = y0.min((b.min.y as i32).max(0));
-            x1 = x1.max((b.max.x.ceil() as i32).min(pw));
-            y1 = y1.max((b.max.y.ceil() as i32).min(ph));
-        }
-        if x1 <= x0 || y1 <= y0 {
-            return;
-        }
-        let bw = (x1 - x0) as usize;
-        let mut cover = vec![0.0_f32; bw * (y1 - y0) as usize];
-        for g in &outlined {
-            let b = g.px_bounds();
-            g.draw(|gx, gy, c| {
-                let (cx, cy) = (b.min.x as i32 + gx as i32, b.min.y as i32 + gy as i32);
-                if cx >= x0 && cy >= y0 && cx < x1 && cy < y1 {
-                    let cell = &mut cover[(cy - y0) as usize * bw + (cx - x0) as usize];
-                    *cell = cell.max(c.clamp(0.0, 1.0));
-                }
-            });
-        }
-        blend_coverage(pixmap, &cover, (x0, y0, bw), color);
+        self.draw_with(pixmap, text, [x, baseline_y], style, Transform::identity(), None);
     }
+}
+
+/// A glyph outline (y up, pixels from the pen position) as a path in pixmap space (y down).
+fn glyph_path(commands: &[Command], x: f32, y: f32) -> Option<Path> {
+    let mut pb = PathBuilder::new();
+    for c in commands {
+        match *c {
+            Command::MoveTo(p) => pb.move_to(x + p.x, y - p.y),
+            Command::LineTo(p) => pb.line_to(x + p.x, y - p.y),
+            Command::QuadTo(c, p) => pb.quad_to(x + c.x, y - c.y, x + p.x, y - p.y),
+            Command::CurveTo(a, b, p) => pb.cubic_to(x + a.x, y - a.y, x + b.x, y - b.y, x + p.x, y - p.y),
+            Command::Close => pb.close(),
+        }
+    }
+    pb.finish()
 }
 
 fn sane_px(px: f32) -> f32 {
     if px.is_finite() { px.clamp(1.0, 512.0) } else { 16.0 }
-}
-
-/// Source-over blend of `color` with per-pixel coverage onto a premultiplied pixmap.
-fn blend_coverage(pixmap: &mut Pixmap, cover: &[f32], origin: (i32, i32, usize), color: Color) {
-    let (x0, y0, bw) = origin;
-    let pw = pixmap.width() as usize;
-    let src = [color.red(), color.green(), color.blue()];
-    let pixels = pixmap.pixels_mut();
-    for (i, &c) in cover.iter().enumerate() {
-        let idx = (y0 as usize + i / bw) * pw + x0 as usize + i % bw;
-        let Some(dst) = pixels.get_mut(idx) else {
-            continue;
-        };
-        if c <= 0.0 {
-            continue;
-        }
-        let a = c * color.alpha();
-        let keep = 1.0 - a;
-        let mix = |s: f32, d: u8| (s * a * 255.0 + d as f32 * keep).round().clamp(0.0, 255.0) as u8;
-        let out_a = mix(1.0, dst.alpha());
-        let (r, g, b) = (
-            mix(src[0], dst.red()).min(out_a),
-            mix(src[1], dst.green()).min(out_a),
-            mix(src[2], dst.blue()).min(out_a),
-        );
-        if let Some(p) = PremultipliedColorU8::from_rgba(r, g, b, out_a) {
-            *dst = p;
-        }
-    }
 }

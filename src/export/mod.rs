@@ -1,12 +1,11 @@
 //! Writing files: atomically (temporary file in the same folder, then rename), so a failure
 //! never leaves a half-written output behind. And the lesson slides `shadowlab export` writes:
-//! the pictures of a step (`step`), the slide itself (`slide`, with line breaking in `wrap`) and
-//! the index page (`html`).
+//! the pictures of a step (`step`), the slide itself (`slide`, drawn on the diagrams' canvas)
+//! and the index page (`html`).
 
 pub mod html;
 pub mod slide;
 pub mod step;
-pub mod wrap;
 
 use std::path::Path;
 

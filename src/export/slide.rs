@@ -7,13 +7,12 @@
 //! across, with the spare room at the bottom.
 
 use super::step::{PROBE_FRAME, StepPictures};
-use super::wrap::{is_cjk, wrap};
-use crate::diagrams::{TextRenderer, TextStyle};
+use crate::diagrams::{Canvas, is_cjk};
 use crate::lessons::Lang;
 use crate::scene::Technique;
 use crate::views::View;
 use image::RgbaImage;
-use tiny_skia::{Color, Paint, PathBuilder, Pixmap, PixmapPaint, Rect as SkRect, Stroke, Transform};
+use tiny_skia::{Color, Pixmap};
 
 /// The design grid.
 pub const DESIGN: (f32, f32) = (1920.0, 1080.0);
@@ -222,52 +221,30 @@ pub fn legend_caption(summary: &str, lang: Lang) -> String {
     s
 }
 
-/// Draws onto the slide in pixels.
-struct Painter<'a> {
-    pm: Pixmap,
-    fonts: &'a TextRenderer,
-    lang: Lang,
+/// Slide shorthands on the diagrams' canvas (in pixels): colours from the slide palette,
+/// rectangles as laid out, and the slide's line spacing. Every pixel is drawn by the canvas.
+trait SlideDraw {
+    fn fill_rgb(&mut self, r: [f32; 4], c: [u8; 3]);
+    /// A frame drawn outside `r`.
+    fn frame(&mut self, r: Rect, c: [u8; 3], width: f32);
+    /// A cross-hair with a dark outline, visible on light and dark pictures.
+    fn marker(&mut self, p: [f32; 2], size: f32);
+    fn run(&mut self, s: &str, x: f32, baseline: f32, px: f32, c: [u8; 3], bold: bool);
+    /// Line height for `px`; Chinese needs more room between lines.
+    fn leading(&self, px: f32) -> f32;
 }
 
-impl Painter<'_> {
-    fn fill(&mut self, r: [f32; 4], c: [u8; 3]) {
-        if let Some(rect) = SkRect::from_xywh(r[0], r[1], r[2], r[3]) {
-            let mut paint = Paint::default();
-            paint.set_color(rgb(c));
-            self.pm.fill_rect(rect, &paint, Transform::identity(), None);
-        }
+impl SlideDraw for Canvas {
+    fn fill_rgb(&mut self, r: [f32; 4], c: [u8; 3]) {
+        self.rect(r, Some(rgb(c)), None);
     }
 
     fn frame(&mut self, r: Rect, c: [u8; 3], width: f32) {
-        let mut pb = PathBuilder::new();
-        let (x, y, w, h) =
-            (r.x as f32 - 0.5 * width, r.y as f32 - 0.5 * width, r.w as f32 + width, r.h as f32 + width);
-        if let Some(rect) = SkRect::from_xywh(x, y, w, h) {
-            pb.push_rect(rect);
-        }
-        if let Some(path) = pb.finish() {
-            let mut paint = Paint::default();
-            paint.set_color(rgb(c));
-            paint.anti_alias = true;
-            let stroke = Stroke { width, ..Stroke::default() };
-            self.pm.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
-        }
+        let outer =
+            [r.x as f32 - 0.5 * width, r.y as f32 - 0.5 * width, r.w as f32 + width, r.h as f32 + width];
+        self.rect(outer, None, Some((rgb(c), width)));
     }
 
-    fn line(&mut self, a: [f32; 2], b: [f32; 2], c: [u8; 3], width: f32) {
-        let mut pb = PathBuilder::new();
-        pb.move_to(a[0], a[1]);
-        pb.line_to(b[0], b[1]);
-        if let Some(path) = pb.finish() {
-            let mut paint = Paint::default();
-            paint.set_color(rgb(c));
-            paint.anti_alias = true;
-            let stroke = Stroke { width, line_cap: tiny_skia::LineCap::Round, ..Stroke::default() };
-            self.pm.stroke_path(&path, &paint, &stroke, Transform::identity(), None);
-        }
-    }
-
-    /// A cross-hair with a dark outline, visible on light and dark pictures.
     fn marker(&mut self, p: [f32; 2], size: f32) {
         let (arm, gap) = (size, size * 0.35);
         let segments = [
@@ -277,59 +254,24 @@ impl Painter<'_> {
             ([p[0], p[1] + gap], [p[0], p[1] + arm]),
         ];
         for (a, b) in segments {
-            self.line(a, b, pal::INK, size * 0.32);
+            self.line(a, b, rgb(pal::INK), size * 0.32);
         }
         for (a, b) in segments {
-            self.line(a, b, pal::PROBE, size * 0.16);
+            self.line(a, b, rgb(pal::PROBE), size * 0.16);
         }
     }
 
-    fn image(&mut self, img: &RgbaImage, at: Rect) {
-        let Some(size) = tiny_skia::IntSize::from_wh(img.width(), img.height()) else {
-            return;
-        };
-        // Opaque pixels: straight and premultiplied alpha are the same bytes.
-        let data: Vec<u8> = img.pixels().flat_map(|p| [p[0], p[1], p[2], 255]).collect();
-        if let Some(src) = Pixmap::from_vec(data, size) {
-            self.pixmap(&src, at);
-        }
+    fn run(&mut self, s: &str, x: f32, baseline: f32, px: f32, c: [u8; 3], bold: bool) {
+        self.text_run(s, [x, baseline], px, rgb(c), bold);
     }
 
-    fn pixmap(&mut self, src: &Pixmap, at: Rect) {
-        self.pm.draw_pixmap(
-            at.x as i32,
-            at.y as i32,
-            src.as_ref(),
-            &PixmapPaint::default(),
-            Transform::identity(),
-            None,
-        );
-    }
-
-    fn text(&mut self, s: &str, x: f32, baseline: f32, px: f32, c: [u8; 3], bold: bool) {
-        self.fonts.draw(&mut self.pm, s, x, baseline, TextStyle { px, color: rgb(c), bold });
-    }
-
-    fn width(&self, s: &str, px: f32) -> f32 {
-        self.fonts.measure(s, px).width_px
-    }
-
-    /// `s` cut to `max` pixels with an ellipsis.
-    fn fit(&self, s: &str, px: f32, max: f32) -> String {
-        if self.width(s, px) <= max {
-            return s.to_string();
-        }
-        let mut out: String = s.to_string();
-        while !out.is_empty() && self.width(&format!("{out}…"), px) > max {
-            out.pop();
-        }
-        format!("{}…", out.trim_end())
-    }
-
-    /// Line height for `px`; Chinese needs more room between lines.
     fn leading(&self, px: f32) -> f32 {
         px * if self.lang == Lang::Zh { 1.62 } else { 1.42 }
     }
+}
+
+fn at(r: Rect) -> [f32; 2] {
+    [r.x as f32, r.y as f32]
 }
 
 /// Layout of the explanation and the prompts at one text size.
@@ -355,19 +297,16 @@ pub fn compose(
     pictures: &StepPictures,
     map: Option<&RgbaImage>,
     diagram: &Pixmap,
-    fonts: &TextRenderer,
 ) -> Option<Slide> {
     let camera = &pictures.camera;
     let (w, h) = layout.size;
-    let mut pm = Pixmap::new(w, h)?;
-    pm.fill(rgb(pal::BG));
     let lang = text.lang;
-    let mut p = Painter { pm, fonts, lang };
+    let mut p = Canvas::in_pixels(Pixmap::new(w, h)?, lang, rgb(pal::BG));
     let u = |v: f32| layout.px(v);
 
     // Title bar: lesson title · step n/N · step title.
     let bar = layout.title_bar;
-    p.fill([0.0, 0.0, w as f32, bar.h as f32], pal::TITLE_BG);
+    p.fill_rgb([0.0, 0.0, w as f32, bar.h as f32], pal::TITLE_BG);
     let (tx, title_max) = (layout.camera.x as f32, layout.text.right() - layout.camera.x as f32);
     let counter = match lang {
         Lang::En => format!("step {}/{}", text.step_number, text.step_count),
@@ -375,36 +314,36 @@ pub fn compose(
     };
     let sep = "  ·  ";
     let mut px = u(38.0);
-    let parts_width = |p: &Painter, px: f32| {
-        p.width(text.lesson_title, px)
-            + p.width(&format!("{sep}{counter}{sep}"), px)
-            + p.width(text.step_title, px)
+    let parts_width = |p: &Canvas, px: f32| {
+        p.text_width(text.lesson_title, px)
+            + p.text_width(&format!("{sep}{counter}{sep}"), px)
+            + p.text_width(text.step_title, px)
     };
     while px > u(26.0) && parts_width(&p, px) > title_max {
         px -= u(1.0);
     }
     let baseline = bar.h as f32 * 0.5 + px * 0.36;
     let lesson_title = p.fit(text.lesson_title, px, title_max * 0.45);
-    p.text(&lesson_title, tx, baseline, px, pal::TITLE_FG, true);
-    let mut x = tx + p.width(&lesson_title, px);
+    p.run(&lesson_title, tx, baseline, px, pal::TITLE_FG, true);
+    let mut x = tx + p.text_width(&lesson_title, px);
     let middle = format!("{sep}{counter}{sep}");
-    p.text(&middle, x, baseline, px, pal::TITLE_DIM, false);
-    x += p.width(&middle, px);
+    p.run(&middle, x, baseline, px, pal::TITLE_DIM, false);
+    x += p.text_width(&middle, px);
     let step_title = p.fit(text.step_title, px, (tx + title_max - x).max(u(100.0)));
-    p.text(&step_title, x, baseline, px, pal::TITLE_FG, true);
+    p.run(&step_title, x, baseline, px, pal::TITLE_FG, true);
 
     // Pictures with frames and probe markers.
-    p.image(camera, layout.camera);
+    p.image(camera, at(layout.camera));
     p.frame(layout.camera, pal::FRAME, u(2.0));
     match map {
-        Some(img) => p.image(img, layout.shadow_map),
+        Some(img) => p.image(img, at(layout.shadow_map)),
         None => {
             let r = layout.shadow_map;
-            p.fill([r.x as f32, r.y as f32, r.w as f32, r.h as f32], pal::PANEL);
+            p.fill_rgb([r.x as f32, r.y as f32, r.w as f32, r.h as f32], pal::PANEL);
             let msg = tr(lang, "no light, no shadow map", "没有光源，也就没有阴影贴图");
             let m = p.fit(msg, u(24.0), r.w as f32 - u(20.0));
-            let mx = r.x as f32 + (r.w as f32 - p.width(&m, u(24.0))) * 0.5;
-            p.text(&m, mx, r.y as f32 + r.h as f32 * 0.5, u(24.0), pal::MUTED, false);
+            let mx = r.x as f32 + (r.w as f32 - p.text_width(&m, u(24.0))) * 0.5;
+            p.run(&m, mx, r.y as f32 + r.h as f32 * 0.5, u(24.0), pal::MUTED, false);
         }
     }
     p.frame(layout.shadow_map, pal::FRAME, u(2.0));
@@ -437,10 +376,10 @@ pub fn compose(
         };
     }
     let first = p.fit(&first, cap, c.w as f32);
-    p.text(&first, c.x as f32, c.y as f32 + cap, cap, pal::INK, true);
+    p.run(&first, c.x as f32, c.y as f32 + cap, cap, pal::INK, true);
     if let Some(summary) = &pictures.camera_summary {
         let line = p.fit(&legend_caption(summary, lang), cap, c.w as f32);
-        p.text(&line, c.x as f32, c.y as f32 + cap + cap_gap, cap, pal::MUTED, false);
+        p.run(&line, c.x as f32, c.y as f32 + cap + cap_gap, cap, pal::MUTED, false);
     }
     let c = layout.shadow_map_caption;
     let (first, second) = match &pictures.shadow_map {
@@ -463,33 +402,33 @@ pub fn compose(
         None => (tr(lang, "Shadow map", "阴影贴图").to_string(), String::new()),
     };
     let first = p.fit(&first, cap, c.w as f32);
-    p.text(&first, c.x as f32, c.y as f32 + cap, cap, pal::INK, true);
+    p.run(&first, c.x as f32, c.y as f32 + cap, cap, pal::INK, true);
     let second = p.fit(&second, cap, c.w as f32);
-    p.text(&second, c.x as f32, c.y as f32 + cap + cap_gap, cap, pal::MUTED, false);
+    p.run(&second, c.x as f32, c.y as f32 + cap + cap_gap, cap, pal::MUTED, false);
 
     // Diagram and probe numbers.
-    p.pixmap(diagram, layout.diagram);
+    p.picture(diagram, at(layout.diagram));
     p.frame(layout.diagram, pal::FRAME, u(2.0));
     probe_panel(&mut p, layout, pictures);
 
     // Explanation and prompts, at the largest size that fits.
     let text_cut = text_column(&mut p, layout, text);
-    Some(Slide { pixmap: p.pm, text_cut })
+    Some(Slide { pixmap: p.pixmap, text_cut })
 }
 
-fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
+fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
     let technique = pictures.technique;
     let lang = p.lang;
     let u = |v: f32| layout.px(v);
     let r = layout.probe;
-    p.fill([r.x as f32, r.y as f32, r.w as f32, r.h as f32], pal::PANEL);
+    p.fill_rgb([r.x as f32, r.y as f32, r.w as f32, r.h as f32], pal::PANEL);
     p.frame(r, pal::FRAME, u(2.0));
     let pad = u(18.0);
     let head = u(26.0);
     let mut y = r.y as f32 + pad + head;
     p.marker([r.x as f32 + pad + u(10.0), y - head * 0.35], u(12.0));
     let title = tr(lang, "Probe", "探针");
-    p.text(title, r.x as f32 + pad + u(30.0), y, head, pal::INK, true);
+    p.run(title, r.x as f32 + pad + u(30.0), y, head, pal::INK, true);
     let technique_name = match technique {
         Technique::None => tr(lang, "no shadows", "无阴影"),
         Technique::Hard => tr(lang, "hard shadows", "硬阴影"),
@@ -498,9 +437,9 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
         Technique::Vsm => "VSM",
         Technique::Vssm => "VSSM",
     };
-    let tx = r.x as f32 + pad + u(30.0) + p.width(title, head) + u(14.0);
+    let tx = r.x as f32 + pad + u(30.0) + p.text_width(title, head) + u(14.0);
     let tech = p.fit(technique_name, u(22.0), r.right() - pad - tx);
-    p.text(&tech, tx, y, u(22.0), pal::MUTED, false);
+    p.run(&tech, tx, y, u(22.0), pal::MUTED, false);
 
     let mut rows: Vec<(&str, String)> = Vec::new();
     let report = pictures.probe.as_ref();
@@ -593,7 +532,7 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
     while px > u(16.0) && rows.len() as f32 * p.leading(px) > avail {
         px -= u(1.0);
     }
-    let label_w = rows.iter().map(|(l, _)| p.width(l, px)).fold(0.0f32, f32::max);
+    let label_w = rows.iter().map(|(l, _)| p.text_width(l, px)).fold(0.0f32, f32::max);
     let vx = r.x as f32 + pad + label_w + if label_w > 0.0 { u(16.0) } else { 0.0 };
     y += u(12.0);
     for (label, value) in rows {
@@ -603,12 +542,12 @@ fn probe_panel(p: &mut Painter, layout: &SlideLayout, pictures: &StepPictures) {
         }
         if label.is_empty() {
             let value = p.fit(&value, px, r.right() - pad - (r.x as f32 + pad));
-            p.text(&value, r.x as f32 + pad, y, px, pal::INK, true);
+            p.run(&value, r.x as f32 + pad, y, px, pal::INK, true);
             continue;
         }
-        p.text(label, r.x as f32 + pad, y, px, pal::MUTED, false);
+        p.run(label, r.x as f32 + pad, y, px, pal::MUTED, false);
         let value = p.fit(&value, px, r.right() - pad - vx);
-        p.text(&value, vx, y, px, pal::INK, false);
+        p.run(&value, vx, y, px, pal::INK, false);
     }
 }
 
@@ -623,7 +562,7 @@ fn bias_num(v: f32) -> String {
 }
 
 /// Draws the explanation and the prompts; true when the explanation had to be cut.
-fn text_column(p: &mut Painter, layout: &SlideLayout, text: &SlideText) -> bool {
+fn text_column(p: &mut Canvas, layout: &SlideLayout, text: &SlideText) -> bool {
     let lang = p.lang;
     let u = |v: f32| layout.px(v);
     let r = layout.text;
@@ -633,20 +572,20 @@ fn text_column(p: &mut Painter, layout: &SlideLayout, text: &SlideText) -> bool 
     let heading = u(28.0);
     // Paragraph breaks in the lesson text are kept; single newlines inside a paragraph are not.
     let body: String = text.body.split("\n\n").map(join_lines).collect::<Vec<_>>().join("\n");
-    let block_at = |p: &Painter, body_px: f32| {
+    let block_at = |p: &Canvas, body_px: f32| {
         let prompt_px = (body_px * 0.93).max(u(18.0));
         TextBlock {
-            body: wrap(p.fonts, &body, body_px, width),
+            body: p.wrap(&body, body_px, width),
             prompts: text
                 .try_this
                 .iter()
-                .map(|t| wrap(p.fonts, &join_lines(t), prompt_px, width - 2.0 * pad - bullet_indent))
+                .map(|t| p.wrap(&join_lines(t), prompt_px, width - 2.0 * pad - bullet_indent))
                 .collect(),
             body_px,
             prompt_px,
         }
     };
-    let heights = |p: &Painter, b: &TextBlock| {
+    let heights = |p: &Canvas, b: &TextBlock| {
         let body_h = b.body.len() as f32 * p.leading(b.body_px);
         let lines: usize = b.prompts.iter().map(Vec::len).sum();
         let prompts_h = if b.prompts.is_empty() {
@@ -688,7 +627,7 @@ fn text_column(p: &mut Painter, layout: &SlideLayout, text: &SlideText) -> bool 
         let cut = i + 1 == fitting && fitting < block.body.len();
         let line = if cut { p.fit(&format!("{line} …"), block.body_px, width) } else { line.clone() };
         if !line.is_empty() {
-            p.text(&line, r.x as f32, baseline, block.body_px, pal::INK, false);
+            p.run(&line, r.x as f32, baseline, block.body_px, pal::INK, false);
         }
         y += lead;
     }
@@ -698,19 +637,19 @@ fn text_column(p: &mut Painter, layout: &SlideLayout, text: &SlideText) -> bool 
         return cut;
     }
     let top = r.bottom() - prompts_h;
-    p.fill([r.x as f32, top, width, prompts_h], pal::TRY_BG);
-    p.fill([r.x as f32, top, u(6.0), prompts_h], pal::TRY_EDGE);
+    p.fill_rgb([r.x as f32, top, width, prompts_h], pal::TRY_BG);
+    p.fill_rgb([r.x as f32, top, u(6.0), prompts_h], pal::TRY_EDGE);
     let mut y = top + pad + heading;
-    p.text(tr(lang, "Try this", "试一试"), r.x as f32 + pad, y, heading, pal::INK, true);
+    p.run(tr(lang, "Try this", "试一试"), r.x as f32 + pad, y, heading, pal::INK, true);
     y += p.leading(heading) - heading;
     let lead = p.leading(block.prompt_px);
     for prompt in &block.prompts {
         for (i, line) in prompt.iter().enumerate() {
             y += lead;
             if i == 0 {
-                p.text("•", r.x as f32 + pad + u(4.0), y, block.prompt_px, pal::TRY_EDGE, true);
+                p.run("•", r.x as f32 + pad + u(4.0), y, block.prompt_px, pal::TRY_EDGE, true);
             }
-            p.text(line, r.x as f32 + pad + bullet_indent, y, block.prompt_px, pal::INK, false);
+            p.run(line, r.x as f32 + pad + bullet_indent, y, block.prompt_px, pal::INK, false);
         }
         y += u(10.0);
     }

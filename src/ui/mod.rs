@@ -591,9 +591,12 @@ fn fallback_scene(why: &str) -> Scene {
 }
 
 fn install_cjk_font(ctx: &egui::Context) {
-    let Some(bytes) = crate::diagrams::load_system_cjk_font() else { return };
+    let Some(cjk) = crate::diagrams::load_system_cjk_font() else { return };
     let mut fonts = egui::FontDefinitions::default();
-    fonts.font_data.insert("cjk".to_owned(), Arc::new(egui::FontData::from_owned(bytes)));
+    // The same face the diagrams and slides fall back to (Simplified Chinese in a collection).
+    let mut data = egui::FontData::from_owned(cjk.bytes);
+    data.index = cjk.face_index;
+    fonts.font_data.insert("cjk".to_owned(), Arc::new(data));
     for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
         fonts.families.entry(family).or_default().push("cjk".to_owned());
     }
