@@ -1027,4 +1027,33 @@ fn an_installed_binary_finds_its_lessons_and_scenes_from_any_folder() {
     let render = run_there(&["render", "--lesson", "multi-light", "--size", "160x90", "--out", "step.png"]);
     assert_eq!(render.code, Some(0), "{render}");
     assert!(elsewhere.join("step.png").is_file(), "{render}");
+
+    // Without the checkout (forced here with SHADOWLAB_BUILT_IN_DATA=1), the copy built into the
+    // binary is unpacked into the user's data folder and read from there.
+    let data_home = scratch.path("data");
+    let built_in = |args: &[&str]| {
+        let mut command = std::process::Command::new(&installed);
+        command
+            .args(args)
+            .current_dir(&elsewhere)
+            .env("XDG_RUNTIME_DIR", common::runtime_dir())
+            .env("XDG_DATA_HOME", &data_home)
+            .env(shadowlab::shipped::BUILT_IN_ENV, "1");
+        common::run(&mut command)
+    };
+    let lessons = built_in(&["lessons"]);
+    assert_eq!(lessons.code, Some(0), "{lessons}");
+    assert!(lessons.stdout.contains("vsm") && lessons.stdout.contains("hard-shadows"), "{lessons}");
+    let unpacked: Vec<_> = std::fs::read_dir(data_home.join("shadowlab"))
+        .expect("the unpacked copy")
+        .map(|e| e.expect("entry").path())
+        .collect();
+    assert_eq!(unpacked.len(), 1, "{unpacked:?}");
+    for relative in ["lessons/06_vsm.toml", "assets/scenes/games202.toml", "assets/meshes/bunny.obj"] {
+        assert!(unpacked[0].join(relative).is_file(), "{relative} not unpacked");
+    }
+    // A lesson step renders from it: its scene, meshes and texture come from the copy.
+    let render = built_in(&["render", "--lesson", "hard-shadows", "--size", "160x90", "--out", "copy.png"]);
+    assert_eq!(render.code, Some(0), "{render}");
+    assert!(elsewhere.join("copy.png").is_file(), "{render}");
 }

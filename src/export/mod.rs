@@ -1,5 +1,4 @@
-//! Writing files: atomically (temporary file in the same folder, then rename), so a failure
-//! never leaves a half-written output behind. And the lesson slides `shadowlab export` writes:
+//! Writing output files atomically (see [`crate::files`]), and the lesson slides `shadowlab export` writes:
 //! the pictures of a step (`step`), the slide itself (`slide`, drawn on the diagrams' canvas)
 //! and the index page (`html`).
 
@@ -19,22 +18,8 @@ pub enum ExportError {
 
 /// Write `bytes` to `path` atomically.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), ExportError> {
-    let err = |reason: String| ExportError::Write { path: path.display().to_string(), reason };
-    let dir = match path.parent() {
-        Some(d) if !d.as_os_str().is_empty() => d,
-        _ => Path::new("."),
-    };
-    if !dir.is_dir() {
-        return Err(err(format!("folder {} does not exist", dir.display())));
-    }
-    let name = path.file_name().ok_or_else(|| err("not a file name".into()))?;
-    let tmp = dir.join(format!(".{}.tmp-{}", name.to_string_lossy(), std::process::id()));
-    let result = std::fs::write(&tmp, bytes).and_then(|_| std::fs::rename(&tmp, path));
-    if let Err(e) = result {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(err(e.to_string()));
-    }
-    Ok(())
+    crate::files::write_atomic(path, bytes)
+        .map_err(|reason| ExportError::Write { path: path.display().to_string(), reason })
 }
 
 /// Encode an RGBA8 image as PNG in memory.

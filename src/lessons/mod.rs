@@ -239,9 +239,9 @@ pub struct Lesson {
     pub steps: Vec<Step>,
 }
 
-/// The folder the lessons ship in.
+/// The folder the lessons ship in (see [`crate::shipped_path`]).
 pub fn default_dir() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons")
+    crate::shipped_path("lessons")
 }
 
 fn line_of(text: &str, byte: usize) -> usize {

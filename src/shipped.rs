@@ -1,0 +1,156 @@
+//! The lessons, scenes, meshes and textures shadowlab ships. They are read from disk where they
+//! are found (the working folder, beside the executable, the checkout it was built from); an
+//! installed binary whose checkout is gone unpacks the copy built into it, once, into the user's
+//! data folder, and reads them there. Loaders stay path-based either way: a lesson names its
+//! scene and a scene its meshes by relative paths, which hold in the unpacked folder too.
+
+use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
+
+/// Set to 1 to use the copy built into the binary even where files are found on disk.
+pub const BUILT_IN_ENV: &str = "SHADOWLAB_BUILT_IN_DATA";
+
+macro_rules! shipped_files {
+    ($($path:literal),* $(,)?) => {
+        /// Every shipped file, by its path relative to the checkout, with its bytes.
+        pub const FILES: &[(&str, &[u8])] =
+            &[$(($path, include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $path)))),*];
+    };
+}
+
+shipped_files![
+    "lessons/01_hard_shadows.toml",
+    "lessons/02_bias.toml",
+    "lessons/03_pcf.toml",
+    "lessons/04_pcss.toml",
+    "lessons/05_multi_light.toml",
+    "lessons/06_vsm.toml",
+    "assets/README.md",
+    "assets/meshes/bunny.obj",
+    "assets/meshes/floor.mtl",
+    "assets/meshes/floor.obj",
+    "assets/scenes/acne.toml",
+    "assets/scenes/bleeding.toml",
+    "assets/scenes/contact.toml",
+    "assets/scenes/games202.toml",
+    "assets/scenes/homework.toml",
+    "assets/scenes/lesson_bias_cull.toml",
+    "assets/scenes/lesson_pcss_sun.toml",
+    "assets/scenes/multi_light.toml",
+    "assets/textures/checker.png",
+];
+
+/// Folders whose files ship (the test that keeps [`FILES`] complete walks them).
+pub const SHIPPED_DIRS: [&str; 4] = ["lessons", "assets/meshes", "assets/scenes", "assets/textures"];
+
+/// A shipped file or folder, found from any working folder: relative to the working folder
+/// first, then beside the executable (and up to three folders above it, which covers
+/// `target/release/`), then in the source tree it was built from, then in the unpacked built-in
+/// copy.
+pub fn shipped_path(relative: &str) -> PathBuf {
+    let source_tree = Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
+    if !use_built_in() {
+        let beside_exe: Vec<PathBuf> = std::env::current_exe()
+            .map(|exe| exe.ancestors().skip(1).take(4).map(|dir| dir.join(relative)).collect())
+            .unwrap_or_default();
+        let mut on_disk =
+            std::iter::once(PathBuf::from(relative)).chain(beside_exe).chain([source_tree.clone()]);
+        if let Some(found) = on_disk.find(|p| p.exists()) {
+            return found;
+        }
+    }
+    // Where even the built-in copy cannot be unpacked, the error names the source-tree path.
+    built_in_root().map_or(source_tree, |root| root.join(relative))
+}
+
+fn use_built_in() -> bool {
+    std::env::var(BUILT_IN_ENV).is_ok_and(|v| v == "1")
+}
+
+/// The folder the built-in copy is unpacked into (once per process), named by a hash of its
+/// contents so that another version never reads a stale copy; `None` when it cannot be written.
+pub fn built_in_root() -> Option<PathBuf> {
+    static ROOT: OnceLock<Option<PathBuf>> = OnceLock::new();
+    ROOT.get_or_init(|| {
+        let root = data_home()?.join("shadowlab").join(format!("shipped-{:016x}", content_hash()));
+        match unpack(&root) {
+            Ok(()) => Some(root),
+            Err(e) => {
+                eprintln!("shadowlab: cannot unpack the built-in lessons and assets: {e}");
+                None
+            }
+        }
+    })
+    .clone()
+}
+
+/// `$XDG_DATA_HOME`, else `~/.local/share`.
+fn data_home() -> Option<PathBuf> {
+    let from = |var: &str| std::env::var_os(var).filter(|v| !v.is_empty()).map(PathBuf::from);
+    from("XDG_DATA_HOME").or_else(|| from("HOME").map(|home| home.join(".local/share")))
+}
+
+/// FNV-1a over every path and its bytes.
+fn content_hash() -> u64 {
+    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    for (path, bytes) in FILES {
+        for b in path.bytes().chain([0]).chain(bytes.iter().copied()) {
+            h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+    h
+}
+
+/// Writes every file that is missing or differs, each atomically (a crash leaves no half file).
+fn unpack(root: &Path) -> Result<(), String> {
+    for (relative, bytes) in FILES {
+        let path = root.join(relative);
+        if std::fs::read(&path).is_ok_and(|on_disk| on_disk == *bytes) {
+            continue;
+        }
+        let folder = path.parent().unwrap_or(root);
+        std::fs::create_dir_all(folder).map_err(|e| format!("{}: {e}", folder.display()))?;
+        crate::files::write_atomic(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A lesson, scene, mesh or texture added to the checkout but not to [`FILES`] would be
+    /// missing from an installed binary.
+    #[test]
+    fn the_built_in_copy_holds_every_shipped_file_as_it_is_on_disk() {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let mut on_disk: Vec<String> = vec!["assets/README.md".into()];
+        for dir in SHIPPED_DIRS {
+            for entry in std::fs::read_dir(root.join(dir)).expect("a shipped folder") {
+                let name = entry.expect("an entry").file_name().to_string_lossy().into_owned();
+                on_disk.push(format!("{dir}/{name}"));
+            }
+        }
+        on_disk.sort();
+        let mut built_in: Vec<String> = FILES.iter().map(|(p, _)| p.to_string()).collect();
+        built_in.sort();
+        assert_eq!(built_in, on_disk);
+        for (path, bytes) in FILES {
+            assert_eq!(std::fs::read(root.join(path)).expect("readable").as_slice(), *bytes, "{path}");
+        }
+    }
+
+    #[test]
+    fn unpacking_writes_every_file_and_repairs_a_changed_one() {
+        let dir = tempfile::tempdir().expect("temp dir");
+        let root = dir.path().join("shipped");
+        unpack(&root).expect("unpack");
+        for (path, bytes) in FILES {
+            assert_eq!(std::fs::read(root.join(path)).expect("unpacked").as_slice(), *bytes, "{path}");
+        }
+        let lesson = root.join(FILES[0].0);
+        std::fs::write(&lesson, "edited").expect("edit");
+        unpack(&root).expect("unpack again");
+        assert_eq!(std::fs::read(&lesson).expect("repaired").as_slice(), FILES[0].1);
+    }
+}
