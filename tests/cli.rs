@@ -800,6 +800,33 @@ fn bench_app_window_drives_the_real_window() {
     }
 }
 
+/// The diagrams' own timing: every diagram in both languages, as JSON.
+#[test]
+fn bench_diagrams_times_every_diagram_in_both_languages() {
+    let run = shadowlab(&["bench", "--diagrams", "--frames", "2", "--size", "320x180", "--json"]);
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value =
+        serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("bench prints JSON ({e}):\n{run}"));
+    assert_eq!(json["size"], serde_json::json!([320, 180]));
+    let rows = json["rows"].as_array().expect("rows");
+    let ids = ["two-pass", "acne-bias", "pcf-kernel", "pcss", "multi-light", "chebyshev"];
+    let expected: Vec<(&str, &str)> = ids.iter().flat_map(|id| [(*id, "en"), (*id, "zh")]).collect();
+    let got: Vec<(&str, &str)> = rows
+        .iter()
+        .map(|r| (r["diagram"].as_str().unwrap_or(""), r["lang"].as_str().unwrap_or("")))
+        .collect();
+    assert_eq!(got, expected, "{json:#}");
+    for r in rows {
+        let (median, min) = (r["median_ms"].as_f64().unwrap_or(-1.0), r["min_ms"].as_f64().unwrap_or(-1.0));
+        assert!(min > 0.0 && median >= min, "{r}");
+    }
+    let table = shadowlab(&["bench", "--diagrams", "--frames", "1", "--size", "320x180"]);
+    assert_eq!(table.code, Some(0), "{table}");
+    assert!(table.stdout.contains("median ms") && table.stdout.contains("chebyshev"), "{table}");
+    let both = shadowlab(&["bench", "--diagrams", "--app"]);
+    assert_eq!(both.code, Some(2), "{both}");
+}
+
 #[test]
 fn bench_app_window_without_a_display_says_so() {
     let run =

@@ -253,3 +253,38 @@ fn without_the_pre_pass_every_pixel_is_the_pre_pass_pixel() {
         }
     }
 }
+
+/// The text stack on its own: a paragraph in each language broken to a column by the Unicode
+/// rules, with maths symbols from the fallback font and a bold heading, drawn by the diagrams'
+/// canvas as the slides draw their text.
+#[test]
+fn text_paragraphs_in_both_languages() {
+    use shadowlab::diagrams::Canvas;
+    use shadowlab::lessons::Lang;
+    let ink = tiny_skia::Color::from_rgba8(20, 24, 28, 255);
+    let paper = tiny_skia::Color::from_rgba8(250, 250, 246, 255);
+    let mut c = Canvas::in_pixels(tiny_skia::Pixmap::new(640, 200).expect("pixmap"), Lang::Zh, paper);
+    let columns = [
+        (
+            20.0,
+            "PCSS, step 2",
+            "The blocker search looks in the cone from the receiver to the light: \
+             w_search = w_light · (d_r − near) / d_r ≈ 2.6 world units, 94.6 texels.",
+        ),
+        (
+            330.0,
+            "PCSS：第二步",
+            "遮挡物搜索只看「接收点到光源」的锥体（search cone）里：\
+             w_search = w_light · (d_r − near) / d_r ≈ 2.6 世界单位，即 94.6 个纹素。",
+        ),
+    ];
+    for (x, heading, body) in columns {
+        c.text_run(heading, [x, 40.0], 24.0, ink, true);
+        for (i, line) in c.wrap(body, 18.0, 290.0).iter().enumerate() {
+            assert!(c.text_width(line, 18.0) <= 290.0, "{line}");
+            c.text_run(line, [x, 80.0 + 29.0 * i as f32], 18.0, ink, false);
+        }
+    }
+    let png = shadowlab::diagrams::encode_png(&c.pixmap).expect("encode");
+    compare_with_golden("text_paragraphs", image::load_from_memory(&png).expect("decode").to_rgba8());
+}

@@ -3,6 +3,7 @@
 
 mod bench;
 mod bench_app;
+mod bench_diagrams;
 mod bench_window;
 #[path = "export.rs"]
 mod export_cmd;
@@ -142,6 +143,10 @@ pub struct BenchArgs {
     /// view refreshes per second and the time from release to the full-quality frame.
     #[arg(long, conflicts_with_all = ["scene", "set", "time", "still", "only", "frames"])]
     pub app: bool,
+    /// Time the diagrams instead: each one drawn --frames times at --size (CPU), in English and
+    /// Chinese, as the app redraws them while a value they show is dragged.
+    #[arg(long, conflicts_with_all = ["app", "scene", "set", "time", "still", "only"])]
+    pub diagrams: bool,
     /// With --app: run the session in a real window (needs a display; `xvfb-run -a` where there
     /// is none), painted as the app paints here.
     #[arg(long, requires = "app")]
@@ -362,6 +367,7 @@ pub fn run(command: Command) -> Result<(), CliError> {
         Command::Render(args) => render(args),
         Command::Probe(args) => probe(args),
         Command::Bench(args) if args.app => bench_app::run(&args),
+        Command::Bench(args) if args.diagrams => bench_diagrams::run(&args),
         Command::Bench(args) => bench::run(args),
         Command::Lessons => list_lessons(),
         Command::Export(args) => export_cmd::run(args),

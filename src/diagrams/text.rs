@@ -1,15 +1,16 @@
 //! Text for the diagrams and the slides. cosmic-text shapes each string (harfrust), takes every
 //! character the UI font lacks from the next font that has it (maths symbols, CJK) and breaks
-//! lines by the Unicode rules (UAX #14); each glyph's outline becomes a `tiny_skia::Path`,
-//! filled like every other shape, so text and drawing share one painter and one anti-aliasing.
+//! lines by the Unicode rules (UAX #14). Glyphs are rasterised once and cached; a line's
+//! coverage is blended onto the `tiny_skia::Pixmap` by tiny-skia like every other layer.
 
-use std::sync::{Mutex, MutexGuard, OnceLock};
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex, MutexGuard, OnceLock};
 
 use cosmic_text::{
-    Attrs, Buffer, CacheKey, CacheKeyFlags, Command, Fallback, Family, FontSystem, Metrics, Shaping,
-    SwashCache, Wrap, fontdb,
+    Attrs, Buffer, CacheKey, CacheKeyFlags, Fallback, Family, FontSystem, Metrics, Shaping, SwashCache,
+    SwashContent, Wrap, fontdb,
 };
-use tiny_skia::{Color, FillRule, LineJoin, Mask, Paint, Path, PathBuilder, Pixmap, Stroke, Transform};
+use tiny_skia::{Color, Mask, Pixmap, PixmapPaint, PremultipliedColorU8, Transform};
 
 use super::DiagramError;
 
@@ -96,10 +97,10 @@ pub struct TextStyle {
     pub bold: bool,
 }
 
-/// Extra stroke around each glyph's outline, as a fraction of the text size: Ubuntu Light is
-/// thin for light-on-dark text at slide sizes, and there is no bold face to switch to.
-const REGULAR_STROKE_EM: f32 = 0.018;
-const BOLD_STROKE_EM: f32 = 0.045;
+/// How far right each glyph is drawn a second time, as a fraction of the text size: Ubuntu
+/// Light is thin at slide sizes, and there is no bold face to switch to.
+const REGULAR_OFFSET_EM: f32 = 0.018;
+const BOLD_OFFSET_EM: f32 = 0.045;
 
 /// The fonts after the primary one, tried in order for characters it lacks. cosmic-text asks
 /// for `'static` names; the few family names are leaked once per renderer.
@@ -120,13 +121,29 @@ impl Fallback for FallbackFamilies {
 /// The shaping state cosmic-text mutates on every call.
 struct Engine {
     fonts: FontSystem,
-    outlines: SwashCache,
+    /// Rasterised glyphs, by font, glyph, size and quarter-pixel position.
+    glyphs: SwashCache,
+    /// Shaped single lines, by text and size (bits of the f32 pixel size).
+    lines: HashMap<(String, u32), Arc<ShapedLine>>,
 }
 
-/// A shaped line: each glyph's outline key and pen position (pixels from the line's start on
-/// its baseline), and the advance of the whole line.
+/// More distinct lines than a session of diagrams and slides draws; past it the cache restarts.
+const MAX_CACHED_LINES: usize = 4096;
+
+/// A glyph of a shaped line: its font and pen position, pixels from the line's start on its
+/// baseline.
+struct ShapedGlyph {
+    font_id: fontdb::ID,
+    glyph_id: u16,
+    weight: fontdb::Weight,
+    flags: CacheKeyFlags,
+    x: f32,
+    y: f32,
+}
+
+/// A shaped line and its advance.
 struct ShapedLine {
-    glyphs: Vec<(CacheKey, f32, f32)>,
+    glyphs: Vec<ShapedGlyph>,
     width_px: f32,
 }
 
@@ -214,7 +231,7 @@ impl TextRenderer {
         let upem = f32::from(m.units_per_em.max(1));
         let (ascent_em, descent_em) = (m.ascent / upem, -m.descent / upem);
         Ok(Self {
-            engine: Mutex::new(Engine { fonts, outlines: SwashCache::new() }),
+            engine: Mutex::new(Engine { fonts, glyphs: SwashCache::new(), lines: HashMap::new() }),
             primary: families.swap_remove(0),
             primary_weight,
             ascent_em,
@@ -263,27 +280,38 @@ impl TextRenderer {
     }
 
     /// `text` as one line (control characters dropped), shaped at `px`.
-    fn line(&self, text: &str, px: f32) -> ShapedLine {
-        let one_line: String = text.chars().filter(|c| !c.is_control()).collect();
+    /// Labels are measured and then drawn, and redrawn on every frame of a drag: shaped lines
+    /// are kept by text and size.
+    fn line(&self, text: &str, px: f32) -> Arc<ShapedLine> {
+        let key = (text.to_string(), px.to_bits());
         let mut engine = self.engine();
+        if let Some(line) = engine.lines.get(&key) {
+            return Arc::clone(line);
+        }
+        if engine.lines.len() >= MAX_CACHED_LINES {
+            engine.lines.clear();
+            // Glyph images pile up the same way (every size and quarter-pixel position).
+            engine.glyphs.image_cache.clear();
+        }
+        let one_line: String = text.chars().filter(|c| !c.is_control()).collect();
         let buffer = self.shape(&mut engine, &one_line, px, None);
         let mut line = ShapedLine { glyphs: Vec::new(), width_px: 0.0 };
         for run in buffer.layout_runs() {
             line.width_px = line.width_px.max(run.line_w);
             for g in run.glyphs {
-                let (key, _, _) = CacheKey::new(
-                    g.font_id,
-                    g.glyph_id,
-                    g.font_size,
-                    (0.0, 0.0),
-                    g.font_weight,
-                    g.cache_key_flags | CacheKeyFlags::DISABLE_HINTING,
-                );
-                let x = g.x + g.font_size * g.x_offset;
-                let y = g.y - g.font_size * g.y_offset;
-                line.glyphs.push((key, x, y));
+                line.glyphs.push(ShapedGlyph {
+                    font_id: g.font_id,
+                    glyph_id: g.glyph_id,
+                    weight: g.font_weight,
+                    // Unhinted, as the advances are: glyphs keep their shapes at every size.
+                    flags: g.cache_key_flags | CacheKeyFlags::DISABLE_HINTING,
+                    x: g.x + g.font_size * g.x_offset,
+                    y: g.y - g.font_size * g.y_offset,
+                });
             }
         }
+        let line = Arc::new(line);
+        engine.lines.insert(key, Arc::clone(&line));
         line
     }
 
@@ -318,66 +346,105 @@ impl TextRenderer {
         lines
     }
 
-    /// Glyph outlines of `text` at `px`, placed with the line's start at `x` and its baseline
-    /// at `baseline_y` (pixels).
-    pub fn outlines(&self, text: &str, x: f32, baseline_y: f32, px: f32) -> Vec<Path> {
-        if !(x.is_finite() && baseline_y.is_finite()) || text.is_empty() {
-            return Vec::new();
-        }
-        let line = self.line(text, sane_px(px));
-        let mut engine = self.engine();
-        let Engine { fonts, outlines } = &mut *engine;
-        line.glyphs
-            .iter()
-            .filter_map(|&(key, gx, gy)| {
-                let commands = outlines.get_outline_commands(fonts, key)?;
-                glyph_path(commands, x + gx, baseline_y + gy)
-            })
-            .collect()
-    }
-
-    /// Draws `text` with its left end at `x` and its baseline at `baseline_y` (pixels), through
-    /// `transform` and inside `clip`.
+    /// Draws `text` with its left end at `x` and its baseline at `baseline_y` (pixels), inside
+    /// `clip`. Glyph coverage comes from cosmic-text's cache (a label redrawn at the same size
+    /// and quarter-pixel position is not rasterised again); the line's coverage is blended onto
+    /// the pixmap in one source-over pass by tiny-skia, as every other shape.
     pub fn draw_with(
         &self,
         pixmap: &mut Pixmap,
         text: &str,
         [x, baseline_y]: [f32; 2],
         style: TextStyle,
-        transform: Transform,
         clip: Option<&Mask>,
     ) {
-        let px = sane_px(style.px);
-        let mut paint = Paint::default();
-        paint.set_color(style.color);
-        paint.anti_alias = true;
-        let em = if style.bold { BOLD_STROKE_EM } else { REGULAR_STROKE_EM };
-        let stroke = Stroke { width: em * px, line_join: LineJoin::Round, ..Stroke::default() };
-        for path in self.outlines(text, x, baseline_y, px) {
-            pixmap.fill_path(&path, &paint, FillRule::Winding, transform, clip);
-            pixmap.stroke_path(&path, &paint, &stroke, transform, clip);
+        if !(x.is_finite() && baseline_y.is_finite()) || text.is_empty() {
+            return;
         }
+        let px = sane_px(style.px);
+        let line = self.line(text, px);
+        let thicken = if style.bold { BOLD_OFFSET_EM } else { REGULAR_OFFSET_EM } * px;
+        let mut engine = self.engine();
+        let Engine { fonts, glyphs, .. } = &mut *engine;
+        // Where each glyph's image lands: each glyph twice, the second a little to the right.
+        let mut stamps = Vec::with_capacity(line.glyphs.len() * 2);
+        let (pw, ph) = (pixmap.width() as i32, pixmap.height() as i32);
+        let (mut x0, mut y0, mut x1, mut y1) = (pw, ph, 0, 0);
+        for g in &line.glyphs {
+            for dx in [0.0, thicken] {
+                let pos = (x + g.x + dx, baseline_y + g.y);
+                if !(pos.0.abs() < 1e6 && pos.1.abs() < 1e6) {
+                    continue;
+                }
+                let (key, ix, iy) = CacheKey::new(g.font_id, g.glyph_id, px, pos, g.weight, g.flags);
+                let Some(image) = glyphs.get_image(fonts, key) else {
+                    continue;
+                };
+                let (left, top) = (ix + image.placement.left, iy - image.placement.top);
+                let (w, h) = (image.placement.width as i32, image.placement.height as i32);
+                x0 = x0.min(left.max(0));
+                y0 = y0.min(top.max(0));
+                x1 = x1.max((left + w).min(pw));
+                y1 = y1.max((top + h).min(ph));
+                stamps.push((key, left, top));
+            }
+        }
+        if x1 <= x0 || y1 <= y0 {
+            return;
+        }
+        // The line's coverage over the union of its glyph boxes, clipped to the pixmap.
+        let (bw, bh) = ((x1 - x0) as usize, (y1 - y0) as usize);
+        let mut cover = vec![0u8; bw * bh];
+        for (key, left, top) in stamps {
+            let Some(image) = glyphs.get_image(fonts, key) else {
+                continue;
+            };
+            let (w, h) = (image.placement.width as i32, image.placement.height as i32);
+            let stride = match image.content {
+                SwashContent::Mask => 1,
+                SwashContent::Color | SwashContent::SubpixelMask => 4,
+            };
+            for row in 0..h {
+                let cy = top + row;
+                if cy < y0 || cy >= y1 {
+                    continue;
+                }
+                for col in 0..w {
+                    let cx = left + col;
+                    if cx < x0 || cx >= x1 {
+                        continue;
+                    }
+                    // The alpha channel of a colour glyph, the mask itself otherwise.
+                    let i = (row * w + col) as usize * stride + stride - 1;
+                    let cell = &mut cover[(cy - y0) as usize * bw + (cx - x0) as usize];
+                    *cell = (*cell).max(image.data.get(i).copied().unwrap_or(0));
+                }
+            }
+        }
+        let Some(mut ink) = Pixmap::new(bw as u32, bh as u32) else {
+            return;
+        };
+        let c = style.color;
+        for (dst, &coverage) in ink.pixels_mut().iter_mut().zip(&cover) {
+            let a = f32::from(coverage) / 255.0 * c.alpha();
+            let channel = |v: f32| (v * a * 255.0).round() as u8;
+            let alpha = (a * 255.0).round() as u8;
+            if let Some(p) = PremultipliedColorU8::from_rgba(
+                channel(c.red()).min(alpha),
+                channel(c.green()).min(alpha),
+                channel(c.blue()).min(alpha),
+                alpha,
+            ) {
+                *dst = p;
+            }
+        }
+        pixmap.draw_pixmap(x0, y0, ink.as_ref(), &PixmapPaint::default(), Transform::identity(), clip);
     }
 
     /// Draws `text` with its left end at `x` and its baseline at `baseline_y` (pixels).
     pub fn draw(&self, pixmap: &mut Pixmap, text: &str, x: f32, baseline_y: f32, style: TextStyle) {
-        self.draw_with(pixmap, text, [x, baseline_y], style, Transform::identity(), None);
+        self.draw_with(pixmap, text, [x, baseline_y], style, None);
     }
-}
-
-/// A glyph outline (y up, pixels from the pen position) as a path in pixmap space (y down).
-fn glyph_path(commands: &[Command], x: f32, y: f32) -> Option<Path> {
-    let mut pb = PathBuilder::new();
-    for c in commands {
-        match *c {
-            Command::MoveTo(p) => pb.move_to(x + p.x, y - p.y),
-            Command::LineTo(p) => pb.line_to(x + p.x, y - p.y),
-            Command::QuadTo(c, p) => pb.quad_to(x + c.x, y - c.y, x + p.x, y - p.y),
-            Command::CurveTo(a, b, p) => pb.cubic_to(x + a.x, y - a.y, x + b.x, y - b.y, x + p.x, y - p.y),
-            Command::Close => pb.close(),
-        }
-    }
-    pb.finish()
 }
 
 fn sane_px(px: f32) -> f32 {

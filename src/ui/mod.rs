@@ -15,6 +15,7 @@ mod window;
 mod worker;
 
 pub use inspector::control_label;
+pub use panels::DIAGRAM_MIN_TEXT_PT;
 pub use settings::Settings;
 pub use window::{
     clear_paints_panels, configure_wgpu, display_available, run, ui_painter, window_options,
