@@ -59,8 +59,14 @@ pub fn shipped_path(relative: &str) -> PathBuf {
             return found;
         }
     }
-    // Where even the built-in copy cannot be unpacked, the error names the source-tree path.
-    built_in_root().map_or(source_tree, |root| root.join(relative))
+    match built_in_root() {
+        Some(root) => root.join(relative),
+        // Forced to the copy and it cannot be unpacked: the bare path, which fails to load
+        // with its name, rather than files from disk the user asked not to read.
+        None if use_built_in() => PathBuf::from(relative),
+        // Otherwise the error names the source-tree path.
+        None => source_tree,
+    }
 }
 
 fn use_built_in() -> bool {
@@ -84,9 +90,10 @@ pub fn built_in_root() -> Option<PathBuf> {
     .clone()
 }
 
-/// `$XDG_DATA_HOME`, else `~/.local/share`.
+/// `$XDG_DATA_HOME`, else `~/.local/share` (a relative path counts as unset, as the XDG base
+/// directory rules say).
 fn data_home() -> Option<PathBuf> {
-    let from = |var: &str| std::env::var_os(var).filter(|v| !v.is_empty()).map(PathBuf::from);
+    let from = |var: &str| std::env::var_os(var).map(PathBuf::from).filter(|p| p.is_absolute());
     from("XDG_DATA_HOME").or_else(|| from("HOME").map(|home| home.join(".local/share")))
 }
 
@@ -101,7 +108,8 @@ fn content_hash() -> u64 {
     h
 }
 
-/// Writes every file that is missing or differs, each atomically (a crash leaves no half file).
+/// Writes every file that is missing or differs, each atomically (a crash leaves no half file):
+/// the copy is the binary's, and an edited file is restored on the next start.
 fn unpack(root: &Path) -> Result<(), String> {
     for (relative, bytes) in FILES {
         let path = root.join(relative);

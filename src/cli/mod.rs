@@ -132,10 +132,12 @@ pub struct BenchArgs {
     pub only: Vec<String>,
     #[arg(long, default_value = "1280x720", value_parser = parse_size)]
     pub size: (u32, u32),
-    /// Timed frames per row (after two warm-up frames).
+    /// Timed frames per row (after two warm-up frames; with --diagrams, per diagram and language
+    /// after one).
     #[arg(long, default_value_t = 15, value_parser = clap::value_parser!(u32).range(1..=10_000))]
     pub frames: u32,
-    /// Print JSON (every frame's times) instead of a table.
+    /// Print JSON instead of a table (every frame's times; with --diagrams, the median and the
+    /// minimum of each row).
     #[arg(long)]
     pub json: bool,
     /// Drive the app instead (offscreen, 1600x900): drag the light-width slider, then the light
@@ -143,8 +145,9 @@ pub struct BenchArgs {
     /// view refreshes per second and the time from release to the full-quality frame.
     #[arg(long, conflicts_with_all = ["scene", "set", "time", "still", "only", "frames"])]
     pub app: bool,
-    /// Time the diagrams instead: each one drawn --frames times at --size (CPU), in English and
-    /// Chinese, as the app redraws them while a value they show is dragged.
+    /// Time the diagrams instead (CPU), in English and Chinese at --size: --frames draws with
+    /// the values moving every frame, as while a value they show is dragged, and --frames of the
+    /// same picture.
     #[arg(long, conflicts_with_all = ["app", "scene", "set", "time", "still", "only"])]
     pub diagrams: bool,
     /// With --app: run the session in a real window (needs a display; `xvfb-run -a` where there

@@ -14,7 +14,8 @@ use super::text::{TextRenderer, TextStyle};
 use crate::i18n;
 use crate::lessons::Lang;
 
-/// Pixmap plus a uniform scale from logical units (at least 960x540) to pixels.
+/// Pixmap plus a uniform scale from canvas units to pixels (a diagram's design box is at least
+/// 960x540 units; a slide's canvas is in pixels).
 pub struct Canvas {
     pub pixmap: Pixmap,
     scale: f32,
@@ -133,13 +134,14 @@ impl Canvas {
         self.pixmap.fill_path(&path, &paint, FillRule::Winding, t, self.clip.as_ref());
     }
 
-    /// Draws `src` unscaled with its top-left corner at `at`.
+    /// Draws `src` with its top-left corner at `at`, through the canvas scale (nearest texel; on
+    /// a canvas in pixels, the picture's pixels as they are).
     pub fn picture(&mut self, src: &Pixmap, at: [f32; 2]) {
         let t = self.ts().pre_translate(fin(at[0], 0.0), fin(at[1], 0.0));
         self.pixmap.draw_pixmap(0, 0, src.as_ref(), &PixmapPaint::default(), t, self.clip.as_ref());
     }
 
-    /// Draws an opaque image unscaled with its top-left corner at `at`.
+    /// Draws an opaque image with its top-left corner at `at`, as [`Canvas::picture`].
     pub fn image(&mut self, img: &RgbaImage, at: [f32; 2]) {
         let Some(size) = tiny_skia::IntSize::from_wh(img.width(), img.height()) else {
             return;
@@ -250,11 +252,15 @@ impl Canvas {
         if self.text_width(s, size) <= max_width {
             return s.to_string();
         }
-        let mut out: String = s.to_string();
-        while !out.is_empty() && self.text_width(&format!("{out}…"), size) > max_width {
-            out.pop();
+        // The longest prefix that fits with the ellipsis, by bisection over character ends.
+        let ends: Vec<usize> = s.char_indices().map(|(i, _)| i).skip(1).chain([s.len()]).collect();
+        let cut = |n: usize| format!("{}…", s[..if n == 0 { 0 } else { ends[n - 1] }].trim_end());
+        let (mut fits, mut too_long) = (0, ends.len());
+        while too_long - fits > 1 {
+            let mid = (fits + too_long) / 2;
+            if self.text_width(&cut(mid), size) <= max_width { fits = mid } else { too_long = mid }
         }
-        format!("{}…", out.trim_end())
+        cut(fits)
     }
 
     /// `s` (as given) broken into lines no wider than `max_width` at `size` (Unicode line breaking).

@@ -20,7 +20,9 @@ mod tests;
 
 use crate::lessons::Lang;
 pub use canvas::{Canvas, MAX_TEXT_GROWTH};
-pub use text::{CJK_FONT_PATHS, CjkFont, TextMetrics, TextRenderer, TextStyle, is_cjk, load_system_cjk_font};
+pub use text::{
+    CJK_FONT_PATHS, CjkFont, FontBytes, TextMetrics, TextRenderer, TextStyle, is_cjk, system_cjk_font,
+};
 
 /// Largest accepted width or height, in pixels.
 pub const MAX_SIDE_PX: u32 = 8192;

@@ -382,7 +382,7 @@ fn text_draws_dark_pixels_where_it_is_drawn() {
 
 #[test]
 fn cjk_fallback_renders_chinese_text() {
-    let Some(cjk) = load_system_cjk_font() else {
+    let Some(cjk) = system_cjk_font() else {
         panic!(
             "no CJK font found in {CJK_FONT_PATHS:?}: install the Debian package fonts-noto-cjk \
              (apt-get install -y fonts-noto-cjk) so Chinese labels can render"
@@ -391,7 +391,9 @@ fn cjk_fallback_renders_chinese_text() {
     let primary = epaint_default_fonts::UBUNTU_LIGHT.to_vec();
     let without = TextRenderer::from_font_data(primary.clone(), vec![]).expect("font");
     assert!(!without.covers('阴'));
-    let tr = TextRenderer::from_faces(vec![(primary, 0), (cjk.bytes, cjk.face_index)]).expect("cjk font");
+    let faces: Vec<(FontBytes, u32)> =
+        vec![(std::sync::Arc::new(primary), 0), (cjk.bytes.clone(), cjk.face_index)];
+    let tr = TextRenderer::from_faces(faces).expect("cjk font");
     assert!(tr.covers('阴') && tr.covers('a'));
     assert!(TextRenderer::shared().covers('影'), "shared renderer lacks the CJK fallback");
     let mut pm = Pixmap::new(260, 50).expect("pixmap");
@@ -611,9 +613,9 @@ fn lines_break_by_the_unicode_rules_and_fit_their_width() {
 
 #[test]
 fn chinese_text_uses_the_simplified_chinese_face_at_the_latin_em() {
-    let cjk = load_system_cjk_font().expect("a CJK font (fonts-noto-cjk)");
+    let cjk = system_cjk_font().expect("a CJK font (fonts-noto-cjk)");
     let mut db = cosmic_text::fontdb::Database::new();
-    db.load_font_source(cosmic_text::fontdb::Source::Binary(std::sync::Arc::new(cjk.bytes.clone())));
+    db.load_font_source(cosmic_text::fontdb::Source::Binary(cjk.bytes.clone()));
     let face = db.faces().find(|f| f.index == cjk.face_index).expect("the chosen face");
     if db.faces().count() > 1 {
         // A collection: the face for Simplified Chinese, not the first (Japanese) one.
@@ -623,4 +625,69 @@ fn chinese_text_uses_the_simplified_chinese_face_at_the_latin_em() {
     let t = TextRenderer::shared();
     let w = t.measure("阴影贴图", 20.0).width_px;
     assert!((w - 80.0).abs() < 1.0, "four ideographs at 20 px are {w} px wide");
+}
+
+/// Rows of ink (any pixel darker than mid-grey), top to bottom.
+fn inked_rows(pm: &Pixmap) -> (u32, u32) {
+    let rows: Vec<u32> = (0..pm.height())
+        .filter(|&y| (0..pm.width()).any(|x| pm.pixel(x, y).is_some_and(|p| p.red() < 128)))
+        .collect();
+    (rows.first().copied().unwrap_or(0), rows.last().copied().unwrap_or(0))
+}
+
+#[test]
+fn text_follows_a_fractional_baseline_down_the_page() {
+    let t = TextRenderer::shared();
+    let st = TextStyle { px: 20.0, color: tiny_skia::Color::BLACK, bold: false };
+    let drawn_at = |baseline: f32| {
+        let mut pm = Pixmap::new(200, 60).expect("pixmap");
+        pm.fill(tiny_skia::Color::WHITE);
+        t.draw(&mut pm, "Hx阴", 5.0, baseline, st);
+        inked_rows(&pm)
+    };
+    let whole = drawn_at(40.0);
+    // A baseline moved down by less than half a pixel stays; by more, the ink moves down one
+    // row: never up.
+    for (dy, rows) in [(0.25, 0), (0.45, 0), (0.55, 1), (0.75, 1), (1.0, 1), (1.75, 2)] {
+        let (top, bottom) = drawn_at(40.0 + dy);
+        assert_eq!((top, bottom), (whole.0 + rows, whole.1 + rows), "baseline 40 + {dy}");
+    }
+}
+
+#[test]
+fn paragraph_breaks_of_every_kind_and_mixed_directions_are_safe() {
+    let t = TextRenderer::shared();
+    assert_eq!(t.wrap("one\r\ntwo\rthree", 20.0, 500.0), ["one", "two", "three"]);
+    assert_eq!(t.wrap("one\u{2029}two\u{85}three\u{2028}four", 20.0, 500.0), ["one", "two", "three", "four"]);
+    assert_eq!(t.wrap("a\tb", 20.0, 500.0), ["a b"]);
+    // Several bidi paragraphs of different directions in what is measured or drawn as one line.
+    for s in ["a\u{2029}שלום", "Hello\u{85}مرحبا", "x\u{1C}עברית\ny", "d_r − d_b\u{2029}"] {
+        let m = t.measure(s, 20.0);
+        assert!(m.width_px > 0.0, "{s:?}");
+        let mut pm = Pixmap::new(300, 40).expect("pixmap");
+        t.draw(&mut pm, s, 2.0, 30.0, TextStyle { px: 20.0, color: tiny_skia::Color::BLACK, bold: true });
+        assert!(!t.wrap(s, 20.0, 60.0).is_empty(), "{s:?}");
+    }
+    // The same text with a newline measures as with a space.
+    let (spaced, broken) = (t.measure("near far", 20.0), t.measure("near\nfar", 20.0));
+    assert!((spaced.width_px - broken.width_px).abs() < 1e-3);
+}
+
+#[test]
+fn fit_cuts_to_the_width_with_an_ellipsis() {
+    let pm = Pixmap::new(960, 540).expect("pixmap");
+    let c = Canvas::in_pixels(pm, Lang::En, tiny_skia::Color::WHITE);
+    let s = "blocker search found 20 of 32 taps";
+    assert_eq!(c.fit(s, 20.0, 1000.0), s);
+    for max in [40.0, 90.0, 150.0, 250.0] {
+        let cut = c.fit(s, 20.0, max);
+        assert!(cut.ends_with('…') && c.text_width(&cut, 20.0) <= max, "{max}: {cut}");
+        let kept = cut.trim_end_matches('…');
+        assert!(s.starts_with(kept), "{max}: {cut}");
+        // One more character (past any spaces, which the cut drops) would not fit.
+        let rest = s[kept.len()..].trim_start();
+        let longer = rest.chars().next().map(|ch| format!("{}{ch}…", &s[..s.len() - rest.len()]));
+        assert!(longer.is_none_or(|l| c.text_width(&l, 20.0) > max), "{max}: {cut}");
+    }
+    assert_eq!(c.fit("中文标题很长很长", 20.0, 50.0).chars().last(), Some('…'));
 }

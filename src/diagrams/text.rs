@@ -10,7 +10,7 @@ use cosmic_text::{
     Attrs, Buffer, CacheKey, CacheKeyFlags, Fallback, Family, FontSystem, Metrics, Shaping, SwashCache,
     SwashContent, Wrap, fontdb,
 };
-use tiny_skia::{Color, Mask, Pixmap, PixmapPaint, PremultipliedColorU8, Transform};
+use tiny_skia::{Color, Pixmap, PixmapPaint, PremultipliedColorU8, Transform};
 
 use super::DiagramError;
 
@@ -30,11 +30,13 @@ pub const CJK_FONT_PATHS: [&str; 12] = [
     "/usr/share/fonts/truetype/droid/DroidSansFallbackFull.ttf",
 ];
 
+/// The bytes of a font file, shared rather than copied (a CJK collection is about 20 MB).
+pub type FontBytes = Arc<dyn AsRef<[u8]> + Send + Sync>;
+
 /// A CJK font file and the face in it meant for Simplified Chinese (a `.ttc` such as Noto Sans
 /// CJK holds the Japanese, Korean and Chinese forms of the same characters as separate faces).
-#[derive(Clone)]
 pub struct CjkFont {
-    pub bytes: Vec<u8>,
+    pub bytes: Arc<Vec<u8>>,
     pub face_index: u32,
 }
 
@@ -47,21 +49,26 @@ impl std::fmt::Debug for CjkFont {
     }
 }
 
-/// Reads the first CJK font found in [`CJK_FONT_PATHS`] and picks its Simplified Chinese face;
-/// `None` when none is installed (on Debian: `apt-get install fonts-noto-cjk`).
-pub fn load_system_cjk_font() -> Option<CjkFont> {
-    CJK_FONT_PATHS.iter().find_map(|path| {
-        let bytes = std::fs::read(path).ok()?;
-        let face_index = simplified_chinese_face(&bytes)?;
-        Some(CjkFont { bytes, face_index })
+/// The first CJK font found in [`CJK_FONT_PATHS`], with its Simplified Chinese face, read once
+/// per process for the diagrams, the slides and the app's panels alike; `None` when none is
+/// installed (on Debian: `apt-get install fonts-noto-cjk`).
+pub fn system_cjk_font() -> Option<&'static CjkFont> {
+    static CJK: OnceLock<Option<CjkFont>> = OnceLock::new();
+    CJK.get_or_init(|| {
+        CJK_FONT_PATHS.iter().find_map(|path| {
+            let bytes = Arc::new(std::fs::read(path).ok()?);
+            let face_index = simplified_chinese_face(&bytes)?;
+            Some(CjkFont { bytes, face_index })
+        })
     })
+    .as_ref()
 }
 
 /// Index of the face named "... SC" (Simplified Chinese), else of the first face; `None` when
 /// the data holds no font.
-fn simplified_chinese_face(bytes: &[u8]) -> Option<u32> {
+fn simplified_chinese_face(bytes: &Arc<Vec<u8>>) -> Option<u32> {
     let mut db = fontdb::Database::new();
-    db.load_font_source(fontdb::Source::Binary(std::sync::Arc::new(bytes.to_vec())));
+    db.load_font_source(fontdb::Source::Binary(Arc::clone(bytes) as FontBytes));
     let faces: Vec<_> =
         db.faces().map(|f| (f.index, f.families.iter().any(|(n, _)| n.ends_with(" SC")))).collect();
     faces.iter().find(|(_, sc)| *sc).or(faces.first()).map(|(i, _)| *i)
@@ -73,6 +80,21 @@ pub fn is_cjk(c: char) -> bool {
     matches!(c as u32,
         0x2E80..=0x2FDF | 0x3000..=0x303F | 0x3040..=0x30FF | 0x3400..=0x4DBF | 0x4E00..=0x9FFF
         | 0xF900..=0xFAFF | 0xFE30..=0xFE4F | 0xFF00..=0xFFEF)
+}
+
+/// Characters that end a paragraph. cosmic-text starts a line at `\r` and `\n` and refuses a
+/// line holding several bidi paragraphs, which the others would start.
+fn is_paragraph_break(c: char) -> bool {
+    matches!(c, '\n' | '\r' | '\u{0B}' | '\u{0C}' | '\u{1C}'..='\u{1E}' | '\u{85}' | '\u{2028}' | '\u{2029}')
+}
+
+/// `text` without paragraph breaks (each becomes a space), tabs as spaces and no other control
+/// characters: one line, as shaped for labels.
+fn single_line(text: &str) -> String {
+    text.chars()
+        .map(|c| if is_paragraph_break(c) || c == '\t' { ' ' } else { c })
+        .filter(|c| !c.is_control())
+        .collect()
 }
 
 /// Horizontal extent and vertical metrics of a line of text, in pixels.
@@ -129,6 +151,9 @@ struct Engine {
 
 /// More distinct lines than a session of diagrams and slides draws; past it the cache restarts.
 const MAX_CACHED_LINES: usize = 4096;
+/// Glyph images kept (each size and quarter-pixel position is one; resizing a panel makes new
+/// sizes): past it the image cache restarts.
+const MAX_CACHED_GLYPHS: usize = 16384;
 
 /// A glyph of a shaped line: its font and pen position, pixels from the line's start on its
 /// baseline.
@@ -156,15 +181,11 @@ pub struct TextRenderer {
     /// Ascent and descent of the primary font, in ems.
     ascent_em: f32,
     descent_em: f32,
-    font_count: usize,
 }
 
 impl std::fmt::Debug for TextRenderer {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("TextRenderer")
-            .field("primary", &self.primary)
-            .field("fonts", &self.font_count)
-            .finish()
+        f.debug_struct("TextRenderer").field("primary", &self.primary).finish_non_exhaustive()
     }
 }
 
@@ -178,8 +199,8 @@ impl TextRenderer {
     /// Ubuntu Light, then Hack (maths symbols), then a system CJK font when one is installed.
     pub fn new() -> Self {
         let builtin = [epaint_default_fonts::UBUNTU_LIGHT, epaint_default_fonts::HACK_REGULAR]
-            .map(|bytes| (bytes.to_vec(), 0));
-        let cjk = load_system_cjk_font().map(|f| (f.bytes, f.face_index));
+            .map(|bytes| (Arc::new(bytes) as FontBytes, 0));
+        let cjk = system_cjk_font().map(|f| (Arc::clone(&f.bytes) as FontBytes, f.face_index));
         match Self::from_faces(builtin.into_iter().chain(cjk).collect()) {
             Ok(renderer) => renderer,
             // The built-in fonts ship inside egui and always parse.
@@ -189,16 +210,17 @@ impl TextRenderer {
 
     /// A renderer from font files (`.ttf`, `.otf`, or index 0 of a `.ttc`).
     pub fn from_font_data(primary: Vec<u8>, fallbacks: Vec<Vec<u8>>) -> Result<Self, DiagramError> {
-        Self::from_faces(std::iter::once(primary).chain(fallbacks).map(|bytes| (bytes, 0)).collect())
+        let faces = std::iter::once(primary).chain(fallbacks).map(|bytes| (Arc::new(bytes) as FontBytes, 0));
+        Self::from_faces(faces.collect())
     }
 
     /// A renderer from `(font data, face index)` pairs, the primary face first.
-    pub fn from_faces(faces: Vec<(Vec<u8>, u32)>) -> Result<Self, DiagramError> {
+    pub fn from_faces(faces: Vec<(FontBytes, u32)>) -> Result<Self, DiagramError> {
         let mut db = fontdb::Database::new();
         let mut families = Vec::new();
         let mut primary_metrics = None;
         for (i, (bytes, index)) in faces.into_iter().enumerate() {
-            let source = fontdb::Source::Binary(std::sync::Arc::new(bytes));
+            let source = fontdb::Source::Binary(bytes);
             let ids = db.load_font_source(source);
             let face = ids
                 .iter()
@@ -221,7 +243,6 @@ impl TextRenderer {
         };
         let fallback: Vec<&'static str> =
             families.iter().skip(1).map(|f| &*Box::leak(f.clone().into_boxed_str())).collect();
-        let font_count = families.len();
         let mut fonts =
             FontSystem::new_with_locale_and_db_and_fallback("en-US".into(), db, FallbackFamilies(fallback));
         let primary_font = fonts
@@ -236,7 +257,6 @@ impl TextRenderer {
             primary_weight,
             ascent_em,
             descent_em,
-            font_count,
         })
     }
 
@@ -244,11 +264,6 @@ impl TextRenderer {
     pub fn shared() -> &'static TextRenderer {
         static SHARED: OnceLock<TextRenderer> = OnceLock::new();
         SHARED.get_or_init(TextRenderer::new)
-    }
-
-    /// Number of loaded fonts (primary plus fallbacks).
-    pub fn font_count(&self) -> usize {
-        self.font_count
     }
 
     fn engine(&self) -> MutexGuard<'_, Engine> {
@@ -290,11 +305,8 @@ impl TextRenderer {
         }
         if engine.lines.len() >= MAX_CACHED_LINES {
             engine.lines.clear();
-            // Glyph images pile up the same way (every size and quarter-pixel position).
-            engine.glyphs.image_cache.clear();
         }
-        let one_line: String = text.chars().filter(|c| !c.is_control()).collect();
-        let buffer = self.shape(&mut engine, &one_line, px, None);
+        let buffer = self.shape(&mut engine, &single_line(text), px, None);
         let mut line = ShapedLine { glyphs: Vec::new(), width_px: 0.0 };
         for run in buffer.layout_runs() {
             line.width_px = line.width_px.max(run.line_w);
@@ -330,15 +342,16 @@ impl TextRenderer {
         let px = sane_px(px);
         let width = if max_width_px.is_finite() { max_width_px.max(px) } else { f32::MAX };
         let mut lines = Vec::new();
-        for paragraph in text.split('\n') {
+        for paragraph in text.replace("\r\n", "\n").split(is_paragraph_break) {
             let mut engine = self.engine();
-            let buffer = self.shape(&mut engine, paragraph, px, Some(width));
+            let buffer = self.shape(&mut engine, &single_line(paragraph), px, Some(width));
             let before = lines.len();
             for run in buffer.layout_runs() {
                 let start = run.glyphs.iter().map(|g| g.start).min().unwrap_or(0);
                 let end = run.glyphs.iter().map(|g| g.end).max().unwrap_or(0);
                 lines.push(run.text.get(start..end).unwrap_or_default().trim().to_string());
             }
+            // One line at least per paragraph, whatever the shaper makes of an empty one.
             if lines.len() == before {
                 lines.push(String::new());
             }
@@ -346,18 +359,11 @@ impl TextRenderer {
         lines
     }
 
-    /// Draws `text` with its left end at `x` and its baseline at `baseline_y` (pixels), inside
-    /// `clip`. Glyph coverage comes from cosmic-text's cache (a label redrawn at the same size
-    /// and quarter-pixel position is not rasterised again); the line's coverage is blended onto
-    /// the pixmap in one source-over pass by tiny-skia, as every other shape.
-    pub fn draw_with(
-        &self,
-        pixmap: &mut Pixmap,
-        text: &str,
-        [x, baseline_y]: [f32; 2],
-        style: TextStyle,
-        clip: Option<&Mask>,
-    ) {
+    /// Draws `text` with its left end at `x` and its baseline at `baseline_y` (pixels). Glyph
+    /// coverage comes from cosmic-text's cache (a label redrawn at the same size and
+    /// quarter-pixel position is not rasterised again); the line's coverage is blended onto the
+    /// pixmap in one source-over pass by tiny-skia, as every other shape.
+    pub fn draw(&self, pixmap: &mut Pixmap, text: &str, x: f32, baseline_y: f32, style: TextStyle) {
         if !(x.is_finite() && baseline_y.is_finite()) || text.is_empty() {
             return;
         }
@@ -366,13 +372,18 @@ impl TextRenderer {
         let thicken = if style.bold { BOLD_OFFSET_EM } else { REGULAR_OFFSET_EM } * px;
         let mut engine = self.engine();
         let Engine { fonts, glyphs, .. } = &mut *engine;
+        if glyphs.image_cache.len() >= MAX_CACHED_GLYPHS {
+            glyphs.image_cache.clear();
+        }
         // Where each glyph's image lands: each glyph twice, the second a little to the right.
         let mut stamps = Vec::with_capacity(line.glyphs.len() * 2);
         let (pw, ph) = (pixmap.width() as i32, pixmap.height() as i32);
         let (mut x0, mut y0, mut x1, mut y1) = (pw, ph, 0, 0);
         for g in &line.glyphs {
             for dx in [0.0, thicken] {
-                let pos = (x + g.x + dx, baseline_y + g.y);
+                // Whole pixels down: swash would move a glyph up by a fractional y offset, and
+                // quarter-pixel steps across suffice.
+                let pos = (x + g.x + dx, (baseline_y + g.y).round());
                 if !(pos.0.abs() < 1e6 && pos.1.abs() < 1e6) {
                     continue;
                 }
@@ -400,10 +411,8 @@ impl TextRenderer {
                 continue;
             };
             let (w, h) = (image.placement.width as i32, image.placement.height as i32);
-            let stride = match image.content {
-                SwashContent::Mask => 1,
-                SwashContent::Color | SwashContent::SubpixelMask => 4,
-            };
+            // A mask byte per pixel, or RGBA for a colour glyph (emoji).
+            let stride = if image.content == SwashContent::Mask { 1 } else { 4 };
             for row in 0..h {
                 let cy = top + row;
                 if cy < y0 || cy >= y1 {
@@ -438,12 +447,7 @@ impl TextRenderer {
                 *dst = p;
             }
         }
-        pixmap.draw_pixmap(x0, y0, ink.as_ref(), &PixmapPaint::default(), Transform::identity(), clip);
-    }
-
-    /// Draws `text` with its left end at `x` and its baseline at `baseline_y` (pixels).
-    pub fn draw(&self, pixmap: &mut Pixmap, text: &str, x: f32, baseline_y: f32, style: TextStyle) {
-        self.draw_with(pixmap, text, [x, baseline_y], style, None);
+        pixmap.draw_pixmap(x0, y0, ink.as_ref(), &PixmapPaint::default(), Transform::identity(), None);
     }
 }
 

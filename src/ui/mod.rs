@@ -592,10 +592,10 @@ fn fallback_scene(why: &str) -> Scene {
 }
 
 fn install_cjk_font(ctx: &egui::Context) {
-    let Some(cjk) = crate::diagrams::load_system_cjk_font() else { return };
+    let Some(cjk) = crate::diagrams::system_cjk_font() else { return };
     let mut fonts = egui::FontDefinitions::default();
     // The same face the diagrams and slides fall back to (Simplified Chinese in a collection).
-    let mut data = egui::FontData::from_owned(cjk.bytes);
+    let mut data = egui::FontData::from_static(cjk.bytes.as_slice());
     data.index = cjk.face_index;
     fonts.font_data.insert("cjk".to_owned(), Arc::new(data));
     for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
