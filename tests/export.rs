@@ -26,6 +26,7 @@ fn export(lang: &str, size: &str) -> (TempDir, PathBuf) {
     assert_eq!(run.code, Some(0), "export failed:\n{run}");
     assert!(run.stdout.contains("index.html"), "the summary names the index:\n{run}");
     assert!(run.stderr.contains(&format!("[1/{}] {LESSON} step 1/", steps())), "progress on stderr:\n{run}");
+    assert!(!run.stderr.contains("was shortened"), "every title, caption and probe value fits:\n{run}");
     (tmp, out)
 }
 

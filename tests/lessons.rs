@@ -115,12 +115,19 @@ fn every_step_renders_its_view_and_a_final_image_that_is_not_blank() {
             let at = format!("{} step {}", lesson.id, i + 1);
             let scene = step.scene().unwrap_or_else(|e| panic!("{at}: {e}"));
             let (image, _) =
-                render_view(&mut renderer, &scene, step.view, step.light, step.time_s, RENDER_SIZE)
+                render_view(&mut renderer, &scene, step.view, step.light, step.time_s, RENDER_SIZE, Lang::En)
                     .unwrap_or_else(|e| panic!("{at}: view {} failed: {e}", step.view.name()));
             assert!(image.width() > 0 && image.height() > 0, "{at}: empty {} image", step.view.name());
-            let (final_image, _) =
-                render_view(&mut renderer, &scene, View::Final, step.light, step.time_s, RENDER_SIZE)
-                    .unwrap_or_else(|e| panic!("{at}: final view failed: {e}"));
+            let (final_image, _) = render_view(
+                &mut renderer,
+                &scene,
+                View::Final,
+                step.light,
+                step.time_s,
+                RENDER_SIZE,
+                Lang::En,
+            )
+            .unwrap_or_else(|e| panic!("{at}: final view failed: {e}"));
             assert_eq!(final_image.dimensions(), RENDER_SIZE, "{at}: final image size");
             let variance = luminance_variance(&final_image);
             assert!(variance > 25.0, "{at}: the final image is blank (luminance variance {variance:.2})");

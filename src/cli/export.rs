@@ -206,6 +206,14 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
                 }
                 write_pixmap("diagram", &diagram)?;
                 write_pixmap("slide", &slide.pixmap)?;
+                for label in &slide.shortened {
+                    progress.warn(&format!(
+                        "{}: step {}: \"{label}\" is too long for its place on a {w}x{h} slide and \
+                         was shortened",
+                        lesson.path.display(),
+                        i + 1,
+                    ));
+                }
                 if slide.text_cut {
                     progress.warn(&format!(
                         "{}: step {}: the {} text is too long for a {w}x{h} slide and was cut \

@@ -410,8 +410,15 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
     }
     let (_ctx, mut renderer) = gpu()?;
     show_ground_truth_progress(&mut renderer);
-    let (image, summary) =
-        views::render_view(&mut renderer, &scene, view, light, resolved.time_s, args.frame.size)?;
+    let (image, summary) = views::render_view(
+        &mut renderer,
+        &scene,
+        view,
+        light,
+        resolved.time_s,
+        args.frame.size,
+        lessons::Lang::En,
+    )?;
     export::write_png(&args.out, &image)?;
     println!(
         "wrote {} ({}x{}, view {}, light {light})",

@@ -36,6 +36,8 @@ pub struct Canvas {
     pub text_right: f32,
     /// Boxes of the text drawn so far: grown labels move off the ones they would cover.
     text_boxes: Vec<[f32; 4]>,
+    /// Labels [`Canvas::fit_label`] had to cut, in full.
+    pub shortened: Vec<String>,
 }
 
 /// How much a label may grow to reach the minimum text size: more would bury the drawing.
@@ -69,6 +71,7 @@ impl Canvas {
             min_text,
             text_right: 0.0,
             text_boxes: Vec::new(),
+            shortened: Vec::new(),
         };
         c.pixmap.fill(bg);
         c
@@ -261,6 +264,16 @@ impl Canvas {
             if self.text_width(&cut(mid), size) <= max_width { fits = mid } else { too_long = mid }
         }
         cut(fits)
+    }
+
+    /// [`Canvas::fit`] for a label that should fit: one that does not is listed in
+    /// [`Canvas::shortened`].
+    pub fn fit_label(&mut self, s: &str, size: f32, max_width: f32) -> String {
+        let fitted = self.fit(s, size, max_width);
+        if fitted != s {
+            self.shortened.push(s.to_string());
+        }
+        fitted
     }
 
     /// `s` (as given) broken into lines no wider than `max_width` at `size` (Unicode line breaking).

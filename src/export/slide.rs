@@ -174,9 +174,14 @@ pub fn legend_caption(summary: &str, lang: Lang) -> String {
         .split(['\n'])
         .map(|line| {
             line.split(' ')
-                .map(|w| match w.parse::<f32>() {
-                    Ok(v) if w.contains('.') => short_num(v),
-                    _ => w.to_string(),
+                .map(|w| {
+                    // A number right after a full-width colon ("深度：20.00") counts as a word.
+                    let number = w.rsplit_once('：').map_or(w, |(_, n)| n);
+                    let head = &w[..w.len() - number.len()];
+                    match number.parse::<f32>() {
+                        Ok(v) if number.contains('.') => format!("{head}{}", short_num(v)),
+                        _ => w.to_string(),
+                    }
                 })
                 .collect::<Vec<_>>()
                 .join(" ")
@@ -184,7 +189,7 @@ pub fn legend_caption(summary: &str, lang: Lang) -> String {
         .collect();
     let mut s = shortened.join(" · ").replace("  ", " ");
     if lang == Lang::Zh {
-        const ZH: [(&str, &str); 18] = [
+        const ZH: [(&str, &str); 16] = [
             ("visibility: black = shadowed, white = lit", "可见度：黑 = 阴影，白 = 受光"),
             ("|visibility - reference|:", "|可见度 − 参考真值|："),
             ("blocker-search radius:", "遮挡物搜索半径："),
@@ -194,14 +199,6 @@ pub fn legend_caption(summary: &str, lang: Lang) -> String {
             ("hard shadows averaged", "个硬阴影的平均"),
             ("reference:", "参考真值："),
             ("mean absolute error:", "平均绝对误差："),
-            (
-                "orange: outside the light's frustum (no shadow-map data)",
-                "橙色：光源视锥之外（没有阴影贴图数据）",
-            ),
-            (
-                "light frusta: yellow = this light, blue = the others",
-                "光源视锥：黄色 = 本光源，蓝色 = 其他光源",
-            ),
             (
                 "texel grid: lines where the shadow-map texel changes",
                 "纹素网格：线条标出阴影贴图纹素变化的地方",
@@ -287,6 +284,9 @@ pub struct Slide {
     pub pixmap: Pixmap,
     /// The explanation did not fit even at the smallest text size and was cut short.
     pub text_cut: bool,
+    /// Titles, captions and probe values too long for their place, in full (each was drawn
+    /// cut, with an ellipsis).
+    pub shortened: Vec<String>,
 }
 
 /// Assemble the slide. The camera image is at `layout.camera`'s size, `map` is the shadow map
@@ -319,17 +319,21 @@ pub fn compose(
             + p.text_width(&format!("{sep}{counter}{sep}"), px)
             + p.text_width(text.step_title, px)
     };
-    while px > u(26.0) && parts_width(&p, px) > title_max {
+    // Smaller until the whole bar fits and the lesson title fits its share of it.
+    let lesson_share = title_max * 0.45;
+    while px > u(26.0)
+        && (parts_width(&p, px) > title_max || p.text_width(text.lesson_title, px) > lesson_share)
+    {
         px -= u(1.0);
     }
     let baseline = bar.h as f32 * 0.5 + px * 0.36;
-    let lesson_title = p.fit(text.lesson_title, px, title_max * 0.45);
+    let lesson_title = p.fit_label(text.lesson_title, px, lesson_share);
     p.run(&lesson_title, tx, baseline, px, pal::TITLE_FG, true);
     let mut x = tx + p.text_width(&lesson_title, px);
     let middle = format!("{sep}{counter}{sep}");
     p.run(&middle, x, baseline, px, pal::TITLE_DIM, false);
     x += p.text_width(&middle, px);
-    let step_title = p.fit(text.step_title, px, (tx + title_max - x).max(u(100.0)));
+    let step_title = p.fit_label(text.step_title, px, (tx + title_max - x).max(u(100.0)));
     p.run(&step_title, x, baseline, px, pal::TITLE_FG, true);
 
     // Pictures with frames and probe markers.
@@ -341,7 +345,7 @@ pub fn compose(
             let r = layout.shadow_map;
             p.fill_rgb([r.x as f32, r.y as f32, r.w as f32, r.h as f32], pal::PANEL);
             let msg = tr(lang, "no light, no shadow map", "没有光源，也就没有阴影贴图");
-            let m = p.fit(msg, u(24.0), r.w as f32 - u(20.0));
+            let m = p.fit_label(msg, u(24.0), r.w as f32 - u(20.0));
             let mx = r.x as f32 + (r.w as f32 - p.text_width(&m, u(24.0))) * 0.5;
             p.run(&m, mx, r.y as f32 + r.h as f32 * 0.5, u(24.0), pal::MUTED, false);
         }
@@ -364,9 +368,10 @@ pub fn compose(
         }
     }
 
-    // Captions.
+    // Captions: each line at 22 units, smaller (down to 17) where a long one needs it.
     let cap = u(22.0);
     let cap_gap = p.leading(cap) * 0.95;
+    let caption_px = |p: &Canvas, s: &str, width: f32| shrink_to_fit(p, s, cap, u(17.0), width);
     let c = layout.camera_caption;
     let mut first = format!("{}{}", tr(lang, "Camera view: ", "相机画面："), view_label(pictures.view, lang));
     if let Some((x, y)) = pictures.probe_pixel {
@@ -375,11 +380,14 @@ pub fn compose(
             Lang::Zh => format!("  ·  探针 + 位于 {}×{} 画面的 ({x}, {y})", PROBE_FRAME.0, PROBE_FRAME.1),
         };
     }
-    let first = p.fit(&first, cap, c.w as f32);
-    p.run(&first, c.x as f32, c.y as f32 + cap, cap, pal::INK, true);
+    let px = caption_px(&p, &first, c.w as f32);
+    let first = p.fit_label(&first, px, c.w as f32);
+    p.run(&first, c.x as f32, c.y as f32 + cap, px, pal::INK, true);
     if let Some(summary) = &pictures.camera_summary {
-        let line = p.fit(&legend_caption(summary, lang), cap, c.w as f32);
-        p.run(&line, c.x as f32, c.y as f32 + cap + cap_gap, cap, pal::MUTED, false);
+        let line = legend_caption(summary, lang);
+        let px = caption_px(&p, &line, c.w as f32);
+        let line = p.fit_label(&line, px, c.w as f32);
+        p.run(&line, c.x as f32, c.y as f32 + cap + cap_gap, px, pal::MUTED, false);
     }
     let c = layout.shadow_map_caption;
     let (first, second) = match &pictures.shadow_map {
@@ -394,17 +402,19 @@ pub fn compose(
             };
             let (lo, hi) = (short_num(legend.min), short_num(legend.max));
             let second = match lang {
-                Lang::En => format!("depth {lo} (dark) .. {hi} (bright) from the light"),
+                Lang::En => format!("depth from the light {lo} (dark) .. {hi} (bright)"),
                 Lang::Zh => format!("到光源的深度 {lo}（暗）至 {hi}（亮）"),
             };
             (first, second)
         }
         None => (tr(lang, "Shadow map", "阴影贴图").to_string(), String::new()),
     };
-    let first = p.fit(&first, cap, c.w as f32);
-    p.run(&first, c.x as f32, c.y as f32 + cap, cap, pal::INK, true);
-    let second = p.fit(&second, cap, c.w as f32);
-    p.run(&second, c.x as f32, c.y as f32 + cap + cap_gap, cap, pal::MUTED, false);
+    let px = caption_px(&p, &first, c.w as f32);
+    let first = p.fit_label(&first, px, c.w as f32);
+    p.run(&first, c.x as f32, c.y as f32 + cap, px, pal::INK, true);
+    let px = caption_px(&p, &second, c.w as f32);
+    let second = p.fit_label(&second, px, c.w as f32);
+    p.run(&second, c.x as f32, c.y as f32 + cap + cap_gap, px, pal::MUTED, false);
 
     // Diagram and probe numbers.
     p.picture(diagram, at(layout.diagram));
@@ -413,7 +423,7 @@ pub fn compose(
 
     // Explanation and prompts, at the largest size that fits.
     let text_cut = text_column(&mut p, layout, text);
-    Some(Slide { pixmap: p.pixmap, text_cut })
+    Some(Slide { pixmap: p.pixmap, text_cut, shortened: p.shortened })
 }
 
 fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
@@ -438,7 +448,7 @@ fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
         Technique::Vssm => "VSSM",
     };
     let tx = r.x as f32 + pad + u(30.0) + p.text_width(title, head) + u(14.0);
-    let tech = p.fit(technique_name, u(22.0), r.right() - pad - tx);
+    let tech = p.fit_label(technique_name, u(22.0), r.right() - pad - tx);
     p.run(&tech, tx, y, u(22.0), pal::MUTED, false);
 
     let mut rows: Vec<(&str, String)> = Vec::new();
@@ -527,13 +537,22 @@ fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
         _ => rows.push(("", tr(lang, "no light to probe", "没有光源").into())),
     }
 
+    // The largest size at which the rows fit the panel, down and across.
     let avail = r.bottom() - pad - y - u(12.0);
+    let widest = |p: &Canvas, px: f32| {
+        let label_w = rows.iter().map(|(l, _)| p.text_width(l, px)).fold(0.0f32, f32::max);
+        let gap = if label_w > 0.0 { u(16.0) } else { 0.0 };
+        let row_w =
+            |(l, v): &(&str, String)| if l.is_empty() { 0.0 } else { label_w + gap } + p.text_width(v, px);
+        (label_w + gap, rows.iter().map(row_w).fold(0.0f32, f32::max))
+    };
     let mut px = u(24.0);
-    while px > u(16.0) && rows.len() as f32 * p.leading(px) > avail {
+    while px > u(16.0)
+        && (rows.len() as f32 * p.leading(px) > avail || widest(p, px).1 > r.w as f32 - 2.0 * pad)
+    {
         px -= u(1.0);
     }
-    let label_w = rows.iter().map(|(l, _)| p.text_width(l, px)).fold(0.0f32, f32::max);
-    let vx = r.x as f32 + pad + label_w + if label_w > 0.0 { u(16.0) } else { 0.0 };
+    let vx = r.x as f32 + pad + widest(p, px).0;
     y += u(12.0);
     for (label, value) in rows {
         y += p.leading(px);
@@ -541,14 +560,23 @@ fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
             break;
         }
         if label.is_empty() {
-            let value = p.fit(&value, px, r.right() - pad - (r.x as f32 + pad));
+            let value = p.fit_label(&value, px, r.right() - pad - (r.x as f32 + pad));
             p.run(&value, r.x as f32 + pad, y, px, pal::INK, true);
             continue;
         }
         p.run(label, r.x as f32 + pad, y, px, pal::MUTED, false);
-        let value = p.fit(&value, px, r.right() - pad - vx);
+        let value = p.fit_label(&value, px, r.right() - pad - vx);
         p.run(&value, vx, y, px, pal::INK, false);
     }
+}
+
+/// The size, from `px` down to `min_px`, at which `s` fits `width` (`min_px` if none does).
+fn shrink_to_fit(p: &Canvas, s: &str, px: f32, min_px: f32, width: f32) -> f32 {
+    let mut size = px;
+    while size > min_px && p.text_width(s, size) > width {
+        size = (size - px * 0.02).max(min_px);
+    }
+    size
 }
 
 /// Linear depths: one decimal, as the lessons quote them.
@@ -670,4 +698,24 @@ fn join_lines(s: &str) -> String {
         out.push_str(line);
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn legend_captions_shorten_numbers_in_either_language() {
+        let en = "blocker-search radius: 0.0000 .. 107.6819 texels (dark blue .. yellow)";
+        assert_eq!(
+            legend_caption(en, Lang::En),
+            "blocker-search radius: 0 .. 108 texels (dark blue .. yellow)"
+        );
+        let zh = "平均遮挡深度：20.00 .. 40.61 到光源的世界单位（深蓝 .. 黄；灰：没有遮挡物）";
+        assert_eq!(
+            legend_caption(zh, Lang::Zh),
+            "平均遮挡深度：20.0 至 40.6 到光源的世界单位（深蓝 至 黄；灰：没有遮挡物）"
+        );
+        assert_eq!(legend_caption("a\nb", Lang::En), "a · b");
+    }
 }

@@ -137,7 +137,8 @@ pub fn render_step(
     let normal = report.as_ref().and_then(|r| r.normal);
     let inputs = live::inputs_from_scene(scene, light, time_s, light_probe, normal);
 
-    let (mut camera, mut camera_summary) = views::render_view(renderer, scene, view, light, time_s, size)?;
+    let (mut camera, mut camera_summary) =
+        views::render_view(renderer, scene, view, light, time_s, size, lang)?;
     // The step's overlays, as the app draws them over the view (legends in the caption).
     let overlays: Vec<Overlay> =
         step.overlays.iter().copied().filter(|&o| !views::overlays::shown_by_view(view, o)).collect();
@@ -183,7 +184,11 @@ pub fn render_step(
             &lights,
             light,
         );
-        let legend = "light frusta: yellow = this light, blue = the others".to_string();
+        let legend = match lang {
+            Lang::En => "frusta: yellow = this light, blue = the others",
+            Lang::Zh => "视锥：黄 = 本光源，蓝 = 其他光源",
+        }
+        .to_string();
         camera_summary = Some(camera_summary.map_or(legend.clone(), |s| format!("{s}\n{legend}")));
     }
     let shadow_map = if has_lights {

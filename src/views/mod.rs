@@ -296,6 +296,7 @@ pub fn render_view(
     light: usize,
     time_s: f32,
     size: (u32, u32),
+    lang: Lang,
 ) -> Result<(RgbaImage, Option<String>), crate::render::RenderError> {
     let request = crate::render::FrameRequest {
         time_s,
@@ -323,10 +324,9 @@ pub fn render_view(
             let samples = scene.shadow.reference_samples;
             let light_and_params = frame.lights.get(light).map(|l| (l, &frame.params));
             let (image, legend) =
-                analysis_view(view, &a, reference.as_deref(), samples, light_and_params, Lang::En)
-                    .ok_or_else(|| {
-                        crate::render::RenderError::Usage(format!("view {} has no image", view.name()))
-                    })?;
+                analysis_view(view, &a, reference.as_deref(), samples, light_and_params, lang).ok_or_else(
+                    || crate::render::RenderError::Usage(format!("view {} has no image", view.name())),
+                )?;
             (image, Some(legend))
         }
     })

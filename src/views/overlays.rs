@@ -81,8 +81,8 @@ pub fn compose(
                 let Some(light) = light else { continue };
                 legends.push(
                     match lang {
-                        Lang::En => "orange: outside the light's frustum (no shadow-map data)",
-                        Lang::Zh => "橙色：光源视锥之外（没有阴影贴图数据）",
+                        Lang::En => "orange: outside the light's frustum (no map data)",
+                        Lang::Zh => "橙色：光源视锥之外（无贴图数据）",
                     }
                     .into(),
                 );
