@@ -8,6 +8,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use super::bench::median;
 use super::{BenchArgs, CliError};
 use crate::diagrams::{self, DiagramInputs, DiagramKind};
 use crate::lessons::Lang;
@@ -38,12 +39,6 @@ fn dragged(base: &DiagramInputs, i: u32) -> DiagramInputs {
     }
 }
 
-/// Median and minimum of `times`, milliseconds.
-fn median_and_min(mut times: Vec<f64>) -> (f64, f64) {
-    times.sort_by(f64::total_cmp);
-    (times[times.len() / 2], times[0])
-}
-
 #[derive(Serialize)]
 struct DiagramReport {
     size: [u32; 2],
@@ -59,7 +54,7 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
     let min_text_px = DIAGRAM_MIN_TEXT_PT;
     let mut rows = Vec::new();
     for kind in DiagramKind::ALL {
-        for (lang, lang_id) in [(Lang::En, "en"), (Lang::Zh, "zh")] {
+        for lang in [Lang::En, Lang::Zh] {
             let timed = |inputs: &DiagramInputs| {
                 let start = Instant::now();
                 diagrams::draw_traced(kind, inputs, lang, [w, h], min_text_px)
@@ -70,14 +65,12 @@ pub fn run(args: &BenchArgs) -> Result<(), CliError> {
             timed(&base)?;
             let drag = (0..args.frames).map(|i| timed(&dragged(&base, i))).collect::<Result<Vec<_>, _>>()?;
             let still = (0..args.frames).map(|_| timed(&base)).collect::<Result<Vec<_>, _>>()?;
-            let ((drag_median_ms, drag_min_ms), (still_median_ms, _)) =
-                (median_and_min(drag), median_and_min(still));
             rows.push(DiagramRow {
                 diagram: kind.id(),
-                lang: lang_id,
-                drag_median_ms,
-                drag_min_ms,
-                still_median_ms,
+                lang: lang.code(),
+                drag_median_ms: median(&drag),
+                drag_min_ms: drag.iter().copied().fold(f64::INFINITY, f64::min),
+                still_median_ms: median(&still),
             });
         }
     }

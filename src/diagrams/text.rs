@@ -294,9 +294,8 @@ impl TextRenderer {
         buffer
     }
 
-    /// `text` as one line (control characters dropped), shaped at `px`.
-    /// Labels are measured and then drawn, and redrawn on every frame of a drag: shaped lines
-    /// are kept by text and size.
+    /// `text` as one line (see [`single_line`]), shaped at `px`. Labels are measured, then
+    /// drawn, then redrawn on every frame of a drag: shaped lines are kept by text and size.
     fn line(&self, text: &str, px: f32) -> Arc<ShapedLine> {
         let key = (text.to_string(), px.to_bits());
         let mut engine = self.engine();

@@ -189,30 +189,8 @@ pub fn legend_caption(summary: &str, lang: Lang) -> String {
         .collect();
     let mut s = shortened.join(" · ").replace("  ", " ");
     if lang == Lang::Zh {
-        const ZH: [(&str, &str); 16] = [
-            ("visibility: black = shadowed, white = lit", "可见度：黑 = 阴影，白 = 受光"),
-            ("|visibility - reference|:", "|可见度 − 参考真值|："),
-            ("blocker-search radius:", "遮挡物搜索半径："),
-            ("penumbra width:", "半影宽度："),
-            ("blockers found:", "找到的遮挡物："),
-            ("(dark blue .. yellow)", "（深蓝 .. 黄）"),
-            ("hard shadows averaged", "个硬阴影的平均"),
-            ("reference:", "参考真值："),
-            ("mean absolute error:", "平均绝对误差："),
-            (
-                "texel grid: lines where the shadow-map texel changes",
-                "纹素网格：线条标出阴影贴图纹素变化的地方",
-            ),
-            ("|visibility − ground truth|:", "|可见度 − 真实结果|："),
-            ("mean", "平均"),
-            ("map)", "贴图）"),
-            ("texels", "纹素"),
-            ("taps", "次采样"),
-            ("..", "至"),
-        ];
-        for (en, zh) in ZH {
-            s = s.replace(en, zh);
-        }
+        // The legends come in Chinese from the views; a range reads better with 至 than "..".
+        s = s.replace("..", "至");
         s = s.replace("： ", "：").replace(" （", "（");
     }
     s
@@ -368,11 +346,7 @@ pub fn compose(
         }
     }
 
-    // Captions: each line at 22 units, smaller (down to 17) where a long one needs it.
-    let cap = u(22.0);
-    let cap_gap = p.leading(cap) * 0.95;
-    let caption_px = |p: &Canvas, s: &str, width: f32| shrink_to_fit(p, s, cap, u(17.0), width);
-    let c = layout.camera_caption;
+    // Captions.
     let mut first = format!("{}{}", tr(lang, "Camera view: ", "相机画面："), view_label(pictures.view, lang));
     if let Some((x, y)) = pictures.probe_pixel {
         first += &match lang {
@@ -380,16 +354,8 @@ pub fn compose(
             Lang::Zh => format!("  ·  探针 + 位于 {}×{} 画面的 ({x}, {y})", PROBE_FRAME.0, PROBE_FRAME.1),
         };
     }
-    let px = caption_px(&p, &first, c.w as f32);
-    let first = p.fit_label(&first, px, c.w as f32);
-    p.run(&first, c.x as f32, c.y as f32 + cap, px, pal::INK, true);
-    if let Some(summary) = &pictures.camera_summary {
-        let line = legend_caption(summary, lang);
-        let px = caption_px(&p, &line, c.w as f32);
-        let line = p.fit_label(&line, px, c.w as f32);
-        p.run(&line, c.x as f32, c.y as f32 + cap + cap_gap, px, pal::MUTED, false);
-    }
-    let c = layout.shadow_map_caption;
+    let legend = pictures.camera_summary.as_ref().map(|summary| legend_caption(summary, lang));
+    caption(&mut p, layout, layout.camera_caption, &first, legend.as_deref());
     let (first, second) = match &pictures.shadow_map {
         Some((img, legend)) => {
             let kind = match pictures.inputs.orthographic {
@@ -409,12 +375,7 @@ pub fn compose(
         }
         None => (tr(lang, "Shadow map", "阴影贴图").to_string(), String::new()),
     };
-    let px = caption_px(&p, &first, c.w as f32);
-    let first = p.fit_label(&first, px, c.w as f32);
-    p.run(&first, c.x as f32, c.y as f32 + cap, px, pal::INK, true);
-    let px = caption_px(&p, &second, c.w as f32);
-    let second = p.fit_label(&second, px, c.w as f32);
-    p.run(&second, c.x as f32, c.y as f32 + cap + cap_gap, px, pal::MUTED, false);
+    caption(&mut p, layout, layout.shadow_map_caption, &first, Some(&second));
 
     // Diagram and probe numbers.
     p.picture(diagram, at(layout.diagram));
@@ -570,13 +531,21 @@ fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
     }
 }
 
-/// The size, from `px` down to `min_px`, at which `s` fits `width` (`min_px` if none does).
-fn shrink_to_fit(p: &Canvas, s: &str, px: f32, min_px: f32, width: f32) -> f32 {
-    let mut size = px;
-    while size > min_px && p.text_width(s, size) > width {
-        size = (size - px * 0.02).max(min_px);
+/// A caption in `r`: a bold first line, then a muted second one. Each is 22 units high, smaller
+/// (down to 17) where a long one needs it, and cut only past that.
+fn caption(p: &mut Canvas, layout: &SlideLayout, r: Rect, first: &str, second: Option<&str>) {
+    let (cap, min) = (layout.px(22.0), layout.px(17.0));
+    let width = r.w as f32;
+    let lines =
+        [(first, pal::INK, true, 0.0), (second.unwrap_or(""), pal::MUTED, false, p.leading(cap) * 0.95)];
+    for (s, color, bold, below) in lines {
+        let mut px = cap;
+        while px > min && p.text_width(s, px) > width {
+            px = (px - cap * 0.02).max(min);
+        }
+        let s = p.fit_label(s, px, width);
+        p.run(&s, r.x as f32, r.y as f32 + cap + below, px, color, bold);
     }
-    size
 }
 
 /// Linear depths: one decimal, as the lessons quote them.
