@@ -897,3 +897,98 @@ fn browse_without_a_dialog_service_points_at_the_path_box() {
     let (lesson, _, index) = h.state().current_step().expect("a lesson step");
     assert_eq!((lesson.id.as_str(), index), ("vsm", 0));
 }
+
+fn lesson_index(h: &Harness<'_, ShadowlabApp>, id: &str) -> usize {
+    h.state().lessons.iter().position(|l| l.id == id).unwrap_or_else(|| panic!("no lesson {id}"))
+}
+
+#[test]
+fn a_light_space_view_carries_none_of_the_camera_views_marks() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    // Lesson 5 step 1: the shadow-map view with the light-frustum overlay and a probe; lesson 4
+    // step 2 with the map picked: the blocker-search heatmap overlay and a probe.
+    let multi = lesson_index(&h, "multi-light");
+    let pcss = lesson_index(&h, "pcss");
+    for (lesson, step, pick_map) in [(multi, 0, false), (pcss, 1, true)] {
+        h.state_mut().go_to_step(lesson, step);
+        if pick_map {
+            h.state_mut().view = shadowlab::views::View::ShadowMap;
+            h.state_mut().mark_dirty();
+        }
+        settle(&mut h);
+        assert!(!h.state().overlays.is_empty(), "the step has overlays on");
+        let painted = h.state().camera_paint().clone();
+        assert_eq!(painted.view, Some(shadowlab::views::View::ShadowMap), "step {}", step + 1);
+        assert!(!painted.overlay, "an overlay of the camera's picture over the map (step {})", step + 1);
+        assert!(!painted.frusta, "light frusta drawn over the map (step {})", step + 1);
+        assert_eq!(painted.probe_crosshair, None, "the camera's probe crosshair on the map");
+        // The probe is marked where it is in the map: at its texel, inside the picture.
+        assert_eq!(painted.probe_texel.len(), 1, "the probe's texel is circled on the map");
+        assert!(painted.picture.contains(painted.probe_texel[0]));
+        // And no legend of the camera's overlays under it.
+        assert_eq!(h.state().legend_lines(), Vec::<String>::new(), "step {}", step + 1);
+    }
+    // Back on the final view, the same step's marks are drawn.
+    h.state_mut().view = shadowlab::views::View::Final;
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    let painted = h.state().camera_paint().clone();
+    assert!(painted.overlay && painted.probe_crosshair.is_some(), "{painted:?}");
+}
+
+#[test]
+fn every_steps_frame_is_shown_whole_at_classroom_sizes() {
+    let (fw, fh) = shadowlab::lessons::PROBE_FRAME;
+    let frame_aspect = fw as f32 / fh as f32;
+    for size in [[1280.0, 720.0], [1600.0, 900.0]] {
+        let mut h = harness_sized(size);
+        let steps: Vec<(usize, usize)> = h
+            .state()
+            .lessons
+            .iter()
+            .enumerate()
+            .flat_map(|(l, lesson)| (0..lesson.steps.len()).map(move |s| (l, s)))
+            .collect();
+        for (l, s) in steps {
+            h.state_mut().go_to_step(l, s);
+            h.run_steps(2);
+            let painted = h.state().camera_paint().clone();
+            let name = format!("{} step {} at {size:?}", h.state().lessons[l].id, s + 1);
+            let picture = painted.picture;
+            // Letterboxed: the frame's shape, inside the panel, never cropped to the panel's.
+            assert!(
+                (picture.width() / picture.height() - frame_aspect).abs() < 0.01,
+                "{name}: the frame is shown {picture:?}, not 16:9"
+            );
+            assert!(
+                painted.area.expand(0.5).contains_rect(picture),
+                "{name}: {picture:?} outside {:?}",
+                painted.area
+            );
+            assert!(picture.width() >= 320.0, "{name}: the frame is only {} points wide", picture.width());
+        }
+        // What is rendered has the frame's shape too.
+        settle(&mut h);
+        let (w, h_px) = h.state().shown_size();
+        assert!((w as f32 / h_px as f32 - frame_aspect).abs() < 0.01, "rendered at {w}x{h_px}");
+    }
+}
+
+#[test]
+fn the_lesson_text_says_when_the_settings_are_no_longer_the_steps() {
+    let mut h = harness();
+    let pcss = lesson_index(&h, "pcss");
+    h.state_mut().go_to_step(pcss, 1);
+    settle(&mut h);
+    assert!(h.state().changed_from_step().is_empty());
+    assert!(h.query_by_label_contains("You changed the step's settings").is_none());
+    h.state_mut().scene.shadow.technique = shadowlab::scene::Technique::Hard;
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    assert_eq!(h.state().changed_from_step(), vec!["shadow settings"]);
+    h.get_by_label_contains("You changed the step's settings");
+    h.get_by_label("Back to the step's settings").click();
+    settle(&mut h);
+    assert!(h.state().changed_from_step().is_empty());
+    assert!(h.query_by_label_contains("You changed the step's settings").is_none());
+}

@@ -344,3 +344,25 @@ fn every_claimed_verdict_and_quoted_number_holds_at_the_cli_probe() {
         }
     }
 }
+
+#[test]
+fn a_step_that_plays_cannot_state_what_its_probe_shows() {
+    // The picture moves on from `time`, so a claim about that moment is soon false.
+    let line = line_of(&data_file("playing_probe.toml"), "[[step]]");
+    let message = error_of("playing_probe.toml", line);
+    assert!(message.contains("play = true"), "{message}");
+}
+
+#[test]
+fn no_shipped_step_plays_by_itself_while_its_text_describes_one_moment() {
+    for lesson in lessons::load_all(&common::repo_path("lessons")).expect("lessons") {
+        for (i, step) in lesson.steps.iter().enumerate() {
+            if step.play {
+                // Said in the text, so the class knows the picture will move.
+                let says_so = step.text.en.contains("playing") && step.text.zh.contains("播放");
+                assert!(says_so, "{} step {}: plays without saying so", lesson.id, i + 1);
+                assert!(step.probe.is_none(), "{} step {}: plays with a probe", lesson.id, i + 1);
+            }
+        }
+    }
+}

@@ -141,7 +141,7 @@ pub fn render_step(
         views::render_view(renderer, scene, view, light, time_s, size, lang)?;
     // The step's overlays, as the app draws them over the view (legends in the caption).
     let overlays: Vec<Overlay> =
-        step.overlays.iter().copied().filter(|&o| !views::overlays::shown_by_view(view, o)).collect();
+        step.overlays.iter().copied().filter(|&o| !views::overlays::hidden_by_view(view, o)).collect();
     let analysis_overlays: Vec<Overlay> =
         overlays.iter().copied().filter(|&o| o != Overlay::LightFrustum).collect();
     if has_lights && !analysis_overlays.is_empty() {

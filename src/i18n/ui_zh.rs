@@ -191,6 +191,18 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("set what this prompt says", "按这条提示设置"),
     ("applied", "已应用"),
     ("Back to the step's settings", "回到这一步的设置"),
+    ("▶ this step plays: the scene moves", "▶ 这一步会播放：场景在运动"),
+    (
+        "You changed the step's settings; the text below describes the step as it was set:",
+        "你改动了这一步的设置；下面的文字描述的是这一步原本的设置。改动的有：",
+    ),
+    ("shadow settings", "阴影设置"),
+    ("lights", "光源"),
+    ("objects", "物体"),
+    (
+        "the A/B split compares the shaded pictures: the view returns when it is off",
+        "A/B 分屏比较的是着色后的画面：关闭分屏后恢复所选视图",
+    ),
     // Lights: position and target.
     ("position", "位置"),
     ("target", "目标点"),

@@ -378,6 +378,15 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
                 }
             }
         }
+        // A playing step's picture moves on from `time`: no claim about one moment can hold.
+        if step.play && (step.expect.is_some() || step_quotes_probe(&step)) {
+            return Err(error(
+                0..0,
+                "`play = true` but the step states what its probe shows (the picture moves on from \
+                 `time`): drop `play`, or the `expect` and the probe values in the text"
+                    .into(),
+            ));
+        }
         if (step.expect.is_some() || step_quotes_probe(&step)) && step.probe.is_none() {
             return Err(error(0..0, "the text quotes the probe but the step sets no `probe` pixel".into()));
         }

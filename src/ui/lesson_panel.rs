@@ -39,6 +39,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let text = step.text_filled(lang, app.probe.as_ref());
     let tries = step.try_this_filled(lang, app.probe.as_ref());
     let lesson_probe = step.probe.map(|[x, y]| super::ProbeAt::LessonFrame(x, y));
+    let plays = step.play;
     // Navigation first, so it stays in reach however long the text is.
     ui.horizontal(|ui| {
         if ui.button(tr("Previous")).on_hover_text(tr("Left arrow")).clicked() {
@@ -57,15 +58,44 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         ui.checkbox(&mut app.show_all_panels, tr("show every panel"));
     }
     ui.separator();
-    ui.label(RichText::new(lesson_title).small());
+    // Where in the course this is, readable at a glance.
+    ui.label(
+        RichText::new(format!("{lesson_title} · {} {}", tr("step"), index + 1)).size(body * 0.85).weak(),
+    );
     ui.label(RichText::new(title).size(heading).strong());
+    if plays {
+        ui.label(RichText::new(tr("▶ this step plays: the scene moves")).size(body * 0.85).italics());
+    }
     ui.add_space(4.0);
-    ui.label(RichText::new(text).size(body));
+    // The text describes the step as set: once a setting moves, its fixed figures and sentences
+    // may no longer hold, so it says so, is greyed, and offers the way back.
+    let changed = app.changed_from_step();
+    if changed.is_empty() {
+        ui.label(RichText::new(text).size(body));
+    } else {
+        let names: Vec<&str> = changed.iter().map(|c| tr(c)).collect();
+        ui.label(
+            RichText::new(format!(
+                "{} {}",
+                tr("You changed the step's settings; the text below describes the step as it was set:"),
+                names.join(", ")
+            ))
+            .size(body * 0.85)
+            .color(egui::Color32::from_rgb(255, 200, 90)),
+        );
+        if app.applied_try_this.is_none() && ui.button(tr("Back to the step's settings")).clicked() {
+            app.back_to_step_settings();
+        }
+        ui.label(RichText::new(text).size(body).weak());
+    }
     // The numbers follow whatever probe is pinned; say so when it is not the lesson's own.
     if lesson_probe.is_some() && app.probe_at != lesson_probe {
         let (note, back) = match lang {
-            Lang::En => ("The numbers above are read at your probe.", "Back to the lesson's probe"),
-            Lang::Zh => ("上面的数字取自你放置的探针。", "回到本课的探针"),
+            Lang::En => (
+                "The numbers above are read at your probe; the sentences around them describe the lesson's.",
+                "Back to the lesson's probe",
+            ),
+            Lang::Zh => ("上面的数字取自你放置的探针；数字周围的文字描述的是本课的探针。", "回到本课的探针"),
         };
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(note).italics());

@@ -371,6 +371,38 @@ impl ShadowlabApp {
         self.mark_dirty();
     }
 
+    /// What differs from the current step's own settings (camera and probe aside), as the
+    /// inspector names it; empty where nothing does. The text's fixed figures and sentences
+    /// describe the step as set.
+    pub fn changed_from_step(&self) -> Vec<&'static str> {
+        let Some((_, step, _)) = self.current_step() else { return Vec::new() };
+        let (now, base) = (&self.scene, &self.base_scene);
+        let mut changed = Vec::new();
+        if now.shadow != base.shadow {
+            changed.push("shadow settings");
+        }
+        if now.lights != base.lights {
+            changed.push("lights");
+        }
+        let same_object = |a: &crate::scene::Object, b: &crate::scene::Object| {
+            (a.translate, a.rotate_deg, a.scale, a.spin_deg_per_s, a.color)
+                == (b.translate, b.rotate_deg, b.scale, b.spin_deg_per_s, b.color)
+        };
+        if now.objects.len() != base.objects.len()
+            || now.objects.iter().zip(&base.objects).any(|(a, b)| !same_object(a, b))
+            || now.ambient != base.ambient
+        {
+            changed.push("objects");
+        }
+        if self.time_s != step.time_s || self.playing != step.play {
+            changed.push("time (s)");
+        }
+        if self.view != step.view {
+            changed.push("view");
+        }
+        changed
+    }
+
     /// Step forward (+1) or back (-1) through the lessons.
     pub fn step_lesson(&mut self, delta: i32) {
         let (lesson, step) = match self.source {

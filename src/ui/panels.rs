@@ -22,6 +22,7 @@ struct DiagramKey {
     inputs: DiagramInputs,
     lang: Lang,
     size_px: (u32, u32),
+    present: bool,
 }
 
 fn live_inputs(app: &ShadowlabApp) -> DiagramInputs {
@@ -76,6 +77,8 @@ pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
 
 /// Smallest diagram text on screen, points: readable from the back of a classroom.
 pub const DIAGRAM_MIN_TEXT_PT: f32 = 14.0;
+/// The same in present mode, points.
+pub const PRESENT_DIAGRAM_MIN_TEXT_PT: f32 = 20.0;
 
 fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     // The whole width (text columns and legend use what is wider than 16:9), at most 16:9
@@ -83,10 +86,18 @@ fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let (w, h) = (rect.width(), rect.height().min(rect.width() * 9.0 / 16.0));
     let ppp = ui.ctx().pixels_per_point();
     let size_px = ((w * ppp).max(32.0) as u32, (h * ppp).max(18.0) as u32);
-    let key = DiagramKey { kind: app.diagram, inputs: live_inputs(app), lang: app.lang, size_px };
+    let key = DiagramKey {
+        kind: app.diagram,
+        inputs: live_inputs(app),
+        lang: app.lang,
+        size_px,
+        present: app.present,
+    };
     let current = app.panel_state.diagram.as_ref().is_some_and(|(_, drawn)| *drawn == key);
     if !current {
-        let min_text_px = DIAGRAM_MIN_TEXT_PT * ppp;
+        // On a projector, the lesson text's size (the diagram is read from the back row too).
+        let min_text_pt = if app.present { PRESENT_DIAGRAM_MIN_TEXT_PT } else { DIAGRAM_MIN_TEXT_PT };
+        let min_text_px = min_text_pt * ppp;
         match diagrams::draw_traced(key.kind, &key.inputs, key.lang, [size_px.0, size_px.1], min_text_px) {
             Ok((pixmap, texts)) => {
                 let smallest_px = texts.iter().map(|(_, px)| *px).fold(f32::INFINITY, f32::min);

@@ -35,6 +35,44 @@ pub struct ViewState {
     /// Zoom of the shadow-map panel (1 = whole map) and the uv at its centre.
     zoom: f32,
     zoom_centre: (f32, f32),
+    /// What the camera panel painted in the last frame (for tests).
+    pub(super) painted: CameraPaint,
+}
+
+/// What the camera panel painted: where the picture went and which marks were drawn on it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CameraPaint {
+    /// The view shown.
+    pub view: Option<View>,
+    /// The panel's area and the picture inside it (a lesson's frame is letterboxed in the area).
+    pub area: Rect,
+    pub picture: Rect,
+    /// Camera-space marks: the overlays' image, the light frusta, the probe's crosshair.
+    pub overlay: bool,
+    pub frusta: bool,
+    pub probe_crosshair: Option<Pos2>,
+    /// The probe's texel circled on a light-space view (the shadow map, the moments).
+    pub probe_texel: Vec<Pos2>,
+    /// The A/B split's labels.
+    pub ab_labels: Vec<Rect>,
+    /// The view selector.
+    pub selector: Rect,
+}
+
+impl Default for CameraPaint {
+    fn default() -> Self {
+        Self {
+            view: None,
+            area: Rect::NOTHING,
+            picture: Rect::NOTHING,
+            overlay: false,
+            frusta: false,
+            probe_crosshair: None,
+            probe_texel: Vec::new(),
+            ab_labels: Vec::new(),
+            selector: Rect::NOTHING,
+        }
+    }
 }
 
 impl ViewState {
@@ -107,7 +145,7 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
             .overlays
             .iter()
             .copied()
-            .filter(|&o| !crate::views::overlays::shown_by_view(app.view, o))
+            .filter(|&o| !crate::views::overlays::hidden_by_view(app.camera_view_kind(), o))
             .collect();
         let (image, legends) = crate::views::overlays::compose(
             app.lang,
@@ -166,10 +204,22 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let show_map = app.panel_visible(crate::lessons::Panel::ShadowMap);
     let split = if show_map { app.settings.split.clamp(0.25, 0.85) } else { 1.0 };
     let divider_x = full.left() + full.width() * split;
-    let camera_rect = Rect::from_min_max(full.min, pos2(divider_x - 3.0, full.bottom() - 40.0));
+    let left = Rect::from_min_max(full.min, pos2(divider_x - 3.0, full.bottom()));
     let map_rect = Rect::from_min_max(pos2(divider_x + 3.0, full.top()), full.max);
-    let legend_rect =
-        Rect::from_min_max(pos2(full.left(), camera_rect.bottom()), pos2(divider_x - 3.0, full.bottom()));
+    let legend_font = egui::FontId::proportional(if app.present { 18.0 } else { 13.0 });
+    // Room for the legends the view and overlays will have, known before they are worked out
+    // (sized by what is asked, not by what arrives, so the view does not change size with them).
+    let line_height = ui.fonts_mut(|f| f.row_height(&legend_font));
+    let legend_height = (app.legend_lines_expected() as f32 * line_height + 8.0)
+        .clamp(40.0, (left.height() * 0.35).max(40.0));
+    let area = Rect::from_min_max(left.min, pos2(left.right(), left.bottom() - legend_height));
+    // A lesson's frame is shown whole, letterboxed: cropped to the panel's shape, its probe and
+    // what the text points at could fall outside.
+    let camera_rect = match app.current_step() {
+        Some(_) => letterbox(area, crate::lessons::PROBE_FRAME),
+        None => area,
+    };
+    let legend_rect = Rect::from_min_max(pos2(left.left(), camera_rect.bottom()), left.max);
 
     if show_map {
         // The split between the two views.
@@ -189,6 +239,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     app.schedule_render(size_px);
     refresh(app, ui.ctx());
 
+    app.view_state.painted = CameraPaint { area, ..Default::default() };
     camera_view(app, ui, camera_rect);
     let painter = ui.painter_at(legend_rect);
     let mut y = legend_rect.top() + 4.0;
@@ -196,18 +247,29 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         app.lang,
         if app.interacting { "(overlays refresh when you let go)" } else { "(working out the overlays...)" },
     ))];
-    let stale = app.overlays_stale() && (app.view_state.overlay.is_some() || app.view != View::Final);
+    let shown_view = app.camera_panel_view();
+    let stale = app.overlays_stale() && (app.view_state.overlay.is_some() || shown_view != View::Final);
     let legend_lines = app.view_state.legend_lines();
     let mut lines: Vec<&str> = Vec::new();
     if stale {
         lines.push(&waiting[0]);
-    } else {
+    } else if !is_light_space(shown_view) {
+        // A light-space view has its own caption; the camera's legends are about other pictures.
         lines.extend(legend_lines.iter().map(String::as_str));
+    }
+    let ab_note;
+    if app.ab.is_some() && app.view != View::Final {
+        ab_note = tr(app.lang, "the A/B split compares the shaded pictures: the view returns when it is off");
+        lines.push(ab_note);
     }
     // Wrapped to the view's width: a long legend takes a second line rather than being cut.
     for legend in lines {
-        let font = egui::FontId::proportional(13.0);
-        let galley = painter.layout(legend.to_string(), font, Color32::LIGHT_GRAY, legend_rect.width() - 8.0);
+        let galley = painter.layout(
+            legend.to_string(),
+            legend_font.clone(),
+            Color32::LIGHT_GRAY,
+            legend_rect.width() - 8.0,
+        );
         let height = galley.size().y;
         painter.galley(pos2(legend_rect.left() + 4.0, y), galley, Color32::LIGHT_GRAY);
         y += height;
@@ -218,16 +280,57 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     ui.allocate_rect(full, Sense::hover());
 }
 
+/// The largest rectangle of the frame's shape in `area`, centred across and at its top.
+fn letterbox(area: Rect, (frame_w, frame_h): (u32, u32)) -> Rect {
+    let aspect = frame_w as f32 / frame_h as f32;
+    let width = area.width().min(area.height() * aspect).max(1.0);
+    let size = vec2(width, width / aspect);
+    Rect::from_min_size(pos2(area.center().x - size.x * 0.5, area.top()), size)
+}
+
+/// Views of the light's map rather than of the camera's picture.
+fn is_light_space(view: View) -> bool {
+    matches!(view, View::ShadowMap | View::Moments)
+}
+
 impl ShadowlabApp {
+    /// The view the camera panel is set to show: the chosen one, or the shaded picture while
+    /// the A/B split compares two of them.
+    pub fn camera_view_kind(&self) -> View {
+        if self.ab.is_some() { View::Final } else { self.view }
+    }
+
     /// The view the camera panel shows now: the chosen one once it is worked out for the frame
     /// on screen, the shaded image until then (a preview while dragging, the first frame).
     pub fn camera_panel_view(&self) -> View {
-        let ready = match self.view {
+        let view = self.camera_view_kind();
+        let ready = match view {
             View::Final => true,
             View::ShadowMap => self.view_state.map.is_some(),
             _ => self.view_state.view_image.is_some() && !self.overlays_stale(),
         };
-        if ready { self.view } else { View::Final }
+        if ready { view } else { View::Final }
+    }
+
+    /// Lines of legend the view and the overlays will take (wrapping aside).
+    fn legend_lines_expected(&self) -> usize {
+        let view = self.camera_view_kind();
+        let of_view = match view {
+            View::Final | View::ShadowMap => 0,
+            View::Moments | View::Error => 2,
+            _ => 1,
+        };
+        let overlays = self
+            .overlays
+            .iter()
+            .filter(|&&o| o != Overlay::LightFrustum && !crate::views::overlays::hidden_by_view(view, o))
+            .count();
+        (of_view + overlays + usize::from(self.ab.is_some())).max(1)
+    }
+
+    /// What the camera panel painted in the last frame.
+    pub fn camera_paint(&self) -> &CameraPaint {
+        &self.view_state.painted
     }
 }
 
@@ -236,8 +339,10 @@ fn view_selector(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let corner = Rect::from_min_size(rect.min + vec2(8.0, 8.0), vec2(190.0, 24.0));
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(corner));
     let before = app.view;
-    egui::ComboBox::from_id_salt("camera view")
+    let response = egui::ComboBox::from_id_salt("camera view")
         .selected_text(format!("{}: {}", tr(app.lang, "view"), app.view.name()))
+        // Every view in reach without scrolling.
+        .height(f32::INFINITY)
         .show_ui(&mut child, |ui| {
             for view in View::ALL {
                 ui.selectable_value(&mut app.view, view, view.name());
@@ -245,6 +350,7 @@ fn view_selector(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         })
         .response
         .on_hover_text(tr(app.lang, "What the camera panel shows (`--view` in the CLI)"));
+    app.view_state.painted.selector = response.rect;
     if app.view != before {
         // The analysis pass (and the ground truth) may be needed now.
         app.mark_dirty();
@@ -274,31 +380,55 @@ impl ShadowlabApp {
             }
         }
     }
+
+    /// The probe's shadow-map uv for the selected light, if the probe has one.
+    fn probe_map_uv(&self) -> Option<[f32; 2]> {
+        let report = self.probe.as_ref()?;
+        report.lights.iter().find(|l| l.light == self.selected_light).map(|l| l.shadow_map_uv)
+    }
+}
+
+/// The probe's texel on a light-space picture of the map occupying `square`.
+fn mark_texel(painter: &egui::Painter, square: Rect, uv: [f32; 2]) -> Pos2 {
+    let p = pos2(square.left() + uv[0] * square.width(), square.top() + uv[1] * square.height());
+    painter.circle_stroke(p, 7.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
+    p
 }
 
 fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let response = ui.interact(rect, ui.scope_id().with("camera view"), Sense::click_and_drag());
     super::set_landmark(ui.ctx(), super::LANDMARK_CAMERA_VIEW, rect);
+    // The letterbox around a lesson's frame.
+    ui.painter().rect_filled(app.view_state.painted.area, 0.0, Color32::from_gray(12));
     let painter = ui.painter_at(rect);
     let uv = Rect::from_min_max(Pos2::ZERO, pos2(1.0, 1.0));
-    match (app.camera_panel_view(), &app.view_state.view_image, &app.view_state.map) {
+    let shown_view = app.camera_panel_view();
+    let probe_uv = app.probe_map_uv();
+    let mut probe_texel = Vec::new();
+    match (shown_view, &app.view_state.view_image, &app.view_state.map) {
         (View::ShadowMap, _, Some((texture, ..))) => {
             // The light's map, square, in the middle of the panel.
             painter.rect_filled(rect, 0.0, Color32::from_gray(20));
             let square = Rect::from_center_size(rect.center(), Vec2::splat(rect.width().min(rect.height())));
             painter.image(texture.id(), square, uv, Color32::WHITE);
+            probe_texel.extend(probe_uv.map(|uv| mark_texel(&painter, square, uv)));
         }
         (View::Moments, Some(texture), _) => {
             // Two square panels side by side, their shape kept, in the middle of the panel.
             painter.rect_filled(rect, 0.0, Color32::from_gray(20));
             let [w, h] = texture.size().map(|s| s as f32);
             let scale = (rect.width() / w).min(rect.height() / h);
-            painter.image(
-                texture.id(),
-                Rect::from_center_size(rect.center(), vec2(w, h) * scale),
-                uv,
-                Color32::WHITE,
-            );
+            let pair = Rect::from_center_size(rect.center(), vec2(w, h) * scale);
+            painter.image(texture.id(), pair, uv, Color32::WHITE);
+            // The same texel in both square panels (mean depth, standard deviation), which
+            // stand at the pair's two ends (views::moments_image).
+            if let Some(uv) = probe_uv {
+                let side = pair.height();
+                for left in [pair.left(), pair.right() - side] {
+                    let square = Rect::from_min_size(pos2(left, pair.top()), Vec2::splat(side));
+                    probe_texel.push(mark_texel(&painter, square, uv));
+                }
+            }
         }
         (View::Final, ..) | (View::ShadowMap, _, None) | (_, None, _) => {
             if let Some(texture) = &app.shown.camera {
@@ -309,32 +439,56 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             painter.image(texture.id(), rect, uv, Color32::WHITE);
         }
     }
+    let mut ab_labels = Vec::new();
+    let mut a_side = rect;
     if let (Some(ab), Some(id_b)) = (&app.ab, app.shown.camera_b.as_ref().map(|t| t.id())) {
         let x = rect.left() + rect.width() * ab.divider;
+        a_side.max.x = x;
         let right = Rect::from_min_max(pos2(x, rect.top()), rect.max);
         let uv_right = Rect::from_min_max(pos2(ab.divider, 0.0), pos2(1.0, 1.0));
         painter.image(id_b, right, uv_right, Color32::WHITE);
         painter.line_segment([pos2(x, rect.top()), pos2(x, rect.bottom())], Stroke::new(2.0, Color32::WHITE));
-        let label = |text: &str, pos: Pos2, align| {
-            painter.text(pos, align, text, egui::FontId::proportional(15.0), Color32::WHITE);
+        // Below the view selector, so neither hides the other wherever the divider is.
+        let y = rect.top() + 44.0;
+        let mut label = |text: &str, pos: Pos2, align: egui::Align2| {
+            let galley =
+                painter.layout_no_wrap(text.into(), egui::FontId::proportional(15.0), Color32::WHITE);
+            let r = align.anchor_size(pos, galley.size()).expand(3.0);
+            painter.rect_filled(r, 3.0, Color32::from_black_alpha(150));
+            painter.galley(r.min + vec2(3.0, 3.0), galley, Color32::WHITE);
+            ab_labels.push(r);
         };
-        label(app.scene.shadow.technique.name(), pos2(x - 8.0, rect.top() + 8.0), egui::Align2::RIGHT_TOP);
-        label(ab.b.name(), pos2(x + 8.0, rect.top() + 8.0), egui::Align2::LEFT_TOP);
+        label(app.scene.shadow.technique.name(), pos2(x - 8.0, y), egui::Align2::RIGHT_TOP);
+        label(ab.b.name(), pos2(x + 8.0, y), egui::Align2::LEFT_TOP);
     }
+    // Camera-space marks belong on the camera's picture, never on a view of the light's map.
+    let camera_space = !is_light_space(shown_view);
     // Overlays come from the last full-quality frame: over a preview of other settings they
-    // would show the old numbers, so they wait for the release.
-    if let Some(overlay) = app.view_state.overlay.as_ref().filter(|_| !app.overlays_stale()) {
-        painter.image(overlay.id(), rect, uv, Color32::WHITE);
+    // would show the old numbers, so they wait for the release. They describe side A only.
+    let overlay = app.view_state.overlay.as_ref().filter(|_| !app.overlays_stale() && camera_space);
+    if let Some(overlay) = overlay {
+        let a_uv = Rect::from_min_max(Pos2::ZERO, pos2((a_side.width() / rect.width()).min(1.0), 1.0));
+        painter.image(overlay.id(), a_side, a_uv, Color32::WHITE);
     }
-    if app.overlays.contains(&crate::lessons::Overlay::LightFrustum) {
+    let frusta = camera_space && app.overlays.contains(&crate::lessons::Overlay::LightFrustum);
+    if frusta {
         draw_light_frusta(app, &painter, rect);
     }
     render_progress(app, &painter, rect);
-    if let Some(p) = probe_marker(app, rect) {
+    let crosshair = probe_marker(app, rect).filter(|_| camera_space);
+    if let Some(p) = crosshair {
         painter.circle_stroke(p, 7.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
         painter.line_segment([p - vec2(12.0, 0.0), p + vec2(12.0, 0.0)], Stroke::new(1.5, Color32::BLACK));
         painter.line_segment([p - vec2(0.0, 12.0), p + vec2(0.0, 12.0)], Stroke::new(1.5, Color32::BLACK));
     }
+    let painted = &mut app.view_state.painted;
+    painted.view = Some(shown_view);
+    painted.picture = rect;
+    painted.overlay = overlay.is_some();
+    painted.frusta = frusta;
+    painted.probe_crosshair = crosshair;
+    painted.probe_texel = probe_texel;
+    painted.ab_labels = ab_labels;
 
     view_selector(app, ui, rect);
 
@@ -395,10 +549,13 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
 }
 
 /// The depth colour ramp with its range in world units.
-fn legend_bar(ui: &mut Ui, lang: Lang, (lo, hi): (f32, f32)) {
+fn legend_bar(ui: &mut Ui, lang: Lang, (lo, hi): (f32, f32), present: bool) {
+    // Readable on a projector too.
+    let size = if present { 18.0 } else { 11.0 };
+    let text = |ui: &mut Ui, s: String| ui.label(egui::RichText::new(s).size(size));
     ui.horizontal_wrapped(|ui| {
-        ui.small(format!("{lo:.1}"));
-        let (rect, _) = ui.allocate_exact_size(vec2(140.0, 10.0), Sense::hover());
+        text(ui, format!("{lo:.1}"));
+        let (rect, _) = ui.allocate_exact_size(vec2(size * 12.0, size), Sense::hover());
         let steps = 28;
         for k in 0..steps {
             let c = crate::views::heat_color(k as f32 / (steps - 1) as f32);
@@ -409,8 +566,8 @@ fn legend_bar(ui: &mut Ui, lang: Lang, (lo, hi): (f32, f32)) {
             );
             ui.painter().rect_filled(cell, 0.0, Color32::from_rgb(c[0], c[1], c[2]));
         }
-        ui.small(format!("{hi:.1} {}", tr(lang, "world units from the light")));
-        ui.small(tr(lang, "· white: nothing stored · wheel: zoom"));
+        text(ui, format!("{hi:.1} {}", tr(lang, "world units from the light")));
+        text(ui, tr(lang, "· white: nothing stored · wheel: zoom").into());
     });
 }
 
@@ -490,7 +647,7 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             }
         }
     });
-    legend_bar(ui, app.lang, app.view_state.map_range);
+    legend_bar(ui, app.lang, app.view_state.map_range, app.present);
     let zoom = app.view_state.zoom.max(1.0);
     let Some((texture, map, light)) = &app.view_state.map else {
         ui.label(tr(app.lang, "no light in this scene"));
@@ -578,7 +735,8 @@ fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         }
     }
     // Wrapped to the map's width: the column may be narrow.
-    let galley = ui.painter().layout(info, egui::FontId::proportional(13.0), Color32::LIGHT_GRAY, side);
+    let info_font = egui::FontId::proportional(if app.present { 18.0 } else { 13.0 });
+    let galley = ui.painter().layout(info, info_font, Color32::LIGHT_GRAY, side);
     ui.painter().galley(info_pos, galley, Color32::LIGHT_GRAY);
 
     // Wheel over the map zooms around the probe (or the pointer), to see taps at texel scale.

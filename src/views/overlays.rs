@@ -291,16 +291,20 @@ pub fn light_frustum_edges(
 pub const FRUSTUM_SELECTED: [u8; 3] = [255, 200, 60];
 pub const FRUSTUM_OTHER: [u8; 3] = [120, 170, 255];
 
-/// An overlay of the quantity the view already shows would only hide it (and repeat its legend).
-pub fn shown_by_view(view: crate::views::View, overlay: Overlay) -> bool {
+/// Whether `view` leaves `overlay` out: the view shows it already; a heatmap view takes no
+/// second heatmap (the same colours, two legends); a view of the light's map takes nothing drawn
+/// in the camera's picture.
+pub fn hidden_by_view(view: crate::views::View, overlay: Overlay) -> bool {
     use crate::views::View;
-    matches!(
-        (overlay, view),
-        (Overlay::BlockerRadius, View::BlockerRadius)
-            | (Overlay::Penumbra, View::Penumbra)
-            | (Overlay::Blockers, View::Blockers)
-            | (Overlay::Error, View::Error)
-    )
+    let heat_overlay =
+        matches!(overlay, Overlay::BlockerRadius | Overlay::Penumbra | Overlay::Blockers | Overlay::Error);
+    match view {
+        View::ShadowMap | View::Moments => true,
+        View::BlockerRadius | View::Penumbra | View::Blockers | View::BlockerDepth | View::Error => {
+            heat_overlay
+        }
+        View::Final | View::Visibility | View::Reference => false,
+    }
 }
 
 /// Alpha-blend a translucent `overlay` (from [`compose`]) over an opaque picture of its size.
