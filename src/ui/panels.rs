@@ -57,7 +57,8 @@ pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
             ui.checkbox(&mut app.settings.show_kernel_plot, crate::i18n::tr(app.lang, "sample pattern"));
         }
     });
-    let show_plot = app.panel_visible(Panel::KernelPlot);
+    // On a projector the diagram takes the whole width (the sample pattern beside it is left out).
+    let show_plot = app.panel_visible(Panel::KernelPlot) && !(app.present && show_diagram);
     let avail = ui.available_rect_before_wrap();
     let plot_width = match (show_plot, show_diagram) {
         (false, _) => 0.0,
@@ -78,7 +79,7 @@ pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
 /// Smallest diagram text on screen, points: readable from the back of a classroom.
 pub const DIAGRAM_MIN_TEXT_PT: f32 = 14.0;
 /// The same in present mode, points.
-pub const PRESENT_DIAGRAM_MIN_TEXT_PT: f32 = 20.0;
+pub const PRESENT_DIAGRAM_MIN_TEXT_PT: f32 = 18.0;
 
 fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     // The whole width (text columns and legend use what is wider than 16:9), at most 16:9
