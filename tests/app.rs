@@ -992,3 +992,35 @@ fn the_lesson_text_says_when_the_settings_are_no_longer_the_steps() {
     assert!(h.state().changed_from_step().is_empty());
     assert!(h.query_by_label_contains("You changed the step's settings").is_none());
 }
+
+#[test]
+fn playback_left_running_loops_over_the_time_range() {
+    let mut h = harness();
+    let multi = lesson_index(&h, "multi-light");
+    h.state_mut().go_to_step(multi, 3);
+    settle(&mut h);
+    let end = shadowlab::ui::PLAYBACK_RANGE_S;
+    h.state_mut().time_s = end - 1.0;
+    h.state_mut().speed = 10.0;
+    h.state_mut().playing = true;
+    // Play past the end of the range: time comes round to the start and keeps moving.
+    let frames_before = h.state().frames_shown();
+    let mut wrapped = false;
+    let mut last = h.state().time_s;
+    for _ in 0..400 {
+        h.step();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        let t = h.state().time_s;
+        assert!((0.0..end).contains(&t), "time {t} outside 0..{end}");
+        wrapped |= t < last;
+        last = t;
+        if wrapped && t > 2.0 {
+            break;
+        }
+    }
+    assert!(wrapped && last > 2.0, "playback did not come round (time {last})");
+    assert!(h.state().playing, "playback stopped");
+    h.state_mut().playing = false;
+    settle(&mut h);
+    assert!(h.state().frames_shown() > frames_before + 1, "the views stopped refreshing");
+}

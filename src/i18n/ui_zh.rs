@@ -197,6 +197,7 @@ pub(super) const UI: &[(&str, &str)] = &[
         "你改动了这一步的设置；下面的文字描述的是这一步原本的设置。改动的有：",
     ),
     ("shadow settings", "阴影设置"),
+    ("playback loops back to 0 at the end of the range", "播放到范围末尾后从 0 重新开始"),
     ("lights", "光源"),
     ("objects", "物体"),
     (

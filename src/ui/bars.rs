@@ -43,7 +43,10 @@ impl ShadowlabApp {
                 self.playing = !self.playing;
             }
             let time_label = ui.label(tr("time (s)"));
-            let time = ui.add(egui::Slider::new(&mut self.time_s, 0.0..=60.0).max_decimals(2));
+            let range = 0.0..=super::rendering::PLAYBACK_RANGE_S;
+            let time = ui
+                .add(egui::Slider::new(&mut self.time_s, range).max_decimals(2))
+                .on_hover_text(tr("playback loops back to 0 at the end of the range"));
             if time.labelled_by(time_label.id).changed() {
                 self.mark_dirty();
             }

@@ -16,6 +16,7 @@ mod worker;
 
 pub use inspector::control_label;
 pub use panels::DIAGRAM_MIN_TEXT_PT;
+pub use rendering::PLAYBACK_RANGE_S;
 pub use settings::Settings;
 pub use window::{
     clear_paints_panels, configure_wgpu, display_available, run, ui_painter, window_options,

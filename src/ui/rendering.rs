@@ -10,6 +10,8 @@ use crate::scene::Technique;
 use crate::views::View;
 use std::time::{Duration, Instant};
 
+/// The time range of playback and of the time slider, seconds (playback loops over it).
+pub const PLAYBACK_RANGE_S: f32 = 60.0;
 /// Show "rendering..." over a view that has waited this long for its frame.
 pub const SLOW_RENDER: Duration = Duration::from_millis(150);
 /// What a preview may take, milliseconds: the preview resolution adapts to keep views refreshing
@@ -299,8 +301,9 @@ impl ShadowlabApp {
         let dt = self.last_tick.map_or(0.0, |t| now.duration_since(t).as_secs_f32());
         self.last_tick = Some(now);
         if self.playing {
-            // A stall (window dragged, machine asleep) should not jump the scene.
-            self.time_s = (self.time_s + dt.min(0.5) * self.speed) % 3600.0;
+            // A stall (window dragged, machine asleep) should not jump the scene; past the end of
+            // the time range playback starts again from 0, so a demo left running keeps moving.
+            self.time_s = (self.time_s + dt.min(0.5) * self.speed).rem_euclid(PLAYBACK_RANGE_S);
             self.reference = None;
             self.dirty = true;
         }
