@@ -34,3 +34,48 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
     }
     Ok(())
 }
+
+/// Most bytes a scene or lesson file may have. They are a page or two of text; a file near this
+/// size is not one, and reading it whole would only fill the memory.
+pub const MAX_TEXT_FILE_BYTES: u64 = 16 << 20;
+
+/// Most bytes an OBJ or MTL file may have (scanned models run to hundreds of megabytes).
+pub const MAX_MESH_FILE_BYTES: u64 = 2 << 30;
+
+/// Read a file the user named, whole. What is not a regular file is refused before it is opened:
+/// a folder, a device such as /dev/zero (which never ends) or a FIFO (whose open blocks until a
+/// writer comes). So is a file of more than `max_bytes`. The error says why, without the path
+/// (callers name it).
+pub fn read_input(path: &Path, max_bytes: u64) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let too_big = || format!("larger than the {} MiB a file may have here", max_bytes >> 20);
+    if check_regular_file(path)?.len() > max_bytes {
+        return Err(too_big());
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|file| file.take(max_bytes.saturating_add(1)).read_to_end(&mut bytes))
+        .map_err(|e| e.to_string())?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(too_big());
+    }
+    Ok(bytes)
+}
+
+/// `path` names a regular file (following symbolic links); the error says what it is instead.
+pub fn check_regular_file(path: &Path) -> Result<std::fs::Metadata, String> {
+    let metadata = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if metadata.is_dir() {
+        Err("is a folder, not a file".into())
+    } else if !metadata.is_file() {
+        Err("is not a regular file (a device or a pipe?)".into())
+    } else {
+        Ok(metadata)
+    }
+}
+
+/// [`read_input`] as UTF-8 text; the error names the first byte that is not.
+pub fn read_input_text(path: &Path, max_bytes: u64) -> Result<String, String> {
+    String::from_utf8(read_input(path, max_bytes)?)
+        .map_err(|e| format!("not UTF-8 text (byte {} is not)", e.utf8_error().valid_up_to()))
+}

@@ -317,6 +317,13 @@ fn unknown_primitive_names_the_mesh() {
     scratch.assert_no_output("out.png");
 }
 
+#[cfg(unix)]
+#[test]
+fn scene_that_is_a_device_is_rejected_at_once() {
+    // Reading /dev/zero whole never ended.
+    render_rejected("/dev/zero", &[], &["/dev/zero", "not a regular file"]);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bad input: --set overrides.
 

@@ -195,6 +195,15 @@ fn unknown_overlay_names_file_line_and_value() {
     assert!(message.contains("shadow-rays"), "{message}");
 }
 
+#[cfg(unix)]
+#[test]
+fn a_lesson_path_that_is_not_a_regular_file_is_refused_at_once() {
+    // /dev/zero never ends: reading it whole hung until the memory ran out.
+    let message = lessons::load_lesson(std::path::Path::new("/dev/zero")).expect_err("a device").to_string();
+    assert!(message.starts_with("/dev/zero: ") && message.contains("not a regular file"), "{message}");
+    assert_eq!(message.lines().count(), 1, "{message}");
+}
+
 /// The part of a control's label before its unit: “light width” of “light width (world units)”.
 fn short_label(label: &str) -> &str {
     let en = label.split(" (").next().unwrap_or(label);

@@ -378,3 +378,14 @@ fn non_finite_and_degenerate_values_are_rejected() {
     let err = parse_err(&scene_with_lights(&[&format!("{SPOT}\ncolor = [1.0, -1.0, 1.0]")]), &[]);
     assert_one_line_naming(&err, &["light.0.color"]);
 }
+
+#[cfg(unix)]
+#[test]
+fn a_scene_path_that_is_not_a_regular_file_is_refused_at_once() {
+    // /dev/zero never ends: reading it whole hung until the memory ran out.
+    let err = load_scene(Path::new("/dev/zero"), &[]).expect_err("a device is not a scene").to_string();
+    assert_one_line_naming(&err, &["/dev/zero", "not a regular file"]);
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let err = load_scene(dir.path(), &[]).expect_err("a folder is not a scene").to_string();
+    assert_one_line_naming(&err, &["is a folder"]);
+}

@@ -283,8 +283,8 @@ impl Step {
 /// Load and check one lesson file.
 pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
     let label = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| LessonError::Io { path: label.clone(), reason: e.to_string() })?;
+    let text = crate::files::read_input_text(path, crate::files::MAX_TEXT_FILE_BYTES)
+        .map_err(|reason| LessonError::Io { path: label.clone(), reason })?;
     let file: LessonFile = toml::from_str(&text).map_err(|e| {
         let (line, message) = crate::scene::describe_toml_error(&text, &e);
         LessonError::Parse { path: label.clone(), line, message }

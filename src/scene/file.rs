@@ -158,8 +158,8 @@ fn default_light_far() -> f32 {
 /// Read a scene file and apply `--set` overrides (in order).
 pub fn load_scene(path: &Path, overrides: &[(String, String)]) -> Result<Scene, SceneError> {
     let label = path.display().to_string();
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| SceneError::Io { path: label.clone(), reason: e.to_string() })?;
+    let text = crate::files::read_input_text(path, crate::files::MAX_TEXT_FILE_BYTES)
+        .map_err(|reason| SceneError::Io { path: label.clone(), reason })?;
     let base_dir = path.parent().unwrap_or(Path::new("."));
     let mut scene = parse_scene_str(&text, base_dir, &label, overrides)?;
     scene.path = Some(path.to_path_buf());

@@ -339,8 +339,8 @@ fn append_model(mesh: &mut Mesh, model: tobj::Model) -> Result<(), String> {
 
 /// Reads a text file; bytes that are not UTF-8 are replaced, not rejected.
 fn read_text(path: &Path) -> Result<String, MeshError> {
-    let bytes =
-        std::fs::read(path).map_err(|e| MeshError::Read { path: path.to_owned(), reason: e.to_string() })?;
+    let bytes = crate::files::read_input(path, crate::files::MAX_MESH_FILE_BYTES)
+        .map_err(|reason| MeshError::Read { path: path.to_owned(), reason })?;
     Ok(String::from_utf8(bytes).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()))
 }
 
@@ -404,6 +404,10 @@ fn load_texture(
     let (path, name) = (mtl_path.to_owned(), name.to_owned());
     if !resolved.exists() {
         return Err(MeshError::TextureNotFound { path, name, resolved });
+    }
+    // A folder, a device or a FIFO (whose open would block) is refused before it is opened.
+    if let Err(reason) = crate::files::check_regular_file(&resolved) {
+        return Err(MeshError::Texture { path, name, resolved, reason });
     }
     let decoded = image::ImageReader::open(&resolved)
         .and_then(|reader| reader.with_guessed_format())

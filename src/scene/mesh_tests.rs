@@ -283,3 +283,25 @@ fn bunny_loads_if_present() {
     assert_valid(&mesh);
     assert_unit_normals(&mesh);
 }
+
+const TRIANGLE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+
+#[cfg(unix)]
+#[test]
+fn a_library_or_texture_that_is_not_a_regular_file_is_refused() {
+    // Reading /dev/zero whole never ended.
+    let dir = temp_files(
+        "special",
+        &[
+            ("zero.obj", &format!("mtllib /dev/zero\n{TRIANGLE}")),
+            ("folder.obj", &format!("mtllib folder.mtl\nusemtl m\n{TRIANGLE}")),
+            ("folder.mtl", "newmtl m\nmap_Kd textures\n"),
+        ],
+    );
+    std::fs::create_dir_all(dir.join("textures")).expect("create folder");
+    let message = load_obj(&dir.join("zero.obj")).expect_err("a device").to_string();
+    assert!(message.starts_with("/dev/zero: ") && message.contains("not a regular file"), "{message}");
+    let message = load_obj(&dir.join("folder.obj")).expect_err("a folder").to_string();
+    assert!(message.contains("folder.mtl") && message.contains("is a folder"), "{message}");
+    let _ = std::fs::remove_dir_all(dir);
+}
