@@ -248,6 +248,7 @@ pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
     let load_mtl = |name: &Path| -> tobj::MTLLoadResult {
         let mtl_path = dir.join(name);
         let loaded = read_text(&mtl_path).and_then(|text| {
+            check_mtl_colours(&text).map_err(|reason| invalid(&mtl_path, reason))?;
             guarded(|| tobj::load_mtl_buf(&mut Cursor::new(text.as_bytes())))
                 .map_err(|reason| invalid(&mtl_path, reason))
         });
@@ -342,6 +343,19 @@ fn read_text(path: &Path) -> Result<String, MeshError> {
     let bytes = crate::files::read_input(path, crate::files::MAX_MESH_FILE_BYTES)
         .map_err(|reason| MeshError::Read { path: path.to_owned(), reason })?;
     Ok(String::from_utf8(bytes).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned()))
+}
+
+/// tobj panics on a colour of fewer than three numbers (`Kd 1`): name the line instead.
+fn check_mtl_colours(text: &str) -> Result<(), String> {
+    for (i, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if let Some(key @ ("Ka" | "Kd" | "Ks" | "Ke")) = words.next()
+            && words.count() < 3
+        {
+            return Err(format!("line {}: `{key}` needs three numbers (red, green, blue)", i + 1));
+        }
+    }
+    Ok(())
 }
 
 /// Runs a tobj parser, turning its error or a panic on malformed input into a

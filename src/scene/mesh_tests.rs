@@ -286,6 +286,18 @@ fn bunny_loads_if_present() {
 
 const TRIANGLE: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
 
+#[test]
+fn a_colour_of_fewer_than_three_numbers_names_its_line() {
+    let obj = format!("mtllib a.mtl\nusemtl m\n{TRIANGLE}");
+    for (mtl, key) in [("newmtl m\n\nKd 0.5\n", "Kd"), ("newmtl m\n# grey\nKa\n", "Ka")] {
+        let dir = temp_files("colour", &[("a.obj", &obj), ("a.mtl", mtl)]);
+        let message = load_obj(&dir.join("a.obj")).expect_err("a short colour").to_string();
+        assert!(message.contains("a.mtl: line 3: `"), "{message}");
+        assert!(message.contains(&format!("`{key}` needs three numbers")), "{message}");
+        let _ = std::fs::remove_dir_all(dir);
+    }
+}
+
 #[cfg(unix)]
 #[test]
 fn a_library_or_texture_that_is_not_a_regular_file_is_refused() {
