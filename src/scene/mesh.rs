@@ -247,6 +247,15 @@ pub fn load_obj(path: &Path) -> Result<Mesh, MeshError> {
     let mtl_error: RefCell<Option<MeshError>> = RefCell::default();
     let load_mtl = |name: &Path| -> tobj::MTLLoadResult {
         let mtl_path = dir.join(name);
+        // After an error nothing more is read; a library named again adds nothing new (its
+        // materials are known by name already). Read again, thousands of `mtllib` lines naming
+        // a large file took minutes.
+        if mtl_error.borrow().is_some() {
+            return Err(tobj::LoadError::OpenFileFailed);
+        }
+        if libraries.borrow().iter().any(|(loaded, _)| *loaded == mtl_path) {
+            return Ok((Vec::new(), Default::default()));
+        }
         let loaded = read_text(&mtl_path).and_then(|text| {
             check_mtl_colours(&text).map_err(|reason| invalid(&mtl_path, reason))?;
             guarded(|| tobj::load_mtl_buf(&mut Cursor::new(text.as_bytes())))

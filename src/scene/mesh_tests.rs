@@ -317,3 +317,20 @@ fn a_library_or_texture_that_is_not_a_regular_file_is_refused() {
     assert!(message.contains("folder.mtl") && message.contains("is a folder"), "{message}");
     let _ = std::fs::remove_dir_all(dir);
 }
+
+#[test]
+fn a_library_named_many_times_is_read_once() {
+    // 20000 `mtllib` lines naming a 1 MB file each read and parsed it again (minutes).
+    let mut obj = String::from("mtllib a.mtl\nusemtl m\n");
+    obj.push_str(TRIANGLE);
+    obj.push_str(&"mtllib a.mtl\n".repeat(20_000));
+    let mtl = format!("newmtl m\nKd 0.5 0.25 1\n{}", "# padding to make the library large\n".repeat(30_000));
+    let dir = temp_files("repeated_library", &[("a.obj", &obj), ("a.mtl", &mtl)]);
+    let started = std::time::Instant::now();
+    let mesh = load_obj(&dir.join("a.obj")).expect("loads");
+    assert!(started.elapsed().as_secs_f64() < 5.0, "took {:?}", started.elapsed());
+    assert_eq!(mesh.materials.len(), 1);
+    assert_eq!(mesh.materials[0].diffuse, Vec3::new(0.5, 0.25, 1.0));
+    assert_eq!(mesh.parts[0].material, Some(0));
+    let _ = std::fs::remove_dir_all(dir);
+}
