@@ -235,7 +235,8 @@ impl Builder {
 ///   unreadable material library is an error, not silently ignored.
 /// - Diffuse colour is `Kd` (0.8 grey if absent). `map_Kd` is resolved
 ///   relative to the MTL file's folder and decoded to RGBA8; a missing or
-///   undecodable texture is an error naming the MTL file and the texture path.
+///   undecodable texture, or one wider or taller than [`MAX_TEXTURE_SIDE`], is an error
+///   naming the MTL file and the texture path.
 /// - Objects without normals get smooth, area-weighted normals; vertices
 ///   without texture coordinates get uv = (0, 0). OBJ texture coordinates
 ///   have v pointing up, so v is flipped to the top-left origin used here.
@@ -412,6 +413,10 @@ fn convert_material(
     Ok(Material { name: m.name, diffuse, diffuse_texture })
 }
 
+/// The widest texture accepted: WebGPU's guaranteed 2D texture size, so a texture that loads
+/// uploads on every adapter.
+pub const MAX_TEXTURE_SIDE: u32 = 8192;
+
 fn load_texture(
     mtl_path: &Path,
     spec: &str,
@@ -432,9 +437,21 @@ fn load_texture(
     if let Err(reason) = crate::files::check_regular_file(&resolved) {
         return Err(MeshError::Texture { path, name, resolved, reason });
     }
-    let decoded = image::ImageReader::open(&resolved)
-        .and_then(|reader| reader.with_guessed_format())
-        .map_err(|e| e.to_string())
+    let reader = || {
+        image::ImageReader::open(&resolved)
+            .and_then(|reader| reader.with_guessed_format())
+            .map_err(|e| e.to_string())
+    };
+    // The size first, from the header: a texture no GPU can hold is refused before it is decoded.
+    let decoded = reader()
+        .and_then(|reader| reader.into_dimensions().map_err(|e| e.to_string()))
+        .and_then(|(width, height)| {
+            if width.max(height) > MAX_TEXTURE_SIDE {
+                Err(format!("{width}x{height} texels; at most {MAX_TEXTURE_SIDE} on a side"))
+            } else {
+                reader()
+            }
+        })
         .and_then(|reader| reader.decode().map_err(|e| e.to_string()));
     let image = match decoded {
         Ok(image) => image.into_rgba8(),

@@ -319,6 +319,24 @@ fn a_library_or_texture_that_is_not_a_regular_file_is_refused() {
 }
 
 #[test]
+fn a_texture_wider_than_gpus_take_is_refused_and_one_texel_is_enough() {
+    let obj = format!("mtllib t.mtl\nusemtl m\n{TRIANGLE}");
+    let dir = temp_files("texture_size", &[("wide.obj", &obj), ("t.mtl", "newmtl m\nmap_Kd wide.png\n")]);
+    image::RgbaImage::new(MAX_TEXTURE_SIDE + 1, 1).save(dir.join("wide.png")).expect("write png");
+    let message = load_obj(&dir.join("wide.obj")).expect_err("too wide").to_string();
+    assert!(message.contains("t.mtl") && message.contains("wide.png"), "{message}");
+    assert!(message.contains("8193x1 texels; at most 8192 on a side"), "{message}");
+    // A one-texel texture is a plain colour, not an error.
+    image::RgbaImage::from_pixel(1, 1, image::Rgba([10, 20, 30, 255]))
+        .save(dir.join("wide.png"))
+        .expect("png");
+    let mesh = load_obj(&dir.join("wide.obj")).expect("a 1x1 texture loads");
+    let texture = mesh.materials[0].diffuse_texture.as_ref().expect("the texture");
+    assert_eq!((texture.width, texture.height, texture.rgba8.clone()), (1, 1, vec![10, 20, 30, 255]));
+    let _ = std::fs::remove_dir_all(dir);
+}
+
+#[test]
 fn a_library_named_many_times_is_read_once() {
     // 20000 `mtllib` lines naming a 1 MB file each read and parsed it again (minutes).
     let mut obj = String::from("mtllib a.mtl\nusemtl m\n");
