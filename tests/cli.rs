@@ -317,6 +317,17 @@ fn unknown_primitive_names_the_mesh() {
     scratch.assert_no_output("out.png");
 }
 
+#[test]
+fn absurd_scale_names_file_line_and_key() {
+    // A scale of -1e38 rendered an empty frame without a word.
+    let scratch = Scratch::new();
+    let text = "[camera]\nposition = [0.0, 4.0, 10.0]\n\n[[object]]\nmesh = \"cube\"\nscale = -1e38\n";
+    let scene = scratch.scene("huge.toml", text);
+    let run = render(&scratch, &scene, &[]);
+    assert_bad_input(&run, &["huge.toml:6:", "object.0.scale"]);
+    scratch.assert_no_output("out.png");
+}
+
 #[cfg(unix)]
 #[test]
 fn scene_that_is_a_device_is_rejected_at_once() {

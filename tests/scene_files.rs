@@ -379,6 +379,88 @@ fn non_finite_and_degenerate_values_are_rejected() {
     assert_one_line_naming(&err, &["light.0.color"]);
 }
 
+/// `[camera]` (lines 1-2), a blank line, then `[[object]]` on line 4 with these lines.
+fn scene_with_object(object: &str) -> String {
+    format!("{CAMERA}\n[[object]]\n{object}\n")
+}
+
+#[test]
+fn absurd_but_finite_values_are_errors_at_their_key_and_line() {
+    let cases: Vec<(String, &[&str])> = vec![
+        // The example: a scale of -1e38 rendered an empty frame without a word.
+        (scene_with_object("mesh = \"cube\"\nscale = -1e38"), &["inline.toml:6:", "object.0.scale", "1e6"]),
+        (
+            scene_with_object("mesh = \"cube\"\nscale = [1.0, 2e6, 1.0]"),
+            &["inline.toml:6:", "object.0.scale"],
+        ),
+        (
+            scene_with_object("mesh = \"cube\"\nscale = [1.0, 0.0, 1.0]"),
+            &["inline.toml:6:", "object.0.scale"],
+        ),
+        (
+            scene_with_object("mesh = \"cube\"\ntranslate = [0.0, -2e6, 0.0]"),
+            &["inline.toml:6:", "object.0.translate", "1e6 world units"],
+        ),
+        ("[camera]\nposition = [3.4e38, 4.0, 10.0]\n".into(), &["inline.toml:2:", "camera.position"]),
+        (format!("{CAMERA}target = [0.0, 0.0, 1e7]\n"), &["inline.toml:3:", "camera.target"]),
+        (
+            format!("{CAMERA}far = 0.05\n"),
+            &["inline.toml:3:", "`camera.far` = 0.05", "greater than `camera.near` = 0.1"],
+        ),
+        (
+            scene_with_lights(&[&format!("{SPOT}\nnear = 10.0\nfar = 5.0")]),
+            &["inline.toml:12:", "`light.0.far` = 5", "`light.0.near` = 10"],
+        ),
+        // `far` left out (500): the error points at the light's table.
+        (scene_with_lights(&[SPOT, &format!("{SPOT}\nnear = 600.0")]), &["inline.toml:12:", "light.1.far"]),
+        (
+            scene_with_lights(&["kind = \"spot\"\nposition = [0.0, 1e7, 0.0]\nfov_deg = 60.0"]),
+            &["inline.toml:9:", "light.0.position", "1e6"],
+        ),
+        (
+            scene_with_lights(&[&format!("{SPOT}\ncolor = [1e5, 1.0, 1.0]")]),
+            &["inline.toml:11:", "light.0.color"],
+        ),
+        (format!("ambient = [0.1, -0.1, 0.1]\n{CAMERA}"), &["inline.toml:1:", "ambient", "negative"]),
+        (scene_with_lights(&[SPOT; MAX_LIGHTS + 1]), &["inline.toml:27:", "5 lights", "light.4"]),
+        (
+            scene_with_lights(&[&format!("{SPOT}\nshadow_map_size = 1")]),
+            &["inline.toml:11:", "light.0.shadow_map_size"],
+        ),
+        (format!("{CAMERA}\n[shadow]\nbias = 7.0\n"), &["inline.toml:5:", "bias"]),
+        (
+            "[camera]\nposition = [0.0, 0.0, 0.0]\n".into(),
+            &["inline.toml:1:", "camera.target", "camera.position"],
+        ),
+        (scene_with_object("mesh = \"blob\""), &["inline.toml:5:", "object.0.mesh", "blob"]),
+    ];
+    for (text, needles) in cases {
+        assert_one_line_naming(&parse_err(&text, &[]), needles);
+    }
+    // A scale allowed on its own, but a model 1e5 units across scaled by 1e3 reaches 1e8.
+    let dir = tempfile::tempdir().expect("temporary folder");
+    std::fs::write(dir.path().join("far.obj"), "v 0 0 0\nv 1e5 0 0\nv 0 1e5 0\nf 1 2 3\n")
+        .expect("write obj");
+    let text = scene_with_object("mesh = \"far.obj\"\nscale = 1e3");
+    let err = parse_scene_str(&text, dir.path(), "inline.toml", &[]).expect_err("too far").to_string();
+    assert_one_line_naming(&err, &["inline.toml:6:", "object.0.scale", "mesh `far`", "reaches 1.4"]);
+    // An override names the key (its value has no line in the file).
+    let err = parse_err(&scene_with_object("mesh = \"cube\""), &[("object.0.scale", "-1e38")]);
+    assert_one_line_naming(&err, &["--set object.0.scale", "1e6"]);
+}
+
+#[test]
+fn large_but_sane_values_still_load() {
+    let scene = parse_ok(&scene_with_object(
+        "mesh = \"plane\"\nscale = [1e5, 1.0, 1e5]\ntranslate = [0.0, 0.0, -9e5]",
+    ));
+    assert_eq!(scene.objects[0].scale.to_array(), [1e5, 1.0, 1e5]);
+    let far_light =
+        "kind = \"spot\"\nposition = [0.0, 1e6, 0.0]\nfov_deg = 60.0\nfar = 2e6\ncolor = [1e4, 0.0, 0.0]";
+    let scene = parse_ok(&scene_with_lights(&[far_light]));
+    assert_eq!(scene.lights[0].position.y, 1e6);
+}
+
 #[cfg(unix)]
 #[test]
 fn a_scene_path_that_is_not_a_regular_file_is_refused_at_once() {

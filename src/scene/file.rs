@@ -182,7 +182,7 @@ pub fn parse_scene_str(
     let file: SceneFile = toml::from_str(text).map_err(parse_error)?;
     // Meshes load once even though each override is validated with a full build.
     let mut meshes = HashMap::new();
-    build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_path(label))?;
+    build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_path(label, Some(text)))?;
 
     for (key, value) in overrides {
         apply_override(&mut table, key, value)?;
@@ -193,7 +193,7 @@ pub fn parse_scene_str(
     }
     let file = SceneFile::deserialize(toml::Value::Table(table))
         .map_err(|e| SceneError::Invalid { path: label.to_string(), message: e.message().to_string() })?;
-    build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_path(label))
+    build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_path(label, None))
 }
 
 /// Set one key in the scene table; `value` is TOML (`4`, `[0,1,0]`, `true`) or a bare word.
@@ -275,9 +275,13 @@ enum BuildError {
 }
 
 impl BuildError {
-    fn with_path(self, label: &str) -> SceneError {
+    /// The error of a file: at the line of the key it names where `text` (the file) is given.
+    fn with_path(self, label: &str, text: Option<&str>) -> SceneError {
         match self {
-            BuildError::Invalid(message) => SceneError::Invalid { path: label.into(), message },
+            BuildError::Invalid(message) => match text.and_then(|text| key_line(text, &message)) {
+                Some(line) => SceneError::Parse { path: label.into(), line, message },
+                None => SceneError::Invalid { path: label.into(), message },
+            },
             BuildError::Mesh(e) => SceneError::Mesh(e),
         }
     }
@@ -289,12 +293,104 @@ impl BuildError {
     }
 }
 
+/// The line of the key a build error names first (in backticks: `camera.far`, `light.0.near`,
+/// `object.2.scale`, or a bare `[shadow]` key): the key's own line, or where the file leaves it
+/// out, the line of its `[[light]]` or `[[object]]`.
+fn key_line(text: &str, message: &str) -> Option<usize> {
+    use toml::de::{DeTable, DeValue};
+    let key = message.split('`').nth(1)?;
+    let parts: Vec<&str> = key.split('.').collect();
+    let path: Vec<&str> = match parts[0] {
+        "camera" | "light" | "object" | "ambient" => parts,
+        _ => std::iter::once("shadow").chain(parts).collect(),
+    };
+    let doc = DeTable::parse(text).ok()?;
+    let mut table = doc.get_ref();
+    let mut line = None;
+    let mut rest = &path[..];
+    while let Some((name, tail)) = rest.split_first() {
+        let Some((k, v)) = table.iter().find(|(k, _)| k.get_ref() == name) else { break };
+        line = Some(line_of(text, k.span().start));
+        rest = tail;
+        match (v.get_ref(), rest.split_first()) {
+            (DeValue::Table(inner), Some(_)) => table = inner,
+            (DeValue::Array(items), Some((index, tail))) => {
+                let Some(item) = index.parse::<usize>().ok().and_then(|i| items.get(i)) else { break };
+                line = Some(line_of(text, item.span().start));
+                let DeValue::Table(inner) = item.get_ref() else { break };
+                table = inner;
+                rest = tail;
+            }
+            _ => break,
+        }
+    }
+    line
+}
+
+/// Farthest a camera, light or object may be placed from the origin, world units. The frusta end
+/// at most 1e7 away (`far`), and near 1e6 an f32 coordinate moves in steps of 1/16: beyond it
+/// depths and shadow-map texel centres quantise visibly, and a scene of metres drawn there is a
+/// few pixels of noise or nothing. The shipped scenes stay within 200.
+const MAX_COORDINATE: f32 = 1e6;
+
+/// Largest and smallest scale factor on an axis: a unit mesh scaled past 1e6 outgrows
+/// `MAX_COORDINATE`; one scaled below 1e-6 is far smaller than a shadow-map texel of any scene.
+const SCALE_RANGE: (f32, f32) = (1e-6, 1e6);
+
+/// Farthest any point of an object may reach from the origin, world units: the longest `far`,
+/// so an object always fits in a frustum.
+const MAX_REACH: f32 = 1e7;
+
+/// Brightest colour component of a light or of the ambient light (linear). With `intensity` up
+/// to 1e4, their product stays far from f32's overflow in the shaders' sums.
+const MAX_COLOR: f32 = 1e4;
+
 fn vec3(name: &str, v: [f32; 3]) -> Result<Vec3, BuildError> {
     if v.iter().all(|c| c.is_finite()) {
         Ok(Vec3::from(v))
     } else {
         Err(BuildError::Invalid(format!("`{name}` must be finite numbers, got {v:?}")))
     }
+}
+
+/// A position: finite and within `MAX_COORDINATE` of the origin on each axis.
+fn coordinates(name: &str, v: [f32; 3]) -> Result<Vec3, BuildError> {
+    let p = vec3(name, v)?;
+    if p.abs().max_element() > MAX_COORDINATE {
+        return Err(BuildError::Invalid(format!(
+            "`{name}` = {v:?} is more than {MAX_COORDINATE:e} world units from the origin"
+        )));
+    }
+    Ok(p)
+}
+
+/// A colour: finite, each component in 0..=`MAX_COLOR`.
+fn rgb(name: &str, v: [f32; 3]) -> Result<Vec3, BuildError> {
+    let c = vec3(name, v)?;
+    if c.min_element() < 0.0 {
+        return Err(BuildError::Invalid(format!("`{name}` must not be negative, got {v:?}")));
+    }
+    if c.max_element() > MAX_COLOR {
+        return Err(BuildError::Invalid(format!("`{name}` = {v:?} is brighter than {MAX_COLOR:e}")));
+    }
+    Ok(c)
+}
+
+/// A frustum's far plane: beyond its near plane (by `factor`) and at most `hi`.
+fn far_plane(
+    name: &str,
+    far: f32,
+    near_name: &str,
+    near: f32,
+    factor: f32,
+    hi: f32,
+) -> Result<f32, BuildError> {
+    if far.is_finite() && far <= near * factor {
+        return Err(BuildError::Invalid(format!(
+            "`{name}` = {far} must be greater than `{near_name}` = {near}"
+        )));
+    }
+    ranged(name, far, near * factor, hi)
 }
 
 fn ranged(name: &str, v: f32, lo: f32, hi: f32) -> Result<f32, BuildError> {
@@ -322,31 +418,47 @@ fn build_scene(
     let near = ranged("camera.near", c.near, 1e-5, 1e6)?;
     let camera = Camera {
         projection,
-        position: vec3("camera.position", c.position)?,
-        target: vec3("camera.target", c.target)?,
+        position: coordinates("camera.position", c.position)?,
+        target: coordinates("camera.target", c.target)?,
         up: vec3("camera.up", c.up)?,
         near,
-        far: ranged("camera.far", c.far, near * 1.0001, 1e7)?,
+        far: far_plane("camera.far", c.far, "camera.near", near, 1.0001, 1e7)?,
     };
     if camera.up.length() < 1e-6 {
         return Err(BuildError::Invalid("`camera.up` must not be zero".into()));
     }
     if (camera.target - camera.position).length() < 1e-6 {
-        return Err(BuildError::Invalid("camera.position and camera.target coincide".into()));
+        return Err(BuildError::Invalid("`camera.target` coincides with `camera.position`".into()));
     }
 
     let mut objects = Vec::with_capacity(file.objects.len());
     for (i, o) in file.objects.into_iter().enumerate() {
         let key = format!("object.{i}");
-        let mesh = resolve_mesh(&o.mesh, base_dir, cache)?;
+        let mesh = resolve_mesh(&format!("{key}.mesh"), &o.mesh, base_dir, cache)?;
         let scale = match o.scale {
             None => Vec3::ONE,
             Some(ScaleFile::Uniform(s)) => Vec3::splat(s),
             Some(ScaleFile::PerAxis(s)) => Vec3::from(s),
         };
-        if !scale.is_finite() || scale.abs().min_element() < 1e-6 {
+        let (min_scale, max_scale) = SCALE_RANGE;
+        if !scale.is_finite()
+            || scale.abs().min_element() < min_scale
+            || scale.abs().max_element() > max_scale
+        {
             return Err(BuildError::Invalid(format!(
-                "`{key}.scale` must be finite and non-zero, got {scale}"
+                "`{key}.scale` must be finite, non-zero and at most {max_scale:e} in size on each axis, got {:?}",
+                scale.to_array()
+            )));
+        }
+        let translate = coordinates(&format!("{key}.translate"), o.translate)?;
+        // However it turns, the object stays within this distance of the origin.
+        let (lo, hi) = mesh.bounds();
+        let reach = translate.length() + (lo.abs().max(hi.abs()) * scale.abs()).length();
+        if !reach.is_finite() || reach > MAX_REACH {
+            return Err(BuildError::Invalid(format!(
+                "`{key}.scale`: mesh `{}` scaled to {scale} reaches {reach:e} world units from the origin, \
+                 more than {MAX_REACH:e}",
+                mesh.name
             )));
         }
         let color = vec3(&format!("{key}.color"), o.color)?;
@@ -363,7 +475,7 @@ fn build_scene(
 
     if file.lights.len() > MAX_LIGHTS {
         return Err(BuildError::Invalid(format!(
-            "{} lights; shadowlab supports at most {MAX_LIGHTS}",
+            "{} lights; shadowlab supports at most {MAX_LIGHTS} (`light.{MAX_LIGHTS}` is one too many)",
             file.lights.len()
         )));
     }
@@ -378,7 +490,7 @@ fn build_scene(
         objects,
         lights,
         shadow: file.shadow,
-        ambient: vec3("ambient", file.ambient)?,
+        ambient: rgb("ambient", file.ambient)?,
     })
 }
 
@@ -413,7 +525,9 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
     let size = match (l.width, l.angular_diameter_deg) {
         (Some(_), Some(_)) => {
             return Err(BuildError::Invalid(format!(
-                "light {i}: give `width` or `angular_diameter_deg`, not both"
+                "`{}` and `{}` are both given; give one",
+                key("width"),
+                key("angular_diameter_deg")
             )));
         }
         (None, Some(a)) => {
@@ -431,7 +545,7 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
     };
     let default_near = if l.kind == LightKindName::Spot { 1.0 } else { 0.01 };
     let near = ranged(&key("near"), l.near.unwrap_or(default_near), 1e-4, 1e6)?;
-    let far = ranged(&key("far"), l.far, near * 1.001, 1e7)?;
+    let far = far_plane(&key("far"), l.far, &key("near"), near, 1.001, 1e7)?;
     if !(256..=8192).contains(&l.shadow_map_size) {
         return Err(BuildError::Invalid(format!(
             "`{}` = {} is out of range 256..=8192",
@@ -439,15 +553,12 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
             l.shadow_map_size
         )));
     }
-    let position = vec3(&key("position"), l.position)?;
-    let target = vec3(&key("target"), l.target)?;
+    let position = coordinates(&key("position"), l.position)?;
+    let target = coordinates(&key("target"), l.target)?;
     if (target - position).length() < 1e-6 {
-        return Err(BuildError::Invalid(format!("light {i}: position and target coincide")));
+        return Err(BuildError::Invalid(format!("`{}` coincides with `{}`", key("target"), key("position"))));
     }
-    let color = vec3(&key("color"), l.color)?;
-    if color.min_element() < 0.0 {
-        return Err(BuildError::Invalid(format!("`{}` must not be negative", key("color"))));
-    }
+    let color = rgb(&key("color"), l.color)?;
     Ok(Light {
         kind,
         position,
@@ -464,6 +575,7 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
 }
 
 fn resolve_mesh(
+    key: &str,
     name: &str,
     base_dir: &Path,
     cache: &mut HashMap<PathBuf, Arc<Mesh>>,
@@ -474,7 +586,7 @@ fn resolve_mesh(
     }
     if !name.to_ascii_lowercase().ends_with(".obj") {
         return Err(BuildError::Invalid(format!(
-            "unknown mesh `{name}` (expected one of {} or a path to an .obj file)",
+            "`{key}`: unknown mesh `{name}` (expected one of {} or a path to an .obj file)",
             mesh::PRIMITIVES.join(", ")
         )));
     }
