@@ -79,3 +79,27 @@ pub fn read_input_text(path: &Path, max_bytes: u64) -> Result<String, String> {
     String::from_utf8(read_input(path, max_bytes)?)
         .map_err(|e| format!("not UTF-8 text (byte {} is not)", e.utf8_error().valid_up_to()))
 }
+
+/// Text from a file, or a file's name, as it goes into a one-line message: line breaks and other
+/// control characters are written as escapes (`\n`, `\r`, `\u{1b}`), so the message stays on
+/// its line and cannot move a terminal's cursor.
+pub struct OneLine<'a>(pub &'a str);
+
+impl std::fmt::Display for OneLine<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        use std::fmt::Write;
+        for c in self.0.chars() {
+            if c.is_control() || matches!(c, '\u{2028}' | '\u{2029}') {
+                write!(f, "{}", c.escape_default())?;
+            } else {
+                f.write_char(c)?;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// A path as [`OneLine`] text.
+pub fn path_line(path: &Path) -> String {
+    OneLine(&path.to_string_lossy()).to_string()
+}

@@ -461,6 +461,20 @@ fn large_but_sane_values_still_load() {
     assert_eq!(scene.lights[0].position.y, 1e6);
 }
 
+#[test]
+fn errors_stay_on_one_line_whatever_the_file_holds() {
+    // A carriage return in a key once went into the message as it was.
+    let err = parse_err(&format!("{CAMERA}\n[[object]]\nm\rsh = \"plane\"\n"), &[]);
+    assert_one_line_naming(&err, &["inline.toml:5:", "m\\rsh"]);
+    assert!(!err.contains('\r'), "{err:?}");
+    // A line break in a mesh name.
+    let err = parse_err(&scene_with_object("mesh = \"line\\nbreak.obj\""), &[]);
+    assert_one_line_naming(&err, &["line\\nbreak.obj"]);
+    // serde spells out the float it did not want; a long one is given in exponent form.
+    let err = parse_err(&scene_with_object("mesh = -1e38"), &[]);
+    assert_one_line_naming(&err, &["inline.toml:5:", "mesh", "`-1e38`"]);
+}
+
 #[cfg(unix)]
 #[test]
 fn a_scene_path_that_is_not_a_regular_file_is_refused_at_once() {

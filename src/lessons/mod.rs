@@ -6,6 +6,7 @@
 pub mod live;
 
 use crate::diagrams::DiagramKind;
+use crate::files::OneLine;
 use crate::scene::{Scene, SceneError, load_scene};
 use crate::views::View;
 use serde::Deserialize;
@@ -14,13 +15,13 @@ use toml::Spanned;
 
 #[derive(Debug, thiserror::Error)]
 pub enum LessonError {
-    #[error("{path}: cannot read: {reason}")]
+    #[error("{}: cannot read: {}", OneLine(path), OneLine(reason))]
     Io { path: String, reason: String },
-    #[error("{path}:{line}: {message}")]
+    #[error("{}:{line}: {}", OneLine(path), OneLine(message))]
     Parse { path: String, line: usize, message: String },
-    #[error("{path}:{line}: step {step}: {message}")]
+    #[error("{}:{line}: step {step}: {}", OneLine(path), OneLine(message))]
     Step { path: String, line: usize, step: usize, message: String },
-    #[error("{0}")]
+    #[error("{}", OneLine(.0))]
     NotFound(String),
 }
 

@@ -9,6 +9,7 @@ use super::light::{Light, LightKind, LightSize};
 use super::mesh::{self, Mesh, MeshError};
 use super::settings::ShadowSettings;
 use super::{Camera, MAX_LIGHTS, Object, Projection, Scene};
+use crate::files::OneLine;
 use glam::Vec3;
 use serde::Deserialize;
 use std::collections::HashMap;
@@ -17,13 +18,13 @@ use std::sync::Arc;
 
 #[derive(Debug, thiserror::Error)]
 pub enum SceneError {
-    #[error("{path}: cannot read: {reason}")]
+    #[error("{}: cannot read: {}", OneLine(path), OneLine(reason))]
     Io { path: String, reason: String },
-    #[error("{path}:{line}: {message}")]
+    #[error("{}:{line}: {}", OneLine(path), OneLine(message))]
     Parse { path: String, line: usize, message: String },
-    #[error("{path}: {message}")]
+    #[error("{}: {}", OneLine(path), OneLine(message))]
     Invalid { path: String, message: String },
-    #[error("--set {key}: {message}")]
+    #[error("--set {}: {}", OneLine(key), OneLine(message))]
     Override { key: String, message: String },
     #[error(transparent)]
     Mesh(#[from] MeshError),
@@ -187,7 +188,7 @@ pub fn parse_scene_str(
     for (key, value) in overrides {
         apply_override(&mut table, key, value)?;
         let file = SceneFile::deserialize(toml::Value::Table(table.clone())).map_err(|e| {
-            SceneError::Override { key: key.clone(), message: e.message().trim().to_string() }
+            SceneError::Override { key: key.clone(), message: short_numbers(e.message().trim()) }
         })?;
         build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_override(key))?;
     }
@@ -254,7 +255,7 @@ pub(crate) fn line_of(text: &str, byte: usize) -> usize {
 /// The line of a TOML error and its message, naming the key where serde's message does not
 /// (`unknown variant 'blurry'` becomes "`technique`: unknown variant ...").
 pub(crate) fn describe_toml_error(text: &str, e: &toml::de::Error) -> (usize, String) {
-    let message = e.message().trim().to_string();
+    let message = short_numbers(e.message().trim());
     let Some(span) = e.span() else { return (1, message) };
     let line = line_of(text, span.start);
     let line_text = text.lines().nth(line - 1).unwrap_or("");
@@ -266,6 +267,23 @@ pub(crate) fn describe_toml_error(text: &str, e: &toml::de::Error) -> (usize, St
         Some(key) => (line, format!("`{key}`: {message}")),
         None => (line, message),
     }
+}
+
+/// serde spells out a float it did not expect in full (`floating point
+/// \`340000000000000000000000000000000000000.0\``): a quoted number that long is written in
+/// exponent form instead.
+fn short_numbers(message: &str) -> String {
+    let mut out = String::with_capacity(message.len());
+    for (i, part) in message.split('`').enumerate() {
+        if i > 0 {
+            out.push('`');
+        }
+        match part.parse::<f64>() {
+            Ok(v) if i % 2 == 1 && part.len() > 24 => out.push_str(&format!("{v:e}")),
+            _ => out.push_str(part),
+        }
+    }
+    out
 }
 
 /// A problem found while building, before we know whether the file or an override caused it.

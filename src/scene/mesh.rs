@@ -15,6 +15,8 @@ use std::sync::Arc;
 
 use glam::{DVec3, Vec3};
 
+use crate::files::{OneLine, path_line};
+
 /// One vertex as uploaded to the GPU: 32 bytes, position at offset 0, normal
 /// at 12, uv at 24.
 ///
@@ -76,18 +78,29 @@ pub struct Mesh {
 #[derive(Debug, thiserror::Error)]
 pub enum MeshError {
     /// The OBJ file or one of its material libraries could not be read.
-    #[error("{}: cannot read file: {reason}", path.display())]
+    #[error("{}: cannot read file: {}", path_line(path), OneLine(reason))]
     Read { path: PathBuf, reason: String },
     /// A malformed line, an index out of range or a non-finite position.
-    #[error("{}: {reason}", path.display())]
+    #[error("{}: {}", path_line(path), OneLine(reason))]
     Invalid { path: PathBuf, reason: String },
     /// `path` is the MTL file naming the texture.
-    #[error("{}: texture `{name}` not found (looked for {})", path.display(), resolved.display())]
+    #[error(
+        "{}: texture `{}` not found (looked for {})",
+        path_line(path),
+        OneLine(name),
+        path_line(resolved)
+    )]
     TextureNotFound { path: PathBuf, name: String, resolved: PathBuf },
     /// `path` is the MTL file naming the texture.
-    #[error("{}: cannot load texture `{name}` ({}): {reason}", path.display(), resolved.display())]
+    #[error(
+        "{}: cannot load texture `{}` ({}): {}",
+        path_line(path),
+        OneLine(name),
+        path_line(resolved),
+        OneLine(reason)
+    )]
     Texture { path: PathBuf, name: String, resolved: PathBuf, reason: String },
-    #[error("{}: contains no triangles", path.display())]
+    #[error("{}: contains no triangles", path_line(path))]
     NoTriangles { path: PathBuf },
 }
 
