@@ -335,6 +335,24 @@ fn scene_that_is_a_device_is_rejected_at_once() {
     render_rejected("/dev/zero", &[], &["/dev/zero", "not a regular file"]);
 }
 
+#[test]
+fn scene_that_shows_nothing_renders_with_a_warning() {
+    let scratch = Scratch::new();
+    let text =
+        "[camera]\nposition = [0.0, 4.0, 10.0]\ntarget = [0.0, 100.0, 10.0]\n\n[[object]]\nmesh = \"cube\"\n";
+    let scene = scratch.scene("away.toml", text);
+    let run = render(&scratch, &scene, &[]);
+    assert_eq!(run.code, Some(0), "a legal scene renders:\n{run}");
+    let lines: Vec<&str> = run.stderr.lines().collect();
+    assert_eq!(lines.len(), 1, "one warning:\n{run}");
+    assert!(lines[0].starts_with("shadowlab: warning: "), "{run}");
+    assert!(
+        lines[0].contains("away.toml") && lines[0].contains("no object is in the camera's view"),
+        "{run}"
+    );
+    assert!(scratch.path("out.png").exists(), "{run}");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Bad input: --set overrides.
 

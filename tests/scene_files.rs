@@ -379,6 +379,42 @@ fn non_finite_and_degenerate_values_are_rejected() {
     assert_one_line_naming(&err, &["light.0.color"]);
 }
 
+#[test]
+fn shipped_scenes_and_lesson_steps_show_something() {
+    let dir = repo_path("assets/scenes");
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .expect("assets/scenes is readable")
+        .map(|entry| entry.expect("directory entry").path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    for path in &paths {
+        let scene = load_scene(path, &[]).unwrap_or_else(|e| panic!("{} should load: {e}", path.display()));
+        assert_eq!(scene.warnings(0.0, 16.0 / 9.0), Vec::<String>::new(), "{}", path.display());
+    }
+    let lessons = shadowlab::lessons::load_all(&repo_path("lessons")).expect("the lessons load");
+    for lesson in &lessons {
+        for (i, step) in lesson.steps.iter().enumerate() {
+            let scene = step.scene().expect("the step's scene loads");
+            let warnings = scene.warnings(step.time_s, 16.0 / 9.0);
+            assert_eq!(warnings, Vec::<String>::new(), "lesson {} step {}", lesson.id, i + 1);
+            for t in 0..step.try_this.len() {
+                let scene = step.scene_with_try_this(t).expect("the prompt's scene loads");
+                let time = step.try_this[t].time_s.unwrap_or(step.time_s);
+                let warnings = scene.warnings(time, 16.0 / 9.0);
+                assert_eq!(
+                    warnings,
+                    Vec::<String>::new(),
+                    "lesson {} step {} try_this {}",
+                    lesson.id,
+                    i + 1,
+                    t + 1
+                );
+            }
+        }
+    }
+}
+
 /// `[camera]` (lines 1-2), a blank line, then `[[object]]` on line 4 with these lines.
 fn scene_with_object(object: &str) -> String {
     format!("{CAMERA}\n[[object]]\n{object}\n")
@@ -459,6 +495,51 @@ fn large_but_sane_values_still_load() {
         "kind = \"spot\"\nposition = [0.0, 1e6, 0.0]\nfov_deg = 60.0\nfar = 2e6\ncolor = [1e4, 0.0, 0.0]";
     let scene = parse_ok(&scene_with_lights(&[far_light]));
     assert_eq!(scene.lights[0].position.y, 1e6);
+}
+
+#[test]
+fn scenes_that_show_nothing_say_so() {
+    let warnings = |text: &str| parse_ok(text).warnings(0.0, 16.0 / 9.0);
+    let light = "kind = \"spot\"\nposition = [0.0, 10.0, 0.0]\nfov_deg = 60.0";
+    let cases: Vec<(String, &str)> = vec![
+        (CAMERA.to_string(), "no objects"),
+        (
+            format!("{CAMERA}target = [0.0, 100.0, 10.0]\n\n[[object]]\nmesh = \"cube\"\n"),
+            "no object is in the camera's view",
+        ),
+        (format!("{CAMERA}far = 2.0\n\n[[object]]\nmesh = \"cube\"\n"), "no object is in the camera's view"),
+        (scene_with_object("mesh = \"cube\"\nscale = 100.0"), "the camera is inside object `cube`"),
+        (
+            format!(
+                "{CAMERA}\n[[object]]\nname = \"box\"\nmesh = \"cube\"\nscale = 30.0\ntranslate = [0.0, 0.0, -40.0]\n\n\
+                 [[light]]\nkind = \"spot\"\nposition = [0.0, 10.0, -40.0]\ntarget = [0.0, 0.0, -40.0]\nfov_deg = 60.0\n"
+            ),
+            "light 0 is inside object `box`",
+        ),
+        (
+            format!(
+                "{CAMERA}\n[[object]]\nmesh = \"cube\"\n\n[[light]]\n{light}\ntarget = [0.0, 20.0, 0.0]\n"
+            ),
+            "light 0's frustum (depths 1..500) holds no object",
+        ),
+        (
+            format!(
+                "ambient = [0.0, 0.0, 0.0]\n{CAMERA}\n[[object]]\nmesh = \"cube\"\n\n[[light]]\n{light}\nintensity = 0.0\n"
+            ),
+            "nothing lights the scene",
+        ),
+    ];
+    for (text, needle) in cases {
+        let found = warnings(&text);
+        assert!(
+            found.iter().any(|w| w.contains(needle)),
+            "expected a warning with {needle:?}, got {found:?}\n{text}"
+        );
+        assert!(found.iter().all(|w| w.lines().count() == 1), "{found:?}");
+    }
+    // The plane under a light is no inside, and a scene that shows something says nothing.
+    let text = scene_with_lights(&[SPOT]);
+    assert_eq!(warnings(&text), Vec::<String>::new(), "{text}");
 }
 
 #[test]

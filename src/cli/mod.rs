@@ -430,7 +430,16 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
     if let Some(summary) = summary {
         println!("{summary}");
     }
+    warn_of_empty_picture(&resolved.label, &scene, resolved.time_s, args.frame.size);
     Ok(())
+}
+
+/// A scene that loaded but shows nothing says so on stderr (once the command has done its work,
+/// so a refusal stays one line).
+fn warn_of_empty_picture(label: &str, scene: &Scene, time_s: f32, (w, h): (u32, u32)) {
+    for warning in scene.warnings(time_s, w as f32 / h as f32) {
+        eprintln!("shadowlab: warning: {label}: {warning}");
+    }
 }
 
 fn probe(args: ProbeArgs) -> Result<(), CliError> {
@@ -457,5 +466,6 @@ fn probe(args: ProbeArgs) -> Result<(), CliError> {
     let json =
         serde_json::to_string_pretty(&report).map_err(|e| CliError { code: 1, message: e.to_string() })?;
     println!("{json}");
+    warn_of_empty_picture(&resolved.label, &scene, resolved.time_s, args.frame.size);
     Ok(())
 }

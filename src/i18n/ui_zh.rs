@@ -49,6 +49,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("dismiss", "关闭"),
     ("Shortcuts", "快捷键"),
     ("opened", "已打开"),
+    ("warning", "警告"),
     ("taking a screenshot...", "正在截图……"),
     ("saved", "已保存"),
     ("Left / Right", "← / →"),

@@ -4,6 +4,7 @@
 //! transforms the renderer and the CPU twin both need. Time `t` is in seconds.
 
 mod camera;
+mod checks;
 mod file;
 mod light;
 pub mod mesh;

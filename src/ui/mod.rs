@@ -256,6 +256,8 @@ impl ShadowlabApp {
             if is_obj { scene_for_obj(path) } else { load_scene(path, &[]).map_err(|e| e.to_string()) };
         match loaded {
             Ok(scene) => {
+                // A scene that shows nothing says so (the CLI prints the same warnings).
+                let warnings = scene.warnings(0.0, 16.0 / 9.0);
                 self.set_scene(scene, Source::Scene(path.to_path_buf()));
                 // A new scene starts clean: nothing of the last one's probe, overlays, view or zoom.
                 self.probe_at = None;
@@ -272,6 +274,10 @@ impl ShadowlabApp {
                 }
                 self.error = None;
                 self.status = format!("{} {}", crate::i18n::tr(self.lang, "opened"), path.display());
+                if !warnings.is_empty() {
+                    let warning = crate::i18n::tr(self.lang, "warning");
+                    self.status = format!("{} · {warning}: {}", self.status, warnings.join(" · "));
+                }
             }
             Err(e) => self.error = Some(AppError::new("could not open the scene", e)),
         }
