@@ -777,13 +777,16 @@ fn bench_unknown_row_and_bad_override_are_refused() {
 #[test]
 fn bench_app_window_drives_the_real_window() {
     // A real window needs a display: Xvfb stands in for one (the CI script installs it).
-    let mut command = std::process::Command::new("xvfb-run");
+    let xvfb = common::Xvfb::start("1600x900x24");
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"));
     command
-        .args(["-a", "-s", "-screen 0 1600x900x24", env!("CARGO_BIN_EXE_shadowlab")])
         .args(["bench", "--app", "--window", "--seconds", "0.5", "--json"])
         .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("DISPLAY", &xvfb.display)
+        .env_remove("WAYLAND_DISPLAY")
         .env("XDG_RUNTIME_DIR", common::runtime_dir());
-    let output = command.output().expect("xvfb-run runs (apt-get install xvfb xauth)");
+    let output = command.output().expect("shadowlab runs");
+    drop(xvfb);
     let run = Run {
         code: output.status.code(),
         stdout: String::from_utf8_lossy(&output.stdout).into_owned(),

@@ -125,6 +125,21 @@ pub struct RenderWorker {
     /// The newest job whose frame has come back.
     finished: u64,
     submitted_at: Option<Instant>,
+    /// The render thread, joined on drop: the device must be torn down by its thread before the
+    /// process exits (a software Vulkan driver torn down under a live thread can crash at exit).
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Drop for RenderWorker {
+    fn drop(&mut self) {
+        // Everything submitted is stale now (a ground truth stops at its next batch), and a
+        // closed queue ends the thread's loop.
+        self.latest.store(u64::MAX, Ordering::Release);
+        self.jobs = mpsc::channel().0;
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
 }
 
 /// While dragging the map picture is built at this size at most.
@@ -215,13 +230,30 @@ impl RenderWorker {
                 }
             }
         });
-        if let Err(e) = spawned {
-            // No thread: report it the way a device failure is reported.
-            let (tx, rx) = mpsc::channel();
-            let _ = tx.send(WorkerEvent::Ready(Err(format!("could not start the render thread: {e}"))));
-            return Self { jobs: mpsc::channel().0, events: rx, latest, finished: 0, submitted_at: None };
+        let spawned = match spawned {
+            Ok(thread) => thread,
+            Err(e) => {
+                // No thread: report it the way a device failure is reported.
+                let (tx, rx) = mpsc::channel();
+                let _ = tx.send(WorkerEvent::Ready(Err(format!("could not start the render thread: {e}"))));
+                return Self {
+                    jobs: mpsc::channel().0,
+                    events: rx,
+                    latest,
+                    finished: 0,
+                    submitted_at: None,
+                    thread: None,
+                };
+            }
+        };
+        Self {
+            jobs: job_tx,
+            events: event_rx,
+            latest,
+            finished: 0,
+            submitted_at: None,
+            thread: Some(spawned),
         }
-        Self { jobs: job_tx, events: event_rx, latest, finished: 0, submitted_at: None }
     }
 
     /// Queue a render; anything older that has not started is dropped. Returns the job's id.

@@ -76,3 +76,39 @@ pub fn run(command: &mut std::process::Command) -> Run {
         stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
     }
 }
+
+/// A virtual X server of this test's own, killed on drop. Xvfb picks a free display itself and
+/// says which once it accepts connections (`-displayfd`), so tests never race for a display
+/// number or wait on `xvfb-run`'s start-up handshake.
+#[allow(dead_code)]
+pub struct Xvfb {
+    child: std::process::Child,
+    /// `:N`, for DISPLAY.
+    pub display: String,
+}
+
+#[allow(dead_code)]
+impl Xvfb {
+    pub fn start(screen: &str) -> Xvfb {
+        use std::io::BufRead;
+        let mut child = std::process::Command::new("Xvfb")
+            .args(["-displayfd", "1", "-nolisten", "tcp", "-screen", "0", screen])
+            .stdout(std::process::Stdio::piped())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .expect("Xvfb runs (apt-get install xvfb)");
+        let mut line = String::new();
+        let stdout = child.stdout.take().expect("Xvfb's stdout");
+        std::io::BufReader::new(stdout).read_line(&mut line).expect("Xvfb names its display");
+        let number = line.trim();
+        assert!(!number.is_empty() && number.bytes().all(|b| b.is_ascii_digit()), "Xvfb said {line:?}");
+        Xvfb { child, display: format!(":{number}") }
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
