@@ -434,7 +434,9 @@ fn a_student_probe_says_so_and_one_click_brings_back_the_lessons() {
     h.state_mut().probe_at = Some(ProbeAt::View(0.3, 0.7));
     h.state_mut().mark_dirty();
     settle(&mut h);
-    h.get_by_label("The numbers above are read at your probe.");
+    h.get_by_label(
+        "The numbers above are read at your probe; the sentences around them describe the lesson's.",
+    );
     h.get_by_label("Back to the lesson's probe").click();
     settle(&mut h);
     let [x, y] = step.probe.expect("the step names a probe");
@@ -814,7 +816,8 @@ fn the_vsm_lesson_shows_light_bleeding_and_the_view_menu_shows_the_moments() {
     settle(&mut h);
     let legends = h.state().legend_lines();
     assert!(legends.iter().any(|l| l == "the moments view needs the vsm or vssm technique"), "{legends:?}");
-    assert!(legends.iter().any(|l| l.contains("only VSM and VSSM")), "{legends:?}");
+    // The moments view is of the light's map: the camera picture's overlays stay off it.
+    assert!(!legends.iter().any(|l| l.contains("only VSM and VSSM")), "{legends:?}");
 }
 
 /// What `shadowlab FILE`, `--lesson ID --step N` and `--lang zh` open, as the window shows it:
@@ -1023,4 +1026,30 @@ fn playback_left_running_loops_over_the_time_range() {
     h.state_mut().playing = false;
     settle(&mut h);
     assert!(h.state().frames_shown() > frames_before + 1, "the views stopped refreshing");
+}
+
+#[test]
+fn the_ab_split_compares_shaded_pictures_whatever_the_view() {
+    let mut h = harness();
+    h.state_mut().view = shadowlab::views::View::Penumbra;
+    h.state_mut().scene.shadow.technique = shadowlab::scene::Technique::Pcss;
+    h.get_by_label("A/B split against").click();
+    settle(&mut h);
+    // Both sides shaded (one heatmap beside one shaded picture compares nothing), and it says so.
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::Final);
+    assert!(h.state().camera_image_b().is_some(), "side B is rendered");
+    // Its labels stay clear of the view selector.
+    let painted = h.state().camera_paint().clone();
+    assert!(
+        painted.legend.iter().any(|l| l.contains("the A/B split compares the shaded pictures")),
+        "{painted:?}"
+    );
+    assert_eq!(painted.ab_labels.len(), 2);
+    for label in &painted.ab_labels {
+        assert!(!label.intersects(painted.selector), "{label:?} under the selector {:?}", painted.selector);
+    }
+    // Off again, the chosen view returns.
+    h.get_by_label("A/B split against").click();
+    settle(&mut h);
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::Penumbra);
 }
