@@ -14,7 +14,7 @@ mod view_panels;
 mod window;
 mod worker;
 
-pub use inspector::control_label;
+pub use inspector::{control_label, value_label};
 pub use panels::DIAGRAM_MIN_TEXT_PT;
 pub use settings::Settings;
 pub use window::{

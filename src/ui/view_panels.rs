@@ -237,10 +237,10 @@ fn view_selector(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(corner));
     let before = app.view;
     egui::ComboBox::from_id_salt("camera view")
-        .selected_text(format!("{}: {}", tr(app.lang, "view"), app.view.name()))
+        .selected_text(format!("{}: {}", tr(app.lang, "view"), app.view.label(app.lang)))
         .show_ui(&mut child, |ui| {
             for view in View::ALL {
-                ui.selectable_value(&mut app.view, view, view.name());
+                ui.selectable_value(&mut app.view, view, view.label(app.lang));
             }
         })
         .response
