@@ -406,7 +406,7 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
         ui.label(format!("{pixel}: {}", tr("no surface")));
         return;
     }
-    let object = report.object.as_deref().unwrap_or("?");
+    let object = report.object.as_deref().map_or("?", |name| app.scene.object_label(name, lang));
     ui.label(match lang {
         Lang::En => format!("{pixel}, on {object}"),
         Lang::Zh => format!("{pixel}，位于 {object}"),

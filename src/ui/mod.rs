@@ -145,6 +145,7 @@ target = [0.0, 4.0, 0.0]
 fov_deg = 50.0
 [[object]]
 name = "floor"
+name_zh = "地面"
 mesh = "plane"
 scale = [60.0, 1.0, 60.0]
 [[object]]
