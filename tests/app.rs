@@ -471,18 +471,9 @@ fn a_step_sets_the_view_and_the_view_selector_changes_it() {
     );
 }
 
-/// Text a Chinese reader may see in Latin letters: names the files and the CLI use (techniques,
-/// kernels, views, bias modes), units and acronyms.
+/// Text a Chinese reader may see in Latin letters: units and acronyms. (Views, diagrams,
+/// techniques, kernels and bias modes are shown by their Chinese labels: see the next test.)
 fn allowed_in_chinese(word: &str) -> bool {
-    use shadowlab::scene::{BiasMode, Kernel, Technique};
-    let names = Technique::ALL
-        .iter()
-        .map(|t| t.name())
-        .chain(Kernel::ALL.iter().map(|k| k.name()))
-        .chain(BiasMode::ALL.iter().map(|b| b.name()))
-        .chain(shadowlab::views::View::ALL.iter().map(|v| v.name()))
-        // The diagram picker shows the diagrams' ids, as the lesson files name them.
-        .chain(shadowlab::diagrams::DiagramKind::ALL.iter().map(|k| k.id()));
     // "screenshots" is the screenshot folder's default path; x, y and z name coordinates.
     let fixed = [
         "shadowlab",
@@ -509,7 +500,7 @@ fn allowed_in_chinese(word: &str) -> bool {
         "Resize",
         "panel",
     ];
-    names.chain(fixed).any(|n| n == word)
+    fixed.contains(&word)
         // Identifiers and file names: `light.0.width`, games202.toml, blocker-radius.
         || word.contains(['_', '-', '.']) || word.chars().any(|c| c.is_ascii_digit())
 }
@@ -558,6 +549,131 @@ fn in_chinese_every_panel_label_is_chinese() {
         }
     }
     assert!(english.is_empty(), "English left in the Chinese UI (add it to src/i18n/ui_zh.rs): {english:#?}");
+}
+
+/// Latin words that stay Latin in a Chinese shadow-mapping course: the acronyms of the techniques
+/// (PCF, PCSS, VSM, VSSM) and of NDC and RGBA8, as Chinese textbooks and GAMES202 write them.
+/// "English" is the language picker naming English in its own script.
+const LATIN_IN_CHINESE_LABELS: [&str; 7] = ["PCF", "PCSS", "VSM", "VSSM", "NDC", "RGBA8", "English"];
+
+/// The ASCII words of two letters or more in `text` that a Chinese reader should not meet in a
+/// view name, diagram tab, combo-box value or object name: everything but the acronyms above and
+/// the names of scene files (the scene picker lists files).
+fn latin_words(text: &str) -> Vec<&str> {
+    text.split(|c: char| !(c.is_ascii_alphanumeric() || "_-.".contains(c)))
+        .filter(|w| w.chars().filter(|c| c.is_ascii_alphabetic()).count() >= 2)
+        .filter(|w| !LATIN_IN_CHINESE_LABELS.contains(w) && !w.ends_with(".toml"))
+        .collect()
+}
+
+/// In Chinese, the names that files and the command line use in English are shown translated:
+/// the camera panel's view menu, the diagram tabs, the values of every combo box (technique,
+/// bias mode, depth storage, kernel...), the object under the probe and the Apply tooltips,
+/// over a few lesson steps with each combo box opened in turn.
+#[test]
+fn in_chinese_views_diagrams_settings_and_objects_have_chinese_names() {
+    use egui::accesskit::Role;
+    use shadowlab::scene::{BiasMode, DepthStorage, Kernel, Technique};
+    let mut h = harness_sized([1600.0, 900.0]);
+    h.state_mut().lang = Lang::Zh;
+    let mut english = std::collections::BTreeSet::new();
+    // Every text looked at: the test fails if the walk missed a name it should have met.
+    let mut seen = std::collections::BTreeSet::new();
+    let mut objects = std::collections::BTreeSet::new();
+    let check = |what: &str, text: &str, english: &mut std::collections::BTreeSet<String>| {
+        if !latin_words(text).is_empty() {
+            english.insert(format!("{what}: {text}"));
+        }
+    };
+    // Tabs and menu options are toggle buttons named by their text; a combo box shows its value
+    // (its name is its label or tooltip).
+    let named = |h: &Harness<'_, ShadowlabApp>| -> Vec<(String, String)> {
+        let mut out = Vec::new();
+        for node in h.root().children_recursive() {
+            let a = node.accesskit_node();
+            let shown = match a.role() {
+                Role::ComboBox => a.value().map(|v| ("combo box", v)),
+                Role::Button if a.toggled().is_some() => a.label().map(|l| ("tab or option", l)),
+                _ => None,
+            };
+            out.extend(shown.map(|(what, text)| (what.to_string(), text)));
+        }
+        out
+    };
+    // Steps probing the floor and a box, with a view, a technique and a bias mode to Apply.
+    for (id, step) in [("hard-shadows", 1), ("bias", 2), ("pcss", 3), ("vsm", 2)] {
+        let lesson = h.state().lessons.iter().position(|l| l.id == id).expect("lesson");
+        h.state_mut().go_to_step(lesson, step);
+        settle(&mut h);
+        h.run_steps(2);
+        let at = format!("{id} step {}", step + 1);
+        for (what, text) in named(&h) {
+            check(&format!("{at}, {what}"), &text, &mut english);
+            seen.insert(text);
+        }
+        // Open each combo box (the view menu among them) and read its options.
+        let combos = h.query_all_by_role(Role::ComboBox).count();
+        assert!(combos >= 6, "{at}: only {combos} combo boxes");
+        for i in 0..combos {
+            h.query_all_by_role(Role::ComboBox).nth(i).expect("combo box").click_accesskit();
+            h.run_steps(2);
+            for (what, text) in named(&h) {
+                check(&format!("{at}, combo box {i} open, {what}"), &text, &mut english);
+                seen.insert(text);
+            }
+            h.key_press(egui::Key::Escape);
+            h.run_steps(2);
+        }
+        // The surface under the probe: "像素 x,y，位于 地面".
+        for node in h.root().children_recursive() {
+            let a = node.accesskit_node();
+            for text in [a.label(), a.value()].into_iter().flatten() {
+                if let Some((_, object)) = text.split_once("，位于 ") {
+                    check(&format!("{at}, probe"), object, &mut english);
+                    objects.insert(object.to_string());
+                }
+            }
+        }
+        // What each Apply button sets, as its tooltip lists it ("视图 = 着色画面").
+        for b in 0..h.query_all_by_label("应用").count() {
+            h.query_all_by_label("应用").nth(b).expect("Apply").hover();
+            h.run_steps(60);
+            let mut tooltip = false;
+            for node in h.root().children_recursive() {
+                let a = node.accesskit_node();
+                for text in [a.label(), a.value()].into_iter().flatten() {
+                    if text.starts_with(shadowlab::i18n::tr(Lang::Zh, "set what this prompt says")) {
+                        tooltip = true;
+                        for line in text.lines().skip(1) {
+                            let value = line.split_once(" = ").map_or(line, |(_, v)| v);
+                            check(&format!("{at}, Apply tooltip"), value, &mut english);
+                            seen.insert(value.to_string());
+                        }
+                    }
+                }
+            }
+            assert!(tooltip, "{at}: no tooltip on Apply button {}", b + 1);
+            h.hover_at(egui::pos2(1.0, 450.0));
+            h.run_steps(2);
+        }
+    }
+    assert!(english.is_empty(), "English names left in the Chinese app: {english:#?}");
+    // The walk met every view, diagram and setting by its Chinese name, and named the surfaces.
+    let labels = shadowlab::views::View::ALL
+        .iter()
+        .map(|v| v.label(Lang::Zh))
+        .chain(shadowlab::diagrams::DiagramKind::ALL.iter().map(|d| d.label(Lang::Zh)))
+        .chain(Technique::ALL.iter().map(|t| t.label(Lang::Zh)))
+        .chain(BiasMode::ALL.iter().map(|b| b.label(Lang::Zh)))
+        .chain(Kernel::ALL.iter().map(|k| k.label(Lang::Zh)))
+        .chain(DepthStorage::ALL.iter().map(|d| d.label(Lang::Zh)));
+    for label in labels {
+        assert!(seen.iter().any(|t| t.contains(label)), "`{label}` never shown: {seen:#?}");
+    }
+    for tip in ["自适应", "着色画面", "PCF 滤波"] {
+        assert!(seen.contains(tip), "no Apply tooltip says `{tip}`");
+    }
+    assert_eq!(objects, ["地面", "箱子"].map(String::from).into(), "the surfaces under the probes");
 }
 
 #[test]

@@ -139,6 +139,30 @@ fn chinese_slides_differ_from_english_ones() {
     assert_eq!(std::fs::read(english().join(&camera)).ok(), std::fs::read(zh.join(&camera)).ok());
 }
 
+/// A slide's probe panel names the surface in the slide's language (the scene's `name_zh`), and
+/// its caption names the view as the Chinese app's view menu does.
+#[test]
+fn slides_name_the_probed_surface_and_the_view_in_the_slides_language() {
+    use shadowlab::lessons::Lang;
+    use shadowlab::views::View;
+    let all = lessons::load_all(&lessons::default_dir()).expect("the shipped lessons load");
+    let lesson = lessons::find(&all, LESSON).expect("the lesson exists");
+    // Step 2 probes the floor behind the big bunny.
+    let scene = lesson.steps[1].scene().expect("the step's scene");
+    let (_ctx, mut renderer) = common::gpu();
+    for (lang, surface) in [(Lang::En, "floor"), (Lang::Zh, "地面")] {
+        let pictures =
+            shadowlab::export::step::render_step(&mut renderer, lesson, 1, &scene, (320, 180), lang)
+                .expect("the step renders");
+        assert_eq!(pictures.probe_object.as_deref(), Some(surface), "{lang:?}");
+    }
+    use shadowlab::export::slide::view_label;
+    for view in View::ALL {
+        assert_eq!(view_label(view, Lang::Zh), view.label(Lang::Zh));
+    }
+    assert_eq!(view_label(View::Final, Lang::En), "shaded", "English captions keep their own words");
+}
+
 #[test]
 fn exporting_twice_gives_identical_files() {
     let (_a, first) = export("en", "640x360");

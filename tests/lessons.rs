@@ -224,9 +224,14 @@ fn try_this_prompts_name_the_apps_controls_and_apply_what_they_say() {
                     assert!(en.contains(&en_name), "{at}: the English text does not name {en_name}: {en}");
                     assert!(zh.contains(&zh_name), "{at}: the Chinese text does not name {zh_name}: {zh}");
                     let value = value.trim_matches('"');
+                    // A value the inspector shows by a label (a technique, kernel...) is named by
+                    // the label the student sees in the combo box.
+                    let zh_value = shadowlab::ui::value_label(key, value, Lang::Zh);
+                    let zh_value =
+                        if zh_value == value { value.to_string() } else { format!("「{zh_value}」") };
                     assert!(
-                        en.contains(value) && zh.contains(value),
-                        "{at}: the text does not say {key} = {value}"
+                        en.contains(value) && zh.contains(&zh_value),
+                        "{at}: the text does not say {key} = {value} ({zh_value})"
                     );
                 }
                 if let Some(t) = prompt.time_s {
@@ -237,9 +242,10 @@ fn try_this_prompts_name_the_apps_controls_and_apply_what_they_say() {
                     assert!(en.contains(&t.to_string()), "{at}: the text does not say time {t}");
                 }
                 if let Some(view) = prompt.view {
+                    let zh_view = format!("「{}」", view.label(Lang::Zh));
                     assert!(
-                        en.contains(view.name()) && zh.contains(view.name()),
-                        "{at}: view {} not named",
+                        en.contains(view.name()) && zh.contains(&zh_view),
+                        "{at}: view {} not named (in Chinese {zh_view})",
                         view.name()
                     );
                 }
@@ -250,6 +256,36 @@ fn try_this_prompts_name_the_apps_controls_and_apply_what_they_say() {
         }
     }
     assert!(applied >= 30, "only {applied} prompts have an Apply button");
+}
+
+/// Chinese text names a view, technique, bias mode, kernel or depth storage by the label the
+/// app shows for it (「着色画面」视图), not by its file name (「final」), which the Chinese app
+/// never shows.
+#[test]
+fn chinese_text_names_views_and_settings_as_the_chinese_app_shows_them() {
+    use shadowlab::scene::{BiasMode, DepthStorage, Kernel, Technique};
+    let names: Vec<&str> = shadowlab::views::View::ALL
+        .iter()
+        .map(|v| v.name())
+        .chain(Technique::ALL.iter().map(|t| t.name()))
+        .chain(BiasMode::ALL.iter().map(|b| b.name()))
+        .chain(Kernel::ALL.iter().map(|k| k.name()))
+        .chain(DepthStorage::ALL.iter().map(|d| d.name()))
+        .collect();
+    for lesson in shipped() {
+        let steps = lesson.steps.iter().enumerate();
+        let texts = steps.flat_map(|(i, s)| {
+            let tries = s.try_this.iter().map(move |t| (format!("step {} try_this", i + 1), &t.text.zh));
+            [(format!("step {}", i + 1), &s.text.zh)].into_iter().chain(tries)
+        });
+        for (at, zh) in texts {
+            for name in &names {
+                for quoted in [format!("「{name}」"), format!("\"{name}\""), format!("“{name}”")] {
+                    assert!(!zh.contains(&quoted), "{} {at}: {quoted} in Chinese: {zh}", lesson.id);
+                }
+            }
+        }
+    }
 }
 
 #[test]

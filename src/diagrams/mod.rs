@@ -71,6 +71,11 @@ impl DiagramKind {
         }
     }
 
+    /// The diagram's tab in `lang`: the id in English, a translation in Chinese.
+    pub fn label(&self, lang: Lang) -> &'static str {
+        crate::i18n::tr(lang, self.id())
+    }
+
     pub fn from_id(id: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|k| k.id() == id)
     }

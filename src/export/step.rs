@@ -28,6 +28,8 @@ pub struct StepPictures {
     pub probe_pixel: Option<(u32, u32)>,
     pub probe_from_lesson: bool,
     pub probe: Option<ProbeReport>,
+    /// The surface under the probe, named in the slide's language (the scene's `name_zh`).
+    pub probe_object: Option<String>,
     pub technique: Technique,
     pub diagram: DiagramKind,
     pub inputs: DiagramInputs,
@@ -210,6 +212,10 @@ pub fn render_step(
         light,
         probe_pixel,
         probe_from_lesson,
+        probe_object: report
+            .as_ref()
+            .and_then(|r| r.object.as_deref())
+            .map(|name| scene.object_label(name, lang).to_string()),
         probe: report,
         technique: scene.shadow.technique,
         diagram: diagram_for(lesson, step_index, scene),

@@ -13,13 +13,13 @@ fn what_apply_sets(prompt: &crate::lessons::TryThis, lang: Lang) -> String {
         let control = super::control_label(key).map_or(key.as_str(), tr);
         let light = key.strip_prefix("light.").and_then(|k| k.split('.').next());
         let of_light = light.map(|n| format!(" ({} {n})", tr("light"))).unwrap_or_default();
-        lines.push(format!("{control}{of_light} = {value}"));
+        lines.push(format!("{control}{of_light} = {}", super::value_label(key, value, lang)));
     }
     if let Some(t) = prompt.time_s {
         lines.push(format!("{} = {t}", tr("time (s)")));
     }
     if let Some(v) = prompt.view {
-        lines.push(format!("{} = {}", tr("view"), v.name()));
+        lines.push(format!("{} = {}", tr("view"), v.label(lang)));
     }
     lines.join("\n")
 }

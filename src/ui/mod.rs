@@ -14,7 +14,7 @@ mod view_panels;
 mod window;
 mod worker;
 
-pub use inspector::control_label;
+pub use inspector::{control_label, value_label};
 pub use panels::DIAGRAM_MIN_TEXT_PT;
 pub use rendering::PLAYBACK_RANGE_S;
 pub use settings::Settings;
@@ -146,6 +146,7 @@ target = [0.0, 4.0, 0.0]
 fov_deg = 50.0
 [[object]]
 name = "floor"
+name_zh = "地面"
 mesh = "plane"
 scale = [60.0, 1.0, 60.0]
 [[object]]

@@ -344,12 +344,12 @@ fn view_selector(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(corner));
     let before = app.view;
     let response = egui::ComboBox::from_id_salt("camera view")
-        .selected_text(format!("{}: {}", tr(app.lang, "view"), app.view.name()))
+        .selected_text(format!("{}: {}", tr(app.lang, "view"), app.view.label(app.lang)))
         // Every view in reach without scrolling.
         .height(f32::INFINITY)
         .show_ui(&mut child, |ui| {
             for view in View::ALL {
-                ui.selectable_value(&mut app.view, view, view.name());
+                ui.selectable_value(&mut app.view, view, view.label(app.lang));
             }
         })
         .response
@@ -462,8 +462,8 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             painter.galley(r.min + vec2(3.0, 3.0), galley, Color32::WHITE);
             ab_labels.push(r);
         };
-        label(app.scene.shadow.technique.name(), pos2(x - 8.0, y), egui::Align2::RIGHT_TOP);
-        label(ab.b.name(), pos2(x + 8.0, y), egui::Align2::LEFT_TOP);
+        label(app.scene.shadow.technique.label(app.lang), pos2(x - 8.0, y), egui::Align2::RIGHT_TOP);
+        label(ab.b.label(app.lang), pos2(x + 8.0, y), egui::Align2::LEFT_TOP);
     }
     // Camera-space marks belong on the camera's picture, never on a view of the light's map.
     let camera_space = !is_light_space(shown_view);

@@ -53,6 +53,12 @@ impl View {
         }
     }
 
+    /// The view's name as the panels show it in `lang`: the `--view` name in English, a
+    /// translation in Chinese (lesson texts name views by it).
+    pub fn label(self, lang: Lang) -> &'static str {
+        crate::i18n::tr(lang, self.name())
+    }
+
     pub fn from_name(name: &str) -> Option<View> {
         View::ALL.into_iter().find(|v| v.name() == name)
     }
