@@ -1088,3 +1088,42 @@ fn an_installed_binary_finds_its_lessons_and_scenes_from_any_folder() {
     assert_eq!(render.code, Some(0), "{render}");
     assert!(elsewhere.join("copy.png").is_file(), "{render}");
 }
+
+#[test]
+fn bench_soak_plays_the_lessons_in_the_real_window_and_keeps_moving() {
+    let xvfb = common::Xvfb::start("1600x900x24");
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"));
+    command
+        .args(["bench", "--app", "--window", "--soak", "12", "--json"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("DISPLAY", &xvfb.display)
+        .env_remove("WAYLAND_DISPLAY")
+        .env("XDG_RUNTIME_DIR", common::runtime_dir());
+    let output = command.output().expect("shadowlab runs");
+    drop(xvfb);
+    let run = Run {
+        code: output.status.code(),
+        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
+        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
+    };
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
+    assert_eq!(json["moving_throughout"], Value::Bool(true), "{json:#}");
+    assert!(json["frames_rendered"].as_u64().is_some_and(|n| n > 2), "{json:#}");
+    assert!(json["full_detail_frames"].as_u64().is_some_and(|n| n >= 1), "{json:#}");
+    assert!(json["view_switches"].as_u64().is_some_and(|n| n >= 1), "{json:#}");
+    assert!(json["scene_time_advanced_s"].as_f64().is_some_and(|t| t > 1.0), "{json:#}");
+    for key in ["rss_early_mb", "rss_end_mb"] {
+        assert!(json[key].as_f64().is_some_and(|mb| mb > 10.0), "{key}: {json:#}");
+    }
+    // Too short to judge memory by.
+    assert_eq!(json["memory_held"], Value::Null, "{json:#}");
+}
+
+#[test]
+fn bench_soak_needs_the_window_and_a_sensible_length() {
+    let run = shadowlab(&["bench", "--app", "--soak", "60"]);
+    assert_bad_input(&run, &["--soak", "--window"]);
+    let run = shadowlab(&["bench", "--app", "--window", "--soak", "1"]);
+    assert_bad_input(&run, &["--soak 1", "out of range"]);
+}

@@ -187,6 +187,9 @@ fn widget_rect(h: &Harness<'_, ShadowlabApp>, label: &str) -> Result<egui::Rect,
 }
 
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+    if let Some(seconds) = args.soak {
+        return super::bench_soak::run(args, seconds);
+    }
     if !(0.5..=600.0).contains(&args.seconds) {
         return Err(CliError::input(format!("--seconds {} is out of range 0.5..=600", args.seconds)));
     }

@@ -4,6 +4,7 @@
 mod bench;
 mod bench_app;
 mod bench_diagrams;
+mod bench_soak;
 mod bench_window;
 #[path = "export.rs"]
 mod export_cmd;
@@ -157,6 +158,11 @@ pub struct BenchArgs {
     /// With --app: seconds of dragging per phase.
     #[arg(long, default_value_t = 5.0, requires = "app")]
     pub seconds: f32,
+    /// With --app --window: play the PCSS and multi-light lessons this many seconds instead, a
+    /// probe pinned, overlays on, the view switched every few seconds; report images rendered,
+    /// scene time played and memory a minute in and at the end.
+    #[arg(long, value_name = "SECONDS", requires = "app")]
+    pub soak: Option<f32>,
 }
 
 /// The scene `bench` measures when none is given.

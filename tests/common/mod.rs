@@ -78,19 +78,26 @@ pub fn run(command: &mut std::process::Command) -> Run {
 }
 
 /// A virtual X server of this test's own, killed on drop. Xvfb picks a free display itself and
-/// says which once it accepts connections (`-displayfd`), so tests never race for a display
-/// number or wait on `xvfb-run`'s start-up handshake.
+/// says which once it accepts connections (`-displayfd`), so tests never guess a display number
+/// or wait on `xvfb-run`'s start-up handshake. One at a time in a test binary: two servers
+/// starting together can both try the same display, and the loser's clean-up takes the
+/// winner's socket with it ("Failed to open connection to X server").
 #[allow(dead_code)]
 pub struct Xvfb {
     child: std::process::Child,
     /// `:N`, for DISPLAY.
     pub display: String,
+    _one_at_a_time: std::sync::MutexGuard<'static, ()>,
 }
+
+static X_SERVER: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 #[allow(dead_code)]
 impl Xvfb {
     pub fn start(screen: &str) -> Xvfb {
         use std::io::BufRead;
+        // A test that failed while holding it leaves nothing behind to protect.
+        let guard = X_SERVER.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
         let mut child = std::process::Command::new("Xvfb")
             .args(["-displayfd", "1", "-nolisten", "tcp", "-screen", "0", screen])
             .stdout(std::process::Stdio::piped())
@@ -102,7 +109,7 @@ impl Xvfb {
         std::io::BufReader::new(stdout).read_line(&mut line).expect("Xvfb names its display");
         let number = line.trim();
         assert!(!number.is_empty() && number.bytes().all(|b| b.is_ascii_digit()), "Xvfb said {line:?}");
-        Xvfb { child, display: format!(":{number}") }
+        Xvfb { child, display: format!(":{number}"), _one_at_a_time: guard }
     }
 }
 
