@@ -2,7 +2,10 @@
 //! window with the painter the app would use here (OpenGL on a software rasteriser), the input
 //! injected frame by frame. Needs a display (`xvfb-run -a` where there is none).
 
-use super::bench_app::{AppReport, IDLE_FRAMES, PHASES, Phase, SETTLE_LIMIT, WINDOW, start_session};
+use super::bench_app::{
+    AppReport, Driven, IDLE_FRAMES, PHASES, Phase, SETTLE_LIMIT, WINDOW, check_phase, keep_dragging,
+    start_session,
+};
 use super::{BenchArgs, CliError};
 use crate::ui::{LANDMARK_LIGHT_WIDTH, LANDMARK_SHADOW_MAP, Settings, ShadowlabApp, app_for_test, landmark};
 use std::sync::{Arc, Mutex};
@@ -29,6 +32,7 @@ enum Stage {
         frames: u32,
         slowest: Duration,
         shown_before: u64,
+        before: Driven,
     },
     /// Released: wait for the full-resolution image, then for everything (probe, overlays).
     Released {
@@ -36,6 +40,7 @@ enum Stage {
         at: Instant,
         shown_at_release: u64,
         full_image: Option<Duration>,
+        before: Driven,
     },
     Done,
 }
@@ -108,6 +113,7 @@ impl Session {
             frames: 0,
             slowest: Duration::ZERO,
             shown_before: self.app.frames_shown(),
+            before: Driven::read(&self.app, phase),
         };
         Ok(())
     }
@@ -139,19 +145,20 @@ impl Session {
                     }
                 }
             }
-            Stage::Dragging { phase, from, since, frames, slowest, shown_before } => {
+            Stage::Dragging { phase, from, since, frames, slowest, shown_before, before } => {
                 *frames += 1;
                 *slowest = (*slowest).max(dt);
                 let t = since.elapsed().as_secs_f32();
                 let (phase, from) = (*phase, *from);
-                if t < self.seconds {
+                let refreshes = self.app.frames_shown() - *shown_before;
+                let moved = Driven::read(&self.app, phase) != *before;
+                if keep_dragging(since.elapsed(), self.seconds, moved, refreshes, self.app.render_pending()) {
                     let pos = self.pointer_path(phase, from, t);
                     self.pending.push(egui::Event::PointerMoved(pos));
                 } else {
-                    let elapsed = since.elapsed().as_secs_f64();
-                    self.measured =
-                        Some((*frames, elapsed, *slowest, self.app.frames_shown() - *shown_before));
-                    let pos = self.pointer_path(phase, from, self.seconds);
+                    self.measured = Some((*frames, since.elapsed().as_secs_f64(), *slowest, refreshes));
+                    let before = before.clone();
+                    let pos = self.pointer_path(phase, from, t);
                     self.pending.push(egui::Event::PointerButton {
                         pos,
                         button: egui::PointerButton::Primary,
@@ -163,10 +170,11 @@ impl Session {
                         at: Instant::now(),
                         shown_at_release: self.app.frames_shown(),
                         full_image: None,
+                        before,
                     };
                 }
             }
-            Stage::Released { phase, at, shown_at_release, full_image } => {
+            Stage::Released { phase, at, shown_at_release, full_image, before } => {
                 let phase = *phase;
                 if full_image.is_none()
                     && self.app.frames_shown() > *shown_at_release
@@ -180,8 +188,11 @@ impl Session {
                         return Err(format!("{}: still showing a preview after the release", PHASES[phase]));
                     }
                     let (frames, elapsed, slowest, refreshes) = self.measured.take().unwrap_or_default();
+                    let after = Driven::read(&self.app, phase);
+                    check_phase(PHASES[phase], before, &after, refreshes)?;
                     self.report.phases.push(Phase {
                         what: PHASES[phase],
+                        moved: format!("{} {before} -> {after}", before.name),
                         seconds: elapsed,
                         ui_frames: frames,
                         ui_frames_per_s: f64::from(frames) / elapsed.max(1e-9),
