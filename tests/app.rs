@@ -15,6 +15,10 @@ fn harness() -> Harness<'static, ShadowlabApp> {
 }
 
 fn harness_sized(size: [f32; 2]) -> Harness<'static, ShadowlabApp> {
+    harness_with(size, Settings { show_timings: false, ..Settings::default() })
+}
+
+fn harness_with(size: [f32; 2], settings: Settings) -> Harness<'static, ShadowlabApp> {
     let mut setup = egui_kittest::wgpu::default_wgpu_setup();
     if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
         setup = eframe::egui_wgpu::WgpuSetup::CreateNew(shadowlab::ui::configure_wgpu(create));
@@ -22,7 +26,7 @@ fn harness_sized(size: [f32; 2]) -> Harness<'static, ShadowlabApp> {
     let mut harness = Harness::builder()
         .with_size(size)
         .wgpu_setup(setup)
-        .build_eframe(|cc| app_for_test(cc, Settings { show_timings: false, ..Settings::default() }));
+        .build_eframe(move |cc| app_for_test(cc, settings.clone()));
     settle(&mut harness);
     assert!(
         harness.state().camera_image().is_some(),
@@ -1168,4 +1172,59 @@ fn the_ab_split_compares_shaded_pictures_whatever_the_view() {
     h.get_by_label("A/B split against").click();
     settle(&mut h);
     assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::Penumbra);
+}
+
+/// A long error and a long "saved …" message share the status bar's left with the timings at
+/// its right: each is cut with an ellipsis short of the timings, at two window sizes and in
+/// both languages, and hovering the error shows its whole text once.
+#[test]
+fn long_status_messages_stop_short_of_the_timings_and_show_once_on_hover() {
+    let detail = format!(
+        "{}/lessons/my-homework/scenes/a-scene-with-a-rather-long-name.toml: line 12: key \
+         `shadow.technique`: expected one of hard, pcf, pcss, vsm, vssm, found \"blurry\" (did you mean pcss?)",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let saved = format!(
+        "saved {0}/shot-001-window.png, {0}/shot-001-camera.png, {0}/shot-001-shadow-map.png",
+        std::env::temp_dir().join("shadowlab-screenshots-of-a-long-lesson").display()
+    );
+    for size in [[1280.0, 720.0], [1600.0, 900.0]] {
+        let mut h = harness_with(size, Settings { show_timings: true, ..Settings::default() });
+        for lang in [Lang::En, Lang::Zh] {
+            let app = h.state_mut();
+            app.lang = lang;
+            app.error = Some(shadowlab::ui::AppError::new("could not open the scene", &detail));
+            app.status = saved.clone();
+            h.run_steps(3);
+            let case = format!("{lang:?} at {}x{}", size[0], size[1]);
+            let shown = h.state().shown_size();
+            let resolution = format!("{}x{}", shown.0, shown.1);
+            let timings: Vec<egui::Rect> =
+                h.query_all_by_label_contains(&resolution).map(|n| n.rect()).collect();
+            assert_eq!(timings.len(), 1, "{case}: one timings label naming {resolution}");
+            let timings = timings[0];
+            assert!(timings.right() <= size[0] && timings.left() > size[0] * 0.3, "{case}: {timings:?}");
+            let error = h.get_by_label_contains(&detail).rect();
+            let status = h.get_by_label(&saved).rect();
+            let dismiss = h.get_by_label(shadowlab::i18n::tr(lang, "dismiss")).rect();
+            for (what, rect) in [("error", error), ("dismiss", dismiss), ("saved message", status)] {
+                assert!(
+                    rect.right() <= timings.left() && rect.width() > 0.0,
+                    "{case}: the {what} ({rect:?}) runs under the timings ({timings:?})"
+                );
+                assert!((rect.center().y - timings.center().y).abs() < 4.0, "{case}: {what} {rect:?}");
+            }
+            // Hovering either shows its whole text in a tooltip, once (egui shows one only for a
+            // cut text, so this also says both were cut).
+            for (what, text, rect) in [("error", &detail, error), ("saved message", &saved, status)] {
+                let count = |h: &Harness<'_, ShadowlabApp>| h.query_all_by_label_contains(text).count();
+                assert_eq!(count(&h), 1, "{case}: the {what} before hovering");
+                h.hover_at(rect.center());
+                h.run_steps(4);
+                assert_eq!(count(&h), 2, "{case}: the {what} in the bar and once in its tooltip");
+            }
+            h.hover_at(egui::pos2(size[0] * 0.5, size[1] * 0.5));
+            h.run_steps(4);
+        }
+    }
 }

@@ -797,8 +797,15 @@ fn bench_app_window_drives_the_real_window() {
     assert!(json["painter"].as_str().is_some_and(|p| p.ends_with("(window)")), "{json:#}");
     let phases = json["phases"].as_array().expect("phases");
     assert_eq!(phases.len(), 2, "{json:#}");
-    for phase in phases {
+    // Each phase moved what it drives (the slider's width, the light) and the views showed it:
+    // the bench fails rather than report a drag that missed.
+    for (phase, moved) in phases.iter().zip(["light 0 width ", "light 0 position "]) {
         assert!(phase["ui_frames"].as_u64().is_some_and(|n| n > 0), "{phase}");
+        assert!(phase["view_refreshes"].as_u64().is_some_and(|n| n > 0), "{phase}");
+        assert!(
+            phase["moved"].as_str().is_some_and(|m| m.starts_with(moved) && m.contains(" -> ")),
+            "{phase}"
+        );
         assert!(phase["release_to_full_quality_s"].as_f64().is_some_and(|s| s >= 0.0), "{phase}");
     }
 }
@@ -854,6 +861,7 @@ fn bench_app_drives_the_app_and_reports_what_a_student_feels() {
     assert_eq!(phases.len(), 2, "{json:#}");
     for phase in phases {
         assert!(phase["ui_frames"].as_u64().is_some_and(|n| n > 0), "{phase}");
+        assert!(phase["view_refreshes"].as_u64().is_some_and(|n| n > 0), "{phase}");
         for key in
             ["ui_frames_per_s", "view_refreshes_per_s", "release_to_full_quality_s", "slowest_ui_frame_ms"]
         {

@@ -155,7 +155,8 @@ pub struct BenchArgs {
     /// is none), painted as the app paints here.
     #[arg(long, requires = "app")]
     pub window: bool,
-    /// With --app: seconds of dragging per phase.
+    /// With --app: seconds of dragging per phase (longer where no new image has reached the views
+    /// by then, until one has).
     #[arg(long, default_value_t = 5.0, requires = "app")]
     pub seconds: f32,
     /// With --app --window: play the PCSS and multi-light lessons this many seconds instead, a
