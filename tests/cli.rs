@@ -777,21 +777,7 @@ fn bench_unknown_row_and_bad_override_are_refused() {
 #[test]
 fn bench_app_window_drives_the_real_window() {
     // A real window needs a display: Xvfb stands in for one (the CI script installs it).
-    let xvfb = common::Xvfb::start("1600x900x24");
-    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"));
-    command
-        .args(["bench", "--app", "--window", "--seconds", "0.5", "--json"])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("DISPLAY", &xvfb.display)
-        .env_remove("WAYLAND_DISPLAY")
-        .env("XDG_RUNTIME_DIR", common::runtime_dir());
-    let output = command.output().expect("shadowlab runs");
-    drop(xvfb);
-    let run = Run {
-        code: output.status.code(),
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
-    };
+    let run = common::run_in_window(&["bench", "--app", "--window", "--seconds", "0.5", "--json"]);
     assert_eq!(run.code, Some(0), "{run}");
     let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
     assert!(json["painter"].as_str().is_some_and(|p| p.ends_with("(window)")), "{json:#}");
@@ -1099,21 +1085,7 @@ fn an_installed_binary_finds_its_lessons_and_scenes_from_any_folder() {
 
 #[test]
 fn bench_soak_plays_the_lessons_in_the_real_window_and_keeps_moving() {
-    let xvfb = common::Xvfb::start("1600x900x24");
-    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"));
-    command
-        .args(["bench", "--app", "--window", "--soak", "12", "--json"])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("DISPLAY", &xvfb.display)
-        .env_remove("WAYLAND_DISPLAY")
-        .env("XDG_RUNTIME_DIR", common::runtime_dir());
-    let output = command.output().expect("shadowlab runs");
-    drop(xvfb);
-    let run = Run {
-        code: output.status.code(),
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
-    };
+    let run = common::run_in_window(&["bench", "--app", "--window", "--soak", "12", "--json"]);
     assert_eq!(run.code, Some(0), "{run}");
     let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
     assert_eq!(json["moving_throughout"], Value::Bool(true), "{json:#}");

@@ -18,6 +18,10 @@ pub(super) const WINDOW: [f32; 2] = [1600.0, 900.0];
 pub(super) const SETTLE_LIMIT: Duration = Duration::from_secs(300);
 /// UI frames timed with nothing rendering.
 pub(super) const IDLE_FRAMES: u32 = 20;
+/// Frames a widget (and the window) must keep their place before the pointer presses on it,
+/// and the most waited for that offscreen.
+pub(super) const STILL_FRAMES: u32 = 3;
+const STILL_FRAMES_LIMIT: u32 = 600;
 /// The session's two phases.
 pub(super) const PHASES: [&str; 2] = ["drag the light-width slider", "drag the light on the shadow map"];
 
@@ -307,16 +311,28 @@ fn offscreen(args: &BenchArgs) -> Result<AppReport, CliError> {
         Some(node) => node.scroll_to_me(),
         None => return Err(fail(format!("the app shows no '{slider_label}' slider"))),
     }
-    // Scrolling animates over a few frames.
-    for _ in 0..30 {
-        h.step();
-    }
+    // Scrolling animates over a few frames: press only once the slider has kept its place for
+    // a few of them (under load, a rectangle read mid-scroll is not where the slider ends up).
     settle(&mut h)?;
-    let slider = h
-        .query_all_by_role_and_label(slider_role, slider_label)
-        .next()
-        .map(|node| node.rect())
-        .ok_or_else(|| fail(format!("the app shows no '{slider_label}' slider")))?;
+    let slider_rect = |h: &Harness<'_, ShadowlabApp>| {
+        h.query_all_by_role_and_label(slider_role, slider_label)
+            .next()
+            .map(|node| node.rect())
+            .ok_or_else(|| fail(format!("the app shows no '{slider_label}' slider")))
+    };
+    let (mut slider, mut still) = (slider_rect(&h)?, 0);
+    for _ in 0..STILL_FRAMES_LIMIT {
+        if still >= STILL_FRAMES {
+            break;
+        }
+        step(&mut h)?;
+        let now = slider_rect(&h)?;
+        still = if now == slider { still + 1 } else { 0 };
+        slider = now;
+    }
+    if still < STILL_FRAMES {
+        return Err(fail(format!("the '{slider_label}' slider kept moving ({slider:?})")));
+    }
     let (left, width, y) = (slider.left() + 4.0, (slider.width() * 0.5).max(40.0), slider.center().y);
     let slider_phase = drag_phase(&mut h, 0, slider.left_center(), args.seconds, |t| {
         egui::pos2(left + width * (0.3 + 0.25 * (t * 2.0).sin()), y)

@@ -49,6 +49,8 @@ pub struct SoakReport {
     pub rss_end_mb: Option<f64>,
     /// (end - early) / early.
     pub rss_growth: Option<f64>,
+    /// Resident memory every 30 s of the soak, MB.
+    pub rss_every_30_s_mb: Vec<f64>,
     /// GPU memory, where the adapter reports it (lavapipe does not).
     pub gpu_memory_mb: Option<f64>,
     /// Every play period advanced scene time and put new images on screen.
@@ -125,6 +127,9 @@ impl Soak {
     fn advance(&mut self) -> Result<(), String> {
         let elapsed = self.started.elapsed();
         let early_at = EARLY.min(self.length / 2);
+        if elapsed.as_secs_f64() >= 30.0 * (self.report.rss_every_30_s_mb.len() + 1) as f64 {
+            self.report.rss_every_30_s_mb.extend(rss_mb());
+        }
         if self.report.rss_early_mb.is_none() && elapsed >= early_at {
             self.report.rss_early_mb = rss_mb();
             self.report.rss_early_at_s = elapsed.as_secs_f64();

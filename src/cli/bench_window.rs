@@ -3,8 +3,8 @@
 //! injected frame by frame. Needs a display (`xvfb-run -a` where there is none).
 
 use super::bench_app::{
-    AppReport, Driven, IDLE_FRAMES, PHASES, Phase, SETTLE_LIMIT, WINDOW, check_phase, keep_dragging,
-    start_session,
+    AppReport, Driven, IDLE_FRAMES, PHASES, Phase, SETTLE_LIMIT, STILL_FRAMES, WINDOW, check_phase,
+    keep_dragging, start_session,
 };
 use super::{BenchArgs, CliError};
 use crate::ui::{LANDMARK_LIGHT_WIDTH, LANDMARK_SHADOW_MAP, Settings, ShadowlabApp, app_for_test, landmark};
@@ -15,8 +15,6 @@ type Outcome = Arc<Mutex<Option<Result<AppReport, String>>>>;
 
 /// Frames allowed for a phase's widget to come into view and keep still there.
 const SEEK_FRAMES: u32 = 240;
-/// Frames the window and the widget must keep still before the press.
-const STILL_FRAMES: u32 = 3;
 /// Frames after the press for egui to report the drag on the widget.
 const PRESS_FRAMES: u32 = 4;
 /// How far the pointer moves after the press to start the drag (beyond egui's threshold).
