@@ -1228,3 +1228,35 @@ fn long_status_messages_stop_short_of_the_timings_and_show_once_on_hover() {
         }
     }
 }
+
+/// Every step in both languages, in normal and present mode, as PNGs to look at
+/// (`target/tmp/walk/`): `cargo test --release --test app -- --ignored walk_every_step`.
+#[test]
+#[ignore = "writes pictures of every step for a person to look at"]
+fn walk_every_step_to_pictures() {
+    let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("walk");
+    let mut h = harness_sized([1600.0, 900.0]);
+    let steps: Vec<(usize, usize)> = h
+        .state()
+        .lessons
+        .iter()
+        .enumerate()
+        .flat_map(|(l, lesson)| (0..lesson.steps.len()).map(move |s| (l, s)))
+        .collect();
+    for lang in [Lang::En, Lang::Zh] {
+        for present in [false, true] {
+            let dir = out.join(format!("{}{}", lang.code(), if present { "-present" } else { "" }));
+            std::fs::create_dir_all(&dir).expect("create the folder");
+            for &(l, s) in &steps {
+                h.state_mut().lang = lang;
+                h.state_mut().present = present;
+                h.state_mut().go_to_step(l, s);
+                settle(&mut h);
+                h.run_steps(3);
+                let id = h.state().lessons[l].id.clone();
+                let image = h.render().expect("render the window");
+                image.save(dir.join(format!("{id}-{}.png", s + 1))).expect("write the picture");
+            }
+        }
+    }
+}

@@ -25,7 +25,7 @@ const VIEWS: [View; 5] =
 const PLAY: Duration = Duration::from_secs(4);
 /// Cycles (play, pause for the full detail, switch the view) per lesson before the next one.
 const CYCLES_PER_LESSON: u32 = 5;
-/// Memory is first read this far in (or at half a shorter soak).
+/// Memory is first read this far in at the earliest (see `advance`).
 const EARLY: Duration = Duration::from_secs(60);
 /// Memory is judged on soaks at least this long (shorter ones are all start-up).
 const JUDGE_MEMORY_FROM: Duration = Duration::from_secs(120);
@@ -43,7 +43,8 @@ pub struct SoakReport {
     pub scene_time_advanced_s: f64,
     pub view_switches: u32,
     pub lesson_switches: u32,
-    /// Resident memory of the process, MB: `rss_early_at_s` in, and at the end.
+    /// Resident memory of the process, MB: `rss_early_at_s` in (a minute in, once every lesson
+    /// was shown in every view), and at the end.
     pub rss_early_at_s: f64,
     pub rss_early_mb: Option<f64>,
     pub rss_end_mb: Option<f64>,
@@ -126,11 +127,15 @@ impl Soak {
 
     fn advance(&mut self) -> Result<(), String> {
         let elapsed = self.started.elapsed();
-        let early_at = EARLY.min(self.length / 2);
+        // The first reading comes once every lesson has been shown in every view (what the
+        // caches hold by then, they hold for the rest of the hour), a minute in at the earliest;
+        // on a soak too short to judge memory by, at half of it.
+        let warm = self.cycle >= LESSONS.len() as u32 * CYCLES_PER_LESSON && elapsed >= EARLY;
+        let early_due = if self.length >= JUDGE_MEMORY_FROM { warm } else { elapsed >= self.length / 2 };
         if elapsed.as_secs_f64() >= 30.0 * (self.report.rss_every_30_s_mb.len() + 1) as f64 {
             self.report.rss_every_30_s_mb.extend(rss_mb());
         }
-        if self.report.rss_early_mb.is_none() && elapsed >= early_at {
+        if self.report.rss_early_mb.is_none() && early_due {
             self.report.rss_early_mb = rss_mb();
             self.report.rss_early_at_s = elapsed.as_secs_f64();
         }
