@@ -364,10 +364,12 @@ fn the_ground_truth_fills_in_batch_by_batch() {
     assert_eq!(h.state().reference_progress(), Some((256, 256)));
 }
 
-/// `shadowlab probe --lesson ID --step N --no-reference`, parsed.
-fn cli_probe(lesson: &str, step: usize) -> ProbeReport {
+/// `shadowlab probe --lesson ID --step N`, with the ground truth where `with_reference`, parsed.
+fn cli_probe(lesson: &str, step: usize, with_reference: bool) -> ProbeReport {
+    let reference = if with_reference { None } else { Some("--no-reference") };
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"))
-        .args(["probe", "--lesson", lesson, "--step", &step.to_string(), "--no-reference"])
+        .args(["probe", "--lesson", lesson, "--step", &step.to_string()])
+        .args(reference)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .env("XDG_RUNTIME_DIR", std::env::temp_dir())
         .output()
@@ -379,11 +381,14 @@ fn cli_probe(lesson: &str, step: usize) -> ProbeReport {
 #[test]
 fn every_lesson_step_quotes_the_probe_on_screen_in_both_languages_at_two_window_sizes() {
     let lessons = shadowlab::lessons::load_all(&shadowlab::lessons::default_dir()).expect("lessons");
+    // With the ground truth where the step quotes it (the app works it out there too).
+    let quotes_truth =
+        |s: &shadowlab::lessons::Step| s.quotes(live::Namespace::Probe, "visibility_reference");
     let cli: Vec<Vec<Option<ProbeReport>>> = lessons
         .iter()
         .map(|l| {
             let steps = l.steps.iter().enumerate();
-            steps.map(|(i, s)| s.probe.map(|_| cli_probe(&l.id, i + 1))).collect()
+            steps.map(|(i, s)| s.probe.map(|_| cli_probe(&l.id, i + 1, quotes_truth(s)))).collect()
         })
         .collect();
     for size in [[1600.0, 900.0], [1280.0, 720.0]] {
@@ -410,7 +415,8 @@ fn every_lesson_step_quotes_the_probe_on_screen_in_both_languages_at_two_window_
                 for lang in [Lang::En, Lang::Zh] {
                     h.state_mut().lang = lang;
                     h.run_steps(2);
-                    let (text, filled) = live::fill(step.text.get(lang), Some(&report), step.light, lang);
+                    let sources = h.state().live_sources();
+                    let (text, filled) = live::fill(step.text.get(lang), sources, step.light, lang);
                     assert!(filled.iter().all(|f| f.text != live::NO_VALUE), "{what} ({lang:?}): {text}");
                     // The lesson panel shows exactly this text: every quoted number is the probe's.
                     h.get_by_label(&text);
@@ -442,6 +448,49 @@ fn a_student_probe_says_so_and_one_click_brings_back_the_lessons() {
     assert_eq!(h.state().probe_report().map(|r| r.pixel), Some([x, y]));
     let text = step.text_filled(Lang::En, h.state().probe_report());
     h.get_by_label(&text);
+}
+
+/// A label's text (AccessKit keeps it as the node's value).
+fn label_text(node: &egui_kittest::Node<'_>) -> Option<String> {
+    node.accesskit_node().value().map(|v| v.to_string())
+}
+
+/// The ground truth at the probe, as the probe panel shows it: "0.4766 (256 samples)".
+fn panel_ground_truth(h: &Harness<'_, ShadowlabApp>) -> Option<f32> {
+    h.query_all_by_label_contains(" samples)")
+        .filter_map(|n| label_text(&n))
+        .find_map(|text| text.split(' ').next().and_then(|v| v.parse().ok()))
+}
+
+/// Where the text does not quote it, the probe panel works the ground truth out on a button,
+/// and keeps it while the probe stays.
+#[test]
+fn the_probe_panel_works_the_ground_truth_out_on_demand() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("lesson 4");
+    h.state_mut().go_to_step(lesson, 0);
+    settle(&mut h);
+    assert!(panel_ground_truth(&h).is_none(), "no ground truth until asked for");
+    let light = h.state().selected_light;
+    assert_eq!(h.state().probe_report().and_then(|r| r.lights[light].visibility_reference), None);
+    // The inspector's probe panel and the lesson panel's both have it; the lesson panel's,
+    // scrolled into view, is pressed.
+    h.query_all_by_label("work it out").last().expect("the button").scroll_to_me();
+    h.run_steps(30);
+    h.query_all_by_label("work it out").last().expect("the button").click();
+    settle(&mut h);
+    let shown = panel_ground_truth(&h).expect("the ground truth after the button");
+    let cli = cli_probe("pcss", 1, true).lights[light].visibility_reference.expect("the CLI's");
+    assert!((shown - cli).abs() < 0.02, "the panel shows {shown}, `shadowlab probe` {cli}");
+    // A new setting works it out again for the same probe; a new step forgets the request.
+    h.state_mut().scene.shadow.samples = 16;
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    assert!(panel_ground_truth(&h).is_some(), "the ground truth follows the settings");
+    h.state_mut().go_to_step(lesson, 2);
+    settle(&mut h);
+    assert!(panel_ground_truth(&h).is_none(), "a step that does not quote it starts without it");
+    assert!(h.query_all_by_label("work it out").next().is_some());
 }
 
 #[test]
