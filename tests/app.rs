@@ -462,6 +462,70 @@ fn panel_ground_truth(h: &Harness<'_, ShadowlabApp>) -> Option<f32> {
         .find_map(|text| text.split(' ').next().and_then(|v| v.parse().ok()))
 }
 
+/// Lesson 4's "against the ground truth" step quotes the ground truth at its probe: the probe
+/// panel counts the samples as they are averaged, then shows the value, the CLI's, and the text
+/// quotes it and the view's mean error.
+#[test]
+fn the_ground_truth_step_shows_the_ground_truth_at_the_probe() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("lesson 4");
+    let steps = &h.state().lessons[lesson].steps;
+    let index =
+        steps.iter().position(|s| s.title.en.starts_with("Against the ground truth")).expect("the step");
+    let step = steps[index].clone();
+    assert!(step.quotes(live::Namespace::Probe, "visibility_reference"), "the step quotes the ground truth");
+    h.state_mut().go_to_step(lesson, index);
+    // The panel counts the samples on the way ("12 / 256 samples…"), then shows the value.
+    let mut counted = None;
+    let start = std::time::Instant::now();
+    while panel_ground_truth(&h).is_none() {
+        h.step();
+        if counted.is_none()
+            && let Some(node) = h.query_all_by_label_contains(" / 256 samples…").next()
+        {
+            counted = label_text(&node);
+        }
+        assert!(start.elapsed() < std::time::Duration::from_secs(300), "no ground truth in the probe panel");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let counted = counted.expect("the panel should count the samples as they are averaged");
+    let done: u32 = counted.split(' ').next().and_then(|n| n.parse().ok()).expect("a count");
+    assert!(done < 256, "{counted}");
+    let shown = panel_ground_truth(&h).expect("shown");
+    let cli = cli_probe("pcss", index + 1, true).lights[step.light]
+        .visibility_reference
+        .expect("the CLI's ground truth");
+    assert!((shown - cli).abs() < 0.02, "the panel shows {shown}, `shadowlab probe` {cli}");
+    settle(&mut h);
+    let report = h.state().probe_report().cloned().expect("the probe");
+    let app = report.lights[step.light].visibility_reference.expect("the app's ground truth");
+    assert!((app - cli).abs() < 1e-6, "the same pixel and samples as the CLI: {app} vs {cli}");
+    // The text quotes it, and the view's mean error as the error legend gives it.
+    let legend = h.state().legend_lines();
+    let mae: f32 = legend
+        .iter()
+        .find_map(|l| l.strip_prefix("mean absolute error: "))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no mean error in the legend: {legend:?}"));
+    let text = step.text_filled(Lang::En, h.state().live_sources());
+    assert!(text.contains(&format!("({app:.2} at the probe)")), "{text}");
+    let quoted: f32 = text
+        .split_once("over this view is ")
+        .and_then(|(_, rest)| rest.get(..5))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no mean error in the text: {text}"));
+    assert!((quoted - mae).abs() <= 0.0005 + 1e-5, "the text says {quoted}, the legend {mae}");
+    h.get_by_label(&text);
+    // In Chinese too.
+    h.state_mut().lang = Lang::Zh;
+    h.run_steps(2);
+    assert!(
+        h.query_all_by_label(&format!("{app:.4}（256 个样本）")).next().is_some(),
+        "the panel in Chinese"
+    );
+    h.get_by_label(&step.text_filled(Lang::Zh, h.state().live_sources()));
+}
+
 /// Where the text does not quote it, the probe panel works the ground truth out on a button,
 /// and keeps it while the probe stays.
 #[test]

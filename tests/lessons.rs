@@ -3,7 +3,7 @@
 
 mod common;
 
-use shadowlab::lessons::live::{self, Verdict};
+use shadowlab::lessons::live::{self, Namespace, Verdict};
 use shadowlab::lessons::{self, Lang, Lesson, LessonError, Text};
 use shadowlab::probe::ProbeReport;
 use shadowlab::views::{View, render_view};
@@ -299,37 +299,67 @@ fn unknown_probe_placeholder_names_file_line_and_placeholder() {
     assert!(message.contains("receiver_depth_world"), "the error lists the names there are: {message}");
 }
 
+/// `shadowlab probe --lesson ID --step N`, parsed: the lesson's own frame, with the ground truth
+/// where `with_reference`.
+fn cli_probe(lesson: &str, step: usize, with_reference: bool) -> ProbeReport {
+    let mut command = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"));
+    command.args(["probe", "--lesson", lesson, "--step", &step.to_string()]);
+    if !with_reference {
+        command.arg("--no-reference");
+    }
+    let output = command.env("XDG_RUNTIME_DIR", std::env::temp_dir()).output().expect("run shadowlab probe");
+    let what = format!("{lesson} step {step}");
+    assert!(output.status.success(), "{what}: {}", String::from_utf8_lossy(&output.stderr));
+    serde_json::from_slice(&output.stdout).unwrap_or_else(|e| panic!("{what}: probe JSON: {e}"))
+}
+
+/// What `shadowlab render --lesson ID --step N` says of the step's view in the lesson's own
+/// frame: its mean absolute error against the ground truth, where the view gives one.
+fn cli_frame_values(lesson: &str, step: usize) -> live::FrameValues {
+    let dir = tempfile::tempdir().expect("temporary folder");
+    let out = dir.path().join("view.png");
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"))
+        .args(["render", "--lesson", lesson, "--step", &step.to_string(), "--out"])
+        .arg(&out)
+        .env("XDG_RUNTIME_DIR", std::env::temp_dir())
+        .output()
+        .expect("run shadowlab render");
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(output.status.success(), "{lesson} step {step}: {}", String::from_utf8_lossy(&output.stderr));
+    let mean_abs_error = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("mean absolute error:"))
+        .map(|v| v.trim().parse().unwrap_or_else(|e| panic!("{lesson} step {step}: {v:?}: {e}")));
+    live::FrameValues { mean_abs_error }
+}
+
 #[test]
 fn every_claimed_verdict_and_quoted_number_holds_at_the_cli_probe() {
-    // `shadowlab probe --lesson ID --step N` (the lesson's own frame) must find what the text says.
+    // `shadowlab probe --lesson ID --step N` (the lesson's own frame) must find what the text says,
+    // and `shadowlab render` must give every frame number the text quotes.
     for lesson in shipped() {
         for (i, step) in lesson.steps.iter().enumerate() {
-            let quotes = [&step.text]
-                .into_iter()
-                .chain(step.try_this.iter().map(|t| &t.text))
-                .any(|t| t.en.contains("{probe."));
-            if step.expect.is_none() && !quotes {
+            let quotes = step.texts().any(|t| t.contains("{probe."));
+            let quotes_frame = step.texts().any(|t| t.contains("{frame."));
+            if step.expect.is_none() && !quotes && !quotes_frame {
                 continue;
             }
-            let output = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"))
-                .args(["probe", "--lesson", &lesson.id, "--step", &(i + 1).to_string(), "--no-reference"])
-                .env("XDG_RUNTIME_DIR", std::env::temp_dir())
-                .output()
-                .expect("run shadowlab probe");
             let what = format!("{} step {}", lesson.id, i + 1);
-            assert!(output.status.success(), "{what}: {}", String::from_utf8_lossy(&output.stderr));
-            let report: ProbeReport = serde_json::from_slice(&output.stdout).expect("probe JSON");
+            let with_reference = step.quotes(Namespace::Probe, "visibility_reference");
+            let report = cli_probe(&lesson.id, i + 1, with_reference);
             assert!(report.hit, "{what}: the lesson's probe finds no surface");
             if let Some(expected) = step.expect {
                 let visibility = report.lights[step.light].visibility_gpu;
                 assert_eq!(Verdict::of(visibility), expected, "{what}: visibility {visibility}");
             }
+            let frame = if quotes_frame { cli_frame_values(&lesson.id, i + 1) } else { Default::default() };
+            let sources = live::Sources { probe: Some(&report), frame };
             // Every quoted number has a value there (no "…" on a slide or in the app), and each
             // is the report's value as rounded in the text.
             for lang in [Lang::En, Lang::Zh] {
                 let texts = [&step.text].into_iter().chain(step.try_this.iter().map(|t| &t.text));
                 for text in texts.map(|t| t.get(lang)) {
-                    let (filled_text, filled) = live::fill(text, Some(&report), step.light, lang);
+                    let (filled_text, filled) = live::fill(text, sources, step.light, lang);
                     for f in &filled {
                         assert_ne!(
                             f.text,
@@ -343,4 +373,21 @@ fn every_claimed_verdict_and_quoted_number_holds_at_the_cli_probe() {
             }
         }
     }
+}
+
+#[test]
+fn the_steps_that_quote_the_ground_truth_ask_for_it_on_their_own_light() {
+    let lessons = shipped();
+    let pcss = lessons::find(&lessons, "pcss").expect("the PCSS lesson");
+    let quoting: Vec<usize> = (0..pcss.steps.len())
+        .filter(|&i| pcss.steps[i].quotes(Namespace::Probe, "visibility_reference"))
+        .map(|i| i + 1)
+        .collect();
+    assert_eq!(quoting, [2, 4, 5, 8], "the PCSS steps that quote the ground truth");
+    for i in quoting {
+        assert_eq!(pcss.steps[i - 1].quoted_lights("visibility_reference"), [pcss.steps[i - 1].light]);
+    }
+    assert!(pcss.steps[7].quotes(Namespace::Frame, "mean_abs_error"));
+    assert!(!pcss.steps[0].quotes(Namespace::Probe, "visibility_reference"));
+    assert_eq!(pcss.steps[0].quoted_lights("visibility_reference"), Vec::<usize>::new());
 }
