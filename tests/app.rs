@@ -368,10 +368,12 @@ fn the_ground_truth_fills_in_batch_by_batch() {
     assert_eq!(h.state().reference_progress(), Some((256, 256)));
 }
 
-/// `shadowlab probe --lesson ID --step N --no-reference`, parsed.
-fn cli_probe(lesson: &str, step: usize) -> ProbeReport {
+/// `shadowlab probe --lesson ID --step N`, with the ground truth where `with_reference`, parsed.
+fn cli_probe(lesson: &str, step: usize, with_reference: bool) -> ProbeReport {
+    let reference = if with_reference { None } else { Some("--no-reference") };
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"))
-        .args(["probe", "--lesson", lesson, "--step", &step.to_string(), "--no-reference"])
+        .args(["probe", "--lesson", lesson, "--step", &step.to_string()])
+        .args(reference)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .env("XDG_RUNTIME_DIR", std::env::temp_dir())
         .output()
@@ -383,11 +385,14 @@ fn cli_probe(lesson: &str, step: usize) -> ProbeReport {
 #[test]
 fn every_lesson_step_quotes_the_probe_on_screen_in_both_languages_at_two_window_sizes() {
     let lessons = shadowlab::lessons::load_all(&shadowlab::lessons::default_dir()).expect("lessons");
+    // With the ground truth where the step quotes it (the app works it out there too).
+    let quotes_truth =
+        |s: &shadowlab::lessons::Step| s.quotes(live::Namespace::Probe, "visibility_reference");
     let cli: Vec<Vec<Option<ProbeReport>>> = lessons
         .iter()
         .map(|l| {
             let steps = l.steps.iter().enumerate();
-            steps.map(|(i, s)| s.probe.map(|_| cli_probe(&l.id, i + 1))).collect()
+            steps.map(|(i, s)| s.probe.map(|_| cli_probe(&l.id, i + 1, quotes_truth(s)))).collect()
         })
         .collect();
     for size in [[1600.0, 900.0], [1280.0, 720.0]] {
@@ -414,7 +419,8 @@ fn every_lesson_step_quotes_the_probe_on_screen_in_both_languages_at_two_window_
                 for lang in [Lang::En, Lang::Zh] {
                     h.state_mut().lang = lang;
                     h.run_steps(2);
-                    let (text, filled) = live::fill(step.text.get(lang), Some(&report), step.light, lang);
+                    let sources = h.state().live_sources();
+                    let (text, filled) = live::fill(step.text.get(lang), sources, step.light, lang);
                     assert!(filled.iter().all(|f| f.text != live::NO_VALUE), "{what} ({lang:?}): {text}");
                     // The lesson panel shows exactly this text: every quoted number is the probe's.
                     h.get_by_label(&text);
@@ -448,6 +454,113 @@ fn a_student_probe_says_so_and_one_click_brings_back_the_lessons() {
     assert_eq!(h.state().probe_report().map(|r| r.pixel), Some([x, y]));
     let text = step.text_filled(Lang::En, h.state().probe_report());
     h.get_by_label(&text);
+}
+
+/// A label's text (AccessKit keeps it as the node's value).
+fn label_text(node: &egui_kittest::Node<'_>) -> Option<String> {
+    node.accesskit_node().value().map(|v| v.to_string())
+}
+
+/// The ground truth at the probe, as the probe panel shows it: "0.4766 (256 samples)".
+fn panel_ground_truth(h: &Harness<'_, ShadowlabApp>) -> Option<f32> {
+    h.query_all_by_label_contains(" samples)")
+        .filter_map(|n| label_text(&n))
+        .find_map(|text| text.split(' ').next().and_then(|v| v.parse().ok()))
+}
+
+/// Lesson 4's "against the ground truth" step quotes the ground truth at its probe: the probe
+/// panel counts the samples as they are averaged, then shows the value, the CLI's, and the text
+/// quotes it and the view's mean error.
+#[test]
+fn the_ground_truth_step_shows_the_ground_truth_at_the_probe() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("lesson 4");
+    let steps = &h.state().lessons[lesson].steps;
+    let index =
+        steps.iter().position(|s| s.title.en.starts_with("Against the ground truth")).expect("the step");
+    let step = steps[index].clone();
+    assert!(step.quotes(live::Namespace::Probe, "visibility_reference"), "the step quotes the ground truth");
+    h.state_mut().go_to_step(lesson, index);
+    // The panel counts the samples on the way ("12 / 256 samples…"), then shows the value.
+    let mut counted = None;
+    let start = std::time::Instant::now();
+    while panel_ground_truth(&h).is_none() {
+        h.step();
+        if counted.is_none()
+            && let Some(node) = h.query_all_by_label_contains(" / 256 samples…").next()
+        {
+            counted = label_text(&node);
+        }
+        assert!(start.elapsed() < std::time::Duration::from_secs(300), "no ground truth in the probe panel");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let counted = counted.expect("the panel should count the samples as they are averaged");
+    let done: u32 = counted.split(' ').next().and_then(|n| n.parse().ok()).expect("a count");
+    assert!(done < 256, "{counted}");
+    let shown = panel_ground_truth(&h).expect("shown");
+    let cli = cli_probe("pcss", index + 1, true).lights[step.light]
+        .visibility_reference
+        .expect("the CLI's ground truth");
+    assert!((shown - cli).abs() < 0.02, "the panel shows {shown}, `shadowlab probe` {cli}");
+    settle(&mut h);
+    let report = h.state().probe_report().cloned().expect("the probe");
+    let app = report.lights[step.light].visibility_reference.expect("the app's ground truth");
+    assert!((app - cli).abs() < 1e-6, "the same pixel and samples as the CLI: {app} vs {cli}");
+    // The text quotes it, and the view's mean error as the error legend gives it.
+    let legend = h.state().legend_lines();
+    let mae: f32 = legend
+        .iter()
+        .find_map(|l| l.strip_prefix("mean absolute error: "))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no mean error in the legend: {legend:?}"));
+    let text = step.text_filled(Lang::En, h.state().live_sources());
+    assert!(text.contains(&format!("({app:.2} at the probe)")), "{text}");
+    let quoted: f32 = text
+        .split_once("over this view is ")
+        .and_then(|(_, rest)| rest.get(..5))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no mean error in the text: {text}"));
+    assert!((quoted - mae).abs() <= 0.0005 + 1e-5, "the text says {quoted}, the legend {mae}");
+    h.get_by_label(&text);
+    // In Chinese too.
+    h.state_mut().lang = Lang::Zh;
+    h.run_steps(2);
+    assert!(
+        h.query_all_by_label(&format!("{app:.4}（256 个样本）")).next().is_some(),
+        "the panel in Chinese"
+    );
+    h.get_by_label(&step.text_filled(Lang::Zh, h.state().live_sources()));
+}
+
+/// Where the text does not quote it, the probe panel works the ground truth out on a button,
+/// and keeps it while the probe stays.
+#[test]
+fn the_probe_panel_works_the_ground_truth_out_on_demand() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("lesson 4");
+    h.state_mut().go_to_step(lesson, 0);
+    settle(&mut h);
+    assert!(panel_ground_truth(&h).is_none(), "no ground truth until asked for");
+    let light = h.state().selected_light;
+    assert_eq!(h.state().probe_report().and_then(|r| r.lights[light].visibility_reference), None);
+    // The inspector's probe panel and the lesson panel's both have it; the lesson panel's,
+    // scrolled into view, is pressed.
+    h.query_all_by_label("work it out").last().expect("the button").scroll_to_me();
+    h.run_steps(30);
+    h.query_all_by_label("work it out").last().expect("the button").click();
+    settle(&mut h);
+    let shown = panel_ground_truth(&h).expect("the ground truth after the button");
+    let cli = cli_probe("pcss", 1, true).lights[light].visibility_reference.expect("the CLI's");
+    assert!((shown - cli).abs() < 0.02, "the panel shows {shown}, `shadowlab probe` {cli}");
+    // A new setting works it out again for the same probe; a new step forgets the request.
+    h.state_mut().scene.shadow.samples = 16;
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    assert!(panel_ground_truth(&h).is_some(), "the ground truth follows the settings");
+    h.state_mut().go_to_step(lesson, 2);
+    settle(&mut h);
+    assert!(panel_ground_truth(&h).is_none(), "a step that does not quote it starts without it");
+    assert!(h.query_all_by_label("work it out").next().is_some());
 }
 
 #[test]

@@ -168,6 +168,14 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("filter radius", "滤波半径"),
     ("visibility (CPU twin)", "可见性（CPU 孪生实现）"),
     ("visibility (GPU)", "可见性（GPU）"),
+    ("ground truth", "真实结果"),
+    ("{} ({} samples)", "{}（{} 个样本）"),
+    ("{} / {} samples…", "{} / {} 个样本…"),
+    ("work it out", "计算"),
+    (
+        "average the ground truth's hard shadows at this pixel (a few seconds)",
+        "在这个像素上平均真实结果的各张硬阴影（需要几秒）",
+    ),
     // Views and panels.
     ("view", "视图"),
     ("What the camera panel shows (`--view` in the CLI)", "相机面板显示的内容（命令行中的 `--view`）"),

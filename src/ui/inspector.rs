@@ -385,7 +385,7 @@ fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
     changed
 }
 
-pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
+pub(super) fn probe_values(app: &mut ShadowlabApp, ui: &mut Ui) {
     let lang = app.lang;
     let tr = move |en: &'static str| translate(lang, en);
     ui.heading(tr("Probe"));
@@ -412,6 +412,12 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
         Lang::Zh => format!("{pixel}，位于 {object}"),
     });
     let Some(l) = report.lights.iter().find(|l| l.light == app.selected_light) else { return };
+    let truth = match (l.visibility_reference, app.probe_reference_progress(l.light)) {
+        (Some(value), progress) => Truth::Value(value, progress.map(|(_, total)| total)),
+        (None, Some((done, total))) if done < total => Truth::Accumulating(done, total),
+        _ => Truth::NotAsked,
+    };
+    let mut ask = false;
     egui::Grid::new("probe").striped(true).num_columns(2).show(ui, |ui| {
         let mut row = |name: &str, value: String| {
             ui.label(name);
@@ -478,5 +484,42 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
         );
         row(tr("visibility (CPU twin)"), format!("{:.4}", l.visibility_twin));
         row(tr("visibility (GPU)"), format!("{:.4}", l.visibility_gpu));
+        // The ground truth at this pixel: on demand (a few seconds on a software rasteriser), or
+        // at once where the lesson text quotes it.
+        ui.label(tr("ground truth"));
+        let fill = |template, args: &[&dyn std::fmt::Display]| crate::i18n::fill(lang, template, args);
+        let value = |text: String| egui::RichText::new(text).monospace();
+        match truth {
+            Truth::Value(v, Some(total)) => {
+                ui.label(value(fill("{} ({} samples)", &[&format!("{v:.4}"), &total])));
+            }
+            Truth::Value(v, None) => {
+                ui.label(value(format!("{v:.4}")));
+            }
+            Truth::Accumulating(done, total) => {
+                ui.label(value(fill("{} / {} samples…", &[&done, &total])));
+            }
+            Truth::NotAsked => {
+                ask = ui
+                    .button(tr("work it out"))
+                    .on_hover_text(tr(
+                        "average the ground truth's hard shadows at this pixel (a few seconds)",
+                    ))
+                    .clicked();
+            }
+        }
+        ui.end_row();
     });
+    if ask {
+        app.ask_probe_truth();
+    }
+}
+
+/// The probe panel's ground-truth row.
+enum Truth {
+    /// Known (with the samples averaged, where this probe worked it out).
+    Value(f32, Option<u32>),
+    /// Samples done of all.
+    Accumulating(u32, u32),
+    NotAsked,
 }

@@ -35,9 +35,9 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let count = lesson.steps.len();
     let lesson_title = lesson.title.get(lang).to_string();
     let title = step.title.get(lang).to_string();
-    // Live numbers from the probe on screen (or "…" while it is worked out).
-    let text = step.text_filled(lang, app.probe.as_ref());
-    let tries = step.try_this_filled(lang, app.probe.as_ref());
+    // Live numbers from the probe and the view on screen (or "…" while they are worked out).
+    let text = step.text_filled(lang, app.live_sources());
+    let tries = step.try_this_filled(lang, app.live_sources());
     let lesson_probe = step.probe.map(|[x, y]| super::ProbeAt::LessonFrame(x, y));
     let plays = step.play;
     // Navigation first, so it stays in reach however long the text is.
