@@ -334,6 +334,18 @@ pub fn draw_traced(
     [width_px, height_px]: [u32; 2],
     min_text_px: f32,
 ) -> Result<(tiny_skia::Pixmap, Vec<(String, f32)>), DiagramError> {
+    let c = draw_canvas(kind, inputs, lang, [width_px, height_px], min_text_px)?;
+    Ok((c.pixmap, c.drawn))
+}
+
+/// [`draw_traced`], returning the whole canvas (where every text and frame was drawn).
+pub(crate) fn draw_canvas(
+    kind: DiagramKind,
+    inputs: &DiagramInputs,
+    lang: Lang,
+    [width_px, height_px]: [u32; 2],
+    min_text_px: f32,
+) -> Result<Canvas, DiagramError> {
     let bad = DiagramError::InvalidSize { width_px, height_px };
     if width_px == 0 || height_px == 0 || width_px > MAX_SIDE_PX || height_px > MAX_SIDE_PX {
         return Err(bad);
@@ -349,7 +361,7 @@ pub fn draw_traced(
         DiagramKind::MultiLight => multi_light::draw(&mut c, inputs),
         DiagramKind::Chebyshev => chebyshev::draw(&mut c, inputs),
     }
-    Ok((c.pixmap, c.drawn))
+    Ok(c)
 }
 
 /// Encodes a pixmap as PNG (straight alpha, as PNG requires).

@@ -538,9 +538,12 @@ fn chinese_diagrams_keep_the_numbers_of_the_english_ones() {
     };
     for (case, inp) in label_cases().into_iter().take(30) {
         for kind in DiagramKind::ALL {
-            let (_, en) = draw_traced(kind, &inp, Lang::En, [960, 540], 0.0).expect("draw");
-            let (_, zh) = draw_traced(kind, &inp, Lang::Zh, [960, 540], 0.0).expect("draw");
-            assert_eq!(en.len(), zh.len(), "{} ({case}): different label count", kind.id());
+            let en = draw_canvas(kind, &inp, Lang::En, [960, 540], 0.0).expect("draw");
+            let zh = draw_canvas(kind, &inp, Lang::Zh, [960, 540], 0.0).expect("draw");
+            // A label may break over more lines in one language than in the other.
+            let labels = |c: &Canvas| c.drawn.len() - c.continued;
+            assert_eq!(labels(&en), labels(&zh), "{} ({case}): different label count", kind.id());
+            let (en, zh) = (en.drawn, zh.drawn);
             assert_eq!(digits(&en), digits(&zh), "{} ({case}): numbers differ", kind.id());
         }
     }
