@@ -694,3 +694,125 @@ fn fit_cuts_to_the_width_with_an_ellipsis() {
     }
     assert_eq!(c.fit("中文标题很长很长", 20.0, 50.0).chars().last(), Some('…'));
 }
+
+/// The app's diagram panel: about 1000x300 points and smaller, text at least 14 px; the
+/// design size; a 16:9 panel.
+const PANEL_SIZES: [([u32; 2], f32); 7] = [
+    ([1000, 300], 14.0),
+    ([900, 260], 14.0),
+    ([760, 256], 14.0),
+    ([800, 230], 14.0),
+    ([640, 360], 14.0),
+    ([960, 540], 0.0),
+    ([1280, 720], 14.0),
+];
+
+/// Every pair of drawn texts whose boxes overlap, and every text that reaches into a frame
+/// (title bar, legend) without lying inside it.
+fn overlapping_text(c: &Canvas) -> Vec<String> {
+    let meet = |a: &[f32; 4], b: &[f32; 4]| canvas::boxes_meet(a, b, -0.5);
+    let inside = |a: &[f32; 4], f: &[f32; 4]| {
+        a[0] >= f[0] - 0.5
+            && a[1] >= f[1] - 0.5
+            && a[0] + a[2] <= f[0] + f[2] + 0.5
+            && a[1] + a[3] <= f[1] + f[3] + 0.5
+    };
+    let mut out = Vec::new();
+    for (i, (s, a)) in c.text_boxes.iter().enumerate() {
+        for (t, b) in &c.text_boxes[i + 1..] {
+            if meet(a, b) {
+                out.push(format!("{s:?} {a:?} overlaps {t:?} {b:?}"));
+            }
+        }
+        for f in &c.frames {
+            if meet(a, f) && !inside(a, f) {
+                out.push(format!("{s:?} {a:?} reaches into the frame {f:?}"));
+            }
+        }
+    }
+    out
+}
+
+/// Lesson 2's floor (79° from the light, a 1024 map over 80 world units, far 200) under each of
+/// its bias settings, and the diagram's own cases.
+fn acne_cases() -> Vec<(&'static str, DiagramInputs)> {
+    let floor = DiagramInputs {
+        light_angle_deg: 78.84,
+        shadow_map_size_texels: 1024,
+        frustum_width_world: 80.0,
+        light_near: 0.01,
+        light_far: 200.0,
+        receiver_depth_linear: 100.0,
+        bias_ndc: 0.0,
+        ..DiagramInputs::default()
+    };
+    let mut cases = vec![
+        ("no bias", floor.clone()),
+        ("too much bias", DiagramInputs { bias_ndc: 0.02, ..floor.clone() }),
+        ("slope bias", DiagramInputs { bias_ndc: 0.0042, light_angle_deg: 80.72, ..floor.clone() }),
+        ("adaptive", DiagramInputs { bias_ndc: 0.00029, ..floor.clone() }),
+        ("receiver plane", DiagramInputs { bias_ndc: 0.0001, receiver_plane: true, ..floor.clone() }),
+        ("normal offset", DiagramInputs { normal_offset_texels: 1.0, ..floor.clone() }),
+        ("culled", DiagramInputs { cull_front_faces: true, ..floor.clone() }),
+        ("shallow", DiagramInputs { light_angle_deg: 30.0, bias_ndc: 0.0005, ..floor }),
+    ];
+    cases.extend(label_cases().into_iter().filter(|(name, _)| !matches!(*name, "huge" | "nan and inf")));
+    cases
+}
+
+/// At the app's panel sizes the acne diagram's labels, numbers, verdict and legend keep clear
+/// of each other, in both languages: grown text used to push verdict lines apart (a dangling
+/// "too little bias:" with the rest at the top right), lay "acne (...)" over "contact", and
+/// hide the Chinese peter-panning gap under the legend.
+#[test]
+fn acne_bias_text_does_not_overlap_at_panel_sizes() {
+    let mut bad = Vec::new();
+    // Lesson 2's cases also at every panel height from 220 to 340 points.
+    let sweep: Vec<([u32; 2], f32)> =
+        [900, 1000].into_iter().flat_map(|w| (220..=340).step_by(8).map(move |h| ([w, h], 14.0))).collect();
+    for (i, (case, inp)) in acne_cases().into_iter().enumerate() {
+        let sizes = PANEL_SIZES.iter().chain(if i < 8 { &sweep[..] } else { &[] });
+        for lang in [Lang::En, Lang::Zh] {
+            for &(size, min_text) in sizes.clone() {
+                let c = draw_canvas(DiagramKind::AcneBias, &inp, lang, size, min_text).expect("draw");
+                for o in overlapping_text(&c) {
+                    bad.push(format!("{case}, {}, {size:?}: {o}", lang.code()));
+                }
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{} overlaps:\n{}", bad.len(), bad.join("\n"));
+}
+
+/// A verdict's two lines stay together, one under the other, whatever the panel's height: at
+/// some heights the first line ("too little bias:") used to end one column and the second
+/// start the next, at the top right.
+#[test]
+fn acne_bias_verdict_lines_stay_together() {
+    let verdicts = [
+        ["too little bias:", "acne (self-shadowing stripes)"],
+        ["more bias than needed:", "shadow detaches (peter panning)"],
+    ];
+    let sizes = [900, 1000].into_iter().flat_map(|w| (220..=340).step_by(8).map(move |h| [w, h]));
+    for (case, inp) in acne_cases().into_iter().take(2) {
+        for lang in [Lang::En, Lang::Zh] {
+            for size in sizes.clone() {
+                let c = draw_canvas(DiagramKind::AcneBias, &inp, lang, size, 14.0).expect("draw");
+                let find = |s: &str| {
+                    let s = crate::i18n::tr(lang, s);
+                    c.text_boxes.iter().find(|(t, _)| t == s).map(|(_, b)| *b)
+                };
+                for [first, second] in verdicts {
+                    if let (Some(a), Some(b)) = (find(first), find(second)) {
+                        let below = b[1] > a[1] + a[3] * 0.5 && b[1] < a[1] + a[3] * 2.5;
+                        assert!(
+                            a[0] == b[0] && below,
+                            "{case}, {}, {size:?}: {first} at {a:?}, {second} at {b:?}",
+                            lang.code()
+                        );
+                    }
+                }
+            }
+        }
+    }
+}

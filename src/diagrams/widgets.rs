@@ -152,6 +152,10 @@ pub struct Column {
     pub bottom: f32,
     /// Widest line of the current column, design units.
     width: f32,
+    /// Right edge of the widest line of all columns so far, design units.
+    right: f32,
+    /// Only measures: draws nothing (to try a layout before drawing it).
+    dry: bool,
     /// The box of every line so far, `[x, y, w, h]`.
     pub boxes: Vec<[f32; 4]>,
 }
@@ -161,7 +165,18 @@ pub const COLUMN_BOTTOM: f32 = 494.0;
 
 impl Column {
     pub fn new(x: f32, y: f32) -> Self {
-        Self { x, y, top: y, bottom: COLUMN_BOTTOM, width: 0.0, boxes: Vec::new() }
+        Self { x, y, top: y, bottom: COLUMN_BOTTOM, width: 0.0, right: x, dry: false, boxes: Vec::new() }
+    }
+
+    /// A column that measures its lines without drawing them: [`Column::right`] then tells
+    /// how far the drawn column would reach.
+    pub fn dry(self) -> Self {
+        Self { dry: true, ..self }
+    }
+
+    /// Right edge of the widest line so far, design units.
+    pub fn right(&self) -> f32 {
+        self.right
     }
 
     fn advance(c: &Canvas, st: &Style) -> f32 {
@@ -175,9 +190,15 @@ impl Column {
 
     /// Draws the line at the current place (no flow) and moves down.
     fn put(&mut self, c: &mut Canvas, s: &str, st: Style) {
-        let b = c.text(s, [self.x, self.y], Anchor::TopLeft, st);
+        let b = if self.dry {
+            c.text_box(s, [self.x, self.y], Anchor::TopLeft, st.size)
+        } else {
+            c.text(s, [self.x, self.y], Anchor::TopLeft, st)
+        };
         self.boxes.push(b);
-        self.width = self.width.max(b[2]);
+        let w = b[2];
+        self.width = self.width.max(w);
+        self.right = self.right.max(self.x + w);
         self.y += Self::advance(c, &st);
     }
 
@@ -210,7 +231,7 @@ impl Column {
         }
         for (s, st, continues) in &ls {
             self.put(c, s, *st);
-            if *continues {
+            if *continues && !self.dry {
                 c.continued += 1;
             }
         }
