@@ -228,8 +228,8 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         );
         blocks.push(vec![label("texel = W_near / map size · d / near".into()), label(t)]);
     }
-    let t = c.fill("slope = tan({}°) = {}", &[&format!("{angle:.0}"), &format!("{slope:.2}")]);
-    blocks.push(vec![label(t)]);
+    let (angle_txt, slope_txt) = angle_and_slope(angle);
+    blocks.push(vec![label(c.fill("slope = tan({}°) = {}", &[&angle_txt, &slope_txt]))]);
     let t = c.fill("   = {} world = {} NDC", &[&num(needed), &ndc(needed * npw)]);
     blocks.push(vec![label("needed bias ≈ texel/2 · slope".into()), label(t)]);
     let b_ndc = ndc(fin(inp.bias_ndc, 0.0));
@@ -427,4 +427,22 @@ fn lay_out(c: &mut Canvas, col: &mut Column, blocks: &[Vec<(String, Style)>], ve
     }
     col.y += 10.0;
     col.block(c, verdict);
+}
+
+/// The light's angle and the slope as printed: the angle to the fewest decimals (one to three)
+/// at which the tangent of the printed angle, printed, is the printed slope.
+pub(super) fn angle_and_slope(angle_deg: f32) -> (String, String) {
+    let angle = f64::from(angle_deg);
+    let slope = format!("{:.2}", angle.to_radians().tan());
+    let mut shown = (String::new(), String::new());
+    for decimals in 1..=3 {
+        let a = format!("{angle:.decimals$}");
+        let tan_shown = format!("{:.2}", a.parse::<f64>().unwrap_or(angle).to_radians().tan());
+        let matches = tan_shown == slope;
+        shown = (a, tan_shown);
+        if matches {
+            break;
+        }
+    }
+    shown
 }

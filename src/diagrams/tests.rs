@@ -816,3 +816,34 @@ fn acne_bias_verdict_lines_stay_together() {
         }
     }
 }
+
+fn texts_of(kind: DiagramKind, inp: &DiagramInputs, lang: Lang) -> Vec<String> {
+    let (_, texts) = draw_traced(kind, inp, lang, [960, 540], 0.0).expect("draw");
+    texts.into_iter().map(|(t, _)| t).collect()
+}
+
+/// "slope = tan(A°) = S": the tangent of the angle as printed, printed, is the slope as printed
+/// (79° used to print beside 5.07, the slope of 78.84°).
+#[test]
+fn the_acne_slope_is_the_tangent_of_the_angle_shown() {
+    let mut angle = 0.0f32;
+    while angle < 89.9 {
+        let inp = DiagramInputs { light_angle_deg: angle, ..DiagramInputs::default() };
+        let texts = texts_of(DiagramKind::AcneBias, &inp, Lang::En);
+        let line = texts.iter().find(|t| t.starts_with("slope = tan(")).expect("slope line");
+        let shown = line.trim_start_matches("slope = tan(");
+        let (a, s) = shown.split_once("°) = ").unwrap_or_else(|| panic!("{line}"));
+        let tan_shown = format!("{:.2}", a.parse::<f64>().expect("angle").to_radians().tan());
+        assert_eq!(tan_shown, s, "{angle}°: {line}");
+        // And within the last printed digit of the slope the numbers use.
+        let exact = f64::from(angle).to_radians().tan();
+        if angle < 85.0 {
+            let shown: f64 = s.parse().expect("slope");
+            assert!((shown - exact).abs() <= 0.0101, "{angle}°: {line}, exact {exact}");
+        }
+        angle += 0.37;
+    }
+    let teacher = DiagramInputs { light_angle_deg: 78.84, ..DiagramInputs::default() };
+    let texts = texts_of(DiagramKind::AcneBias, &teacher, Lang::En);
+    assert!(texts.iter().any(|t| t == "slope = tan(78.84°) = 5.07"), "{texts:?}");
+}
