@@ -5,7 +5,7 @@
 use super::canvas::{Canvas, Planned};
 use super::style::{Anchor, FS_LABEL, FS_SMALL, Style, Swatch, col, fin, ndc, num, pal};
 use super::widgets::Column;
-use super::{DiagramInputs, bias_world, ndc_per_world};
+use super::{DiagramInputs, bias_world, ndc_per_world, texel_world};
 use crate::i18n;
 
 /// Plot box: x, y, w, h.
@@ -59,10 +59,9 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let map = inp.shadow_map_size_texels.max(1) as f32;
     let w_frustum = fin(inp.frustum_width_world, 200.0).abs().max(1e-6);
     let recv = fin(inp.receiver_depth_linear, 113.0);
-    // One texel's footprint at the receiver: W / map for an orthographic map; a perspective
-    // map's W is its near-plane width, so the footprint grows with depth, times d / near.
+    // One texel's footprint at the receiver.
     let near = fin(inp.light_near, 1.0).abs().max(1e-6);
-    let texel = if inp.orthographic { w_frustum / map } else { w_frustum / map * recv.abs() / near };
+    let texel = texel_world(inp, recv);
     let angle = fin(inp.light_angle_deg, 45.0).abs().min(89.9);
     let slope = angle.to_radians().tan();
     let slope_draw = angle.min(85.0).to_radians().tan();

@@ -88,6 +88,14 @@ impl DiagramKind {
     }
 }
 
+impl DiagramInputs {
+    /// The probed point has no shadow-map data: the CPU twin's rule
+    /// (`crate::shadow::outside_frustum`), off the map or outside its depth range.
+    pub fn outside_frustum(&self) -> bool {
+        self.outside_map || self.outside_depth
+    }
+}
+
 /// One light seen from above (XZ plane), for [`DiagramKind::MultiLight`].
 #[derive(Clone, Debug, PartialEq)]
 pub struct LightTopView {
@@ -134,8 +142,14 @@ pub struct DiagramInputs {
     pub blockers_found: u32,
     pub blocker_samples: u32,
     pub visibility: f32,
-    /// The probed point lies outside the light's frustum (no shadow-map data for it).
-    pub outside_frustum: bool,
+    /// The probed point's uv lies off the shadow map (`crate::shadow::outside_map`).
+    pub outside_map: bool,
+    /// The probed point's depth lies outside the map's 0..1 NDC range
+    /// (`crate::shadow::outside_depth`).
+    pub outside_depth: bool,
+    /// RGBA8 depth storage: the stored depth after the pack / 8-bit / unpack round trip minus
+    /// the depth the shadow pass wrote, NDC; `None` for float storage.
+    pub stored_depth_rgba8_error_ndc: Option<f32>,
     /// Points outside the frustum count as lit (`clamp_outside`); otherwise the lookup wraps.
     pub clamp_outside: bool,
     /// The shadow pass culls front faces: closed objects store their back faces, so a lit
@@ -251,7 +265,9 @@ impl Default for DiagramInputs {
             blockers_found: 8,
             blocker_samples: 16,
             visibility: 0.5,
-            outside_frustum: false,
+            outside_map: false,
+            outside_depth: false,
+            stored_depth_rgba8_error_ndc: None,
             clamp_outside: true,
             cull_front_faces: false,
             receiver_plane: false,
@@ -298,6 +314,16 @@ fn ndc_from_linear(inputs: &DiagramInputs, d: f32) -> f32 {
 /// the depth curve for perspective).
 fn bias_world(inputs: &DiagramInputs, d: f32) -> f32 {
     style::fin(style::fin(inputs.bias_ndc, 0.0) / ndc_per_world(inputs, d), 0.0)
+}
+
+/// World width of one shadow-map texel at linear depth `d`: W / map size for an orthographic
+/// map; a perspective map's W is its near-plane width, so the footprint grows with depth, times
+/// d / near.
+fn texel_world(inputs: &DiagramInputs, d: f32) -> f32 {
+    let map = inputs.shadow_map_size_texels.max(1) as f32;
+    let w = style::fin(inputs.frustum_width_world, 200.0).abs().max(1e-6);
+    let near = style::fin(inputs.light_near, 1.0).abs().max(1e-6);
+    if inputs.orthographic { w / map } else { w / map * style::fin(d, near).abs() / near }
 }
 
 /// NDC depth per world unit at linear depth `d` (constant for orthographic).

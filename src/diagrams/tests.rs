@@ -468,12 +468,25 @@ fn label_cases() -> Vec<(&'static str, DiagramInputs)> {
     cases.push(("huge offset", DiagramInputs { normal_offset_texels: 40.0, bias_ndc: 0.2, ..d() }));
     cases.push(("culled", DiagramInputs { cull_front_faces: true, ..d() }));
     cases.push(("perspective", DiagramInputs { orthographic: false, light_near: 1.0, ..d() }));
-    cases.push(("outside, lit", DiagramInputs { outside_frustum: true, ..d() }));
+    cases.push(("outside, lit", DiagramInputs { outside_map: true, ..d() }));
     for stored in [100.0, 120.0] {
         let wrapped =
-            DiagramInputs { outside_frustum: true, clamp_outside: false, stored_depth_linear: stored, ..d() };
+            DiagramInputs { outside_map: true, clamp_outside: false, stored_depth_linear: stored, ..d() };
         cases.push(("outside, wrapped", wrapped));
     }
+    // Lesson 1, steps 3 to 5: RGBA8 rounding of the receiver's own depth; off the map without
+    // the clamp; off the map and past the far plane with it.
+    cases.extend(lesson_1_cases());
+    let past_far = DiagramInputs {
+        outside_depth: true,
+        receiver_depth_linear: 450.0,
+        stored_depth_linear: 400.0,
+        ..d()
+    };
+    cases.push(("past the far plane", past_far.clone()));
+    cases.push(("past the far plane, not clamped", DiagramInputs { clamp_outside: false, ..past_far }));
+    cases.push(("nothing stored", DiagramInputs { stored_depth_linear: 400.0, ..d() }));
+    cases.push(("behind", DiagramInputs { stored_depth_linear: 118.0, cull_front_faces: true, ..d() }));
     cases.push(("shader disagrees", DiagramInputs { penumbra_width_world: 9.0, visibility: 0.9, ..d() }));
     cases.push((
         "wide filter",
@@ -817,9 +830,148 @@ fn acne_bias_verdict_lines_stay_together() {
     }
 }
 
+/// Lesson 1's light (orthographic, near 0.01) at the probes of steps 3 to 5, as the probe
+/// reports them.
+fn lesson_1_cases() -> Vec<(&'static str, DiagramInputs)> {
+    let light = DiagramInputs {
+        light_angle_deg: 45.0,
+        shadow_map_size_texels: 2048,
+        light_near: 0.01,
+        bias_ndc: 0.001,
+        blocker_depth_linear: None,
+        ..DiagramInputs::default()
+    };
+    vec![
+        (
+            // Far 200, RGBA8 storage: the floor's own depth, rounded 0.0018 NDC nearer.
+            "rgba8 rounding",
+            DiagramInputs {
+                frustum_width_world: 120.0,
+                light_far: 200.0,
+                receiver_depth_linear: 107.43808,
+                stored_depth_linear: 107.061165,
+                stored_depth_rgba8_error_ndc: Some(-0.0018153191),
+                ..light.clone()
+            },
+        ),
+        (
+            // Extent 20, far 130, no clamp: uv.x 1.30 wraps onto the bunny's ears.
+            "off the map, wrapped",
+            DiagramInputs {
+                frustum_width_world: 40.0,
+                light_far: 130.0,
+                receiver_depth_linear: 125.365616,
+                stored_depth_linear: 100.11788,
+                outside_map: true,
+                clamp_outside: false,
+                blocker_depth_linear: Some(100.11788),
+                ..light.clone()
+            },
+        ),
+        (
+            // The clamp on: uv.y -0.49 and NDC depth 1.18, lit without a lookup.
+            "off the map and past far, clamped",
+            DiagramInputs {
+                frustum_width_world: 40.0,
+                light_far: 130.0,
+                receiver_depth_linear: 152.89879,
+                stored_depth_linear: 130.0,
+                outside_map: true,
+                outside_depth: true,
+                clamp_outside: true,
+                visibility: 1.0,
+                ..light
+            },
+        ),
+    ]
+}
+
 fn texts_of(kind: DiagramKind, inp: &DiagramInputs, lang: Lang) -> Vec<String> {
     let (_, texts) = draw_traced(kind, inp, lang, [960, 540], 0.0).expect("draw");
     texts.into_iter().map(|(t, _)| t).collect()
+}
+
+/// The two-pass verdict follows what the lookup really found: the receiver's own depth
+/// (rounded by RGBA8) is not a blocker, a point off the map is said to be off it, and only a
+/// nearer surface is the first hit's blocker.
+#[test]
+fn the_two_pass_verdict_says_what_the_lookup_found() {
+    let cases: std::collections::HashMap<_, _> = label_cases().into_iter().collect();
+    let says = |case: &str| texts_of(DiagramKind::TwoPass, &cases[case], Lang::En).join(" | ");
+    let rgba8 = says("rgba8 rounding");
+    assert!(rgba8.contains("(P itself, rounded by RGBA8: -0.0018 NDC)"), "{rgba8}");
+    assert!(rgba8.contains("no → in shadow (P shadows itself)"), "{rgba8}");
+    assert!(!rgba8.contains("blocker)"), "{rgba8}");
+    let clamped = says("off the map and past far, clamped");
+    assert!(clamped.contains("P lies off the light's map and outside its depth range"), "{clamped}");
+    assert!(clamped.contains("outside the light frustum → lit"), "{clamped}");
+    assert!(!clamped.contains("first hit"), "{clamped}");
+    let wrapped = says("off the map, wrapped");
+    assert!(wrapped.contains("(wrapped: another place's texel)"), "{wrapped}");
+    assert!(wrapped.contains("no → in shadow (wrapped lookup!)"), "{wrapped}");
+    assert!(!wrapped.contains("first hit") && !wrapped.contains("P lies off"), "{wrapped}");
+    let past_far = says("past the far plane, not clamped");
+    assert!(past_far.contains("(nothing stored: far plane)"), "{past_far}");
+    assert!(past_far.contains("no → in shadow (depth outside 0..1!)"), "{past_far}");
+    assert!(says("past the far plane").contains("P lies outside the light's depth range (NDC depth 1.1250)"));
+    assert!(says("shadowed").contains("(first hit: blocker)"));
+    assert!(says("defaults").contains("(first hit: P itself)"));
+    assert!(says("behind").contains("(first hit: a surface behind P)"));
+    assert!(says("nothing stored").contains("(nothing stored: far plane)"));
+
+    // The classification itself, and the point drawn lit where the clamp makes it lit.
+    assert_eq!(
+        two_pass::lookup(&cases["rgba8 rounding"]),
+        two_pass::Lookup::Itself { rgba8_error_ndc: Some(-0.0018153191) }
+    );
+    assert_eq!(two_pass::lookup(&cases["off the map and past far, clamped"]), two_pass::Lookup::NotRead);
+    assert_eq!(two_pass::lookup(&cases["off the map, wrapped"]), two_pass::Lookup::Wrapped);
+    assert_eq!(two_pass::lookup(&cases["shadowed"]), two_pass::Lookup::Blocker);
+    // Without the RGBA8 error the same stored depth would be a surface 0.38 world units nearer:
+    // more than the floor's own spread over a texel (0.059 at 45°), so a blocker.
+    let float = DiagramInputs { stored_depth_rgba8_error_ndc: None, ..cases["rgba8 rounding"].clone() };
+    assert_eq!(two_pass::lookup(&float), two_pass::Lookup::Blocker);
+    let green =
+        |pm: &Pixmap| pm.pixels().iter().filter(|p| p.red() < 30 && p.green() > 140 && p.blue() > 95).count();
+    let magenta =
+        |pm: &Pixmap| pm.pixels().iter().filter(|p| p.red() > 170 && p.green() < 60 && p.blue() > 90).count();
+    let lit = render(DiagramKind::TwoPass, &cases["off the map and past far, clamped"], 960, 540);
+    let shadowed = render(DiagramKind::TwoPass, &cases["off the map, wrapped"], 960, 540);
+    assert!(green(&lit) > green(&shadowed) + 100, "P is drawn lit where the clamp lights it");
+    assert!(
+        magenta(&shadowed) > magenta(&lit) + 50,
+        "P is drawn blocked where the wrapped lookup shadows it"
+    );
+}
+
+/// At the app's panel sizes (wide and short) and at the design size, the two-pass diagram's
+/// labels, verdict lines and legend keep clear of each other, in both languages, for lesson 1's
+/// probes and the lookups the verdict tells apart.
+#[test]
+fn two_pass_text_does_not_overlap_at_panel_sizes() {
+    let wide = PANEL_SIZES.iter().filter(|(s, _)| s[0] * 9 > s[1] * 16 || s[0] >= 960);
+    let names = [
+        "defaults",
+        "shadowed",
+        "outside, lit",
+        "outside, wrapped",
+        "past the far plane",
+        "nothing stored",
+        "behind",
+    ];
+    let cases = label_cases().into_iter().filter(|(n, _)| names.contains(n)).chain(lesson_1_cases());
+    let mut bad = Vec::new();
+    for (case, inp) in cases {
+        for lang in [Lang::En, Lang::Zh] {
+            for (size, min_text) in wide.clone() {
+                let c = draw_canvas(DiagramKind::TwoPass, &inp, lang, *size, *min_text).expect("draw");
+                for o in overlapping_text(&c) {
+                    bad.push(format!("{case}, {}, {size:?}: {o}", lang.code()));
+                }
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{} overlaps:\n{}", bad.len(), bad.join("\n"));
 }
 
 /// "slope = tan(A°) = S": the tangent of the angle as printed, printed, is the slope as printed
