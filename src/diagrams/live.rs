@@ -44,6 +44,7 @@ pub fn inputs_from_scene(
         ..DiagramInputs::default()
     };
     let shadow = &scene.shadow;
+    out.technique = shadow.technique;
     out.normal_offset_texels = shadow.normal_offset_texels;
     let Some(light) = scene.lights.get(light_index) else {
         // No light: nothing is shadowed.
@@ -398,7 +399,7 @@ normal_offset_texels = 0.5
     }
 
     /// Off the map, past the depth range, or both: the twin's rule part by part, in step with
-    /// the probe's `inside_light_frustum`; and the RGBA8 error comes along.
+    /// the probe's `inside_light_frustum`; and the RGBA8 error and the technique come along.
     #[test]
     fn where_the_probe_lies_and_how_its_depth_was_stored_come_along() {
         let s = scene(&[]);
@@ -426,8 +427,9 @@ normal_offset_texels = 0.5
         p.stored_depth_rgba8_error_ndc = Some(-0.0018);
         let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), None);
         assert_eq!(inp.stored_depth_rgba8_error_ndc, Some(-0.0018));
-        let without_probe = inputs_from_scene(&s, 0, 0.0, None, None);
-        assert!(!without_probe.outside_frustum());
+        assert_eq!(inp.technique, Technique::Pcf);
+        let hard = inputs_from_scene(&scene(&[("technique", "hard")]), 0, 0.0, None, None);
+        assert_eq!((hard.technique, hard.outside_frustum()), (Technique::Hard, false));
     }
 
     #[test]

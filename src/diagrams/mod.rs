@@ -19,6 +19,7 @@ mod widgets;
 mod tests;
 
 use crate::lessons::Lang;
+use crate::scene::Technique;
 pub use canvas::{Canvas, MAX_TEXT_GROWTH};
 pub use text::{
     CJK_FONT_PATHS, CjkFont, FontBytes, TextMetrics, TextRenderer, TextStyle, is_cjk, system_cjk_font,
@@ -111,6 +112,8 @@ pub struct LightTopView {
 /// distances from the light along its axis.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DiagramInputs {
+    /// The shadow technique the numbers come from.
+    pub technique: Technique,
     /// Angle between the light direction and the receiver's normal (0 = overhead), degrees.
     pub light_angle_deg: f32,
     pub shadow_map_size_texels: u32,
@@ -243,6 +246,7 @@ impl Default for DiagramInputs {
             proj.iter().map(|p| proj.iter().filter(|q| *q < p).count() < pcf_samples.len() / 2).collect();
         let spot_dist = (80f32 * 80.0 + 20.0 * 20.0).sqrt();
         Self {
+            technique: Technique::Pcss,
             light_angle_deg: 45.0,
             shadow_map_size_texels: 2048,
             frustum_width_world: 200.0,

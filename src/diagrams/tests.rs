@@ -1,5 +1,6 @@
 use super::*;
 use crate::lessons::Lang;
+use crate::scene::Technique;
 use tiny_skia::Pixmap;
 
 const BG: [u8; 3] = [250, 250, 246];
@@ -487,6 +488,20 @@ fn label_cases() -> Vec<(&'static str, DiagramInputs)> {
     cases.push(("past the far plane, not clamped", DiagramInputs { clamp_outside: false, ..past_far }));
     cases.push(("nothing stored", DiagramInputs { stored_depth_linear: 400.0, ..d() }));
     cases.push(("behind", DiagramInputs { stored_depth_linear: 118.0, cull_front_faces: true, ..d() }));
+    cases.push((
+        "pcf",
+        DiagramInputs { technique: Technique::Pcf, blockers_found: 0, blocker_samples: 0, ..d() },
+    ));
+    cases.push((
+        "pcf, nothing in front",
+        DiagramInputs { technique: Technique::Pcf, blocker_depth_linear: None, blockers_found: 0, ..d() },
+    ));
+    cases.push(("hard", DiagramInputs { technique: Technique::Hard, filter_radius_texels: 0.0, ..d() }));
+    cases.push(("vssm", DiagramInputs { technique: Technique::Vssm, blocker_samples: 0, ..d() }));
+    cases.push((
+        "pcss, no blockers",
+        DiagramInputs { blocker_depth_linear: None, blockers_found: 0, filter_radius_texels: 0.0, ..d() },
+    ));
     cases.push(("shader disagrees", DiagramInputs { penumbra_width_world: 9.0, visibility: 0.9, ..d() }));
     cases.push((
         "wide filter",
@@ -834,6 +849,7 @@ fn acne_bias_verdict_lines_stay_together() {
 /// reports them.
 fn lesson_1_cases() -> Vec<(&'static str, DiagramInputs)> {
     let light = DiagramInputs {
+        technique: Technique::Hard,
         light_angle_deg: 45.0,
         shadow_map_size_texels: 2048,
         light_near: 0.01,
@@ -972,6 +988,46 @@ fn two_pass_text_does_not_overlap_at_panel_sizes() {
         }
     }
     assert!(bad.is_empty(), "{} overlaps:\n{}", bad.len(), bad.join("\n"));
+}
+
+/// The PCSS diagram says what the technique does: PCF filters every pixel with its fixed
+/// radius and neither searches for blockers nor estimates a penumbra (it used to say "the
+/// filter step is skipped" beside "filter radius = 3.0 texels"), hard shadows take no filter,
+/// and PCSS skips its filter only where its search found no blocker.
+#[test]
+fn the_pcss_diagram_says_what_the_technique_does() {
+    let d = DiagramInputs::default;
+    let says = |inp: &DiagramInputs| texts_of(DiagramKind::PcssTriangles, inp, Lang::En);
+    let pcf = |blocker| DiagramInputs {
+        technique: Technique::Pcf,
+        filter_radius_texels: 3.0,
+        search_radius_texels: 0.0,
+        blocker_depth_linear: blocker,
+        blockers_found: 0,
+        blocker_samples: 0,
+        ..d()
+    };
+    for inp in [pcf(None), pcf(Some(100.0))] {
+        let t = says(&inp);
+        assert!(t.iter().any(|l| l == "PCF: fixed filter radius = 3.0 texels"), "{t:?}");
+        assert!(t.iter().any(|l| l == "(no blocker search, no w_penumbra)"), "{t:?}");
+        for absent in
+            ["skipped", "search region", "search radius", "w_search", "blockers found", "no blockers"]
+        {
+            assert!(!t.iter().any(|l| l.contains(absent)), "{absent}: {t:?}");
+        }
+    }
+    assert!(says(&pcf(Some(100.0))).iter().any(|l| l == "what PCSS would estimate here:"));
+    let hard = says(&DiagramInputs { technique: Technique::Hard, filter_radius_texels: 0.0, ..pcf(None) });
+    assert!(hard.iter().any(|l| l == "hard shadows: one depth test, no filter"), "{hard:?}");
+    assert!(!hard.iter().any(|l| l.contains("filter radius")), "{hard:?}");
+    let none_found = says(&DiagramInputs { blocker_depth_linear: None, blockers_found: 0, ..d() });
+    assert!(none_found.iter().any(|l| l == "(the filter step is skipped)"), "{none_found:?}");
+    assert!(!none_found.iter().any(|l| l.contains("filter radius")), "{none_found:?}");
+    let found = says(&d());
+    assert!(found.iter().any(|l| l == "filter radius = 5.0 texels"), "{found:?}");
+    assert!(found.iter().any(|l| l == "search region"), "{found:?}");
+    assert!(!found.iter().any(|l| l.contains("skipped")), "{found:?}");
 }
 
 /// "slope = tan(A°) = S": the tangent of the angle as printed, printed, is the slope as printed
