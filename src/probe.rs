@@ -195,9 +195,6 @@ pub fn probe(
         } else {
             None
         };
-        let inside = (0.0..=1.0).contains(&coord.uv.x)
-            && (0.0..=1.0).contains(&coord.uv.y)
-            && (0.0..=1.0).contains(&coord.depth_ndc);
         report.lights.push(LightProbe {
             light: light_index,
             shadow_map_uv: coord.uv.to_array(),
@@ -205,7 +202,7 @@ pub fn probe(
                 (coord.uv.x * map_size).floor() as i32,
                 (coord.uv.y * map_size).floor() as i32,
             ],
-            inside_light_frustum: inside,
+            inside_light_frustum: !crate::shadow::outside_frustum(&coord),
             n_dot_l: coord.n_dot_l,
             receiver_depth_ndc: coord.depth_ndc,
             receiver_depth_linear: coord.depth_linear,

@@ -15,6 +15,10 @@ fn harness() -> Harness<'static, ShadowlabApp> {
 }
 
 fn harness_sized(size: [f32; 2]) -> Harness<'static, ShadowlabApp> {
+    harness_with(size, Settings { show_timings: false, ..Settings::default() })
+}
+
+fn harness_with(size: [f32; 2], settings: Settings) -> Harness<'static, ShadowlabApp> {
     let mut setup = egui_kittest::wgpu::default_wgpu_setup();
     if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
         setup = eframe::egui_wgpu::WgpuSetup::CreateNew(shadowlab::ui::configure_wgpu(create));
@@ -22,7 +26,7 @@ fn harness_sized(size: [f32; 2]) -> Harness<'static, ShadowlabApp> {
     let mut harness = Harness::builder()
         .with_size(size)
         .wgpu_setup(setup)
-        .build_eframe(|cc| app_for_test(cc, Settings { show_timings: false, ..Settings::default() }));
+        .build_eframe(move |cc| app_for_test(cc, settings.clone()));
     settle(&mut harness);
     assert!(
         harness.state().camera_image().is_some(),
@@ -364,10 +368,12 @@ fn the_ground_truth_fills_in_batch_by_batch() {
     assert_eq!(h.state().reference_progress(), Some((256, 256)));
 }
 
-/// `shadowlab probe --lesson ID --step N --no-reference`, parsed.
-fn cli_probe(lesson: &str, step: usize) -> ProbeReport {
+/// `shadowlab probe --lesson ID --step N`, with the ground truth where `with_reference`, parsed.
+fn cli_probe(lesson: &str, step: usize, with_reference: bool) -> ProbeReport {
+    let reference = if with_reference { None } else { Some("--no-reference") };
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_shadowlab"))
-        .args(["probe", "--lesson", lesson, "--step", &step.to_string(), "--no-reference"])
+        .args(["probe", "--lesson", lesson, "--step", &step.to_string()])
+        .args(reference)
         .current_dir(env!("CARGO_MANIFEST_DIR"))
         .env("XDG_RUNTIME_DIR", std::env::temp_dir())
         .output()
@@ -379,11 +385,14 @@ fn cli_probe(lesson: &str, step: usize) -> ProbeReport {
 #[test]
 fn every_lesson_step_quotes_the_probe_on_screen_in_both_languages_at_two_window_sizes() {
     let lessons = shadowlab::lessons::load_all(&shadowlab::lessons::default_dir()).expect("lessons");
+    // With the ground truth where the step quotes it (the app works it out there too).
+    let quotes_truth =
+        |s: &shadowlab::lessons::Step| s.quotes(live::Namespace::Probe, "visibility_reference");
     let cli: Vec<Vec<Option<ProbeReport>>> = lessons
         .iter()
         .map(|l| {
             let steps = l.steps.iter().enumerate();
-            steps.map(|(i, s)| s.probe.map(|_| cli_probe(&l.id, i + 1))).collect()
+            steps.map(|(i, s)| s.probe.map(|_| cli_probe(&l.id, i + 1, quotes_truth(s)))).collect()
         })
         .collect();
     for size in [[1600.0, 900.0], [1280.0, 720.0]] {
@@ -410,7 +419,8 @@ fn every_lesson_step_quotes_the_probe_on_screen_in_both_languages_at_two_window_
                 for lang in [Lang::En, Lang::Zh] {
                     h.state_mut().lang = lang;
                     h.run_steps(2);
-                    let (text, filled) = live::fill(step.text.get(lang), Some(&report), step.light, lang);
+                    let sources = h.state().live_sources();
+                    let (text, filled) = live::fill(step.text.get(lang), sources, step.light, lang);
                     assert!(filled.iter().all(|f| f.text != live::NO_VALUE), "{what} ({lang:?}): {text}");
                     // The lesson panel shows exactly this text: every quoted number is the probe's.
                     h.get_by_label(&text);
@@ -434,7 +444,9 @@ fn a_student_probe_says_so_and_one_click_brings_back_the_lessons() {
     h.state_mut().probe_at = Some(ProbeAt::View(0.3, 0.7));
     h.state_mut().mark_dirty();
     settle(&mut h);
-    h.get_by_label("The numbers above are read at your probe.");
+    h.get_by_label(
+        "The numbers above are read at your probe; the sentences around them describe the lesson's.",
+    );
     h.get_by_label("Back to the lesson's probe").click();
     settle(&mut h);
     let [x, y] = step.probe.expect("the step names a probe");
@@ -442,6 +454,113 @@ fn a_student_probe_says_so_and_one_click_brings_back_the_lessons() {
     assert_eq!(h.state().probe_report().map(|r| r.pixel), Some([x, y]));
     let text = step.text_filled(Lang::En, h.state().probe_report());
     h.get_by_label(&text);
+}
+
+/// A label's text (AccessKit keeps it as the node's value).
+fn label_text(node: &egui_kittest::Node<'_>) -> Option<String> {
+    node.accesskit_node().value().map(|v| v.to_string())
+}
+
+/// The ground truth at the probe, as the probe panel shows it: "0.4766 (256 samples)".
+fn panel_ground_truth(h: &Harness<'_, ShadowlabApp>) -> Option<f32> {
+    h.query_all_by_label_contains(" samples)")
+        .filter_map(|n| label_text(&n))
+        .find_map(|text| text.split(' ').next().and_then(|v| v.parse().ok()))
+}
+
+/// Lesson 4's "against the ground truth" step quotes the ground truth at its probe: the probe
+/// panel counts the samples as they are averaged, then shows the value, the CLI's, and the text
+/// quotes it and the view's mean error.
+#[test]
+fn the_ground_truth_step_shows_the_ground_truth_at_the_probe() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("lesson 4");
+    let steps = &h.state().lessons[lesson].steps;
+    let index =
+        steps.iter().position(|s| s.title.en.starts_with("Against the ground truth")).expect("the step");
+    let step = steps[index].clone();
+    assert!(step.quotes(live::Namespace::Probe, "visibility_reference"), "the step quotes the ground truth");
+    h.state_mut().go_to_step(lesson, index);
+    // The panel counts the samples on the way ("12 / 256 samples…"), then shows the value.
+    let mut counted = None;
+    let start = std::time::Instant::now();
+    while panel_ground_truth(&h).is_none() {
+        h.step();
+        if counted.is_none()
+            && let Some(node) = h.query_all_by_label_contains(" / 256 samples…").next()
+        {
+            counted = label_text(&node);
+        }
+        assert!(start.elapsed() < std::time::Duration::from_secs(300), "no ground truth in the probe panel");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    let counted = counted.expect("the panel should count the samples as they are averaged");
+    let done: u32 = counted.split(' ').next().and_then(|n| n.parse().ok()).expect("a count");
+    assert!(done < 256, "{counted}");
+    let shown = panel_ground_truth(&h).expect("shown");
+    let cli = cli_probe("pcss", index + 1, true).lights[step.light]
+        .visibility_reference
+        .expect("the CLI's ground truth");
+    assert!((shown - cli).abs() < 0.02, "the panel shows {shown}, `shadowlab probe` {cli}");
+    settle(&mut h);
+    let report = h.state().probe_report().cloned().expect("the probe");
+    let app = report.lights[step.light].visibility_reference.expect("the app's ground truth");
+    assert!((app - cli).abs() < 1e-6, "the same pixel and samples as the CLI: {app} vs {cli}");
+    // The text quotes it, and the view's mean error as the error legend gives it.
+    let legend = h.state().legend_lines();
+    let mae: f32 = legend
+        .iter()
+        .find_map(|l| l.strip_prefix("mean absolute error: "))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no mean error in the legend: {legend:?}"));
+    let text = step.text_filled(Lang::En, h.state().live_sources());
+    assert!(text.contains(&format!("({app:.2} at the probe)")), "{text}");
+    let quoted: f32 = text
+        .split_once("over this view is ")
+        .and_then(|(_, rest)| rest.get(..5))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or_else(|| panic!("no mean error in the text: {text}"));
+    assert!((quoted - mae).abs() <= 0.0005 + 1e-5, "the text says {quoted}, the legend {mae}");
+    h.get_by_label(&text);
+    // In Chinese too.
+    h.state_mut().lang = Lang::Zh;
+    h.run_steps(2);
+    assert!(
+        h.query_all_by_label(&format!("{app:.4}（256 个样本）")).next().is_some(),
+        "the panel in Chinese"
+    );
+    h.get_by_label(&step.text_filled(Lang::Zh, h.state().live_sources()));
+}
+
+/// Where the text does not quote it, the probe panel works the ground truth out on a button,
+/// and keeps it while the probe stays.
+#[test]
+fn the_probe_panel_works_the_ground_truth_out_on_demand() {
+    let mut h = harness_sized([1600.0, 900.0]);
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("lesson 4");
+    h.state_mut().go_to_step(lesson, 0);
+    settle(&mut h);
+    assert!(panel_ground_truth(&h).is_none(), "no ground truth until asked for");
+    let light = h.state().selected_light;
+    assert_eq!(h.state().probe_report().and_then(|r| r.lights[light].visibility_reference), None);
+    // The inspector's probe panel and the lesson panel's both have it; the lesson panel's,
+    // scrolled into view, is pressed.
+    h.query_all_by_label("work it out").last().expect("the button").scroll_to_me();
+    h.run_steps(30);
+    h.query_all_by_label("work it out").last().expect("the button").click();
+    settle(&mut h);
+    let shown = panel_ground_truth(&h).expect("the ground truth after the button");
+    let cli = cli_probe("pcss", 1, true).lights[light].visibility_reference.expect("the CLI's");
+    assert!((shown - cli).abs() < 0.02, "the panel shows {shown}, `shadowlab probe` {cli}");
+    // A new setting works it out again for the same probe; a new step forgets the request.
+    h.state_mut().scene.shadow.samples = 16;
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    assert!(panel_ground_truth(&h).is_some(), "the ground truth follows the settings");
+    h.state_mut().go_to_step(lesson, 2);
+    settle(&mut h);
+    assert!(panel_ground_truth(&h).is_none(), "a step that does not quote it starts without it");
+    assert!(h.query_all_by_label("work it out").next().is_some());
 }
 
 #[test]
@@ -469,18 +588,9 @@ fn a_step_sets_the_view_and_the_view_selector_changes_it() {
     );
 }
 
-/// Text a Chinese reader may see in Latin letters: names the files and the CLI use (techniques,
-/// kernels, views, bias modes), units and acronyms.
+/// Text a Chinese reader may see in Latin letters: units and acronyms. (Views, diagrams,
+/// techniques, kernels and bias modes are shown by their Chinese labels: see the next test.)
 fn allowed_in_chinese(word: &str) -> bool {
-    use shadowlab::scene::{BiasMode, Kernel, Technique};
-    let names = Technique::ALL
-        .iter()
-        .map(|t| t.name())
-        .chain(Kernel::ALL.iter().map(|k| k.name()))
-        .chain(BiasMode::ALL.iter().map(|b| b.name()))
-        .chain(shadowlab::views::View::ALL.iter().map(|v| v.name()))
-        // The diagram picker shows the diagrams' ids, as the lesson files name them.
-        .chain(shadowlab::diagrams::DiagramKind::ALL.iter().map(|k| k.id()));
     // "screenshots" is the screenshot folder's default path; x, y and z name coordinates.
     let fixed = [
         "shadowlab",
@@ -507,7 +617,7 @@ fn allowed_in_chinese(word: &str) -> bool {
         "Resize",
         "panel",
     ];
-    names.chain(fixed).any(|n| n == word)
+    fixed.contains(&word)
         // Identifiers and file names: `light.0.width`, games202.toml, blocker-radius.
         || word.contains(['_', '-', '.']) || word.chars().any(|c| c.is_ascii_digit())
 }
@@ -556,6 +666,131 @@ fn in_chinese_every_panel_label_is_chinese() {
         }
     }
     assert!(english.is_empty(), "English left in the Chinese UI (add it to src/i18n/ui_zh.rs): {english:#?}");
+}
+
+/// Latin words that stay Latin in a Chinese shadow-mapping course: the acronyms of the techniques
+/// (PCF, PCSS, VSM, VSSM) and of NDC and RGBA8, as Chinese textbooks and GAMES202 write them.
+/// "English" is the language picker naming English in its own script.
+const LATIN_IN_CHINESE_LABELS: [&str; 7] = ["PCF", "PCSS", "VSM", "VSSM", "NDC", "RGBA8", "English"];
+
+/// The ASCII words of two letters or more in `text` that a Chinese reader should not meet in a
+/// view name, diagram tab, combo-box value or object name: everything but the acronyms above and
+/// the names of scene files (the scene picker lists files).
+fn latin_words(text: &str) -> Vec<&str> {
+    text.split(|c: char| !(c.is_ascii_alphanumeric() || "_-.".contains(c)))
+        .filter(|w| w.chars().filter(|c| c.is_ascii_alphabetic()).count() >= 2)
+        .filter(|w| !LATIN_IN_CHINESE_LABELS.contains(w) && !w.ends_with(".toml"))
+        .collect()
+}
+
+/// In Chinese, the names that files and the command line use in English are shown translated:
+/// the camera panel's view menu, the diagram tabs, the values of every combo box (technique,
+/// bias mode, depth storage, kernel...), the object under the probe and the Apply tooltips,
+/// over a few lesson steps with each combo box opened in turn.
+#[test]
+fn in_chinese_views_diagrams_settings_and_objects_have_chinese_names() {
+    use egui::accesskit::Role;
+    use shadowlab::scene::{BiasMode, DepthStorage, Kernel, Technique};
+    let mut h = harness_sized([1600.0, 900.0]);
+    h.state_mut().lang = Lang::Zh;
+    let mut english = std::collections::BTreeSet::new();
+    // Every text looked at: the test fails if the walk missed a name it should have met.
+    let mut seen = std::collections::BTreeSet::new();
+    let mut objects = std::collections::BTreeSet::new();
+    let check = |what: &str, text: &str, english: &mut std::collections::BTreeSet<String>| {
+        if !latin_words(text).is_empty() {
+            english.insert(format!("{what}: {text}"));
+        }
+    };
+    // Tabs and menu options are toggle buttons named by their text; a combo box shows its value
+    // (its name is its label or tooltip).
+    let named = |h: &Harness<'_, ShadowlabApp>| -> Vec<(String, String)> {
+        let mut out = Vec::new();
+        for node in h.root().children_recursive() {
+            let a = node.accesskit_node();
+            let shown = match a.role() {
+                Role::ComboBox => a.value().map(|v| ("combo box", v)),
+                Role::Button if a.toggled().is_some() => a.label().map(|l| ("tab or option", l)),
+                _ => None,
+            };
+            out.extend(shown.map(|(what, text)| (what.to_string(), text)));
+        }
+        out
+    };
+    // Steps probing the floor and a box, with a view, a technique and a bias mode to Apply.
+    for (id, step) in [("hard-shadows", 1), ("bias", 2), ("pcss", 3), ("vsm", 2)] {
+        let lesson = h.state().lessons.iter().position(|l| l.id == id).expect("lesson");
+        h.state_mut().go_to_step(lesson, step);
+        settle(&mut h);
+        h.run_steps(2);
+        let at = format!("{id} step {}", step + 1);
+        for (what, text) in named(&h) {
+            check(&format!("{at}, {what}"), &text, &mut english);
+            seen.insert(text);
+        }
+        // Open each combo box (the view menu among them) and read its options.
+        let combos = h.query_all_by_role(Role::ComboBox).count();
+        assert!(combos >= 6, "{at}: only {combos} combo boxes");
+        for i in 0..combos {
+            h.query_all_by_role(Role::ComboBox).nth(i).expect("combo box").click_accesskit();
+            h.run_steps(2);
+            for (what, text) in named(&h) {
+                check(&format!("{at}, combo box {i} open, {what}"), &text, &mut english);
+                seen.insert(text);
+            }
+            h.key_press(egui::Key::Escape);
+            h.run_steps(2);
+        }
+        // The surface under the probe: "像素 x,y，位于 地面".
+        for node in h.root().children_recursive() {
+            let a = node.accesskit_node();
+            for text in [a.label(), a.value()].into_iter().flatten() {
+                if let Some((_, object)) = text.split_once("，位于 ") {
+                    check(&format!("{at}, probe"), object, &mut english);
+                    objects.insert(object.to_string());
+                }
+            }
+        }
+        // What each Apply button sets, as its tooltip lists it ("视图 = 着色画面").
+        for b in 0..h.query_all_by_label("应用").count() {
+            h.query_all_by_label("应用").nth(b).expect("Apply").hover();
+            h.run_steps(60);
+            let mut tooltip = false;
+            for node in h.root().children_recursive() {
+                let a = node.accesskit_node();
+                for text in [a.label(), a.value()].into_iter().flatten() {
+                    if text.starts_with(shadowlab::i18n::tr(Lang::Zh, "set what this prompt says")) {
+                        tooltip = true;
+                        for line in text.lines().skip(1) {
+                            let value = line.split_once(" = ").map_or(line, |(_, v)| v);
+                            check(&format!("{at}, Apply tooltip"), value, &mut english);
+                            seen.insert(value.to_string());
+                        }
+                    }
+                }
+            }
+            assert!(tooltip, "{at}: no tooltip on Apply button {}", b + 1);
+            h.hover_at(egui::pos2(1.0, 450.0));
+            h.run_steps(2);
+        }
+    }
+    assert!(english.is_empty(), "English names left in the Chinese app: {english:#?}");
+    // The walk met every view, diagram and setting by its Chinese name, and named the surfaces.
+    let labels = shadowlab::views::View::ALL
+        .iter()
+        .map(|v| v.label(Lang::Zh))
+        .chain(shadowlab::diagrams::DiagramKind::ALL.iter().map(|d| d.label(Lang::Zh)))
+        .chain(Technique::ALL.iter().map(|t| t.label(Lang::Zh)))
+        .chain(BiasMode::ALL.iter().map(|b| b.label(Lang::Zh)))
+        .chain(Kernel::ALL.iter().map(|k| k.label(Lang::Zh)))
+        .chain(DepthStorage::ALL.iter().map(|d| d.label(Lang::Zh)));
+    for label in labels {
+        assert!(seen.iter().any(|t| t.contains(label)), "`{label}` never shown: {seen:#?}");
+    }
+    for tip in ["自适应", "着色画面", "PCF 滤波"] {
+        assert!(seen.contains(tip), "no Apply tooltip says `{tip}`");
+    }
+    assert_eq!(objects, ["地面", "箱子"].map(String::from).into(), "the surfaces under the probes");
 }
 
 #[test]
@@ -814,7 +1049,8 @@ fn the_vsm_lesson_shows_light_bleeding_and_the_view_menu_shows_the_moments() {
     settle(&mut h);
     let legends = h.state().legend_lines();
     assert!(legends.iter().any(|l| l == "the moments view needs the vsm or vssm technique"), "{legends:?}");
-    assert!(legends.iter().any(|l| l.contains("only VSM and VSSM")), "{legends:?}");
+    // The moments view is of the light's map: the camera picture's overlays stay off it.
+    assert!(!legends.iter().any(|l| l.contains("only VSM and VSSM")), "{legends:?}");
 }
 
 /// What `shadowlab FILE`, `--lesson ID --step N` and `--lang zh` open, as the window shows it:
@@ -1023,4 +1259,117 @@ fn playback_left_running_loops_over_the_time_range() {
     h.state_mut().playing = false;
     settle(&mut h);
     assert!(h.state().frames_shown() > frames_before + 1, "the views stopped refreshing");
+}
+
+#[test]
+fn the_ab_split_compares_shaded_pictures_whatever_the_view() {
+    let mut h = harness();
+    h.state_mut().view = shadowlab::views::View::Penumbra;
+    h.state_mut().scene.shadow.technique = shadowlab::scene::Technique::Pcss;
+    h.get_by_label("A/B split against").click();
+    settle(&mut h);
+    // Both sides shaded (one heatmap beside one shaded picture compares nothing), and it says so.
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::Final);
+    assert!(h.state().camera_image_b().is_some(), "side B is rendered");
+    // Its labels stay clear of the view selector.
+    let painted = h.state().camera_paint().clone();
+    assert!(
+        painted.legend.iter().any(|l| l.contains("the A/B split compares the shaded pictures")),
+        "{painted:?}"
+    );
+    assert_eq!(painted.ab_labels.len(), 2);
+    for label in &painted.ab_labels {
+        assert!(!label.intersects(painted.selector), "{label:?} under the selector {:?}", painted.selector);
+    }
+    // Off again, the chosen view returns.
+    h.get_by_label("A/B split against").click();
+    settle(&mut h);
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::Penumbra);
+}
+
+/// A long error and a long "saved …" message share the status bar's left with the timings at
+/// its right: each is cut with an ellipsis short of the timings, at two window sizes and in
+/// both languages, and hovering the error shows its whole text once.
+#[test]
+fn long_status_messages_stop_short_of_the_timings_and_show_once_on_hover() {
+    let detail = format!(
+        "{}/lessons/my-homework/scenes/a-scene-with-a-rather-long-name.toml: line 12: key \
+         `shadow.technique`: expected one of hard, pcf, pcss, vsm, vssm, found \"blurry\" (did you mean pcss?)",
+        env!("CARGO_MANIFEST_DIR")
+    );
+    let saved = format!(
+        "saved {0}/shot-001-window.png, {0}/shot-001-camera.png, {0}/shot-001-shadow-map.png",
+        std::env::temp_dir().join("shadowlab-screenshots-of-a-long-lesson").display()
+    );
+    for size in [[1280.0, 720.0], [1600.0, 900.0]] {
+        let mut h = harness_with(size, Settings { show_timings: true, ..Settings::default() });
+        for lang in [Lang::En, Lang::Zh] {
+            let app = h.state_mut();
+            app.lang = lang;
+            app.error = Some(shadowlab::ui::AppError::new("could not open the scene", &detail));
+            app.status = saved.clone();
+            h.run_steps(3);
+            let case = format!("{lang:?} at {}x{}", size[0], size[1]);
+            let shown = h.state().shown_size();
+            let resolution = format!("{}x{}", shown.0, shown.1);
+            let timings: Vec<egui::Rect> =
+                h.query_all_by_label_contains(&resolution).map(|n| n.rect()).collect();
+            assert_eq!(timings.len(), 1, "{case}: one timings label naming {resolution}");
+            let timings = timings[0];
+            assert!(timings.right() <= size[0] && timings.left() > size[0] * 0.3, "{case}: {timings:?}");
+            let error = h.get_by_label_contains(&detail).rect();
+            let status = h.get_by_label(&saved).rect();
+            let dismiss = h.get_by_label(shadowlab::i18n::tr(lang, "dismiss")).rect();
+            for (what, rect) in [("error", error), ("dismiss", dismiss), ("saved message", status)] {
+                assert!(
+                    rect.right() <= timings.left() && rect.width() > 0.0,
+                    "{case}: the {what} ({rect:?}) runs under the timings ({timings:?})"
+                );
+                assert!((rect.center().y - timings.center().y).abs() < 4.0, "{case}: {what} {rect:?}");
+            }
+            // Hovering either shows its whole text in a tooltip, once (egui shows one only for a
+            // cut text, so this also says both were cut).
+            for (what, text, rect) in [("error", &detail, error), ("saved message", &saved, status)] {
+                let count = |h: &Harness<'_, ShadowlabApp>| h.query_all_by_label_contains(text).count();
+                assert_eq!(count(&h), 1, "{case}: the {what} before hovering");
+                h.hover_at(rect.center());
+                h.run_steps(4);
+                assert_eq!(count(&h), 2, "{case}: the {what} in the bar and once in its tooltip");
+            }
+            h.hover_at(egui::pos2(size[0] * 0.5, size[1] * 0.5));
+            h.run_steps(4);
+        }
+    }
+}
+
+/// Every step in both languages, in normal and present mode, as PNGs to look at
+/// (`target/tmp/walk/`): `cargo test --release --test app -- --ignored walk_every_step`.
+#[test]
+#[ignore = "writes pictures of every step for a person to look at"]
+fn walk_every_step_to_pictures() {
+    let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("walk");
+    let mut h = harness_sized([1600.0, 900.0]);
+    let steps: Vec<(usize, usize)> = h
+        .state()
+        .lessons
+        .iter()
+        .enumerate()
+        .flat_map(|(l, lesson)| (0..lesson.steps.len()).map(move |s| (l, s)))
+        .collect();
+    for lang in [Lang::En, Lang::Zh] {
+        for present in [false, true] {
+            let dir = out.join(format!("{}{}", lang.code(), if present { "-present" } else { "" }));
+            std::fs::create_dir_all(&dir).expect("create the folder");
+            for &(l, s) in &steps {
+                h.state_mut().lang = lang;
+                h.state_mut().present = present;
+                h.state_mut().go_to_step(l, s);
+                settle(&mut h);
+                h.run_steps(3);
+                let id = h.state().lessons[l].id.clone();
+                let image = h.render().expect("render the window");
+                image.save(dir.join(format!("{id}-{}.png", s + 1))).expect("write the picture");
+            }
+        }
+    }
 }

@@ -813,25 +813,21 @@ fn bench_unknown_row_and_bad_override_are_refused() {
 #[test]
 fn bench_app_window_drives_the_real_window() {
     // A real window needs a display: Xvfb stands in for one (the CI script installs it).
-    let mut command = std::process::Command::new("xvfb-run");
-    command
-        .args(["-a", "-s", "-screen 0 1600x900x24", env!("CARGO_BIN_EXE_shadowlab")])
-        .args(["bench", "--app", "--window", "--seconds", "0.5", "--json"])
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .env("XDG_RUNTIME_DIR", common::runtime_dir());
-    let output = command.output().expect("xvfb-run runs (apt-get install xvfb xauth)");
-    let run = Run {
-        code: output.status.code(),
-        stdout: String::from_utf8_lossy(&output.stdout).into_owned(),
-        stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
-    };
+    let run = common::run_in_window(&["bench", "--app", "--window", "--seconds", "0.5", "--json"]);
     assert_eq!(run.code, Some(0), "{run}");
     let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
     assert!(json["painter"].as_str().is_some_and(|p| p.ends_with("(window)")), "{json:#}");
     let phases = json["phases"].as_array().expect("phases");
     assert_eq!(phases.len(), 2, "{json:#}");
-    for phase in phases {
+    // Each phase moved what it drives (the slider's width, the light) and the views showed it:
+    // the bench fails rather than report a drag that missed.
+    for (phase, moved) in phases.iter().zip(["light 0 width ", "light 0 position "]) {
         assert!(phase["ui_frames"].as_u64().is_some_and(|n| n > 0), "{phase}");
+        assert!(phase["view_refreshes"].as_u64().is_some_and(|n| n > 0), "{phase}");
+        assert!(
+            phase["moved"].as_str().is_some_and(|m| m.starts_with(moved) && m.contains(" -> ")),
+            "{phase}"
+        );
         assert!(phase["release_to_full_quality_s"].as_f64().is_some_and(|s| s >= 0.0), "{phase}");
     }
 }
@@ -887,6 +883,7 @@ fn bench_app_drives_the_app_and_reports_what_a_student_feels() {
     assert_eq!(phases.len(), 2, "{json:#}");
     for phase in phases {
         assert!(phase["ui_frames"].as_u64().is_some_and(|n| n > 0), "{phase}");
+        assert!(phase["view_refreshes"].as_u64().is_some_and(|n| n > 0), "{phase}");
         for key in
             ["ui_frames_per_s", "view_refreshes_per_s", "release_to_full_quality_s", "slowest_ui_frame_ms"]
         {
@@ -1120,4 +1117,29 @@ fn an_installed_binary_finds_its_lessons_and_scenes_from_any_folder() {
     let render = built_in(&["render", "--lesson", "hard-shadows", "--size", "160x90", "--out", "copy.png"]);
     assert_eq!(render.code, Some(0), "{render}");
     assert!(elsewhere.join("copy.png").is_file(), "{render}");
+}
+
+#[test]
+fn bench_soak_plays_the_lessons_in_the_real_window_and_keeps_moving() {
+    let run = common::run_in_window(&["bench", "--app", "--window", "--soak", "12", "--json"]);
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
+    assert_eq!(json["moving_throughout"], Value::Bool(true), "{json:#}");
+    assert!(json["frames_rendered"].as_u64().is_some_and(|n| n > 2), "{json:#}");
+    assert!(json["full_detail_frames"].as_u64().is_some_and(|n| n >= 1), "{json:#}");
+    assert!(json["view_switches"].as_u64().is_some_and(|n| n >= 1), "{json:#}");
+    assert!(json["scene_time_advanced_s"].as_f64().is_some_and(|t| t > 1.0), "{json:#}");
+    for key in ["rss_early_mb", "rss_end_mb"] {
+        assert!(json[key].as_f64().is_some_and(|mb| mb > 10.0), "{key}: {json:#}");
+    }
+    // Too short to judge memory by.
+    assert_eq!(json["memory_held"], Value::Null, "{json:#}");
+}
+
+#[test]
+fn bench_soak_needs_the_window_and_a_sensible_length() {
+    let run = shadowlab(&["bench", "--app", "--soak", "60"]);
+    assert_bad_input(&run, &["--soak", "--window"]);
+    let run = shadowlab(&["bench", "--app", "--window", "--soak", "1"]);
+    assert_bad_input(&run, &["--soak 1", "out of range"]);
 }

@@ -139,6 +139,30 @@ fn chinese_slides_differ_from_english_ones() {
     assert_eq!(std::fs::read(english().join(&camera)).ok(), std::fs::read(zh.join(&camera)).ok());
 }
 
+/// A slide's probe panel names the surface in the slide's language (the scene's `name_zh`), and
+/// its caption names the view as the Chinese app's view menu does.
+#[test]
+fn slides_name_the_probed_surface_and_the_view_in_the_slides_language() {
+    use shadowlab::lessons::Lang;
+    use shadowlab::views::View;
+    let all = lessons::load_all(&lessons::default_dir()).expect("the shipped lessons load");
+    let lesson = lessons::find(&all, LESSON).expect("the lesson exists");
+    // Step 2 probes the floor behind the big bunny.
+    let scene = lesson.steps[1].scene().expect("the step's scene");
+    let (_ctx, mut renderer) = common::gpu();
+    for (lang, surface) in [(Lang::En, "floor"), (Lang::Zh, "地面")] {
+        let pictures =
+            shadowlab::export::step::render_step(&mut renderer, lesson, 1, &scene, (320, 180), lang)
+                .expect("the step renders");
+        assert_eq!(pictures.probe_object.as_deref(), Some(surface), "{lang:?}");
+    }
+    use shadowlab::export::slide::view_label;
+    for view in View::ALL {
+        assert_eq!(view_label(view, Lang::Zh), view.label(Lang::Zh));
+    }
+    assert_eq!(view_label(View::Final, Lang::En), "shaded", "English captions keep their own words");
+}
+
 #[test]
 fn exporting_twice_gives_identical_files() {
     let (_a, first) = export("en", "640x360");
@@ -241,4 +265,37 @@ fn a_steps_overlays_are_on_its_camera_picture() {
     let orange =
         outside.pixels().filter(|p| p[0] > p[2].saturating_add(60) && p[1] > p[2].saturating_add(20)).count();
     assert!(orange > 5000, "no outside-the-frustum tint ({orange} orange pixels)");
+}
+
+/// The slide of lesson 4's "against the ground truth" step: its text quotes the ground truth at
+/// the probe and the mean error of the camera panel the slide shows, in both languages, with no
+/// "…" left (the slides render deterministically, so nothing is still being worked out).
+#[test]
+fn a_slide_fills_the_ground_truth_and_the_mean_error_it_shows() {
+    use shadowlab::lessons::{Lang, live};
+    let (_ctx, mut renderer) = common::gpu();
+    let all = lessons::load_all(&lessons::default_dir()).expect("the shipped lessons load");
+    let lesson = lessons::find(&all, "pcss").expect("lesson 4");
+    let index =
+        lesson.steps.iter().position(|s| s.title.en.starts_with("Against the ground truth")).expect("step");
+    let step = &lesson.steps[index];
+    let scene = step.scene().expect("the step's scene");
+    let layout = SlideLayout::new(960, 540);
+    let size = (layout.camera.w, layout.camera.h);
+    let pictures = shadowlab::export::step::render_step(&mut renderer, lesson, index, &scene, size, Lang::En)
+        .expect("the step renders");
+    let report = pictures.probe.as_ref().expect("the probe");
+    let truth = report.lights[step.light].visibility_reference.expect("the ground truth at the probe");
+    let mae = pictures.frame.mean_abs_error.expect("the error view's mean error");
+    // The number the camera panel's legend prints, at the panel's size.
+    let summary = pictures.camera_summary.as_deref().unwrap_or_default();
+    assert!(summary.contains(&format!("mean absolute error: {mae:.5}")), "{summary}");
+    for lang in [Lang::En, Lang::Zh] {
+        let text = step.text_filled(lang, pictures.live());
+        assert!(!text.contains(live::NO_VALUE), "{lang:?}: {text}");
+        assert!(text.contains(&format!("{truth:.2}")), "{lang:?}: no ground truth {truth:.2} in {text}");
+        assert!(text.contains(&format!("{mae:.3}")), "{lang:?}: no mean error {mae:.3} in {text}");
+    }
+    // A probe alone leaves the frame's number pending.
+    assert!(step.text_filled(Lang::En, pictures.probe.as_ref()).contains(live::NO_VALUE));
 }

@@ -54,6 +54,54 @@ fn mean_abs(a: &[f32], b: &[f32]) -> f64 {
 }
 
 #[test]
+fn the_ground_truth_reads_only_the_settings_its_key_names() {
+    // The app keeps a ground truth while only settings it does not read change
+    // (`reference::settings_read`): every one of them changed here must leave it bit for bit.
+    let (_ctx, mut renderer) = common::gpu();
+    let truth = |renderer: &mut Renderer, overrides: &[(&str, &str)]| {
+        let mut all = vec![("reference_samples", "16"), ("light.0.shadow_map_size", "1024")];
+        all.extend_from_slice(overrides);
+        let scene = common::scene("contact", &all);
+        renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
+        (
+            shadowlab::reference::settings_read(&scene.shadow),
+            renderer.render_reference(&scene, 0).expect("truth"),
+        )
+    };
+    let (read, base) = truth(&mut renderer, &[]);
+    let others: [&[(&str, &str)]; 4] = [
+        &[("technique", "pcf"), ("samples", "7"), ("radius_texels", "9"), ("pcf_kernel", "grid")],
+        &[
+            ("bias_mode", "receiver_plane"),
+            ("bias", "0.0001"),
+            ("slope_bias", "0.05"),
+            ("depth_bias_constant", "4"),
+        ],
+        &[
+            ("technique", "vssm"),
+            ("vsm_bleed_reduction", "0.4"),
+            ("blocker_samples", "8"),
+            ("cull_front_faces", "true"),
+        ],
+        &[
+            ("search_radius_scale", "2"),
+            ("min_filter_radius_texels", "4"),
+            ("noise_seed", "7"),
+            ("rotate_per_pixel", "false"),
+        ],
+    ];
+    for overrides in others {
+        let (read_here, values) = truth(&mut renderer, overrides);
+        assert_eq!(read_here, read, "{overrides:?}: the key should not change");
+        assert!(values == base, "{overrides:?}: the ground truth changed");
+    }
+    // What it does read changes it.
+    let (read_here, values) = truth(&mut renderer, &[("light.0.width", "8")]);
+    assert_eq!(read_here, read);
+    assert!(values != base, "a wider light should change the ground truth");
+}
+
+#[test]
 fn the_reference_converges_as_samples_grow() {
     let (_ctx, mut renderer) = common::gpu();
     let reference = |renderer: &mut Renderer, samples: &str| {

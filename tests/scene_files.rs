@@ -87,6 +87,14 @@ fn every_shipped_scene_loads_with_lights_and_triangles() {
                 path.display(),
                 object.name
             );
+            // The probe panel and the slides name the surface in the reader's language.
+            let zh = object.name_zh.as_deref().unwrap_or_default();
+            assert!(
+                zh.chars().any(|c| ('\u{4e00}'..='\u{9fff}').contains(&c)),
+                "{}: object `{}` has no Chinese `name_zh`",
+                path.display(),
+                object.name
+            );
         }
         scene.shadow.validate().unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     }
@@ -293,6 +301,27 @@ fn light_kind_specific_keys_are_checked() {
     assert_one_line_naming(&err, &["light.0.extent", "required"]);
     let err = parse_err(&scene_with_lights(&["kind = \"spot\"\nposition = [0.0, 9.0, 0.0]"]), &[]);
     assert_one_line_naming(&err, &["light.0.fov_deg", "required"]);
+}
+
+#[test]
+fn an_object_may_carry_a_chinese_name_shown_only_in_chinese() {
+    use shadowlab::lessons::Lang;
+    let text = format!("{CAMERA}\n[[object]]\nname = \"floor\"\nname_zh = \"地面\"\nmesh = \"plane\"\n");
+    let scene = parse_ok(&text);
+    let floor = &scene.objects[0];
+    assert_eq!((floor.name.as_str(), floor.name_zh.as_deref()), ("floor", Some("地面")));
+    assert_eq!((floor.label(Lang::En), floor.label(Lang::Zh)), ("floor", "地面"));
+    assert_eq!(scene.object_label("floor", Lang::Zh), "地面");
+    assert_eq!(scene.object_label("floor", Lang::En), "floor");
+    // Without a Chinese name, or for a name no object has, the name itself.
+    let plain = parse_ok(&format!("{CAMERA}\n[[object]]\nname = \"floor\"\nmesh = \"plane\"\n"));
+    assert_eq!(plain.object_label("floor", Lang::Zh), "floor");
+    assert_eq!(scene.object_label("moon", Lang::Zh), "moon");
+    // `--set` reaches it like any object key; a misspelt key is still refused.
+    let scene = parse(&text, &[("object.0.name_zh", "地板")]).expect("override");
+    assert_eq!(scene.objects[0].label(Lang::Zh), "地板");
+    let err = parse_err(&text.replace("name_zh", "name_cn"), &[]);
+    assert!(err.contains("name_cn"), "{err}");
 }
 
 #[test]

@@ -6,7 +6,8 @@
 
 use super::{BenchArgs, CliError};
 use crate::lessons::Panel;
-use crate::ui::{Settings, ShadowlabApp, app_for_test, configure_wgpu};
+use crate::scene::LightSize;
+use crate::ui::{LANDMARK_SHADOW_MAP, Settings, ShadowlabApp, app_for_test, configure_wgpu, landmark};
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
 use serde::Serialize;
@@ -17,6 +18,10 @@ pub(super) const WINDOW: [f32; 2] = [1600.0, 900.0];
 pub(super) const SETTLE_LIMIT: Duration = Duration::from_secs(300);
 /// UI frames timed with nothing rendering.
 pub(super) const IDLE_FRAMES: u32 = 20;
+/// Frames a widget (and the window) must keep their place before the pointer presses on it,
+/// and the most waited for that offscreen.
+pub(super) const STILL_FRAMES: u32 = 3;
+const STILL_FRAMES_LIMIT: u32 = 600;
 /// The session's two phases.
 pub(super) const PHASES: [&str; 2] = ["drag the light-width slider", "drag the light on the shadow map"];
 
@@ -36,9 +41,81 @@ pub(super) fn start_session(app: &mut ShadowlabApp) -> Result<(String, usize), S
     Ok((app.lessons[pcss].id.clone(), step + 1))
 }
 
+/// What a phase's input moves: the selected light's width (the slider) or its position (the
+/// drag on the shadow map), as the app holds it.
+#[derive(Clone, Debug, PartialEq)]
+pub(super) struct Driven {
+    pub name: String,
+    pub value: Vec<f32>,
+}
+
+impl Driven {
+    pub fn read(app: &ShadowlabApp, phase: usize) -> Self {
+        let i = app.selected_light;
+        let Some(light) = app.scene.lights.get(i) else {
+            return Self { name: "no light".into(), value: Vec::new() };
+        };
+        match (phase, &light.size) {
+            (0, LightSize::Width { width_world }) => {
+                Self { name: format!("light {i} width"), value: vec![*width_world] }
+            }
+            (0, LightSize::AngularDiameter { angular_diameter_deg }) => {
+                Self { name: format!("light {i} angular diameter"), value: vec![*angular_diameter_deg] }
+            }
+            _ => Self { name: format!("light {i} position"), value: light.position.to_array().to_vec() },
+        }
+    }
+}
+
+impl std::fmt::Display for Driven {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let values: Vec<String> = self.value.iter().map(|v| format!("{v:.3}")).collect();
+        match values.as_slice() {
+            [one] => write!(f, "{one}"),
+            _ => write!(f, "({})", values.join(", ")),
+        }
+    }
+}
+
+/// A phase's figures mean something only if its input moved what it drives and the views
+/// showed at least one new image while it did; otherwise this says which (one line), and the
+/// bench fails instead of reporting.
+pub(super) fn check_phase(what: &str, before: &Driven, after: &Driven, refreshes: u64) -> Result<(), String> {
+    if before == after {
+        return Err(format!(
+            "{what}: the input changed nothing ({} stayed {before}; the pointer missed it?), so there is \
+             nothing to report",
+            before.name
+        ));
+    }
+    if refreshes == 0 {
+        return Err(format!(
+            "{what}: the views showed no new image while dragging ({} {before} -> {after}), so there is \
+             nothing to report",
+            before.name
+        ));
+    }
+    Ok(())
+}
+
+/// Whether a drag goes on after `elapsed`: for its `seconds`, then, where its input has moved
+/// what it drives and a render is under way but no new image has reached the views yet (a
+/// renderer slower than the drag), until one has, so that the figures rest on at least one.
+pub(super) fn keep_dragging(
+    elapsed: Duration,
+    seconds: f32,
+    moved: bool,
+    refreshes: u64,
+    pending: bool,
+) -> bool {
+    elapsed.as_secs_f32() < seconds || (moved && refreshes == 0 && pending && elapsed < SETTLE_LIMIT)
+}
+
 #[derive(Serialize)]
 pub(super) struct Phase {
     pub what: &'static str,
+    /// What the input moved, from and to (e.g. `light 0 width 3.000 -> 7.215`).
+    pub moved: String,
     pub seconds: f64,
     pub ui_frames: u32,
     pub ui_frames_per_s: f64,
@@ -113,15 +190,18 @@ fn step(h: &mut Harness<'_, ShadowlabApp>) -> Result<(Duration, Duration), CliEr
     Ok((logic, start.elapsed() - logic))
 }
 
-/// Drag from `from` along `path(t)` (t in seconds) for `seconds`, then release and wait for the
-/// full-quality frame.
+/// Drag from `from` along `path(t)` (t in seconds) for `seconds` (longer if no new image has
+/// reached the views yet), then release and wait for the full-quality frame. Fails where the
+/// drag moved nothing or no new image was shown.
 fn drag_phase(
     h: &mut Harness<'_, ShadowlabApp>,
-    what: &'static str,
+    phase: usize,
     from: egui::Pos2,
     seconds: f32,
     path: impl Fn(f32) -> egui::Pos2,
 ) -> Result<Phase, CliError> {
+    let what = PHASES[phase];
+    let before = Driven::read(h.state(), phase);
     h.hover_at(from);
     step(h)?;
     h.drag_at(from);
@@ -130,7 +210,13 @@ fn drag_phase(
     let start = Instant::now();
     let (mut frames, mut slowest) = (0u32, Duration::ZERO);
     let (mut logic, mut paint) = (Duration::ZERO, Duration::ZERO);
-    while start.elapsed().as_secs_f32() < seconds {
+    loop {
+        let app = h.state();
+        let moved = Driven::read(app, phase) != before;
+        let refreshes = app.frames_shown() - shown_before;
+        if !keep_dragging(start.elapsed(), seconds, moved, refreshes, app.render_pending()) {
+            break;
+        }
         let frame_start = Instant::now();
         h.hover_at(path(start.elapsed().as_secs_f32()));
         let (l, p) = step(h)?;
@@ -141,7 +227,7 @@ fn drag_phase(
     }
     let elapsed = start.elapsed().as_secs_f64();
     let refreshes = h.state().frames_shown() - shown_before;
-    h.drop_at(path(seconds));
+    h.drop_at(path(elapsed as f32));
     let released = Instant::now();
     let shown_at_release = h.state().frames_shown();
     let mut full_image = None;
@@ -163,8 +249,11 @@ fn drag_phase(
     if h.state().showing_preview() {
         return Err(fail(format!("{what}: still showing a preview after the release")));
     }
+    let after = Driven::read(h.state(), phase);
+    check_phase(what, &before, &after, refreshes).map_err(fail)?;
     Ok(Phase {
         what,
+        moved: format!("{} {before} -> {after}", before.name),
         seconds: elapsed,
         ui_frames: frames,
         ui_frames_per_s: f64::from(frames) / elapsed,
@@ -178,15 +267,10 @@ fn drag_phase(
     })
 }
 
-/// Where the first widget with this label is on screen.
-fn widget_rect(h: &Harness<'_, ShadowlabApp>, label: &str) -> Result<egui::Rect, CliError> {
-    h.query_all_by_label(label)
-        .next()
-        .map(|node| node.rect())
-        .ok_or_else(|| fail(format!("the app shows no '{label}'")))
-}
-
 pub fn run(args: &BenchArgs) -> Result<(), CliError> {
+    if let Some(seconds) = args.soak {
+        return super::bench_soak::run(args, seconds);
+    }
     if !(0.5..=600.0).contains(&args.seconds) {
         return Err(CliError::input(format!("--seconds {} is out of range 0.5..=600", args.seconds)));
     }
@@ -227,26 +311,38 @@ fn offscreen(args: &BenchArgs) -> Result<AppReport, CliError> {
         Some(node) => node.scroll_to_me(),
         None => return Err(fail(format!("the app shows no '{slider_label}' slider"))),
     }
-    // Scrolling animates over a few frames.
-    for _ in 0..30 {
-        h.step();
-    }
+    // Scrolling animates over a few frames: press only once the slider has kept its place for
+    // a few of them (under load, a rectangle read mid-scroll is not where the slider ends up).
     settle(&mut h)?;
-    let slider = h
-        .query_all_by_role_and_label(slider_role, slider_label)
-        .next()
-        .map(|node| node.rect())
-        .ok_or_else(|| fail(format!("the app shows no '{slider_label}' slider")))?;
+    let slider_rect = |h: &Harness<'_, ShadowlabApp>| {
+        h.query_all_by_role_and_label(slider_role, slider_label)
+            .next()
+            .map(|node| node.rect())
+            .ok_or_else(|| fail(format!("the app shows no '{slider_label}' slider")))
+    };
+    let (mut slider, mut still) = (slider_rect(&h)?, 0);
+    for _ in 0..STILL_FRAMES_LIMIT {
+        if still >= STILL_FRAMES {
+            break;
+        }
+        step(&mut h)?;
+        let now = slider_rect(&h)?;
+        still = if now == slider { still + 1 } else { 0 };
+        slider = now;
+    }
+    if still < STILL_FRAMES {
+        return Err(fail(format!("the '{slider_label}' slider kept moving ({slider:?})")));
+    }
     let (left, width, y) = (slider.left() + 4.0, (slider.width() * 0.5).max(40.0), slider.center().y);
-    let slider_phase = drag_phase(&mut h, PHASES[0], slider.left_center(), args.seconds, |t| {
+    let slider_phase = drag_phase(&mut h, 0, slider.left_center(), args.seconds, |t| {
         egui::pos2(left + width * (0.3 + 0.25 * (t * 2.0).sin()), y)
     })?;
 
-    // The map panel's heading (the first widget of that name: the panel toggle comes later).
-    let map = widget_rect(&h, "Shadow map")?;
-    // Inside the map's picture, below its heading.
-    let centre = map.left_bottom() + egui::vec2(150.0, 160.0);
-    let map_phase = drag_phase(&mut h, PHASES[1], centre, args.seconds, |t| {
+    // The middle of the map's picture, where the app last drew it.
+    let map = landmark(&h.ctx, LANDMARK_SHADOW_MAP)
+        .ok_or_else(|| fail(format!("the app shows no {LANDMARK_SHADOW_MAP}")))?;
+    let centre = map.center();
+    let map_phase = drag_phase(&mut h, 1, centre, args.seconds, |t| {
         centre + egui::vec2(30.0 * (t * 1.5).sin(), 20.0 * (t * 1.1).cos() - 20.0)
     })?;
 
@@ -303,4 +399,48 @@ fn print_report(report: &AppReport, json: bool) -> Result<(), CliError> {
         );
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn width(w: f32) -> Driven {
+        Driven { name: "light 0 width".into(), value: vec![w] }
+    }
+
+    #[test]
+    fn a_phase_that_moved_nothing_or_showed_no_new_image_is_an_error() {
+        let what = PHASES[0];
+        assert_eq!(check_phase(what, &width(4.0), &width(31.0), 3), Ok(()));
+        // The pointer missed the slider: the width stayed, whatever the views did.
+        for refreshes in [0, 3] {
+            let missed = check_phase(what, &width(4.0), &width(4.0), refreshes).expect_err("nothing moved");
+            assert!(missed.starts_with(what) && missed.contains("changed nothing"), "{missed}");
+            assert!(missed.contains("light 0 width stayed 4.000") && !missed.contains('\n'), "{missed}");
+        }
+        // The slider moved but no new image reached the views: 0 refreshes/s is no figure.
+        let no_image = check_phase(what, &width(4.0), &width(31.0), 0).expect_err("no image");
+        assert!(no_image.contains("no new image") && no_image.contains("4.000 -> 31.000"), "{no_image}");
+        assert!(!no_image.contains('\n'), "{no_image}");
+        // The map drag: the light's position.
+        let at = |x: f32| Driven { name: "light 0 position".into(), value: vec![x, 36.0, 14.0] };
+        assert_eq!(check_phase(PHASES[1], &at(-20.0), &at(-21.5), 1), Ok(()));
+        let missed = check_phase(PHASES[1], &at(-20.0), &at(-20.0), 2).expect_err("nothing moved");
+        assert!(missed.contains("(-20.000, 36.000, 14.000)"), "{missed}");
+    }
+
+    #[test]
+    fn a_drag_lasts_its_seconds_and_then_until_a_moved_input_shows_a_new_image() {
+        let s = Duration::from_secs_f32;
+        // Within its seconds, whatever else.
+        assert!(keep_dragging(s(0.2), 0.5, false, 0, false));
+        // After them: on only while the input moved something, a render is under way and no
+        // image has come yet.
+        assert!(keep_dragging(s(0.7), 0.5, true, 0, true));
+        assert!(!keep_dragging(s(0.7), 0.5, true, 1, true));
+        assert!(!keep_dragging(s(0.7), 0.5, false, 0, true), "a missed input does not wait");
+        assert!(!keep_dragging(s(0.7), 0.5, true, 0, false), "nothing is coming");
+        assert!(!keep_dragging(SETTLE_LIMIT, 0.5, true, 0, true), "not for ever");
+    }
 }

@@ -2,7 +2,10 @@
 //! window with the painter the app would use here (OpenGL on a software rasteriser), the input
 //! injected frame by frame. Needs a display (`xvfb-run -a` where there is none).
 
-use super::bench_app::{AppReport, IDLE_FRAMES, PHASES, Phase, SETTLE_LIMIT, WINDOW, start_session};
+use super::bench_app::{
+    AppReport, Driven, IDLE_FRAMES, PHASES, Phase, SETTLE_LIMIT, STILL_FRAMES, WINDOW, check_phase,
+    keep_dragging, start_session,
+};
 use super::{BenchArgs, CliError};
 use crate::ui::{LANDMARK_LIGHT_WIDTH, LANDMARK_SHADOW_MAP, Settings, ShadowlabApp, app_for_test, landmark};
 use std::sync::{Arc, Mutex};
@@ -10,8 +13,14 @@ use std::time::{Duration, Instant};
 
 type Outcome = Arc<Mutex<Option<Result<AppReport, String>>>>;
 
-/// Frames of wheel scrolling allowed to bring the slider into view.
-const SCROLL_FRAMES: u32 = 240;
+/// Frames allowed for a phase's widget to come into view and keep still there.
+const SEEK_FRAMES: u32 = 240;
+/// Frames after the press for egui to report the drag on the widget.
+const PRESS_FRAMES: u32 = 4;
+/// How far the pointer moves after the press to start the drag (beyond egui's threshold).
+const NUDGE: egui::Vec2 = egui::vec2(12.0, 0.0);
+/// Rows at the window's top and bottom (top bar, status bar) where no press is made.
+const EDGE_MARGIN: f32 = 60.0;
 
 enum Stage {
     /// Wait for the first full frame of the lesson step.
@@ -21,7 +30,24 @@ enum Stage {
         frames: u32,
         since: Instant,
     },
-    /// Press on the widget, then move along the phase's path.
+    /// Bring the phase's widget into view (the slider: scroll the inspector, as a user would)
+    /// and wait until it and the window keep still.
+    Seeking {
+        phase: usize,
+        attempt: u32,
+        frames: u32,
+        still: u32,
+        last: Option<(egui::Rect, egui::Rect)>,
+    },
+    /// Pressed on the widget and moved a little: wait for egui to report a drag of that widget.
+    Pressing {
+        phase: usize,
+        attempt: u32,
+        from: egui::Pos2,
+        frames: u32,
+        before: Driven,
+    },
+    /// Move along the phase's path.
     Dragging {
         phase: usize,
         from: egui::Pos2,
@@ -29,6 +55,7 @@ enum Stage {
         frames: u32,
         slowest: Duration,
         shown_before: u64,
+        before: Driven,
     },
     /// Released: wait for the full-resolution image, then for everything (probe, overlays).
     Released {
@@ -36,6 +63,7 @@ enum Stage {
         at: Instant,
         shown_at_release: u64,
         full_image: Option<Duration>,
+        before: Driven,
     },
     Done,
 }
@@ -54,6 +82,20 @@ struct Session {
     measured: Option<(u32, f64, Duration, u64)>,
 }
 
+/// The landmark a phase drags, and the point of it pressed first.
+fn target(phase: usize) -> (&'static str, fn(egui::Rect) -> egui::Pos2) {
+    match phase {
+        // The slider's rail starts at the landmark's left (its value and label follow).
+        0 => (LANDMARK_LIGHT_WIDTH, |r| r.left_center() + egui::vec2(8.0, 0.0)),
+        _ => (LANDMARK_SHADOW_MAP, |r| r.center()),
+    }
+}
+
+/// The rectangle of the widget egui is dragging this frame, if any.
+fn dragged_rect(ctx: &egui::Context) -> Option<egui::Rect> {
+    ctx.dragged_id().and_then(|id| ctx.read_response(id)).map(|r| r.rect)
+}
+
 impl Session {
     fn pointer_path(&self, phase: usize, from: egui::Pos2, t: f32) -> egui::Pos2 {
         match phase {
@@ -62,18 +104,12 @@ impl Session {
         }
     }
 
-    /// True when landmark `name` lies inside the window; otherwise a wheel step over it (its
-    /// panel scrolls, the pointer stays over that panel) is queued for the next frame.
-    fn scroll_into_view(&mut self, ctx: &egui::Context, name: &'static str) -> bool {
-        let Some(rect) = landmark(ctx, name) else { return false };
-        let window = ctx.content_rect();
-        if window.contains(rect.left_center() + egui::vec2(8.0, 0.0)) {
-            return true;
-        }
-        let over =
-            egui::pos2(rect.center().x, rect.center().y.clamp(window.top() + 40.0, window.bottom() - 40.0));
-        let delta = if rect.center().y > window.bottom() { -60.0 } else { 60.0 };
-        self.pending.push(egui::Event::PointerMoved(over));
+    /// A wheel step over the inspector at the slider's height, clamped into the window (its
+    /// panel scrolls, the pointer stays over that panel), for the next frame.
+    fn scroll_towards(&mut self, window: egui::Rect, rect: egui::Rect) {
+        let y = rect.center().y.clamp(window.top() + EDGE_MARGIN, window.bottom() - EDGE_MARGIN);
+        let delta = if rect.center().y > window.center().y { -60.0 } else { 60.0 };
+        self.pending.push(egui::Event::PointerMoved(egui::pos2(rect.center().x, y)));
         self.pending.push(egui::Event::MouseWheel {
             unit: egui::MouseWheelUnit::Point,
             delta: egui::vec2(0.0, delta),
@@ -81,34 +117,61 @@ impl Session {
             source: egui::MouseWheelSource::Unknown,
             modifiers: Default::default(),
         });
-        false
     }
 
-    fn start_phase(&mut self, ctx: &egui::Context, phase: usize) -> Result<(), String> {
-        let (name, offset): (_, fn(egui::Rect) -> egui::Pos2) = match phase {
-            0 => (LANDMARK_LIGHT_WIDTH, |r| r.left_center() + egui::vec2(8.0, 0.0)),
-            _ => (LANDMARK_SHADOW_MAP, |r| r.center()),
-        };
-        let rect = landmark(ctx, name).ok_or_else(|| format!("the app shows no {name}"))?;
-        if !ctx.content_rect().contains(offset(rect)) {
-            return Err(format!("the {name} is outside the window ({rect:?})"));
+    fn press(&mut self, at: egui::Pos2, pressed: bool) {
+        if pressed {
+            self.pending.push(egui::Event::PointerMoved(at));
         }
-        let from = offset(rect);
-        self.pending.push(egui::Event::PointerMoved(from));
         self.pending.push(egui::Event::PointerButton {
-            pos: from,
+            pos: at,
             button: egui::PointerButton::Primary,
-            pressed: true,
+            pressed,
             modifiers: Default::default(),
         });
-        self.stage = Stage::Dragging {
-            phase,
-            from,
-            since: Instant::now(),
-            frames: 0,
-            slowest: Duration::ZERO,
-            shown_before: self.app.frames_shown(),
-        };
+    }
+
+    /// One frame of looking for the phase's widget: press on it once it and the window have
+    /// kept still for a few frames well inside the window.
+    fn seek(&mut self, ctx: &egui::Context) -> Result<(), String> {
+        let Stage::Seeking { phase, attempt, frames, still, last } = &mut self.stage else { return Ok(()) };
+        let (phase, attempt) = (*phase, *attempt);
+        *frames += 1;
+        let (name, offset) = target(phase);
+        let window = ctx.content_rect();
+        let rect = landmark(ctx, name);
+        let inside = rect.is_some_and(|r| window.shrink2(egui::vec2(0.0, EDGE_MARGIN)).contains(offset(r)));
+        let now = rect.map(|r| (window, r));
+        *still = if inside && now == *last { *still + 1 } else { 0 };
+        *last = now;
+        let (still, frames) = (*still, *frames);
+        if still >= STILL_FRAMES
+            && let Some(rect) = rect
+        {
+            let from = offset(rect);
+            self.press(from, true);
+            let before = Driven::read(&self.app, phase);
+            self.stage = Stage::Pressing { phase, attempt, from, frames: 0, before };
+            return Ok(());
+        }
+        if frames > SEEK_FRAMES {
+            let what = PHASES[phase];
+            return Err(match rect {
+                None => format!("{what}: the app shows no {name}"),
+                Some(r) if !inside => {
+                    format!("{what}: the {name} stays outside the window (at {r:?} in {window:?})")
+                }
+                Some(r) => format!("{what}: the {name} did not keep still in the window (last at {r:?})"),
+            });
+        }
+        if let Some(rect) = rect
+            && !inside
+            && phase == 0
+            && frames % 4 == 1
+        {
+            // A step every few frames: each scroll animates, and the landmark moves with it.
+            self.scroll_towards(window, rect);
+        }
         Ok(())
     }
 
@@ -128,45 +191,75 @@ impl Session {
                 if *frames == IDLE_FRAMES {
                     self.report.idle_ui_frame_ms =
                         since.elapsed().as_secs_f64() * 1e3 / f64::from(IDLE_FRAMES);
-                }
-                // Then scroll the inspector, as a user would, until the slider is in view.
-                if *frames >= IDLE_FRAMES {
-                    let waited = *frames - IDLE_FRAMES;
-                    if self.scroll_into_view(ctx, LANDMARK_LIGHT_WIDTH) {
-                        self.start_phase(ctx, 0)?;
-                    } else if waited > SCROLL_FRAMES {
-                        return Err(format!("the {LANDMARK_LIGHT_WIDTH} stays outside the window"));
-                    }
+                    self.stage = Stage::Seeking { phase: 0, attempt: 0, frames: 0, still: 0, last: None };
                 }
             }
-            Stage::Dragging { phase, from, since, frames, slowest, shown_before } => {
+            Stage::Seeking { .. } => self.seek(ctx)?,
+            Stage::Pressing { phase, attempt, from, frames, before } => {
+                *frames += 1;
+                let (phase, attempt, from) = (*phase, *attempt, *from);
+                let (name, _) = target(phase);
+                if *frames == 1 {
+                    // The press is in; move past egui's drag threshold.
+                    self.pending.push(egui::Event::PointerMoved(from + NUDGE));
+                    return Ok(());
+                }
+                let widget = landmark(ctx, name);
+                let dragged = dragged_rect(ctx);
+                let landed = dragged
+                    .zip(widget)
+                    .is_some_and(|(d, w)| w.expand(1.0).contains_rect(d) && d.contains(from));
+                if landed {
+                    let before = before.clone();
+                    self.stage = Stage::Dragging {
+                        phase,
+                        from,
+                        since: Instant::now(),
+                        frames: 0,
+                        slowest: Duration::ZERO,
+                        shown_before: self.app.frames_shown(),
+                        before,
+                    };
+                } else if *frames >= PRESS_FRAMES {
+                    // Let go (moved past the threshold: no click) and look for the widget again, once.
+                    self.press(from + NUDGE, false);
+                    if attempt > 0 {
+                        let got = dragged.map_or("nothing".to_string(), |d| format!("a widget at {d:?}"));
+                        let at = widget.map_or("gone".to_string(), |w| format!("at {w:?}"));
+                        return Err(format!(
+                            "{}: the pointer did not land on the {name}, twice (pressed at {from:?}, the \
+                             {name} {at}, egui dragged {got})",
+                            PHASES[phase]
+                        ));
+                    }
+                    self.stage =
+                        Stage::Seeking { phase, attempt: attempt + 1, frames: 0, still: 0, last: None };
+                }
+            }
+            Stage::Dragging { phase, from, since, frames, slowest, shown_before, before } => {
                 *frames += 1;
                 *slowest = (*slowest).max(dt);
                 let t = since.elapsed().as_secs_f32();
                 let (phase, from) = (*phase, *from);
-                if t < self.seconds {
+                let refreshes = self.app.frames_shown() - *shown_before;
+                let moved = Driven::read(&self.app, phase) != *before;
+                if keep_dragging(since.elapsed(), self.seconds, moved, refreshes, self.app.render_pending()) {
                     let pos = self.pointer_path(phase, from, t);
                     self.pending.push(egui::Event::PointerMoved(pos));
                 } else {
-                    let elapsed = since.elapsed().as_secs_f64();
-                    self.measured =
-                        Some((*frames, elapsed, *slowest, self.app.frames_shown() - *shown_before));
-                    let pos = self.pointer_path(phase, from, self.seconds);
-                    self.pending.push(egui::Event::PointerButton {
-                        pos,
-                        button: egui::PointerButton::Primary,
-                        pressed: false,
-                        modifiers: Default::default(),
-                    });
+                    self.measured = Some((*frames, since.elapsed().as_secs_f64(), *slowest, refreshes));
+                    let before = before.clone();
+                    self.press(self.pointer_path(phase, from, t), false);
                     self.stage = Stage::Released {
                         phase,
                         at: Instant::now(),
                         shown_at_release: self.app.frames_shown(),
                         full_image: None,
+                        before,
                     };
                 }
             }
-            Stage::Released { phase, at, shown_at_release, full_image } => {
+            Stage::Released { phase, at, shown_at_release, full_image, before } => {
                 let phase = *phase;
                 if full_image.is_none()
                     && self.app.frames_shown() > *shown_at_release
@@ -180,8 +273,11 @@ impl Session {
                         return Err(format!("{}: still showing a preview after the release", PHASES[phase]));
                     }
                     let (frames, elapsed, slowest, refreshes) = self.measured.take().unwrap_or_default();
+                    let after = Driven::read(&self.app, phase);
+                    check_phase(PHASES[phase], before, &after, refreshes)?;
                     self.report.phases.push(Phase {
                         what: PHASES[phase],
+                        moved: format!("{} {before} -> {after}", before.name),
                         seconds: elapsed,
                         ui_frames: frames,
                         ui_frames_per_s: f64::from(frames) / elapsed.max(1e-9),
@@ -193,11 +289,11 @@ impl Session {
                         release_to_full_image_s: full_image.unwrap_or(settled).as_secs_f64(),
                         release_to_full_quality_s: settled.as_secs_f64(),
                     });
-                    if phase + 1 < PHASES.len() {
-                        self.start_phase(ctx, phase + 1)?;
+                    self.stage = if phase + 1 < PHASES.len() {
+                        Stage::Seeking { phase: phase + 1, attempt: 0, frames: 0, still: 0, last: None }
                     } else {
-                        self.stage = Stage::Done;
-                    }
+                        Stage::Done
+                    };
                 } else if at.elapsed() > SETTLE_LIMIT {
                     return Err("the app did not settle after the release".into());
                 }

@@ -169,9 +169,9 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
                 let d = layout.diagram;
                 let diagram = diagrams::draw(pictures.diagram, &pictures.inputs, args.lang, d.w, d.h)
                     .map_err(|e| failed("diagram", e))?;
-                // The text's live numbers, from the probe this slide shows.
-                let body = step.text_filled(args.lang, pictures.probe.as_ref());
-                let try_this = step.try_this_filled(args.lang, pictures.probe.as_ref());
+                // The text's live numbers, from the probe and the camera panel this slide shows.
+                let body = step.text_filled(args.lang, pictures.live());
+                let try_this = step.try_this_filled(args.lang, pictures.live());
                 let text = SlideText {
                     lang: args.lang,
                     lesson_title: lesson.title.get(args.lang),

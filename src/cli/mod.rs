@@ -4,6 +4,7 @@
 mod bench;
 mod bench_app;
 mod bench_diagrams;
+mod bench_soak;
 mod bench_window;
 #[path = "export.rs"]
 mod export_cmd;
@@ -154,9 +155,15 @@ pub struct BenchArgs {
     /// is none), painted as the app paints here.
     #[arg(long, requires = "app")]
     pub window: bool,
-    /// With --app: seconds of dragging per phase.
+    /// With --app: seconds of dragging per phase (longer where no new image has reached the views
+    /// by then, until one has).
     #[arg(long, default_value_t = 5.0, requires = "app")]
     pub seconds: f32,
+    /// With --app --window: play the PCSS and multi-light lessons this many seconds instead, a
+    /// probe pinned, overlays on, the view switched every few seconds; report images rendered,
+    /// scene time played and memory a minute in and at the end.
+    #[arg(long, value_name = "SECONDS", requires = "app")]
+    pub soak: Option<f32>,
 }
 
 /// The scene `bench` measures when none is given.

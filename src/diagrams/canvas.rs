@@ -14,6 +14,24 @@ use super::text::{TextRenderer, TextStyle};
 use crate::i18n;
 use crate::lessons::Lang;
 
+/// A label laid out by [`Canvas::plan_label`]: its lines (translated) and their boxes.
+pub struct Planned {
+    pub lines: Vec<String>,
+    pub boxes: Vec<[f32; 4]>,
+    pub st: Style,
+}
+
+impl Planned {
+    /// The box around all its lines, `[x, y, w, h]`.
+    pub fn bounds(&self) -> [f32; 4] {
+        let x0 = self.boxes.iter().map(|b| b[0]).fold(f32::INFINITY, f32::min);
+        let y0 = self.boxes.iter().map(|b| b[1]).fold(f32::INFINITY, f32::min);
+        let x1 = self.boxes.iter().map(|b| b[0] + b[2]).fold(f32::NEG_INFINITY, f32::max);
+        let y1 = self.boxes.iter().map(|b| b[1] + b[3]).fold(f32::NEG_INFINITY, f32::max);
+        if x0 > x1 { [0.0; 4] } else { [x0, y0, x1 - x0, y1 - y0] }
+    }
+}
+
 /// Pixmap plus a uniform scale from canvas units to pixels (a diagram's design box is at least
 /// 960x540 units; a slide's canvas is in pixels).
 pub struct Canvas {
@@ -34,14 +52,48 @@ pub struct Canvas {
     min_text: f32,
     /// Right edge of the rightmost text drawn so far, design units.
     pub text_right: f32,
-    /// Boxes of the text drawn so far: grown labels move off the ones they would cover.
-    text_boxes: Vec<[f32; 4]>,
+    /// Every text drawn through [`Canvas::text`] (as drawn) with its box `[x, y, w, h]`,
+    /// design units: grown labels move off the ones they would cover, labels laid out with
+    /// [`Canvas::plan_label`] keep clear of all of them, and the tests check that none overlap.
+    pub text_boxes: Vec<(String, [f32; 4])>,
+    /// Boxes that hold text of their own (the title bar, legends): other text keeps out of them.
+    pub frames: Vec<[f32; 4]>,
+    /// Lines drawn as the continuation of a label broken over several lines (the count of
+    /// labels is `drawn.len()` less this).
+    pub continued: usize,
     /// Labels [`Canvas::fit_label`] had to cut, in full.
     pub shortened: Vec<String>,
 }
 
 /// How much a label may grow to reach the minimum text size: more would bury the drawing.
 pub const MAX_TEXT_GROWTH: f32 = 1.75;
+
+/// Margin of a text's plate around its box, and of any text from the pixmap's edges.
+const TEXT_PAD: f32 = 3.0;
+/// Least vertical gap between the boxes of two labels.
+pub const LABEL_GAP: f32 = 2.0;
+
+/// Whether boxes `a` and `b` (`[x, y, w, h]`) overlap, or come within `gap` of each other
+/// vertically while overlapping horizontally.
+pub fn boxes_meet(a: &[f32; 4], b: &[f32; 4], gap: f32) -> bool {
+    a[0] < b[0] + b[2] && b[0] < a[0] + a[2] && a[1] < b[1] + b[3] + gap && b[1] < a[1] + a[3] + gap
+}
+
+/// Where the anchor lies on a box, as fractions of its width and height from the top left.
+fn anchor_fractions(anchor: Anchor) -> (f32, f32) {
+    use Anchor::*;
+    let fx = match anchor {
+        TopLeft | MidLeft | BottomLeft => 0.0,
+        TopCenter | BottomCenter => 0.5,
+        _ => 1.0,
+    };
+    let fy = match anchor {
+        TopLeft | TopCenter | TopRight => 0.0,
+        MidLeft | MidRight => 0.5,
+        _ => 1.0,
+    };
+    (fx, fy)
+}
 
 impl Canvas {
     /// A canvas on `pixmap` with labels in `lang`, text at least `min_text_px` pixels high
@@ -71,6 +123,8 @@ impl Canvas {
             min_text,
             text_right: 0.0,
             text_boxes: Vec::new(),
+            frames: Vec::new(),
+            continued: 0,
             shortened: Vec::new(),
         };
         c.pixmap.fill(bg);
@@ -304,39 +358,164 @@ impl Canvas {
         [-ox, -oy, pw / self.scale, ph / self.scale]
     }
 
+    /// The box `[x, y, w, h]` text `s` (translated) of design size `size` takes when anchored at
+    /// `p`, kept inside the pixmap, and its ascent.
+    fn layout(&self, s: &str, p: [f32; 2], anchor: Anchor, size: f32) -> ([f32; 4], f32) {
+        let s = i18n::tr(self.lang, s);
+        let sc = self.scale;
+        let m = self.text.measure(s, self.fs(size) * sc);
+        let (w, asc, h) = (m.width_px / sc, m.ascent_px / sc, m.height_px() / sc);
+        let (fx, fy) = anchor_fractions(anchor);
+        let pad = TEXT_PAD;
+        let [fx0, fy0, fw, fh] = self.full_rect();
+        let x = (fin(p[0], 0.0) - fx * w).clamp(fx0 + pad, (fx0 + fw - w - pad).max(fx0 + pad));
+        let y = (fin(p[1], 0.0) - fy * h).clamp(fy0 + pad, (fy0 + fh - h - pad).max(fy0 + pad));
+        ([x, y, w, h], asc)
+    }
+
+    /// The box [`Canvas::text`] would draw `s` in at `p` (before any move off earlier text).
+    pub fn text_box(&self, s: &str, p: [f32; 2], anchor: Anchor, size: f32) -> [f32; 4] {
+        self.layout(s, p, anchor, size).0
+    }
+
+    /// Whether the box `b` keeps at least `gap` from every text drawn so far, every frame and
+    /// every box of `avoid`.
+    pub fn is_clear(&self, b: [f32; 4], gap: f32, avoid: &[[f32; 4]]) -> bool {
+        let drawn = self.text_boxes.iter().map(|(_, o)| o);
+        !drawn.chain(&self.frames).chain(avoid).any(|o| boxes_meet(&b, o, gap))
+    }
+
+    /// Lays out a label of one or more `lines` (each translated; drawn one under another,
+    /// aligned as `anchor` says) at the first of `spots` (point and anchor of the whole block)
+    /// where the block stays inside the pixmap and keeps clear of the text drawn so far, the
+    /// frames and every box of `avoid`; at the first spot when none does. Draw it with
+    /// [`Canvas::draw_planned`].
+    pub fn plan_label(
+        &self,
+        lines: &[&str],
+        spots: &[([f32; 2], Anchor)],
+        st: Style,
+        avoid: &[[f32; 4]],
+    ) -> Planned {
+        self.find_label_spot(lines, spots, st, avoid)
+            .unwrap_or_else(|| self.label_at(lines, spots.first().copied(), st))
+    }
+
+    /// [`Canvas::plan_label`] without the fallback: `None` when no spot is free.
+    pub fn find_label_spot(
+        &self,
+        lines: &[&str],
+        spots: &[([f32; 2], Anchor)],
+        st: Style,
+        avoid: &[[f32; 4]],
+    ) -> Option<Planned> {
+        let [fx0, fy0, fw, fh] = self.full_rect();
+        let inside = |b: &[f32; 4]| {
+            b[0] >= fx0 + TEXT_PAD
+                && b[1] >= fy0 + TEXT_PAD
+                && b[0] + b[2] <= fx0 + fw - TEXT_PAD
+                && b[1] + b[3] <= fy0 + fh - TEXT_PAD
+        };
+        spots
+            .iter()
+            .map(|spot| self.label_at(lines, Some(*spot), st))
+            .find(|p| p.boxes.iter().all(|b| inside(b) && self.is_clear(*b, LABEL_GAP, avoid)))
+    }
+
+    /// The place for `lines` nearest `target` (box centre to target) among the points of a grid
+    /// over `region` (`[x, y, w, h]`) where the label, anchored at its top left, stays inside
+    /// the region and the pixmap and keeps clear as in [`Canvas::find_label_spot`].
+    pub fn find_label_near(
+        &self,
+        lines: &[&str],
+        target: [f32; 2],
+        region: [f32; 4],
+        st: Style,
+        avoid: &[[f32; 4]],
+    ) -> Option<Planned> {
+        let at_origin = self.label_at(lines, Some(([0.0, 0.0], Anchor::TopLeft)), st);
+        let [_, _, w, h] = at_origin.bounds();
+        let [fx0, fy0, fw, fh] = self.full_rect();
+        let x0 = region[0].max(fx0 + TEXT_PAD);
+        let y0 = region[1].max(fy0 + TEXT_PAD);
+        let x1 = (region[0] + region[2]).min(fx0 + fw - TEXT_PAD) - w;
+        let y1 = (region[1] + region[3]).min(fy0 + fh - TEXT_PAD) - h;
+        let step = 8.0;
+        let (nx, ny) = (((x1 - x0) / step).floor(), ((y1 - y0) / step).floor());
+        if !(nx >= 0.0 && ny >= 0.0) || nx * ny > 1e5 {
+            return None;
+        }
+        let mut best: Option<(f32, [f32; 2])> = None;
+        for iy in 0..=ny as usize {
+            for ix in 0..=nx as usize {
+                let (x, y) = (x0 + ix as f32 * step, y0 + iy as f32 * step);
+                let (dx, dy) = (x + w * 0.5 - target[0], y + h * 0.5 - target[1]);
+                let d = dx * dx + dy * dy;
+                if best.is_some_and(|(bd, _)| bd <= d) {
+                    continue;
+                }
+                let free = at_origin
+                    .boxes
+                    .iter()
+                    .all(|b| self.is_clear([b[0] + x, b[1] + y, b[2], b[3]], LABEL_GAP, avoid));
+                if free {
+                    best = Some((d, [x, y]));
+                }
+            }
+        }
+        best.map(|(_, [x, y])| Planned {
+            boxes: at_origin.boxes.iter().map(|b| [b[0] + x, b[1] + y, b[2], b[3]]).collect(),
+            ..at_origin
+        })
+    }
+
+    /// The label's lines laid out at `spot`.
+    fn label_at(&self, lines: &[&str], spot: Option<([f32; 2], Anchor)>, st: Style) -> Planned {
+        let lines: Vec<String> = lines.iter().map(|l| i18n::tr(self.lang, l).to_string()).collect();
+        let sizes: Vec<(f32, f32)> = lines.iter().map(|l| self.measure(l, st.size)).collect();
+        let w = sizes.iter().map(|s| s.0).fold(0.0, f32::max);
+        let h = sizes.iter().map(|s| s.1).fold(0.0, f32::max);
+        let n = lines.len() as f32;
+        let block_h = n * h + (n - 1.0).max(0.0) * LABEL_GAP;
+        let Some((p, anchor)) = spot else {
+            return Planned { lines: Vec::new(), boxes: Vec::new(), st };
+        };
+        let (ax, ay) = anchor_fractions(anchor);
+        let (x0, y0) = (fin(p[0], 0.0) - ax * w, fin(p[1], 0.0) - ay * block_h);
+        let step = h + LABEL_GAP;
+        let boxes = sizes
+            .iter()
+            .enumerate()
+            .map(|(i, (lw, _))| [x0 + ax * (w - lw), y0 + i as f32 * step, *lw, h])
+            .collect();
+        Planned { lines, boxes, st }
+    }
+
+    /// Draws a label laid out by [`Canvas::plan_label`].
+    pub fn draw_planned(&mut self, p: &Planned) {
+        for (line, b) in p.lines.iter().zip(&p.boxes) {
+            self.text(line, [b[0], b[1]], Anchor::TopLeft, p.st);
+        }
+        self.continued += p.lines.len().saturating_sub(1);
+    }
+
     /// Draws text anchored at `p`, kept inside the pixmap; with `st.plate`, a translucent plate
     /// behind it keeps it legible over lines. Returns the box `[x, y, w, h]`.
     pub fn text(&mut self, s: &str, p: [f32; 2], anchor: Anchor, st: Style) -> [f32; 4] {
+        let ([x, mut y, w, h], asc) = self.layout(s, p, anchor, st.size);
         let s = i18n::tr(self.lang, s);
-        let sc = self.scale;
-        let size = self.fs(st.size);
-        let m = self.text.measure(s, size * sc);
-        let (w, asc, h) = (m.width_px / sc, m.ascent_px / sc, m.height_px() / sc);
-        use Anchor::*;
-        let fx = match anchor {
-            TopLeft | MidLeft | BottomLeft => 0.0,
-            TopCenter | BottomCenter => 0.5,
-            _ => 1.0,
-        };
-        let fy = match anchor {
-            TopLeft | TopCenter | TopRight => 0.0,
-            MidLeft | MidRight => 0.5,
-            _ => 1.0,
-        };
-        let pad = 3.0;
-        let [fx0, fy0, fw, fh] = self.full_rect();
-        let x = (fin(p[0], 0.0) - fx * w).clamp(fx0 + pad, (fx0 + fw - w - pad).max(fx0 + pad));
-        let mut y = (fin(p[1], 0.0) - fy * h).clamp(fy0 + pad, (fy0 + fh - h - pad).max(fy0 + pad));
+        let [_, fy0, _, fh] = self.full_rect();
+        let pad = TEXT_PAD;
         if st.plate && self.min_text > 0.0 {
             y = self.clear_of_earlier_text([x, y, w, h], [fy0 + pad, fy0 + fh - h - pad]);
         }
-        self.text_boxes.push([x, y, w, h]);
+        self.text_boxes.push((s.to_string(), [x, y, w, h]));
         if st.plate {
             let plate = [x - pad, y - pad * 0.5, w + 2.0 * pad, h + pad];
             self.rect(plate, Some(col(pal::BG, 0.88)), None);
         }
         self.text_right = self.text_right.max(x + w);
-        self.text_run(s, [x, y + asc], size, col(st.color, 1.0), st.bold);
+        self.text_run(s, [x, y + asc], self.fs(st.size), col(st.color, 1.0), st.bold);
         [x, y, w, h]
     }
 
@@ -344,15 +523,14 @@ impl Canvas {
     /// until it covers no earlier text. Only text grown for a small panel needs this: the
     /// layouts are drawn for their design sizes.
     fn clear_of_earlier_text(&self, b: [f32; 4], y_range: [f32; 2]) -> f32 {
-        let gap = 2.0;
-        let covers = |y: f32, o: &[f32; 4]| {
-            b[0] < o[0] + o[2] && o[0] < b[0] + b[2] && y < o[1] + o[3] + gap && o[1] < y + b[3] + gap
+        let free = |y: f32| {
+            let moved = [b[0], y, b[2], b[3]];
+            !self.text_boxes.iter().any(|(_, o)| boxes_meet(&moved, o, LABEL_GAP))
         };
-        let free = |y: f32| !self.text_boxes.iter().any(|o| covers(y, o));
         let mut candidates = vec![b[1]];
-        for o in &self.text_boxes {
-            candidates.push(o[1] + o[3] + gap + 0.5);
-            candidates.push(o[1] - b[3] - gap - 0.5);
+        for (_, o) in &self.text_boxes {
+            candidates.push(o[1] + o[3] + LABEL_GAP + 0.5);
+            candidates.push(o[1] - b[3] - LABEL_GAP - 0.5);
         }
         candidates
             .into_iter()

@@ -10,7 +10,7 @@ use glam::{Vec2, Vec3};
 use super::{DiagramInputs, LightTopView};
 use crate::probe::LightProbe;
 use crate::scene::{BiasMode, LightKind, LightSize, Scene, Technique};
-use crate::shadow::kernels;
+use crate::shadow::{self, kernels};
 
 /// Objects flatter than this fraction of their width are receivers (floors), not drawn in the
 /// top view: a floor would be one disc covering the whole picture.
@@ -44,6 +44,7 @@ pub fn inputs_from_scene(
         ..DiagramInputs::default()
     };
     let shadow = &scene.shadow;
+    out.technique = shadow.technique;
     out.normal_offset_texels = shadow.normal_offset_texels;
     let Some(light) = scene.lights.get(light_index) else {
         // No light: nothing is shadowed.
@@ -110,7 +111,10 @@ pub fn inputs_from_scene(
             out.blockers_found = p.blockers_found;
             out.blocker_samples = p.blocker_samples;
             out.visibility = p.visibility_twin;
-            out.outside_frustum = !p.inside_light_frustum;
+            // The twin's rule, part by part (the probe's `inside_light_frustum` is both).
+            out.outside_map = shadow::outside_map(Vec2::from(p.shadow_map_uv));
+            out.outside_depth = shadow::outside_depth(p.receiver_depth_ndc);
+            out.stored_depth_rgba8_error_ndc = p.stored_depth_rgba8_error_ndc;
             out.vsm = p.vsm.as_ref().map(|v| super::VsmPlot {
                 histogram_range_ndc: v.histogram_range_ndc,
                 histogram: v.histogram.clone(),
@@ -392,6 +396,40 @@ normal_offset_texels = 0.5
         assert_eq!(inp.sample_blocked, vec![false, true]);
         assert_eq!(inp.visibility, 0.5);
         assert_eq!(inp.blocker_samples, 16);
+    }
+
+    /// Off the map, past the depth range, or both: the twin's rule part by part, in step with
+    /// the probe's `inside_light_frustum`; and the RGBA8 error and the technique come along.
+    #[test]
+    fn where_the_probe_lies_and_how_its_depth_was_stored_come_along() {
+        let s = scene(&[]);
+        let mut p = probe();
+        let parts = |p: &LightProbe| {
+            let inp = inputs_from_scene(&s, 0, 0.0, Some(p), None);
+            assert_eq!(inp.outside_frustum(), !p.inside_light_frustum, "{:?}", p.shadow_map_uv);
+            (inp.outside_map, inp.outside_depth)
+        };
+        assert_eq!(parts(&p), (false, false));
+        p.inside_light_frustum = false;
+        p.shadow_map_uv = [1.3029855, 0.19428691];
+        p.receiver_depth_ndc = 0.9643481;
+        assert_eq!(parts(&p), (true, false));
+        p.shadow_map_uv = [0.90604186, -0.49404275];
+        p.receiver_depth_ndc = 1.1761581;
+        assert_eq!(parts(&p), (true, true));
+        p.shadow_map_uv = [0.5, 0.5];
+        assert_eq!(parts(&p), (false, true));
+        // NaN is outside, as in the shader.
+        p.shadow_map_uv = [f32::NAN, 0.5];
+        p.receiver_depth_ndc = 0.5;
+        assert_eq!(parts(&p), (true, false));
+
+        p.stored_depth_rgba8_error_ndc = Some(-0.0018);
+        let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), None);
+        assert_eq!(inp.stored_depth_rgba8_error_ndc, Some(-0.0018));
+        assert_eq!(inp.technique, Technique::Pcf);
+        let hard = inputs_from_scene(&scene(&[("technique", "hard")]), 0, 0.0, None, None);
+        assert_eq!((hard.technique, hard.outside_frustum()), (Technique::Hard, false));
     }
 
     #[test]

@@ -19,6 +19,7 @@ mod widgets;
 mod tests;
 
 use crate::lessons::Lang;
+use crate::scene::Technique;
 pub use canvas::{Canvas, MAX_TEXT_GROWTH};
 pub use text::{
     CJK_FONT_PATHS, CjkFont, FontBytes, TextMetrics, TextRenderer, TextStyle, is_cjk, system_cjk_font,
@@ -71,6 +72,11 @@ impl DiagramKind {
         }
     }
 
+    /// The diagram's tab in `lang`: the id in English, a translation in Chinese.
+    pub fn label(&self, lang: Lang) -> &'static str {
+        crate::i18n::tr(lang, self.id())
+    }
+
     pub fn from_id(id: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|k| k.id() == id)
     }
@@ -85,6 +91,14 @@ impl DiagramKind {
             DiagramKind::MultiLight => "Several lights: one shadow map each (top view)",
             DiagramKind::Chebyshev => "VSM: Chebyshev's bound on the depths in the filter window",
         }
+    }
+}
+
+impl DiagramInputs {
+    /// The probed point has no shadow-map data: the CPU twin's rule
+    /// (`crate::shadow::outside_frustum`), off the map or outside its depth range.
+    pub fn outside_frustum(&self) -> bool {
+        self.outside_map || self.outside_depth
     }
 }
 
@@ -103,6 +117,8 @@ pub struct LightTopView {
 /// distances from the light along its axis.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DiagramInputs {
+    /// The shadow technique the numbers come from.
+    pub technique: Technique,
     /// Angle between the light direction and the receiver's normal (0 = overhead), degrees.
     pub light_angle_deg: f32,
     pub shadow_map_size_texels: u32,
@@ -134,8 +150,14 @@ pub struct DiagramInputs {
     pub blockers_found: u32,
     pub blocker_samples: u32,
     pub visibility: f32,
-    /// The probed point lies outside the light's frustum (no shadow-map data for it).
-    pub outside_frustum: bool,
+    /// The probed point's uv lies off the shadow map (`crate::shadow::outside_map`).
+    pub outside_map: bool,
+    /// The probed point's depth lies outside the map's 0..1 NDC range
+    /// (`crate::shadow::outside_depth`).
+    pub outside_depth: bool,
+    /// RGBA8 depth storage: the stored depth after the pack / 8-bit / unpack round trip minus
+    /// the depth the shadow pass wrote, NDC; `None` for float storage.
+    pub stored_depth_rgba8_error_ndc: Option<f32>,
     /// Points outside the frustum count as lit (`clamp_outside`); otherwise the lookup wraps.
     pub clamp_outside: bool,
     /// The shadow pass culls front faces: closed objects store their back faces, so a lit
@@ -229,6 +251,7 @@ impl Default for DiagramInputs {
             proj.iter().map(|p| proj.iter().filter(|q| *q < p).count() < pcf_samples.len() / 2).collect();
         let spot_dist = (80f32 * 80.0 + 20.0 * 20.0).sqrt();
         Self {
+            technique: Technique::Pcss,
             light_angle_deg: 45.0,
             shadow_map_size_texels: 2048,
             frustum_width_world: 200.0,
@@ -251,7 +274,9 @@ impl Default for DiagramInputs {
             blockers_found: 8,
             blocker_samples: 16,
             visibility: 0.5,
-            outside_frustum: false,
+            outside_map: false,
+            outside_depth: false,
+            stored_depth_rgba8_error_ndc: None,
             clamp_outside: true,
             cull_front_faces: false,
             receiver_plane: false,
@@ -300,6 +325,16 @@ fn bias_world(inputs: &DiagramInputs, d: f32) -> f32 {
     style::fin(style::fin(inputs.bias_ndc, 0.0) / ndc_per_world(inputs, d), 0.0)
 }
 
+/// World width of one shadow-map texel at linear depth `d`: W / map size for an orthographic
+/// map; a perspective map's W is its near-plane width, so the footprint grows with depth, times
+/// d / near.
+fn texel_world(inputs: &DiagramInputs, d: f32) -> f32 {
+    let map = inputs.shadow_map_size_texels.max(1) as f32;
+    let w = style::fin(inputs.frustum_width_world, 200.0).abs().max(1e-6);
+    let near = style::fin(inputs.light_near, 1.0).abs().max(1e-6);
+    if inputs.orthographic { w / map } else { w / map * style::fin(d, near).abs() / near }
+}
+
 /// NDC depth per world unit at linear depth `d` (constant for orthographic).
 fn ndc_per_world(inputs: &DiagramInputs, d: f32) -> f32 {
     let (near, far) = planes(inputs);
@@ -334,6 +369,18 @@ pub fn draw_traced(
     [width_px, height_px]: [u32; 2],
     min_text_px: f32,
 ) -> Result<(tiny_skia::Pixmap, Vec<(String, f32)>), DiagramError> {
+    let c = draw_canvas(kind, inputs, lang, [width_px, height_px], min_text_px)?;
+    Ok((c.pixmap, c.drawn))
+}
+
+/// [`draw_traced`], returning the whole canvas (where every text and frame was drawn).
+pub(crate) fn draw_canvas(
+    kind: DiagramKind,
+    inputs: &DiagramInputs,
+    lang: Lang,
+    [width_px, height_px]: [u32; 2],
+    min_text_px: f32,
+) -> Result<Canvas, DiagramError> {
     let bad = DiagramError::InvalidSize { width_px, height_px };
     if width_px == 0 || height_px == 0 || width_px > MAX_SIDE_PX || height_px > MAX_SIDE_PX {
         return Err(bad);
@@ -349,7 +396,7 @@ pub fn draw_traced(
         DiagramKind::MultiLight => multi_light::draw(&mut c, inputs),
         DiagramKind::Chebyshev => chebyshev::draw(&mut c, inputs),
     }
-    Ok((c.pixmap, c.drawn))
+    Ok(c)
 }
 
 /// Encodes a pixmap as PNG (straight alpha, as PNG requires).

@@ -5,6 +5,7 @@ use super::canvas::Canvas;
 use super::style::{Anchor, FS_LABEL, FS_SMALL, Style, Swatch, col, fin, nice_floor, num, pal};
 use super::widgets::Column;
 use super::{DiagramInputs, planes};
+use crate::scene::Technique;
 
 /// Drawing area (x, y, w, h); depths run from `Y_LIGHT` down to `Y_RECV`.
 const AREA: [f32; 4] = [20.0, 52.0, 580.0, 450.0];
@@ -53,9 +54,10 @@ fn numbers(inp: &DiagramInputs) -> Numbers {
 
 pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let n = numbers(inp);
+    let searches = searches(inp.technique);
     // Depths normalised to the panel height; widths exaggerated by a nice factor.
     let vs = (Y_RECV - Y_LIGHT) / n.d_r.max(n.d_b).max(n.near);
-    let max_w = n.w_pen.max(n.w_search).max(n.top_w);
+    let max_w = n.w_pen.max(if searches { n.w_search } else { 0.0 }).max(n.top_w);
     let exag = Some(max_w * vs).filter(|v| *v > 1e-9);
     let exag = exag.map_or(1.0, |v| nice_floor(MAX_WIDTH_PX / v));
     let hs = vs * exag;
@@ -75,7 +77,8 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     }
     c.line([AREA[0], Y_RECV], [AREA[0] + AREA[2], Y_RECV], col(pal::RECEIVER, 1.0), 3.0);
     // Search cone from the shaded point: to the light's ends (area light) or on past the near
-    // plane (directional light); its cut with the near plane is the search region.
+    // plane (directional light); its cut with the near plane is the search region. Only the
+    // techniques that search for blockers have one.
     let recv_pt = [X_EDGE, Y_RECV];
     let y_near_true = Y_LIGHT + n.near * vs;
     let s_half = n.w_search * 0.5 * hs * (Y_RECV - y_near) / (Y_RECV - y_near_true).max(1e-3);
@@ -84,13 +87,15 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         None => [[x(-n.w_light * 0.5), Y_LIGHT], [x(n.w_light * 0.5), Y_LIGHT]],
         Some(_) => cut,
     };
-    c.polygon(&[recv_pt, tips[0], tips[1]], col(pal::SEARCH, 0.16));
-    for tip in tips {
-        c.dashed(recv_pt, tip, col(pal::SEARCH, 0.9), 2.0, 8.0);
+    if searches {
+        c.polygon(&[recv_pt, tips[0], tips[1]], col(pal::SEARCH, 0.16));
+        for tip in tips {
+            c.dashed(recv_pt, tip, col(pal::SEARCH, 0.9), 2.0, 8.0);
+        }
+        let muted = col(pal::MUTED, 1.0);
+        c.dashed([AREA[0], y_near], [AREA[0] + AREA[2], y_near], muted, 1.5, 6.0);
+        c.line(cut[0], cut[1], search, 6.0);
     }
-    let muted = col(pal::MUTED, 1.0);
-    c.dashed([AREA[0], y_near], [AREA[0] + AREA[2], y_near], muted, 1.5, 6.0);
-    c.line(cut[0], cut[1], search, 6.0);
     // Blocker and the penumbra lines past its edge.
     if n.has_blocker {
         let slab = [AREA[0] + 110.0, y_b - 6.0, X_EDGE - AREA[0] - 110.0, 12.0];
@@ -137,13 +142,15 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         let t = format!("d_blocker = {}", num(n.d_b));
         c.label(&t, [72.0, y_b - 10.0], Anchor::BottomLeft, FS_LABEL);
     }
-    let near_txt = c.fill("near plane d = {}", &[&num(n.near)]);
-    let near_box = c.label(&near_txt, [74.0, y_near + 4.0], Anchor::TopLeft, FS_SMALL);
-    // Below the cut, and below the near-plane label where grown text would overlap it.
-    let half_w = c.measure("search region", FS_SMALL).0 * 0.5;
-    let overlaps = X_EDGE - half_w < near_box[0] + near_box[2] + 6.0;
-    let y = if overlaps { near_box[1] + near_box[3] + 4.0 } else { y_near + 6.0 };
-    c.text("search region", [X_EDGE, y], Anchor::TopCenter, Style::em(FS_SMALL, pal::SEARCH));
+    if searches {
+        let near_txt = c.fill("near plane d = {}", &[&num(n.near)]);
+        let near_box = c.label(&near_txt, [74.0, y_near + 4.0], Anchor::TopLeft, FS_SMALL);
+        // Below the cut, and below the near-plane label where grown text would overlap it.
+        let half_w = c.measure("search region", FS_SMALL).0 * 0.5;
+        let overlaps = X_EDGE - half_w < near_box[0] + near_box[2] + 6.0;
+        let y = if overlaps { near_box[1] + near_box[3] + 4.0 } else { y_near + 6.0 };
+        c.text("search region", [X_EDGE, y], Anchor::TopCenter, Style::em(FS_SMALL, pal::SEARCH));
+    }
     match n.theta {
         None => {
             let t = c.fill("w_light = {} world", &[&num(n.w_light)]);
@@ -168,7 +175,7 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     let scale_note = c.fill("widths ×{}, depths to scale", &[&ex]);
     formulas(c, inp, &n, &scale_note);
 
-    let items = [
+    let mut items = vec![
         (Swatch::Fill(pal::LIGHT, 1.0), "light"),
         (Swatch::Fill(pal::BLOCKER, 1.0), "blocker"),
         (Swatch::Fill(pal::SHADOW, 1.0), "umbra"),
@@ -176,14 +183,46 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
         (Swatch::Fill(pal::SEARCH, 0.2), "search cone"),
         (Swatch::Fill(pal::RECEIVER, 0.45), "receiver"),
     ];
+    if !searches {
+        items.retain(|(_, s)| *s != "search cone");
+    }
     c.legend_row(&items, [480.0, 530.0]);
 }
 
-/// The formulas with the live numbers, in a column on the right.
+/// Whether `technique` searches for blockers and sizes its filter from the penumbra (PCSS,
+/// VSSM); the others filter with a fixed radius (PCF, VSM) or not at all (hard, none).
+fn searches(technique: Technique) -> bool {
+    matches!(technique, Technique::Pcss | Technique::Vssm)
+}
+
+/// The formulas with the live numbers, in a column on the right: what the technique does, the
+/// penumbra the light casts, and for PCSS and VSSM the blocker search and the filter it sizes.
 fn formulas(c: &mut Canvas, inp: &DiagramInputs, n: &Numbers, scale_note: &str) {
     let mut col_ = Column::new(612.0, 64.0);
+    let searches = searches(inp.technique);
+    let r_f = num(fin(inp.filter_radius_texels, 0.0));
+    match inp.technique {
+        Technique::Pcf | Technique::Vsm => {
+            let t = match inp.technique {
+                Technique::Pcf => c.fill("PCF: fixed filter radius = {} texels", &[&r_f]),
+                _ => c.fill("VSM: fixed filter radius = {} texels", &[&r_f]),
+            };
+            col_.em(c, &t, pal::SEARCH);
+            col_.tint(c, "(no blocker search, no w_penumbra)", pal::MUTED);
+        }
+        Technique::Hard => {
+            col_.em(c, "hard shadows: one depth test, no filter", pal::INK);
+            col_.tint(c, "(no blocker search, no w_penumbra)", pal::MUTED);
+        }
+        Technique::None => col_.em(c, "no shadows: nothing is tested", pal::INK),
+        Technique::Pcss | Technique::Vssm => {}
+    }
+    if !searches && n.has_blocker {
+        col_.tint(c, "what PCSS would estimate here:", pal::MUTED);
+    }
     let (d_r, d_b) = (num(n.d_r), num(n.d_b));
     match (n.has_blocker, n.theta) {
+        (false, _) if !searches => {}
         (false, _) => {
             col_.line(c, "blocker search found nothing:");
             col_.em(c, "no blockers: fully lit", pal::LIT);
@@ -207,31 +246,35 @@ fn formulas(c: &mut Canvas, inp: &DiagramInputs, n: &Numbers, scale_note: &str) 
             col_.tint(c, "blocker not in front of receiver", pal::MUTED);
         }
     }
-    let search = match n.theta {
-        None => "w_search = w_light · (d_r − near) / d_r",
-        Some(_) => "w_search = (d_r − near) · 2·tan(θ/2)",
-    };
-    col_.line(c, search);
-    let ws = num(n.w_search);
-    let t = c.fill("  = {} world on the near plane", &[&ws]);
-    col_.em(c, &t, pal::SEARCH);
-    let r_s = num(fin(inp.search_radius_texels, 0.0));
-    let t = c.fill("search radius = {} texels", &[&r_s]);
-    col_.line(c, &t);
-    let (found, total) = (inp.blockers_found, inp.blocker_samples);
-    // VSSM takes no taps: its blockers come from the moments.
-    let t = match total {
-        0 if found > 0 => c.fill("blockers: estimated from the moments", &[]),
-        _ => c.fill("blockers found: {} / {}", &[&found, &total]),
-    };
-    col_.line(c, &t);
-    let r_f = num(fin(inp.filter_radius_texels, 0.0));
-    let t = c.fill("filter radius = {} texels", &[&r_f]);
-    col_.line(c, &t);
-    let reported = fin(inp.penumbra_width_world, n.w_pen);
-    if n.has_blocker && (reported - n.w_pen).abs() > 0.01 * n.w_pen.abs().max(1e-6) {
-        let t = c.fill("(shader's w_penumbra: {} world)", &[&num(reported)]);
-        col_.tint(c, &t, pal::MUTED);
+    if searches {
+        let search = match n.theta {
+            None => "w_search = w_light · (d_r − near) / d_r",
+            Some(_) => "w_search = (d_r − near) · 2·tan(θ/2)",
+        };
+        col_.line(c, search);
+        let ws = num(n.w_search);
+        let t = c.fill("  = {} world on the near plane", &[&ws]);
+        col_.em(c, &t, pal::SEARCH);
+        let r_s = num(fin(inp.search_radius_texels, 0.0));
+        let t = c.fill("search radius = {} texels", &[&r_s]);
+        col_.line(c, &t);
+        let (found, total) = (inp.blockers_found, inp.blocker_samples);
+        // VSSM takes no taps: its blockers come from the moments.
+        let t = match total {
+            0 if found > 0 => c.fill("blockers: estimated from the moments", &[]),
+            _ => c.fill("blockers found: {} / {}", &[&found, &total]),
+        };
+        col_.line(c, &t);
+        // Without blockers the filter is skipped: no radius to show.
+        if n.has_blocker {
+            let t = c.fill("filter radius = {} texels", &[&r_f]);
+            col_.line(c, &t);
+        }
+        let reported = fin(inp.penumbra_width_world, n.w_pen);
+        if n.has_blocker && (reported - n.w_pen).abs() > 0.01 * n.w_pen.abs().max(1e-6) {
+            let t = c.fill("(shader's w_penumbra: {} world)", &[&num(reported)]);
+            col_.tint(c, &t, pal::MUTED);
+        }
     }
     col_.tint(c, scale_note, pal::MUTED);
 }

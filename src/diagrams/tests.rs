@@ -1,5 +1,6 @@
 use super::*;
 use crate::lessons::Lang;
+use crate::scene::Technique;
 use tiny_skia::Pixmap;
 
 const BG: [u8; 3] = [250, 250, 246];
@@ -468,12 +469,39 @@ fn label_cases() -> Vec<(&'static str, DiagramInputs)> {
     cases.push(("huge offset", DiagramInputs { normal_offset_texels: 40.0, bias_ndc: 0.2, ..d() }));
     cases.push(("culled", DiagramInputs { cull_front_faces: true, ..d() }));
     cases.push(("perspective", DiagramInputs { orthographic: false, light_near: 1.0, ..d() }));
-    cases.push(("outside, lit", DiagramInputs { outside_frustum: true, ..d() }));
+    cases.push(("outside, lit", DiagramInputs { outside_map: true, ..d() }));
     for stored in [100.0, 120.0] {
         let wrapped =
-            DiagramInputs { outside_frustum: true, clamp_outside: false, stored_depth_linear: stored, ..d() };
+            DiagramInputs { outside_map: true, clamp_outside: false, stored_depth_linear: stored, ..d() };
         cases.push(("outside, wrapped", wrapped));
     }
+    // Lesson 1, steps 3 to 5: RGBA8 rounding of the receiver's own depth; off the map without
+    // the clamp; off the map and past the far plane with it.
+    cases.extend(lesson_1_cases());
+    let past_far = DiagramInputs {
+        outside_depth: true,
+        receiver_depth_linear: 450.0,
+        stored_depth_linear: 400.0,
+        ..d()
+    };
+    cases.push(("past the far plane", past_far.clone()));
+    cases.push(("past the far plane, not clamped", DiagramInputs { clamp_outside: false, ..past_far }));
+    cases.push(("nothing stored", DiagramInputs { stored_depth_linear: 400.0, ..d() }));
+    cases.push(("behind", DiagramInputs { stored_depth_linear: 118.0, cull_front_faces: true, ..d() }));
+    cases.push((
+        "pcf",
+        DiagramInputs { technique: Technique::Pcf, blockers_found: 0, blocker_samples: 0, ..d() },
+    ));
+    cases.push((
+        "pcf, nothing in front",
+        DiagramInputs { technique: Technique::Pcf, blocker_depth_linear: None, blockers_found: 0, ..d() },
+    ));
+    cases.push(("hard", DiagramInputs { technique: Technique::Hard, filter_radius_texels: 0.0, ..d() }));
+    cases.push(("vssm", DiagramInputs { technique: Technique::Vssm, blocker_samples: 0, ..d() }));
+    cases.push((
+        "pcss, no blockers",
+        DiagramInputs { blocker_depth_linear: None, blockers_found: 0, filter_radius_texels: 0.0, ..d() },
+    ));
     cases.push(("shader disagrees", DiagramInputs { penumbra_width_world: 9.0, visibility: 0.9, ..d() }));
     cases.push((
         "wide filter",
@@ -538,9 +566,12 @@ fn chinese_diagrams_keep_the_numbers_of_the_english_ones() {
     };
     for (case, inp) in label_cases().into_iter().take(30) {
         for kind in DiagramKind::ALL {
-            let (_, en) = draw_traced(kind, &inp, Lang::En, [960, 540], 0.0).expect("draw");
-            let (_, zh) = draw_traced(kind, &inp, Lang::Zh, [960, 540], 0.0).expect("draw");
-            assert_eq!(en.len(), zh.len(), "{} ({case}): different label count", kind.id());
+            let en = draw_canvas(kind, &inp, Lang::En, [960, 540], 0.0).expect("draw");
+            let zh = draw_canvas(kind, &inp, Lang::Zh, [960, 540], 0.0).expect("draw");
+            // A label may break over more lines in one language than in the other.
+            let labels = |c: &Canvas| c.drawn.len() - c.continued;
+            assert_eq!(labels(&en), labels(&zh), "{} ({case}): different label count", kind.id());
+            let (en, zh) = (en.drawn, zh.drawn);
             assert_eq!(digits(&en), digits(&zh), "{} ({case}): numbers differ", kind.id());
         }
     }
@@ -690,4 +721,337 @@ fn fit_cuts_to_the_width_with_an_ellipsis() {
         assert!(longer.is_none_or(|l| c.text_width(&l, 20.0) > max), "{max}: {cut}");
     }
     assert_eq!(c.fit("中文标题很长很长", 20.0, 50.0).chars().last(), Some('…'));
+}
+
+/// The app's diagram panel: about 1000x300 points and smaller, text at least 14 px; the
+/// design size; a 16:9 panel.
+const PANEL_SIZES: [([u32; 2], f32); 7] = [
+    ([1000, 300], 14.0),
+    ([900, 260], 14.0),
+    ([760, 256], 14.0),
+    ([800, 230], 14.0),
+    ([640, 360], 14.0),
+    ([960, 540], 0.0),
+    ([1280, 720], 14.0),
+];
+
+/// Every pair of drawn texts whose boxes overlap, and every text that reaches into a frame
+/// (title bar, legend) without lying inside it.
+fn overlapping_text(c: &Canvas) -> Vec<String> {
+    let meet = |a: &[f32; 4], b: &[f32; 4]| canvas::boxes_meet(a, b, -0.5);
+    let inside = |a: &[f32; 4], f: &[f32; 4]| {
+        a[0] >= f[0] - 0.5
+            && a[1] >= f[1] - 0.5
+            && a[0] + a[2] <= f[0] + f[2] + 0.5
+            && a[1] + a[3] <= f[1] + f[3] + 0.5
+    };
+    let mut out = Vec::new();
+    for (i, (s, a)) in c.text_boxes.iter().enumerate() {
+        for (t, b) in &c.text_boxes[i + 1..] {
+            if meet(a, b) {
+                out.push(format!("{s:?} {a:?} overlaps {t:?} {b:?}"));
+            }
+        }
+        for f in &c.frames {
+            if meet(a, f) && !inside(a, f) {
+                out.push(format!("{s:?} {a:?} reaches into the frame {f:?}"));
+            }
+        }
+    }
+    out
+}
+
+/// Lesson 2's floor (79° from the light, a 1024 map over 80 world units, far 200) under each of
+/// its bias settings, and the diagram's own cases.
+fn acne_cases() -> Vec<(&'static str, DiagramInputs)> {
+    let floor = DiagramInputs {
+        light_angle_deg: 78.84,
+        shadow_map_size_texels: 1024,
+        frustum_width_world: 80.0,
+        light_near: 0.01,
+        light_far: 200.0,
+        receiver_depth_linear: 100.0,
+        bias_ndc: 0.0,
+        ..DiagramInputs::default()
+    };
+    let mut cases = vec![
+        ("no bias", floor.clone()),
+        ("too much bias", DiagramInputs { bias_ndc: 0.02, ..floor.clone() }),
+        ("slope bias", DiagramInputs { bias_ndc: 0.0042, light_angle_deg: 80.72, ..floor.clone() }),
+        ("adaptive", DiagramInputs { bias_ndc: 0.00029, ..floor.clone() }),
+        ("receiver plane", DiagramInputs { bias_ndc: 0.0001, receiver_plane: true, ..floor.clone() }),
+        ("normal offset", DiagramInputs { normal_offset_texels: 1.0, ..floor.clone() }),
+        ("culled", DiagramInputs { cull_front_faces: true, ..floor.clone() }),
+        ("shallow", DiagramInputs { light_angle_deg: 30.0, bias_ndc: 0.0005, ..floor }),
+    ];
+    cases.extend(label_cases().into_iter().filter(|(name, _)| !matches!(*name, "huge" | "nan and inf")));
+    cases
+}
+
+/// At the app's panel sizes the acne diagram's labels, numbers, verdict and legend keep clear
+/// of each other, in both languages: grown text used to push verdict lines apart (a dangling
+/// "too little bias:" with the rest at the top right), lay "acne (...)" over "contact", and
+/// hide the Chinese peter-panning gap under the legend.
+#[test]
+fn acne_bias_text_does_not_overlap_at_panel_sizes() {
+    let mut bad = Vec::new();
+    // Lesson 2's cases also at every panel height from 220 to 340 points.
+    let sweep: Vec<([u32; 2], f32)> =
+        [900, 1000].into_iter().flat_map(|w| (220..=340).step_by(8).map(move |h| ([w, h], 14.0))).collect();
+    for (i, (case, inp)) in acne_cases().into_iter().enumerate() {
+        let sizes = PANEL_SIZES.iter().chain(if i < 8 { &sweep[..] } else { &[] });
+        for lang in [Lang::En, Lang::Zh] {
+            for &(size, min_text) in sizes.clone() {
+                let c = draw_canvas(DiagramKind::AcneBias, &inp, lang, size, min_text).expect("draw");
+                for o in overlapping_text(&c) {
+                    bad.push(format!("{case}, {}, {size:?}: {o}", lang.code()));
+                }
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{} overlaps:\n{}", bad.len(), bad.join("\n"));
+}
+
+/// A verdict's two lines stay together, one under the other, whatever the panel's height: at
+/// some heights the first line ("too little bias:") used to end one column and the second
+/// start the next, at the top right.
+#[test]
+fn acne_bias_verdict_lines_stay_together() {
+    let verdicts = [
+        ["too little bias:", "acne (self-shadowing stripes)"],
+        ["more bias than needed:", "shadow detaches (peter panning)"],
+    ];
+    let sizes = [900, 1000].into_iter().flat_map(|w| (220..=340).step_by(8).map(move |h| [w, h]));
+    for (case, inp) in acne_cases().into_iter().take(2) {
+        for lang in [Lang::En, Lang::Zh] {
+            for size in sizes.clone() {
+                let c = draw_canvas(DiagramKind::AcneBias, &inp, lang, size, 14.0).expect("draw");
+                let find = |s: &str| {
+                    let s = crate::i18n::tr(lang, s);
+                    c.text_boxes.iter().find(|(t, _)| t == s).map(|(_, b)| *b)
+                };
+                for [first, second] in verdicts {
+                    if let (Some(a), Some(b)) = (find(first), find(second)) {
+                        let below = b[1] > a[1] + a[3] * 0.5 && b[1] < a[1] + a[3] * 2.5;
+                        assert!(
+                            a[0] == b[0] && below,
+                            "{case}, {}, {size:?}: {first} at {a:?}, {second} at {b:?}",
+                            lang.code()
+                        );
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Lesson 1's light (orthographic, near 0.01) at the probes of steps 3 to 5, as the probe
+/// reports them.
+fn lesson_1_cases() -> Vec<(&'static str, DiagramInputs)> {
+    let light = DiagramInputs {
+        technique: Technique::Hard,
+        light_angle_deg: 45.0,
+        shadow_map_size_texels: 2048,
+        light_near: 0.01,
+        bias_ndc: 0.001,
+        blocker_depth_linear: None,
+        ..DiagramInputs::default()
+    };
+    vec![
+        (
+            // Far 200, RGBA8 storage: the floor's own depth, rounded 0.0018 NDC nearer.
+            "rgba8 rounding",
+            DiagramInputs {
+                frustum_width_world: 120.0,
+                light_far: 200.0,
+                receiver_depth_linear: 107.43808,
+                stored_depth_linear: 107.061165,
+                stored_depth_rgba8_error_ndc: Some(-0.0018153191),
+                ..light.clone()
+            },
+        ),
+        (
+            // Extent 20, far 130, no clamp: uv.x 1.30 wraps onto the bunny's ears.
+            "off the map, wrapped",
+            DiagramInputs {
+                frustum_width_world: 40.0,
+                light_far: 130.0,
+                receiver_depth_linear: 125.365616,
+                stored_depth_linear: 100.11788,
+                outside_map: true,
+                clamp_outside: false,
+                blocker_depth_linear: Some(100.11788),
+                ..light.clone()
+            },
+        ),
+        (
+            // The clamp on: uv.y -0.49 and NDC depth 1.18, lit without a lookup.
+            "off the map and past far, clamped",
+            DiagramInputs {
+                frustum_width_world: 40.0,
+                light_far: 130.0,
+                receiver_depth_linear: 152.89879,
+                stored_depth_linear: 130.0,
+                outside_map: true,
+                outside_depth: true,
+                clamp_outside: true,
+                visibility: 1.0,
+                ..light
+            },
+        ),
+    ]
+}
+
+fn texts_of(kind: DiagramKind, inp: &DiagramInputs, lang: Lang) -> Vec<String> {
+    let (_, texts) = draw_traced(kind, inp, lang, [960, 540], 0.0).expect("draw");
+    texts.into_iter().map(|(t, _)| t).collect()
+}
+
+/// The two-pass verdict follows what the lookup really found: the receiver's own depth
+/// (rounded by RGBA8) is not a blocker, a point off the map is said to be off it, and only a
+/// nearer surface is the first hit's blocker.
+#[test]
+fn the_two_pass_verdict_says_what_the_lookup_found() {
+    let cases: std::collections::HashMap<_, _> = label_cases().into_iter().collect();
+    let says = |case: &str| texts_of(DiagramKind::TwoPass, &cases[case], Lang::En).join(" | ");
+    let rgba8 = says("rgba8 rounding");
+    assert!(rgba8.contains("(P itself, rounded by RGBA8: -0.0018 NDC)"), "{rgba8}");
+    assert!(rgba8.contains("no → in shadow (P shadows itself)"), "{rgba8}");
+    assert!(!rgba8.contains("blocker)"), "{rgba8}");
+    let clamped = says("off the map and past far, clamped");
+    assert!(clamped.contains("P lies off the light's map and outside its depth range"), "{clamped}");
+    assert!(clamped.contains("outside the light frustum → lit"), "{clamped}");
+    assert!(!clamped.contains("first hit"), "{clamped}");
+    let wrapped = says("off the map, wrapped");
+    assert!(wrapped.contains("(wrapped: another place's texel)"), "{wrapped}");
+    assert!(wrapped.contains("no → in shadow (wrapped lookup!)"), "{wrapped}");
+    assert!(!wrapped.contains("first hit") && !wrapped.contains("P lies off"), "{wrapped}");
+    let past_far = says("past the far plane, not clamped");
+    assert!(past_far.contains("(nothing stored: far plane)"), "{past_far}");
+    assert!(past_far.contains("no → in shadow (depth outside 0..1!)"), "{past_far}");
+    assert!(says("past the far plane").contains("P lies outside the light's depth range (NDC depth 1.1250)"));
+    assert!(says("shadowed").contains("(first hit: blocker)"));
+    assert!(says("defaults").contains("(first hit: P itself)"));
+    assert!(says("behind").contains("(first hit: a surface behind P)"));
+    assert!(says("nothing stored").contains("(nothing stored: far plane)"));
+
+    // The classification itself, and the point drawn lit where the clamp makes it lit.
+    assert_eq!(
+        two_pass::lookup(&cases["rgba8 rounding"]),
+        two_pass::Lookup::Itself { rgba8_error_ndc: Some(-0.0018153191) }
+    );
+    assert_eq!(two_pass::lookup(&cases["off the map and past far, clamped"]), two_pass::Lookup::NotRead);
+    assert_eq!(two_pass::lookup(&cases["off the map, wrapped"]), two_pass::Lookup::Wrapped);
+    assert_eq!(two_pass::lookup(&cases["shadowed"]), two_pass::Lookup::Blocker);
+    // Without the RGBA8 error the same stored depth would be a surface 0.38 world units nearer:
+    // more than the floor's own spread over a texel (0.059 at 45°), so a blocker.
+    let float = DiagramInputs { stored_depth_rgba8_error_ndc: None, ..cases["rgba8 rounding"].clone() };
+    assert_eq!(two_pass::lookup(&float), two_pass::Lookup::Blocker);
+    let green =
+        |pm: &Pixmap| pm.pixels().iter().filter(|p| p.red() < 30 && p.green() > 140 && p.blue() > 95).count();
+    let magenta =
+        |pm: &Pixmap| pm.pixels().iter().filter(|p| p.red() > 170 && p.green() < 60 && p.blue() > 90).count();
+    let lit = render(DiagramKind::TwoPass, &cases["off the map and past far, clamped"], 960, 540);
+    let shadowed = render(DiagramKind::TwoPass, &cases["off the map, wrapped"], 960, 540);
+    assert!(green(&lit) > green(&shadowed) + 100, "P is drawn lit where the clamp lights it");
+    assert!(
+        magenta(&shadowed) > magenta(&lit) + 50,
+        "P is drawn blocked where the wrapped lookup shadows it"
+    );
+}
+
+/// At the app's panel sizes (wide and short) and at the design size, the two-pass diagram's
+/// labels, verdict lines and legend keep clear of each other, in both languages, for lesson 1's
+/// probes and the lookups the verdict tells apart.
+#[test]
+fn two_pass_text_does_not_overlap_at_panel_sizes() {
+    let wide = PANEL_SIZES.iter().filter(|(s, _)| s[0] * 9 > s[1] * 16 || s[0] >= 960);
+    let names = [
+        "defaults",
+        "shadowed",
+        "outside, lit",
+        "outside, wrapped",
+        "past the far plane",
+        "nothing stored",
+        "behind",
+    ];
+    let cases = label_cases().into_iter().filter(|(n, _)| names.contains(n)).chain(lesson_1_cases());
+    let mut bad = Vec::new();
+    for (case, inp) in cases {
+        for lang in [Lang::En, Lang::Zh] {
+            for (size, min_text) in wide.clone() {
+                let c = draw_canvas(DiagramKind::TwoPass, &inp, lang, *size, *min_text).expect("draw");
+                for o in overlapping_text(&c) {
+                    bad.push(format!("{case}, {}, {size:?}: {o}", lang.code()));
+                }
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{} overlaps:\n{}", bad.len(), bad.join("\n"));
+}
+
+/// The PCSS diagram says what the technique does: PCF filters every pixel with its fixed
+/// radius and neither searches for blockers nor estimates a penumbra (it used to say "the
+/// filter step is skipped" beside "filter radius = 3.0 texels"), hard shadows take no filter,
+/// and PCSS skips its filter only where its search found no blocker.
+#[test]
+fn the_pcss_diagram_says_what_the_technique_does() {
+    let d = DiagramInputs::default;
+    let says = |inp: &DiagramInputs| texts_of(DiagramKind::PcssTriangles, inp, Lang::En);
+    let pcf = |blocker| DiagramInputs {
+        technique: Technique::Pcf,
+        filter_radius_texels: 3.0,
+        search_radius_texels: 0.0,
+        blocker_depth_linear: blocker,
+        blockers_found: 0,
+        blocker_samples: 0,
+        ..d()
+    };
+    for inp in [pcf(None), pcf(Some(100.0))] {
+        let t = says(&inp);
+        assert!(t.iter().any(|l| l == "PCF: fixed filter radius = 3.0 texels"), "{t:?}");
+        assert!(t.iter().any(|l| l == "(no blocker search, no w_penumbra)"), "{t:?}");
+        for absent in
+            ["skipped", "search region", "search radius", "w_search", "blockers found", "no blockers"]
+        {
+            assert!(!t.iter().any(|l| l.contains(absent)), "{absent}: {t:?}");
+        }
+    }
+    assert!(says(&pcf(Some(100.0))).iter().any(|l| l == "what PCSS would estimate here:"));
+    let hard = says(&DiagramInputs { technique: Technique::Hard, filter_radius_texels: 0.0, ..pcf(None) });
+    assert!(hard.iter().any(|l| l == "hard shadows: one depth test, no filter"), "{hard:?}");
+    assert!(!hard.iter().any(|l| l.contains("filter radius")), "{hard:?}");
+    let none_found = says(&DiagramInputs { blocker_depth_linear: None, blockers_found: 0, ..d() });
+    assert!(none_found.iter().any(|l| l == "(the filter step is skipped)"), "{none_found:?}");
+    assert!(!none_found.iter().any(|l| l.contains("filter radius")), "{none_found:?}");
+    let found = says(&d());
+    assert!(found.iter().any(|l| l == "filter radius = 5.0 texels"), "{found:?}");
+    assert!(found.iter().any(|l| l == "search region"), "{found:?}");
+    assert!(!found.iter().any(|l| l.contains("skipped")), "{found:?}");
+}
+
+/// "slope = tan(A°) = S": the tangent of the angle as printed, printed, is the slope as printed
+/// (79° used to print beside 5.07, the slope of 78.84°).
+#[test]
+fn the_acne_slope_is_the_tangent_of_the_angle_shown() {
+    let mut angle = 0.0f32;
+    while angle < 89.9 {
+        let inp = DiagramInputs { light_angle_deg: angle, ..DiagramInputs::default() };
+        let texts = texts_of(DiagramKind::AcneBias, &inp, Lang::En);
+        let line = texts.iter().find(|t| t.starts_with("slope = tan(")).expect("slope line");
+        let shown = line.trim_start_matches("slope = tan(");
+        let (a, s) = shown.split_once("°) = ").unwrap_or_else(|| panic!("{line}"));
+        let tan_shown = format!("{:.2}", a.parse::<f64>().expect("angle").to_radians().tan());
+        assert_eq!(tan_shown, s, "{angle}°: {line}");
+        // And within the last printed digit of the slope the numbers use.
+        let exact = f64::from(angle).to_radians().tan();
+        if angle < 85.0 {
+            let shown: f64 = s.parse().expect("slope");
+            assert!((shown - exact).abs() <= 0.0101, "{angle}°: {line}, exact {exact}");
+        }
+        angle += 0.37;
+    }
+    let teacher = DiagramInputs { light_angle_deg: 78.84, ..DiagramInputs::default() };
+    let texts = texts_of(DiagramKind::AcneBias, &teacher, Lang::En);
+    assert!(texts.iter().any(|t| t == "slope = tan(78.84°) = 5.07"), "{texts:?}");
 }

@@ -10,6 +10,7 @@ impl Canvas {
     pub fn title_bar(&mut self, title: &str) {
         let [x, y, w, _] = self.full_rect();
         self.rect([x, y, w, TITLE_H], Some(col(pal::TITLE_BG, 1.0)), None);
+        self.frames.push([x, y, w, TITLE_H]);
         let st = Style::em(FS_TITLE, pal::TITLE_FG).no_plate();
         self.text(title, [x + 18.0, y + TITLE_H * 0.5], Anchor::MidLeft, st);
     }
@@ -17,8 +18,7 @@ impl Canvas {
     /// Legend box with its corner `anchor` at `p`. Returns its box `[x, y, w, h]`.
     pub fn legend(&mut self, items: &[(Swatch, &str)], p: [f32; 2], anchor: Anchor) -> [f32; 4] {
         let (row, sw) = (self.fs(FS_SMALL) * 1.45, 30.0);
-        let tw = items.iter().map(|(_, s)| self.measure(s, FS_SMALL).0).fold(0.0, f32::max);
-        let (w, h) = (sw + 30.0 + tw, row * items.len() as f32 + 12.0);
+        let [w, h] = self.legend_size(items);
         let x = match anchor {
             Anchor::TopRight | Anchor::BottomRight | Anchor::MidRight => p[0] - w,
             _ => p[0],
@@ -28,6 +28,7 @@ impl Canvas {
             _ => p[1],
         };
         self.rect([x, y, w, h], Some(col(pal::BG, 0.94)), Some((col(pal::MUTED, 1.0), 1.5)));
+        self.frames.push([x, y, w, h]);
         for (i, (swatch, s)) in items.iter().enumerate() {
             let cy = y + 6.0 + row * (i as f32 + 0.5);
             self.swatch(*swatch, x + 8.0, cy, sw);
@@ -37,24 +38,39 @@ impl Canvas {
         [x, y, w, h]
     }
 
+    /// Width and height of the box [`Canvas::legend`] draws.
+    pub fn legend_size(&self, items: &[(Swatch, &str)]) -> [f32; 2] {
+        let tw = items.iter().map(|(_, s)| self.measure(s, FS_SMALL).0).fold(0.0, f32::max);
+        [60.0 + tw, self.fs(FS_SMALL) * 1.45 * items.len() as f32 + 12.0]
+    }
+
     /// One-row legend centred on `center` (x centre, bottom y); on a panel wide enough, a
     /// legend box right of all the text instead, which leaves the bottom to grown text.
     pub fn legend_row(&mut self, items: &[(Swatch, &str)], center: [f32; 2]) -> [f32; 4] {
-        let [fx, _, fw, _] = self.full_rect();
-        let box_w = 60.0 + items.iter().map(|(_, s)| self.measure(s, FS_SMALL).0).fold(0.0, f32::max);
-        let right_x = self.text_right.max(960.0) + 24.0;
-        if right_x + box_w + 8.0 <= fx + fw {
-            return self.legend(items, [right_x, 64.0], Anchor::TopLeft);
+        if self.legend_fits_right(items, self.text_right) {
+            return self.legend_right(items);
         }
+        self.legend_bottom_row(items, center)
+    }
+
+    /// Legend box right of all the text drawn so far (of the design box at least).
+    pub fn legend_right(&mut self, items: &[(Swatch, &str)]) -> [f32; 4] {
+        let right_x = self.text_right.max(960.0) + 24.0;
+        self.legend(items, [right_x, 64.0], Anchor::TopLeft)
+    }
+
+    /// One-row legend centred on `center` (x centre, bottom y).
+    pub fn legend_bottom_row(&mut self, items: &[(Swatch, &str)], center: [f32; 2]) -> [f32; 4] {
         let (sw, gap) = (26.0, 22.0);
         let widths: Vec<f32> = items.iter().map(|(_, s)| self.measure(s, FS_SMALL).0 + sw + 8.0).collect();
         let total = widths.iter().sum::<f32>() + gap * (items.len().max(1) - 1) as f32 + 20.0;
         let [fx, _, fw, _] = self.full_rect();
         let x0 = (center[0] - total * 0.5).min(fx + fw - total - 4.0).max(fx + 4.0);
-        let h = self.fs(FS_SMALL) * 1.6;
-        let y = center[1] - h;
+        let y = self.legend_row_top(center[1]);
+        let h = center[1] - y;
         let frame = Some((col(pal::MUTED, 1.0), 1.5));
         self.rect([x0, y, total, h], Some(col(pal::BG, 0.94)), frame);
+        self.frames.push([x0, y, total, h]);
         let (mut x, cy) = (x0 + 10.0, y + h * 0.5);
         for ((swatch, s), w) in items.iter().zip(&widths) {
             self.swatch(*swatch, x, cy, sw);
@@ -63,6 +79,18 @@ impl Canvas {
             x += w + gap;
         }
         [x0, y, total, h]
+    }
+
+    /// Whether [`Canvas::legend_row`] puts its box right of text reaching `text_right`, rather
+    /// than a row at the bottom.
+    pub fn legend_fits_right(&self, items: &[(Swatch, &str)], text_right: f32) -> bool {
+        let [fx, _, fw, _] = self.full_rect();
+        text_right.max(960.0) + 24.0 + self.legend_size(items)[0] + 8.0 <= fx + fw
+    }
+
+    /// Top of the bottom row [`Canvas::legend_row`] draws with its bottom at `bottom`.
+    pub fn legend_row_top(&self, bottom: f32) -> f32 {
+        bottom - self.fs(FS_SMALL) * 1.6
     }
 
     fn swatch(&mut self, swatch: Swatch, x0: f32, cy: f32, sw: f32) {
@@ -114,7 +142,8 @@ impl Canvas {
 }
 
 /// A column of text lines with plates, top to bottom; a line that would pass [`COLUMN_BOTTOM`]
-/// (grown text on a small panel) starts a new column to the right.
+/// (grown text on a small panel) starts a new column to the right, and so does a block of
+/// lines that would not fit whole (a formula and its continuation, a two-line verdict).
 pub struct Column {
     pub x: f32,
     pub y: f32,
@@ -123,6 +152,12 @@ pub struct Column {
     pub bottom: f32,
     /// Widest line of the current column, design units.
     width: f32,
+    /// Right edge of the widest line of all columns so far, design units.
+    right: f32,
+    /// Only measures: draws nothing (to try a layout before drawing it).
+    dry: bool,
+    /// The box of every line so far, `[x, y, w, h]`.
+    pub boxes: Vec<[f32; 4]>,
 }
 
 /// Lowest a column line may reach: the legend row sits below.
@@ -130,15 +165,76 @@ pub const COLUMN_BOTTOM: f32 = 494.0;
 
 impl Column {
     pub fn new(x: f32, y: f32) -> Self {
-        Self { x, y, top: y, bottom: COLUMN_BOTTOM, width: 0.0 }
+        Self { x, y, top: y, bottom: COLUMN_BOTTOM, width: 0.0, right: x, dry: false, boxes: Vec::new() }
     }
 
+    /// A column that measures its lines without drawing them: [`Column::right`] then tells
+    /// how far the drawn column would reach.
+    pub fn dry(self) -> Self {
+        Self { dry: true, ..self }
+    }
+
+    /// Right edge of the widest line so far, design units.
+    pub fn right(&self) -> f32 {
+        self.right
+    }
+
+    fn advance(c: &Canvas, st: &Style) -> f32 {
+        c.fs(st.size) * 1.5
+    }
+
+    /// One line (broken where wider than the room left of the pixmap's edge).
     pub fn styled(&mut self, c: &mut Canvas, s: &str, st: Style) {
-        let advance = c.fs(st.size) * 1.5;
-        self.reserve(advance);
-        let b = c.text(s, [self.x, self.y], Anchor::TopLeft, st);
-        self.width = self.width.max(b[2]);
-        self.y += advance;
+        self.block(c, &[(s, st)]);
+    }
+
+    /// Draws the line at the current place (no flow) and moves down.
+    fn put(&mut self, c: &mut Canvas, s: &str, st: Style) {
+        let b = if self.dry {
+            c.text_box(s, [self.x, self.y], Anchor::TopLeft, st.size)
+        } else {
+            c.text(s, [self.x, self.y], Anchor::TopLeft, st)
+        };
+        self.boxes.push(b);
+        let w = b[2];
+        self.width = self.width.max(w);
+        self.right = self.right.max(self.x + w);
+        self.y += Self::advance(c, &st);
+    }
+
+    /// Lines kept together: the block starts a new column when it would pass the bottom, and
+    /// a line wider than the room left of the pixmap's edge is wrapped within the block.
+    pub fn block<S: AsRef<str>>(&mut self, c: &mut Canvas, lines: &[(S, Style)]) {
+        let [fx, _, fw, _] = c.full_rect();
+        // Each line, broken where wider than the room: (text, style, continues the line before).
+        let wrapped = |c: &Canvas, x: f32| -> Vec<(String, Style, bool)> {
+            let room = (fx + fw - 4.0 - x).max(60.0);
+            lines
+                .iter()
+                .flat_map(|(s, st)| {
+                    let s = crate::i18n::tr(c.lang, s.as_ref());
+                    let parts = match c.measure(s, st.size).0 > room {
+                        true => c.wrap(s, c.fs(st.size), room),
+                        false => vec![s.to_string()],
+                    };
+                    parts.into_iter().enumerate().map(move |(i, p)| (p, *st, i > 0))
+                })
+                .collect()
+        };
+        let height =
+            |c: &Canvas, ls: &[(String, Style, bool)]| ls.iter().map(|(_, st, _)| Self::advance(c, st)).sum();
+        let mut ls = wrapped(c, self.x);
+        let x = self.x;
+        self.reserve(height(c, &ls));
+        if self.x != x {
+            ls = wrapped(c, self.x);
+        }
+        for (s, st, continues) in &ls {
+            self.put(c, s, *st);
+            if *continues && !self.dry {
+                c.continued += 1;
+            }
+        }
     }
 
     /// Starts a new column when `height` more would pass [`COLUMN_BOTTOM`].

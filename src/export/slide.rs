@@ -132,19 +132,22 @@ fn rgb(c: [u8; 3]) -> Color {
     Color::from_rgba8(c[0], c[1], c[2], 255)
 }
 
-/// The view's name as the caption shows it.
+/// The view's name as the caption shows it: in Chinese the label the app's view menu shows.
 pub fn view_label(view: View, lang: Lang) -> &'static str {
+    if lang == Lang::Zh {
+        return view.label(lang);
+    }
     match view {
-        View::Final => tr(lang, "shaded", "着色画面"),
-        View::Visibility => tr(lang, "visibility", "可见度"),
-        View::ShadowMap => tr(lang, "shadow map", "阴影贴图"),
-        View::BlockerRadius => tr(lang, "blocker-search radius", "遮挡物搜索半径"),
-        View::Penumbra => tr(lang, "penumbra width", "半影宽度"),
-        View::Blockers => tr(lang, "blockers found", "找到的遮挡物"),
-        View::BlockerDepth => tr(lang, "average blocker depth", "平均遮挡深度"),
-        View::Moments => tr(lang, "VSM moments", "VSM 矩"),
-        View::Reference => tr(lang, "ground truth", "参考真值"),
-        View::Error => tr(lang, "error vs ground truth", "与参考真值的误差"),
+        View::Final => "shaded",
+        View::Visibility => "visibility",
+        View::ShadowMap => "shadow map",
+        View::BlockerRadius => "blocker-search radius",
+        View::Penumbra => "penumbra width",
+        View::Blockers => "blockers found",
+        View::BlockerDepth => "average blocker depth",
+        View::Moments => "VSM moments",
+        View::Reference => "ground truth",
+        View::Error => "error vs ground truth",
     }
 }
 
@@ -420,13 +423,13 @@ fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
         (Some(_), Some(rep), _) if !rep.hit => {
             rows.push(("", tr(lang, "no surface under the probe", "探针下没有表面").into()))
         }
-        (Some((x, y)), Some(rep), Some(l)) => {
+        (Some((x, y)), Some(_), Some(l)) => {
             let source = match pictures.probe_from_lesson {
                 true => tr(lang, " (lesson)", "（课程指定）"),
                 false => tr(lang, " (auto)", "（自动选取）"),
             };
             rows.push((tr(lang, "pixel", "像素"), format!("{x}, {y}{source}")));
-            if let Some(object) = &rep.object {
+            if let Some(object) = &pictures.probe_object {
                 rows.push((tr(lang, "surface", "表面"), object.clone()));
             }
             let [mu, mv] = l.shadow_map_uv;

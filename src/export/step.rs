@@ -3,6 +3,7 @@
 //! diagram inputs taken from it.
 
 use crate::diagrams::{DiagramInputs, DiagramKind, live};
+use crate::lessons::live::{FrameValues, Namespace, Sources};
 use crate::lessons::{Lang, Lesson, Overlay, Step};
 use crate::probe::{ProbeReport, probe};
 use crate::render::{Analysis, FrameRequest, RenderError, Renderer};
@@ -28,9 +29,21 @@ pub struct StepPictures {
     pub probe_pixel: Option<(u32, u32)>,
     pub probe_from_lesson: bool,
     pub probe: Option<ProbeReport>,
+    /// The surface under the probe, named in the slide's language (the scene's `name_zh`).
+    pub probe_object: Option<String>,
+    /// The numbers of the camera panel as its legend gives them (the mean error against the
+    /// ground truth where the panel shows it, at the panel's size).
+    pub frame: FrameValues,
     pub technique: Technique,
     pub diagram: DiagramKind,
     pub inputs: DiagramInputs,
+}
+
+impl StepPictures {
+    /// What the step's live numbers are filled from: the probe and the camera panel shown.
+    pub fn live(&self) -> Sources<'_> {
+        Sources { probe: self.probe.as_ref(), frame: self.frame }
+    }
 }
 
 /// The view shown in the camera panel: the step's, except that the shadow map has its own
@@ -129,16 +142,20 @@ pub fn render_step(
         None => (None, false),
     };
     let view = camera_view(step, scene);
+    // The ground truth at the probe where the slide shows it: beside the reference and error
+    // views, and wherever the text quotes it.
+    let with_reference = view.needs_reference() || step.quotes(Namespace::Probe, "visibility_reference");
     let report = match probe_pixel {
-        Some(pixel) if has_lights => Some(probe(renderer, scene, &request, pixel, view.needs_reference())?),
+        Some(pixel) if has_lights => Some(probe(renderer, scene, &request, pixel, with_reference)?),
         _ => None,
     };
     let light_probe = report.as_ref().and_then(|r| r.lights.iter().find(|l| l.light == light));
     let normal = report.as_ref().and_then(|r| r.normal);
     let inputs = live::inputs_from_scene(scene, light, time_s, light_probe, normal);
 
-    let (mut camera, mut camera_summary) =
-        views::render_view(renderer, scene, view, light, time_s, size, lang)?;
+    let rendered = views::render_view_measured(renderer, scene, view, light, time_s, size, lang)?;
+    let (mut camera, mut camera_summary) = (rendered.image, rendered.summary);
+    let mut frame = FrameValues { mean_abs_error: rendered.mean_abs_error };
     // The step's overlays, as the app draws them over the view (legends in the caption).
     let overlays: Vec<Overlay> =
         step.overlays.iter().copied().filter(|&o| !views::overlays::hidden_by_view(view, o)).collect();
@@ -153,7 +170,7 @@ pub fn render_step(
             analysis: true,
             ..Default::default()
         };
-        let frame = renderer.render(scene, &request)?;
+        let rendered_frame = renderer.render(scene, &request)?;
         let mut analysis = renderer.read_analysis()?;
         if analysis_overlays.contains(&Overlay::Bleeding) {
             analysis.bleeding = views::overlays::bleeding_of_last_frame(renderer, &analysis, light)?;
@@ -163,7 +180,10 @@ pub fn render_step(
         } else {
             None
         };
-        let light_gpu = frame.lights.get(light).copied();
+        if let Some(reference) = &reference {
+            frame.mean_abs_error = Some(views::mean_abs_error(&analysis, reference));
+        }
+        let light_gpu = rendered_frame.lights.get(light).copied();
         let (image, legends) = views::overlays::compose(
             lang,
             &analysis_overlays,
@@ -210,7 +230,12 @@ pub fn render_step(
         light,
         probe_pixel,
         probe_from_lesson,
+        probe_object: report
+            .as_ref()
+            .and_then(|r| r.object.as_deref())
+            .map(|name| scene.object_label(name, lang).to_string()),
         probe: report,
+        frame,
         technique: scene.shadow.technique,
         diagram: diagram_for(lesson, step_index, scene),
         inputs,

@@ -60,6 +60,24 @@ mod tests {
         }
     }
 
+    /// The names the files and the command line use are shown translated: every view, diagram
+    /// tab and value of the inspector's combo boxes has an entry.
+    #[test]
+    fn every_view_diagram_and_setting_name_is_translated() {
+        use crate::scene::{BiasMode, DepthStorage, Kernel, Technique};
+        let names = crate::views::View::ALL
+            .iter()
+            .map(|v| v.name())
+            .chain(crate::diagrams::DiagramKind::ALL.iter().map(|d| d.id()))
+            .chain(Technique::ALL.iter().map(|t| t.name()))
+            .chain(BiasMode::ALL.iter().map(|b| b.name()))
+            .chain(Kernel::ALL.iter().map(|k| k.name()))
+            .chain(DepthStorage::ALL.iter().map(|d| d.name()));
+        for name in names {
+            assert!(table().contains_key(name), "`{name}` has no Chinese label in ui_zh.rs");
+        }
+    }
+
     #[test]
     fn fill_puts_the_values_in_order() {
         assert_eq!(fill(Lang::En, "search r = {} texels", &[&2.5]), "search r = 2.5 texels");

@@ -1,7 +1,9 @@
 //! Live numbers in lesson text. A step quotes the probe by name, `{probe.penumbra_width_world:.2}`,
-//! and whoever shows the step (the app, `shadowlab lessons`, the slides) fills it from the probe it
+//! and whoever shows the step (the app, the slides and their HTML index) fills it from the probe it
 //! has, so the text stays true after a student moves a slider. `{probe.light1.visibility}` reads
-//! light 1 instead of the step's own light. The loader rejects a name that is not listed here.
+//! light 1 instead of the step's own light. `{frame.mean_abs_error:.3}` reads the picture as a
+//! whole, as its legend shows it (its size is the shower's: the app's view, the slide's camera
+//! panel). The loader rejects a name that is not listed here.
 
 use super::Lang;
 use crate::probe::{LightProbe, ProbeReport};
@@ -96,6 +98,48 @@ const QUANTITIES: [(&str, Quantity); 33] = [
     ("object", Quantity::Object),
 ];
 
+/// What a `{frame.NAME}` placeholder names.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum FrameQuantity {
+    /// Mean |visibility - ground truth| over the surface in the picture (the error legend's).
+    MeanAbsError,
+}
+
+const FRAME_QUANTITIES: [(&str, FrameQuantity); 1] = [("mean_abs_error", FrameQuantity::MeanAbsError)];
+
+/// The names `{probe.NAME}` may use.
+pub fn probe_names() -> impl Iterator<Item = &'static str> {
+    QUANTITIES.iter().map(|(n, _)| *n)
+}
+
+/// The names `{frame.NAME}` may use.
+pub fn frame_names() -> impl Iterator<Item = &'static str> {
+    FRAME_QUANTITIES.iter().map(|(n, _)| *n)
+}
+
+/// Numbers about the whole picture shown, for `{frame.NAME}`: each as the picture's legend shows
+/// it, None where it is not known (yet).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FrameValues {
+    /// Mean |visibility - ground truth| over the surface in the picture, as the error view's and
+    /// the error overlay's legends give it; known once the picture's ground truth is complete.
+    pub mean_abs_error: Option<f32>,
+}
+
+/// What placeholders are filled from: the probe's report and the picture's numbers.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Sources<'a> {
+    pub probe: Option<&'a ProbeReport>,
+    pub frame: FrameValues,
+}
+
+impl<'a> From<Option<&'a ProbeReport>> for Sources<'a> {
+    /// The probe alone: `{frame...}` placeholders show [`NO_VALUE`].
+    fn from(probe: Option<&'a ProbeReport>) -> Self {
+        Sources { probe, frame: FrameValues::default() }
+    }
+}
+
 /// The probe's verdict on one light: what the text may claim about the probed point.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -129,15 +173,31 @@ impl Verdict {
     }
 }
 
-/// One `{probe...}` placeholder, parsed.
+/// Where a placeholder's value comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Namespace {
+    /// `{probe.NAME}`: one light's numbers at the probed pixel.
+    Probe,
+    /// `{frame.NAME}`: the picture as a whole.
+    Frame,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum What {
+    Probe(Quantity),
+    Frame(FrameQuantity),
+}
+
+/// One `{probe...}` or `{frame...}` placeholder, parsed.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Placeholder {
     /// Byte range of the whole `{...}` in the text.
     pub span: std::ops::Range<usize>,
-    /// The light it reads; None: the step's own light.
+    pub namespace: Namespace,
+    /// The light it reads; None: the step's own light (and always None for `frame.`).
     pub light: Option<usize>,
     pub name: String,
-    quantity: Quantity,
+    what: What,
     /// Digits after the point (floats only; default 2).
     pub decimals: Option<usize>,
 }
@@ -174,30 +234,43 @@ fn excerpt(s: &str) -> String {
 }
 
 fn parse(inner: &str, span: std::ops::Range<usize>) -> Result<Placeholder, String> {
-    let names: Vec<&str> = QUANTITIES.iter().map(|(n, _)| *n).collect();
     let bad = |why: String| format!("`{{{inner}}}`: {why}");
     let (path, format) = match inner.split_once(':') {
         Some((p, f)) => (p, Some(f)),
         None => (inner, None),
     };
-    let Some(path) = path.strip_prefix("probe.") else {
-        return Err(bad("only `{probe.NAME}` or `{probe.NAME:.N}` may stand in braces".into()));
-    };
-    let (light, name) = match path.split_once('.') {
-        Some((l, name)) => {
-            let index = l.strip_prefix("light").and_then(|n| n.parse::<usize>().ok());
-            match index {
-                Some(i) => (Some(i), name),
-                None => return Err(bad(format!("`{l}` is not `lightN`"))),
+    let (namespace, light, name, what) = if let Some(path) = path.strip_prefix("probe.") {
+        let (light, name) = match path.split_once('.') {
+            Some((l, name)) => {
+                let index = l.strip_prefix("light").and_then(|n| n.parse::<usize>().ok());
+                match index {
+                    Some(i) => (Some(i), name),
+                    None => return Err(bad(format!("`{l}` is not `lightN`"))),
+                }
             }
-        }
-        None => (None, path),
+            None => (None, path),
+        };
+        let quantity = QUANTITIES.iter().find(|(n, _)| *n == name).map(|(_, q)| *q).ok_or_else(|| {
+            bad(format!(
+                "the probe has no `{name}` (it has {})",
+                probe_names().collect::<Vec<_>>().join(", ")
+            ))
+        })?;
+        (Namespace::Probe, light, name, What::Probe(quantity))
+    } else if let Some(name) = path.strip_prefix("frame.") {
+        let quantity =
+            FRAME_QUANTITIES.iter().find(|(n, _)| *n == name).map(|(_, q)| *q).ok_or_else(|| {
+                bad(format!(
+                    "the frame has no `{name}` (it has {})",
+                    frame_names().collect::<Vec<_>>().join(", ")
+                ))
+            })?;
+        (Namespace::Frame, None, name, What::Frame(quantity))
+    } else {
+        return Err(bad(
+            "only `{probe.NAME}`, `{frame.NAME}` or either with `:.N` may stand in braces".into()
+        ));
     };
-    let quantity = QUANTITIES
-        .iter()
-        .find(|(n, _)| *n == name)
-        .map(|(_, q)| *q)
-        .ok_or_else(|| bad(format!("the probe has no `{name}` (it has {})", names.join(", "))))?;
     let decimals = match format {
         None => None,
         Some(f) => Some(
@@ -207,7 +280,12 @@ fn parse(inner: &str, span: std::ops::Range<usize>) -> Result<Placeholder, Strin
                 .ok_or_else(|| bad(format!("format `{f}` is not `.N` (N = 0..6 decimals)")))?,
         ),
     };
-    Ok(Placeholder { span, light, name: name.to_string(), quantity, decimals })
+    Ok(Placeholder { span, namespace, light, name: name.to_string(), what, decimals })
+}
+
+/// `text` quotes `{NAMESPACE.NAME}` (of any light, with any format) somewhere.
+pub fn quotes(text: &str, namespace: Namespace, name: &str) -> bool {
+    placeholders(text).is_ok_and(|found| found.iter().any(|p| p.namespace == namespace && p.name == name))
 }
 
 enum Value {
@@ -267,10 +345,24 @@ fn value(q: Quantity, report: &ProbeReport, l: &LightProbe, lang: Lang) -> Optio
     }
 }
 
-/// `text` with every placeholder filled from `report` (light `light` unless the placeholder names
-/// one), and what each one became. Without a report, or without a surface under the probe, the
-/// placeholders show [`NO_VALUE`]. Text that fails [`placeholders`] is returned as it is.
-pub fn fill(text: &str, report: Option<&ProbeReport>, light: usize, lang: Lang) -> (String, Vec<Filled>) {
+fn frame_value(q: FrameQuantity, frame: &FrameValues) -> Option<Value> {
+    match q {
+        FrameQuantity::MeanAbsError => frame.mean_abs_error.map(|v| Value::Number(f64::from(v), false)),
+    }
+}
+
+/// `text` with every placeholder filled from `sources` (the probe's light `light` unless the
+/// placeholder names one; the frame's numbers), and what each one became. Where a value is not
+/// known (no report, no surface under the probe, a frame number not worked out yet) the
+/// placeholder shows [`NO_VALUE`]. Text that fails [`placeholders`] is returned as it is.
+pub fn fill<'a>(
+    text: &str,
+    sources: impl Into<Sources<'a>>,
+    light: usize,
+    lang: Lang,
+) -> (String, Vec<Filled>) {
+    let sources = sources.into();
+    let report = sources.probe;
     let Ok(found) = placeholders(text) else { return (text.to_string(), Vec::new()) };
     let mut out = String::with_capacity(text.len());
     let mut filled = Vec::with_capacity(found.len());
@@ -279,10 +371,13 @@ pub fn fill(text: &str, report: Option<&ProbeReport>, light: usize, lang: Lang) 
         out.push_str(&text[at..p.span.start]);
         at = p.span.end;
         let wanted = p.light.unwrap_or(light);
-        let v = report
-            .filter(|r| r.hit)
-            .and_then(|r| r.lights.iter().find(|l| l.light == wanted).map(|l| (r, l)))
-            .and_then(|(r, l)| value(p.quantity, r, l, lang));
+        let v = match p.what {
+            What::Probe(quantity) => report
+                .filter(|r| r.hit)
+                .and_then(|r| r.lights.iter().find(|l| l.light == wanted).map(|l| (r, l)))
+                .and_then(|(r, l)| value(quantity, r, l, lang)),
+            What::Frame(quantity) => frame_value(quantity, &sources.frame),
+        };
         let (shown, number) = match v {
             Some(Value::Number(x, true)) => (format!("{x:.0}"), Some(x)),
             Some(Value::Number(x, false)) => {
@@ -378,6 +473,63 @@ mod tests {
         let (out, filled) = fill("V = {probe.visibility}", None, 0, Lang::En);
         assert_eq!(out, format!("V = {NO_VALUE}"));
         assert_eq!(filled[0].value, None);
+    }
+
+    #[test]
+    fn frame_values_fill_from_the_frame_and_wait_for_it() {
+        let r = report();
+        let text = "error {frame.mean_abs_error:.3} at V = {probe.visibility:.2}";
+        let frame = FrameValues { mean_abs_error: Some(0.00755) };
+        let (out, filled) = fill(text, Sources { probe: Some(&r), frame }, 0, Lang::En);
+        assert_eq!(out, "error 0.008 at V = 0.22");
+        assert_eq!(filled[0].placeholder.namespace, Namespace::Frame);
+        assert_eq!(filled[0].value, Some(0.008));
+        // Not worked out yet: pending, whatever the probe has.
+        let (out, filled) = fill(text, Some(&r), 0, Lang::En);
+        assert_eq!(out, format!("error {NO_VALUE} at V = 0.22"));
+        assert_eq!(filled[0].value, None);
+        // The frame's numbers do not need a surface under the probe, nor a probe at all.
+        let mut missed = report();
+        missed.hit = false;
+        let (out, _) = fill(text, Sources { probe: Some(&missed), frame }, 0, Lang::En);
+        assert_eq!(out, format!("error 0.008 at V = {NO_VALUE}"));
+        let (out, _) = fill("{frame.mean_abs_error}", Sources { probe: None, frame }, 0, Lang::En);
+        assert_eq!(out, "0.01");
+    }
+
+    #[test]
+    fn frame_placeholders_are_checked_like_the_probes() {
+        let found =
+            placeholders("a {frame.mean_abs_error:.4} b {probe.light1.visibility_reference}").expect("valid");
+        assert_eq!(found[0].namespace, Namespace::Frame);
+        assert_eq!(
+            (found[0].name.as_str(), found[0].light, found[0].decimals),
+            ("mean_abs_error", None, Some(4))
+        );
+        assert_eq!(found[1].namespace, Namespace::Probe);
+        assert_eq!((found[1].name.as_str(), found[1].light), ("visibility_reference", Some(1)));
+        let bad = |text: &str| placeholders(text).expect_err(text);
+        let e = bad("{frame.mean_error}");
+        assert!(e.contains("the frame has no `mean_error`") && e.contains("mean_abs_error"), "{e}");
+        // The frame is one picture: no light to name.
+        assert!(bad("{frame.light1.mean_abs_error}").contains("the frame has no `light1.mean_abs_error`"));
+        assert!(bad("{frame.mean_abs_error:3}").contains("`.N`"));
+        assert!(bad("{view.mean_abs_error}").contains("`{frame.NAME}`"));
+        // The probe's names are not the frame's, nor the other way round.
+        assert!(bad("{frame.visibility}").contains("the frame has no"));
+        assert!(bad("{probe.mean_abs_error}").contains("the probe has no"));
+    }
+
+    #[test]
+    fn quotes_finds_a_name_in_either_namespace() {
+        let text = "truth {probe.light1.visibility_reference:.2}, error {frame.mean_abs_error:.3}";
+        assert!(quotes(text, Namespace::Probe, "visibility_reference"));
+        assert!(quotes(text, Namespace::Frame, "mean_abs_error"));
+        assert!(!quotes(text, Namespace::Probe, "visibility"));
+        assert!(!quotes(text, Namespace::Frame, "visibility_reference"));
+        assert!(!quotes("{probe.visibility_reference", Namespace::Probe, "visibility_reference"));
+        assert!(probe_names().any(|n| n == "visibility_reference"));
+        assert_eq!(frame_names().collect::<Vec<_>>(), ["mean_abs_error"]);
     }
 
     #[test]

@@ -270,14 +270,43 @@ fn step_quotes_probe(step: &Step) -> bool {
 }
 
 impl Step {
-    /// The step's explanation in `lang` with the probe's numbers filled in (see [`live`]).
-    pub fn text_filled(&self, lang: Lang, probe: Option<&crate::probe::ProbeReport>) -> String {
-        live::fill(self.text.get(lang), probe, self.light, lang).0
+    /// The step's explanation in `lang` with the probe's and the frame's numbers filled in (see
+    /// [`live`]); a probe report alone leaves the frame's numbers pending.
+    pub fn text_filled<'a>(&self, lang: Lang, sources: impl Into<live::Sources<'a>>) -> String {
+        live::fill(self.text.get(lang), sources, self.light, lang).0
     }
 
     /// The try-this prompts in `lang`, filled in.
-    pub fn try_this_filled(&self, lang: Lang, probe: Option<&crate::probe::ProbeReport>) -> Vec<String> {
-        self.try_this.iter().map(|t| live::fill(t.text.get(lang), probe, self.light, lang).0).collect()
+    pub fn try_this_filled<'a>(&self, lang: Lang, sources: impl Into<live::Sources<'a>>) -> Vec<String> {
+        let sources = sources.into();
+        self.try_this.iter().map(|t| live::fill(t.text.get(lang), sources, self.light, lang).0).collect()
+    }
+
+    /// Every text of the step, in both languages: the explanation, then the prompts.
+    pub fn texts(&self) -> impl Iterator<Item = &str> {
+        std::iter::once(&self.text)
+            .chain(self.try_this.iter().map(|t| &t.text))
+            .flat_map(|t| [t.en.as_str(), t.zh.as_str()])
+    }
+
+    /// The step's explanation or a prompt quotes `{NAMESPACE.NAME}`, in either language.
+    pub fn quotes(&self, namespace: live::Namespace, name: &str) -> bool {
+        self.texts().any(|t| live::quotes(t, namespace, name))
+    }
+
+    /// The lights whose probe value `name` the step quotes (the step's own light where a
+    /// placeholder names none), in order, each once.
+    pub fn quoted_lights(&self, name: &str) -> Vec<usize> {
+        let mut lights: Vec<usize> = self
+            .texts()
+            .filter_map(|t| live::placeholders(t).ok())
+            .flatten()
+            .filter(|p| p.namespace == live::Namespace::Probe && p.name == name)
+            .map(|p| p.light.unwrap_or(self.light))
+            .collect();
+        lights.sort_unstable();
+        lights.dedup();
+        lights
     }
 }
 
@@ -371,7 +400,8 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
             light: s.light,
             expect: s.expect,
         };
-        // Live numbers: every `{probe.NAME}` must name a probe value, in both languages.
+        // Live numbers: every `{probe.NAME}` and `{frame.NAME}` must name a value, in both
+        // languages.
         for text in std::iter::once(&step.text).chain(step.try_this.iter().map(|t| &t.text)) {
             for lang_text in [&text.en, &text.zh] {
                 if let Err(message) = live::placeholders(lang_text) {

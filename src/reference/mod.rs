@@ -84,3 +84,31 @@ pub fn reference_settings(user: &ShadowSettings) -> ShadowSettings {
         ..*user
     }
 }
+
+/// The shadow settings a ground truth depends on: [`reference_settings`] with the fields its
+/// hard, adaptively biased lookup never reads (the filters, the blocker search, VSM, the other
+/// bias modes' numbers, and the rasteriser's bias and culling, which its own shadow pass leaves
+/// off) put back to their defaults. Two scenes whose settings give the same value here have the
+/// same ground truth, whatever technique each shows (`tests/physics.rs` holds the GPU to it).
+pub fn settings_read(user: &ShadowSettings) -> ShadowSettings {
+    let d = ShadowSettings::default();
+    ShadowSettings {
+        bias: d.bias,
+        slope_bias: d.slope_bias,
+        depth_bias_constant: d.depth_bias_constant,
+        depth_bias_slope: d.depth_bias_slope,
+        cull_front_faces: d.cull_front_faces,
+        pcf_kernel: d.pcf_kernel,
+        samples: d.samples,
+        radius_texels: d.radius_texels,
+        rotate_per_pixel: d.rotate_per_pixel,
+        noise_seed: d.noise_seed,
+        blocker_samples: d.blocker_samples,
+        min_filter_radius_texels: d.min_filter_radius_texels,
+        search_radius_scale: d.search_radius_scale,
+        ortho_near_factor: d.ortho_near_factor,
+        vsm_min_variance: d.vsm_min_variance,
+        vsm_bleed_reduction: d.vsm_bleed_reduction,
+        ..reference_settings(user)
+    }
+}

@@ -80,6 +80,8 @@ enum ScaleFile {
 #[serde(deny_unknown_fields)]
 struct ObjectFile {
     name: Option<String>,
+    /// The name in Chinese, for the probe panel and the slides.
+    name_zh: Option<String>,
     mesh: String,
     #[serde(default = "default_color")]
     color: [f32; 3],
@@ -482,6 +484,7 @@ fn build_scene(
         let color = vec3(&format!("{key}.color"), o.color)?;
         objects.push(Object {
             name: o.name.unwrap_or_else(|| mesh.name.clone()),
+            name_zh: o.name_zh,
             mesh,
             color: color.clamp(Vec3::ZERO, Vec3::ONE),
             translate: vec3(&format!("{key}.translate"), o.translate)?,

@@ -29,7 +29,10 @@ pub const MAX_LIGHTS: usize = 4;
 
 #[derive(Clone, Debug)]
 pub struct Object {
+    /// The name in files, the command line and the probe's JSON (English in shipped scenes).
     pub name: String,
+    /// The name shown to a Chinese reader (`name_zh` in the scene file), where the scene gives one.
+    pub name_zh: Option<String>,
     pub mesh: Arc<Mesh>,
     /// Linear RGB used where the mesh part has no material.
     pub color: Vec3,
@@ -41,6 +44,14 @@ pub struct Object {
 }
 
 impl Object {
+    /// The object's name as a reader of `lang` sees it: `name_zh` in Chinese where there is one.
+    pub fn label(&self, lang: crate::lessons::Lang) -> &str {
+        match (lang, &self.name_zh) {
+            (crate::lessons::Lang::Zh, Some(zh)) => zh,
+            _ => &self.name,
+        }
+    }
+
     /// The object does not spin: its transform is the same at every time.
     pub fn is_still(&self) -> bool {
         self.spin_deg_per_s == Vec3::ZERO
@@ -87,4 +98,12 @@ pub struct Scene {
     pub shadow: ShadowSettings,
     /// Ambient light, linear RGB.
     pub ambient: Vec3,
+}
+
+impl Scene {
+    /// The object named `name` (as a probe reports it) as a reader of `lang` sees it; the name
+    /// itself where no object has it. Objects sharing a name are shown by the first one's label.
+    pub fn object_label<'a>(&'a self, name: &'a str, lang: crate::lessons::Lang) -> &'a str {
+        self.objects.iter().find(|o| o.name == name).map_or(name, |o| o.label(lang))
+    }
 }

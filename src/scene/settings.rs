@@ -70,6 +70,10 @@ macro_rules! enum_names {
             pub fn from_name(name: &str) -> Option<Self> {
                 match name { $($s => Some(<$t>::$v),)* _ => None }
             }
+            /// The name as the panels show it in `lang` (the English panels show the name).
+            pub fn label(self, lang: crate::lessons::Lang) -> &'static str {
+                crate::i18n::tr(lang, self.name())
+            }
         }
         impl std::fmt::Display for $t {
             fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result { f.write_str(self.name()) }

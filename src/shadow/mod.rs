@@ -134,12 +134,14 @@ pub fn project_to_light(light: &LightGpu, world_pos: Vec3) -> Vec3 {
     Vec3::new(ndc.x * 0.5 + 0.5, ndc.y * -0.5 + 0.5, ndc.z)
 }
 
-/// Written as "not inside", like the shader, so NaN counts as outside.
-fn outside_map(uv: Vec2) -> bool {
+/// The uv lies off the shadow map. Written as "not inside", like the shader, so NaN counts as
+/// outside.
+pub fn outside_map(uv: Vec2) -> bool {
     !(uv.x >= 0.0 && uv.y >= 0.0 && uv.x <= 1.0 && uv.y <= 1.0)
 }
 
-fn outside_depth(z: f32) -> bool {
+/// The NDC depth lies outside the map's range, 0..1.
+pub fn outside_depth(z: f32) -> bool {
     !(0.0..=1.0).contains(&z)
 }
 

@@ -6,6 +6,9 @@ use crate::i18n::tr;
 use crate::lessons::Lang;
 use std::path::PathBuf;
 
+/// The status bar's error headline.
+const ERROR_RED: egui::Color32 = egui::Color32::from_rgb(255, 120, 110);
+
 impl ShadowlabApp {
     pub(super) fn top_bar(&mut self, ui: &mut egui::Ui) {
         let lang = self.lang;
@@ -216,28 +219,86 @@ impl ShadowlabApp {
         self.show_lesson_list = open;
     }
 
+    /// The error and the last message at the left, the timings at the right. The timings are
+    /// laid out first; the messages share what is left of them (a long path must neither run
+    /// under the timings nor widen the window's layout), each cut with an ellipsis where it does
+    /// not fit and then shown whole on hover, once.
     pub(super) fn status_bar(&mut self, ui: &mut egui::Ui) {
-        let lang = self.lang;
-        let tr = move |en: &'static str| tr(lang, en);
-        ui.horizontal(|ui| {
-            if let Some(error) = self.error.clone() {
-                let headline = format!("{}: {}", tr("Error"), tr(error.what));
-                ui.colored_label(egui::Color32::from_rgb(255, 120, 110), headline);
-                ui.add(egui::Label::new(&error.detail).truncate()).on_hover_text(&error.detail);
-                if ui.small_button(tr("dismiss")).clicked() {
-                    self.error = None;
+        let timings = self.settings.show_timings.then(|| self.timing_text(ui.ctx()));
+        // One row high even when empty (as a horizontal row is), so the views keep their size
+        // when a message comes and goes.
+        ui.set_min_height(ui.spacing().interact_size.y);
+        egui::Sides::new().shrink_left().truncate().show(
+            ui,
+            |ui| self.status_messages(ui),
+            |ui| {
+                if let Some(timings) = timings {
+                    ui.label(timings);
                 }
-                ui.separator();
+            },
+        );
+    }
+
+    /// The error (headline, details and its dismiss button) and the status message, within the
+    /// width `ui` has. Where both are too long, the error keeps at least 60% of the text's room.
+    fn status_messages(&mut self, ui: &mut egui::Ui) {
+        let lang = self.lang;
+        let status = (!self.status.is_empty()).then_some(self.status.as_str());
+        let Some(error) = &self.error else {
+            if let Some(status) = status {
+                ui.add(egui::Label::new(status).truncate());
             }
-            // Truncated: a long message (the saved files' paths) must not widen the window's layout.
-            ui.add(egui::Label::new(&self.status).truncate()).on_hover_text(&self.status);
-            if !self.settings.show_timings {
-                return;
-            }
-            ui.with_layout(egui::Layout::right_to_left(egui::Align::Center), |ui| {
-                ui.label(self.timing_text(ui.ctx()));
-            });
+            return;
+        };
+        let spacing = ui.spacing().item_spacing.x;
+        let body = egui::TextStyle::Body.resolve(ui.style());
+        let plain = egui::TextFormat::simple(body.clone(), ui.visuals().text_color());
+        let headline = format!("{}: {}", tr(lang, "Error"), tr(lang, error.what));
+        let mut text = egui::text::LayoutJob::default();
+        text.append(&headline, 0.0, egui::TextFormat::simple(body, ERROR_RED));
+        text.append(&error.detail, spacing, plain.clone());
+        let one_line_width =
+            |ui: &egui::Ui, job: egui::text::LayoutJob| ui.fonts_mut(|f| f.layout_job(job)).size().x;
+        let dismiss = tr(lang, "dismiss");
+        let dismiss_id = egui::Id::NULL.with("status bar: dismiss width");
+        // The button's width from the last frame that drew it (before that, from its text).
+        let dismiss_width = ui.data(|d| d.get_temp::<f32>(dismiss_id)).unwrap_or_else(|| {
+            let mut label = egui::text::LayoutJob::default();
+            label.append(
+                dismiss,
+                0.0,
+                egui::TextFormat::simple(egui::TextStyle::Button.resolve(ui.style()), egui::Color32::WHITE),
+            );
+            one_line_width(ui, label) + 2.0 * ui.spacing().button_padding.x
         });
+        let mut room = (ui.available_width() - dismiss_width - spacing).max(0.0);
+        if let Some(status) = status {
+            // Less the separator and the spacing around it; the status gets what the error leaves.
+            room = (room - 3.0 * spacing).max(0.0);
+            let mut line = egui::text::LayoutJob::default();
+            line.append(status, 0.0, plain);
+            room = (room - one_line_width(ui, line)).max(room * 0.6);
+        }
+        let cut = one_line_width(ui, text.clone()) > room;
+        let height = ui.spacing().interact_size.y;
+        let label = egui::Label::new(text).truncate().show_tooltip_when_elided(false);
+        let shown = ui.allocate_ui(egui::vec2(room, height), |ui| ui.add(label)).inner;
+        if cut {
+            // The whole error on hover, once: the headline, the details below it.
+            shown.on_hover_ui(|ui| {
+                ui.colored_label(ERROR_RED, &headline);
+                ui.label(&error.detail);
+            });
+        }
+        let button = ui.small_button(dismiss);
+        ui.data_mut(|d| d.insert_temp(dismiss_id, button.rect.width()));
+        if button.clicked() {
+            self.error = None;
+        }
+        if let Some(status) = status {
+            ui.separator();
+            ui.add(egui::Label::new(status).truncate());
+        }
     }
 
     pub(super) fn help_window(&mut self, ctx: &egui::Context) {

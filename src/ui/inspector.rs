@@ -13,13 +13,13 @@ fn combo<T: Copy + PartialEq>(
     label: &str,
     value: &mut T,
     all: &[T],
-    name: impl Fn(T) -> &'static str,
+    name: impl Fn(T, Lang) -> &'static str,
     key: Option<&str>,
 ) -> bool {
     let mut changed = false;
-    let response = egui::ComboBox::from_label(label).selected_text(name(*value)).show_ui(ui, |ui| {
+    let response = egui::ComboBox::from_label(label).selected_text(name(*value, lang)).show_ui(ui, |ui| {
         for &option in all {
-            changed |= ui.selectable_value(value, option, name(option)).changed();
+            changed |= ui.selectable_value(value, option, name(option, lang)).changed();
         }
     });
     if let Some(key) = key {
@@ -77,6 +77,19 @@ pub fn control_label(key: &str) -> Option<&'static str> {
     CONTROLS.iter().find(|(k, _)| *k == key).map(|(_, label)| *label)
 }
 
+/// `value` of scene key `key` as the inspector shows it in `lang`: a technique, bias mode,
+/// kernel or depth storage by its label in the combo box, anything else as it is.
+pub fn value_label<'a>(key: &str, value: &'a str, lang: Lang) -> &'a str {
+    let label = match key {
+        "technique" => Technique::from_name(value).map(|v| v.label(lang)),
+        "bias_mode" => BiasMode::from_name(value).map(|v| v.label(lang)),
+        "pcf_kernel" => Kernel::from_name(value).map(|v| v.label(lang)),
+        "depth_storage" => DepthStorage::from_name(value).map(|v| v.label(lang)),
+        _ => None,
+    };
+    label.unwrap_or(value)
+}
+
 fn key_hint(lang: Lang, key: &str) -> String {
     match lang {
         Lang::En => format!("scene key `{key}` (lessons and --set use it)"),
@@ -96,7 +109,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         tr("technique"),
         &mut s.technique,
         Technique::ALL,
-        Technique::name,
+        Technique::label,
         Some("technique"),
     );
     let mut ab_on = app.ab.is_some();
@@ -109,13 +122,13 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         changed = true;
     }
     if let Some(ab) = &mut app.ab {
-        changed |= combo(lang, ui, tr("right side"), &mut ab.b, Technique::ALL, Technique::name, None);
+        changed |= combo(lang, ui, tr("right side"), &mut ab.b, Technique::ALL, Technique::label, None);
     }
 
     ui.separator();
     ui.heading(tr("Bias"));
     changed |=
-        combo(lang, ui, tr("bias mode"), &mut s.bias_mode, BiasMode::ALL, BiasMode::name, Some("bias_mode"));
+        combo(lang, ui, tr("bias mode"), &mut s.bias_mode, BiasMode::ALL, BiasMode::label, Some("bias_mode"));
     changed |= ui
         .add(Slider::new(&mut s.bias, 0.0..=0.05).logarithmic(true).text(tr("bias (NDC depth)")))
         .on_hover_text(key_hint(lang, "bias"))
@@ -154,14 +167,14 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         tr("depth storage"),
         &mut s.depth_storage,
         DepthStorage::ALL,
-        DepthStorage::name,
+        DepthStorage::label,
         Some("depth_storage"),
     );
 
     ui.separator();
     ui.heading(tr("PCF"));
     changed |=
-        combo(lang, ui, tr("kernel"), &mut s.pcf_kernel, Kernel::ALL, Kernel::name, Some("pcf_kernel"));
+        combo(lang, ui, tr("kernel"), &mut s.pcf_kernel, Kernel::ALL, Kernel::label, Some("pcf_kernel"));
     changed |= ui
         .add(Slider::new(&mut s.samples, 1..=128).text(tr("samples")))
         .on_hover_text(key_hint(lang, "samples"))
@@ -372,7 +385,7 @@ fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
     changed
 }
 
-pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
+pub(super) fn probe_values(app: &mut ShadowlabApp, ui: &mut Ui) {
     let lang = app.lang;
     let tr = move |en: &'static str| translate(lang, en);
     ui.heading(tr("Probe"));
@@ -393,12 +406,18 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
         ui.label(format!("{pixel}: {}", tr("no surface")));
         return;
     }
-    let object = report.object.as_deref().unwrap_or("?");
+    let object = report.object.as_deref().map_or("?", |name| app.scene.object_label(name, lang));
     ui.label(match lang {
         Lang::En => format!("{pixel}, on {object}"),
         Lang::Zh => format!("{pixel}，位于 {object}"),
     });
     let Some(l) = report.lights.iter().find(|l| l.light == app.selected_light) else { return };
+    let truth = match (l.visibility_reference, app.probe_reference_progress(l.light)) {
+        (Some(value), progress) => Truth::Value(value, progress.map(|(_, total)| total)),
+        (None, Some((done, total))) if done < total => Truth::Accumulating(done, total),
+        _ => Truth::NotAsked,
+    };
+    let mut ask = false;
     egui::Grid::new("probe").striped(true).num_columns(2).show(ui, |ui| {
         let mut row = |name: &str, value: String| {
             ui.label(name);
@@ -465,5 +484,42 @@ pub(super) fn probe_values(app: &ShadowlabApp, ui: &mut Ui) {
         );
         row(tr("visibility (CPU twin)"), format!("{:.4}", l.visibility_twin));
         row(tr("visibility (GPU)"), format!("{:.4}", l.visibility_gpu));
+        // The ground truth at this pixel: on demand (a few seconds on a software rasteriser), or
+        // at once where the lesson text quotes it.
+        ui.label(tr("ground truth"));
+        let fill = |template, args: &[&dyn std::fmt::Display]| crate::i18n::fill(lang, template, args);
+        let value = |text: String| egui::RichText::new(text).monospace();
+        match truth {
+            Truth::Value(v, Some(total)) => {
+                ui.label(value(fill("{} ({} samples)", &[&format!("{v:.4}"), &total])));
+            }
+            Truth::Value(v, None) => {
+                ui.label(value(format!("{v:.4}")));
+            }
+            Truth::Accumulating(done, total) => {
+                ui.label(value(fill("{} / {} samples…", &[&done, &total])));
+            }
+            Truth::NotAsked => {
+                ask = ui
+                    .button(tr("work it out"))
+                    .on_hover_text(tr(
+                        "average the ground truth's hard shadows at this pixel (a few seconds)",
+                    ))
+                    .clicked();
+            }
+        }
+        ui.end_row();
     });
+    if ask {
+        app.ask_probe_truth();
+    }
+}
+
+/// The probe panel's ground-truth row.
+enum Truth {
+    /// Known (with the samples averaged, where this probe worked it out).
+    Value(f32, Option<u32>),
+    /// Samples done of all.
+    Accumulating(u32, u32),
+    NotAsked,
 }

@@ -13,13 +13,13 @@ fn what_apply_sets(prompt: &crate::lessons::TryThis, lang: Lang) -> String {
         let control = super::control_label(key).map_or(key.as_str(), tr);
         let light = key.strip_prefix("light.").and_then(|k| k.split('.').next());
         let of_light = light.map(|n| format!(" ({} {n})", tr("light"))).unwrap_or_default();
-        lines.push(format!("{control}{of_light} = {value}"));
+        lines.push(format!("{control}{of_light} = {}", super::value_label(key, value, lang)));
     }
     if let Some(t) = prompt.time_s {
         lines.push(format!("{} = {t}", tr("time (s)")));
     }
     if let Some(v) = prompt.view {
-        lines.push(format!("{} = {}", tr("view"), v.name()));
+        lines.push(format!("{} = {}", tr("view"), v.label(lang)));
     }
     lines.join("\n")
 }
@@ -35,9 +35,9 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let count = lesson.steps.len();
     let lesson_title = lesson.title.get(lang).to_string();
     let title = step.title.get(lang).to_string();
-    // Live numbers from the probe on screen (or "…" while it is worked out).
-    let text = step.text_filled(lang, app.probe.as_ref());
-    let tries = step.try_this_filled(lang, app.probe.as_ref());
+    // Live numbers from the probe and the view on screen (or "…" while they are worked out).
+    let text = step.text_filled(lang, app.live_sources());
+    let tries = step.try_this_filled(lang, app.live_sources());
     let lesson_probe = step.probe.map(|[x, y]| super::ProbeAt::LessonFrame(x, y));
     let plays = step.play;
     // Navigation first, so it stays in reach however long the text is.

@@ -14,7 +14,7 @@ mod view_panels;
 mod window;
 mod worker;
 
-pub use inspector::control_label;
+pub use inspector::{control_label, value_label};
 pub use panels::DIAGRAM_MIN_TEXT_PT;
 pub use rendering::PLAYBACK_RANGE_S;
 pub use settings::Settings;
@@ -97,6 +97,9 @@ pub struct ShadowlabApp {
     pub applied_try_this: Option<usize>,
     /// Point the camera at the probe's surface point once the probe is computed (double-click).
     focus_on_probe: bool,
+    /// The probe whose ground truth was asked for in the probe panel: worked out for it (and
+    /// again as the settings change) until the probe moves or another scene opens.
+    probe_truth_asked: Option<ProbeAt>,
     /// Something changed: render again.
     dirty: bool,
     /// The user is dragging in a view: render previews.
@@ -146,6 +149,7 @@ target = [0.0, 4.0, 0.0]
 fov_deg = 50.0
 [[object]]
 name = "floor"
+name_zh = "地面"
 mesh = "plane"
 scale = [60.0, 1.0, 60.0]
 [[object]]
@@ -227,6 +231,7 @@ impl ShadowlabApp {
             show_all_panels: false,
             applied_try_this: None,
             focus_on_probe: false,
+            probe_truth_asked: None,
             dirty: true,
             interacting: false,
             preview_divisor: 2,
@@ -289,6 +294,7 @@ impl ShadowlabApp {
         self.source = source;
         self.selected_light = self.selected_light.min(self.scene.lights.len().saturating_sub(1));
         self.probe = None;
+        self.probe_truth_asked = None;
         self.mark_dirty();
     }
 
@@ -463,6 +469,42 @@ impl ShadowlabApp {
 
     pub fn probe_report(&self) -> Option<&ProbeReport> {
         self.probe.as_ref()
+    }
+
+    /// What the lesson text's live numbers are filled from: the probe on screen and the view's
+    /// own numbers (its mean error against the ground truth, once that is complete).
+    pub fn live_sources(&self) -> lessons::live::Sources<'_> {
+        let frame = lessons::live::FrameValues {
+            mean_abs_error: self.reference.as_ref().and(self.shown.mean_abs_error),
+        };
+        lessons::live::Sources { probe: self.probe.as_ref(), frame }
+    }
+
+    /// Work out the ground truth at the pinned probe for the selected light (the probe panel's
+    /// button); it follows the settings until the probe moves.
+    pub fn ask_probe_truth(&mut self) {
+        if self.probe_at.is_some() {
+            self.probe_truth_asked = self.probe_at;
+            // A new job with the ground truth added; whatever else the views have stays.
+            self.dirty = true;
+        }
+    }
+
+    /// The lights whose ground truth at the probe the next render works out: those the current
+    /// step quotes `{probe.visibility_reference}` for, and the selected one where the probe
+    /// panel asked for it.
+    fn probe_truth_lights(&self) -> Vec<usize> {
+        let mut lights = match self.current_step() {
+            Some((_, step, _)) => step.quoted_lights("visibility_reference"),
+            None => Vec::new(),
+        };
+        if self.probe_truth_asked.is_some() && self.probe_truth_asked == self.probe_at {
+            lights.push(self.selected_light);
+        }
+        lights.retain(|&l| l < self.scene.lights.len());
+        lights.sort_unstable();
+        lights.dedup();
+        lights
     }
 
     pub fn camera(&self) -> &Camera {

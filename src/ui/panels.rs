@@ -44,7 +44,7 @@ pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
             ui.strong(crate::i18n::tr(app.lang, "Diagram"));
             for kind in DiagramKind::ALL {
                 if ui
-                    .selectable_label(app.diagram == kind, kind.id())
+                    .selectable_label(app.diagram == kind, kind.label(app.lang))
                     .on_hover_text(crate::i18n::tr(app.lang, kind.title()))
                     .clicked()
                 {
@@ -162,7 +162,7 @@ fn kernel_plot(app: &ShadowlabApp, ui: &mut Ui, rect: Rect) {
             ),
             Lang::Zh => format!(
                 "{} · {} 个采样点{}",
-                s.pcf_kernel.name(),
+                s.pcf_kernel.label(app.lang),
                 points.len(),
                 if s.rotate_per_pixel { " · 每个像素旋转" } else { "" }
             ),

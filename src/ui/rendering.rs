@@ -42,6 +42,13 @@ pub struct Shown {
     pub render_ms: f64,
     /// Ground truth in progress or done: (samples averaged, samples in all).
     pub reference_progress: Option<(u32, u32)>,
+    /// The view's mean absolute error against its ground truth, once that is complete.
+    pub mean_abs_error: Option<f32>,
+    /// The ground truth at the probe, per light asked for: (light, samples averaged, samples in
+    /// all). Asked for and not started yet counts as 0 done.
+    pub probe_reference: Vec<(usize, u32, u32)>,
+    /// The job whose probe report is shown.
+    pub probe_job: Option<u64>,
     /// The job whose probe and analysis are still to come.
     pub details_pending: Option<u64>,
 }
@@ -71,13 +78,26 @@ impl ShadowlabApp {
                 WorkerEvent::Details(details) => self.show_details(*details),
                 WorkerEvent::Reference { job, done, total, values } => {
                     if job == self.submitted.job {
+                        // The error legend's number, once the ground truth is all there.
+                        self.shown.mean_abs_error = self
+                            .analysis
+                            .as_ref()
+                            .filter(|a| done == total && a.shadow.len() == values.len())
+                            .map(|a| crate::views::mean_abs_error(a, &values));
                         self.reference = Some(values);
                         self.shown.reference_progress = Some((done, total));
                         self.view_state.invalidate();
                     }
                 }
+                WorkerEvent::ProbeReference { job, light, done, total, value } => {
+                    if job == self.submitted.job && self.shown.probe_job == Some(job) {
+                        self.show_probe_reference(light, done, total, value);
+                    }
+                }
                 WorkerEvent::Failed { job, message } => {
                     if job == self.submitted.job {
+                        self.shown.reference_progress = None;
+                        self.shown.probe_reference.clear();
                         self.error = Some(super::AppError::new("rendering failed", message));
                     }
                 }
@@ -119,7 +139,8 @@ impl ShadowlabApp {
         self.shown.pass_times = out.pass_times;
         self.shown.render_ms = out.render_ms;
         if out.job == self.submitted.job {
-            self.shown.reference_progress = None;
+            // The ground truths (progress since the job was asked for) follow with their events.
+            self.shown.mean_abs_error = None;
         }
         // The probe and the overlays' analysis follow in a `Details` event; until then the old
         // ones stay (and the overlays hide, being about other settings).
@@ -156,9 +177,17 @@ impl ShadowlabApp {
         self.shown.render_ms = details.render_ms;
         self.analysis = details.analysis;
         match details.probe {
-            Some(Ok(report)) => self.probe = Some(report),
+            Some(Ok(report)) => {
+                // No surface, no ground truth to wait for.
+                if !report.hit {
+                    self.shown.probe_reference.clear();
+                }
+                self.probe = Some(report);
+                self.shown.probe_job = Some(details.job);
+            }
             Some(Err(e)) => {
                 self.probe = None;
+                self.shown.probe_reference.clear();
                 self.error = Some(super::AppError::new("the probe failed", e));
             }
             None if self.probe_at.is_none() => self.probe = None,
@@ -174,6 +203,20 @@ impl ShadowlabApp {
             self.mark_dirty();
         }
         self.view_state.invalidate();
+    }
+
+    /// The ground truth at the probe so far for `light`: its progress, and once complete, the
+    /// value in the probe's report (where the panel and the lesson text read it).
+    fn show_probe_reference(&mut self, light: usize, done: u32, total: u32, value: f32) {
+        match self.shown.probe_reference.iter_mut().find(|(l, ..)| *l == light) {
+            Some(progress) => *progress = (light, done, total),
+            None => self.shown.probe_reference.push((light, done, total)),
+        }
+        if done == total
+            && let Some(l) = self.probe.as_mut().and_then(|p| p.lights.iter_mut().find(|l| l.light == light))
+        {
+            l.visibility_reference = Some(value);
+        }
     }
 
     /// Dynamic resolution for previews: a step smaller when one took well over the budget, a step
@@ -195,7 +238,9 @@ impl ShadowlabApp {
     /// Ask for a new frame where something changed; called once per frame with the camera
     /// view's size in pixels. Never waits for the GPU.
     pub(super) fn schedule_render(&mut self, view_size_px: (u32, u32)) {
-        let Some(worker) = self.worker.as_mut() else { return };
+        if self.worker.is_none() {
+            return;
+        }
         let preview = self.interacting;
         let d = self.preview_divisor;
         let size =
@@ -245,6 +290,11 @@ impl ShadowlabApp {
             analysis,
             reference: analysis
                 && (self.overlays.iter().any(|o| o.needs_reference()) || self.view.needs_reference()),
+            probe_reference: if probe.is_some() && has_lights {
+                self.probe_truth_lights()
+            } else {
+                Vec::new()
+            },
             moments: analysis && self.view == View::Moments,
             bleeding: analysis && self.overlays.contains(&Overlay::Bleeding),
             technique_b: self.ab.as_ref().map(|ab| ab.b),
@@ -252,9 +302,12 @@ impl ShadowlabApp {
             preview,
             map_texels: if self.view_state.zoomed() { MAP_PICTURE_TEXELS_ZOOMED } else { MAP_PICTURE_TEXELS },
         };
-        if job.reference {
-            self.shown.reference_progress = Some((0, self.scene.shadow.reference_samples));
-        }
+        // Waiting for the ground truths from now on, until their last batch comes (a probe that
+        // finds no surface and a failed job clear them).
+        self.shown.reference_progress = job.reference.then_some((0, self.scene.shadow.reference_samples));
+        self.shown.probe_reference =
+            job.probe_reference.iter().map(|&l| (l, 0, self.scene.shadow.reference_samples)).collect();
+        let Some(worker) = self.worker.as_mut() else { return };
         let id = worker.submit(job);
         self.submitted = Submitted { job: id, preview, size };
         self.dirty = false;
@@ -264,11 +317,19 @@ impl ShadowlabApp {
     pub fn render_pending(&self) -> bool {
         let Some(worker) = self.worker.as_ref() else { return false };
         let reference_running = self.shown.reference_progress.is_some_and(|(done, total)| done < total);
+        let probe_reference_running = self.shown.probe_reference.iter().any(|(_, done, total)| done < total);
         self.dirty
             || worker.busy()
             || reference_running
+            || probe_reference_running
             || self.shown_job < self.submitted.job
             || self.shown.details_pending.is_some()
+    }
+
+    /// The ground truth at the probe for `light` as it accumulates: (samples averaged, samples in
+    /// all); None where it was not asked for.
+    pub fn probe_reference_progress(&self, light: usize) -> Option<(u32, u32)> {
+        self.shown.probe_reference.iter().find(|(l, ..)| *l == light).map(|&(_, done, total)| (done, total))
     }
 
     /// How many frames have reached the views (each a new image on screen).

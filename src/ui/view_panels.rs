@@ -57,6 +57,8 @@ pub struct CameraPaint {
     pub ab_labels: Vec<Rect>,
     /// The view selector.
     pub selector: Rect,
+    /// The lines under the picture, as painted.
+    pub legend: Vec<String>,
 }
 
 impl Default for CameraPaint {
@@ -71,6 +73,7 @@ impl Default for CameraPaint {
             probe_texel: Vec::new(),
             ab_labels: Vec::new(),
             selector: Rect::NOTHING,
+            legend: Vec::new(),
         }
     }
 }
@@ -262,6 +265,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         ab_note = tr(app.lang, "the A/B split compares the shaded pictures: the view returns when it is off");
         lines.push(ab_note);
     }
+    app.view_state.painted.legend = lines.iter().map(|l| l.to_string()).collect();
     // Wrapped to the view's width: a long legend takes a second line rather than being cut.
     for legend in lines {
         let galley = painter.layout(
@@ -340,12 +344,12 @@ fn view_selector(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let mut child = ui.new_child(egui::UiBuilder::new().max_rect(corner));
     let before = app.view;
     let response = egui::ComboBox::from_id_salt("camera view")
-        .selected_text(format!("{}: {}", tr(app.lang, "view"), app.view.name()))
+        .selected_text(format!("{}: {}", tr(app.lang, "view"), app.view.label(app.lang)))
         // Every view in reach without scrolling.
         .height(f32::INFINITY)
         .show_ui(&mut child, |ui| {
             for view in View::ALL {
-                ui.selectable_value(&mut app.view, view, view.name());
+                ui.selectable_value(&mut app.view, view, view.label(app.lang));
             }
         })
         .response
@@ -458,8 +462,8 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             painter.galley(r.min + vec2(3.0, 3.0), galley, Color32::WHITE);
             ab_labels.push(r);
         };
-        label(app.scene.shadow.technique.name(), pos2(x - 8.0, y), egui::Align2::RIGHT_TOP);
-        label(ab.b.name(), pos2(x + 8.0, y), egui::Align2::LEFT_TOP);
+        label(app.scene.shadow.technique.label(app.lang), pos2(x - 8.0, y), egui::Align2::RIGHT_TOP);
+        label(ab.b.label(app.lang), pos2(x + 8.0, y), egui::Align2::LEFT_TOP);
     }
     // Camera-space marks belong on the camera's picture, never on a view of the light's map.
     let camera_space = !is_light_space(shown_view);
@@ -551,11 +555,14 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
 /// The depth colour ramp with its range in world units.
 fn legend_bar(ui: &mut Ui, lang: Lang, (lo, hi): (f32, f32), present: bool) {
     // Readable on a projector too.
-    let size = if present { 18.0 } else { 11.0 };
-    let text = |ui: &mut Ui, s: String| ui.label(egui::RichText::new(s).size(size));
+    let text = |ui: &mut Ui, s: String| {
+        let text = egui::RichText::new(s);
+        ui.label(if present { text.size(18.0) } else { text.small() })
+    };
+    let bar = if present { vec2(216.0, 18.0) } else { vec2(140.0, 10.0) };
     ui.horizontal_wrapped(|ui| {
         text(ui, format!("{lo:.1}"));
-        let (rect, _) = ui.allocate_exact_size(vec2(size * 12.0, size), Sense::hover());
+        let (rect, _) = ui.allocate_exact_size(bar, Sense::hover());
         let steps = 28;
         for k in 0..steps {
             let c = crate::views::heat_color(k as f32 / (steps - 1) as f32);

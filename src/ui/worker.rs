@@ -4,11 +4,13 @@
 //!
 //! Newest request wins: requests still waiting when a render ends are dropped, all but the last;
 //! a ground truth in progress stops at its next batch when a newer request arrives, and reports
-//! its partial average after every batch so the view can show it filling in.
+//! its partial average after every batch so the view can show it filling in. The ground truth at
+//! the probe comes first (the probe panel and the lesson text quote it), then the view's. Both are
+//! kept: a job whose ground truth depends on nothing that changed gets it again at once.
 
 use crate::probe::{self, ProbeReport};
 use crate::render::{Analysis, DepthImage, FrameRequest, LightGpu, PassTimes, RenderError, Renderer};
-use crate::scene::{Scene, Technique};
+use crate::scene::{Camera, Light, Mesh, Scene, ShadowSettings, Technique};
 use crate::views;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -27,6 +29,8 @@ pub struct RenderJob {
     pub analysis: bool,
     /// Accumulate the ground truth of the selected light (needs `analysis`).
     pub reference: bool,
+    /// Accumulate the ground truth at the probe for these lights (needs `probe`).
+    pub probe_reference: Vec<usize>,
     /// Work out VSM's light bleeding for the selected light (needs `analysis`).
     pub bleeding: bool,
     /// Read back the level of the selected light's VSM moments the filter reads (needs
@@ -111,6 +115,15 @@ pub enum WorkerEvent {
         total: u32,
         values: Vec<f32>,
     },
+    /// The ground truth at the probe so far, for light `light`: `done` of `total` samples
+    /// averaged at the probed pixel.
+    ProbeReference {
+        job: u64,
+        light: usize,
+        done: u32,
+        total: u32,
+        value: f32,
+    },
     Failed {
         job: u64,
         message: String,
@@ -125,6 +138,21 @@ pub struct RenderWorker {
     /// The newest job whose frame has come back.
     finished: u64,
     submitted_at: Option<Instant>,
+    /// The render thread, joined on drop: the device must be torn down by its thread before the
+    /// process exits (a software Vulkan driver torn down under a live thread can crash at exit).
+    thread: Option<std::thread::JoinHandle<()>>,
+}
+
+impl Drop for RenderWorker {
+    fn drop(&mut self) {
+        // Everything submitted is stale now (a ground truth stops at its next batch), and a
+        // closed queue ends the thread's loop.
+        self.latest.store(u64::MAX, Ordering::Release);
+        self.jobs = mpsc::channel().0;
+        if let Some(thread) = self.thread.take() {
+            let _ = thread.join();
+        }
+    }
 }
 
 /// While dragging the map picture is built at this size at most.
@@ -180,48 +208,75 @@ impl RenderWorker {
                         continue;
                     }
                 }
+                let mut probe_hit = false;
                 if job.wants_details() {
                     // A newer request makes these details moot: it brings its own.
                     if cancelled() {
                         continue;
                     }
                     match renderers.details(&job) {
-                        Ok((probe, analysis)) => send(WorkerEvent::Details(Box::new(Details {
-                            job: id,
-                            probe,
-                            analysis,
-                            render_ms: started.elapsed().as_secs_f64() * 1e3,
-                        }))),
+                        Ok((probe, analysis)) => {
+                            probe_hit = matches!(&probe, Some(Ok(report)) if report.hit);
+                            send(WorkerEvent::Details(Box::new(Details {
+                                job: id,
+                                probe,
+                                analysis,
+                                render_ms: started.elapsed().as_secs_f64() * 1e3,
+                            })))
+                        }
                         Err(e) => {
                             send(WorkerEvent::Failed { job: id, message: e.to_string() });
                             continue;
                         }
                     }
                 }
+                // The ground truth at the probe (it starts from the probe's own frame, which the
+                // probe has just rendered), then the view's.
+                if probe_hit && !job.probe_reference.is_empty() && !cancelled() {
+                    let result = renderers.probe_reference(&job, &mut |light, done, total, value| {
+                        send(WorkerEvent::ProbeReference { job: id, light, done, total, value });
+                        !cancelled()
+                    });
+                    if let Err(e) = result {
+                        send(WorkerEvent::Failed { job: id, message: e.to_string() });
+                        continue;
+                    }
+                }
                 if job.reference && job.analysis && !cancelled() {
-                    let result = renderers.a.render_reference_progressive(
-                        &job.scene,
-                        job.request.selected_light,
-                        REFERENCE_BATCH_FIRST,
-                        REFERENCE_BATCH_MAX,
-                        &mut |done, total, values| {
-                            send(WorkerEvent::Reference { job: id, done, total, values: values.to_vec() });
-                            !cancelled()
-                        },
-                    );
+                    let result = renderers.view_reference(&job, &mut |done, total, values| {
+                        send(WorkerEvent::Reference { job: id, done, total, values: values.to_vec() });
+                        !cancelled()
+                    });
                     if let Err(e) = result {
                         send(WorkerEvent::Failed { job: id, message: e.to_string() });
                     }
                 }
             }
         });
-        if let Err(e) = spawned {
-            // No thread: report it the way a device failure is reported.
-            let (tx, rx) = mpsc::channel();
-            let _ = tx.send(WorkerEvent::Ready(Err(format!("could not start the render thread: {e}"))));
-            return Self { jobs: mpsc::channel().0, events: rx, latest, finished: 0, submitted_at: None };
+        let spawned = match spawned {
+            Ok(thread) => thread,
+            Err(e) => {
+                // No thread: report it the way a device failure is reported.
+                let (tx, rx) = mpsc::channel();
+                let _ = tx.send(WorkerEvent::Ready(Err(format!("could not start the render thread: {e}"))));
+                return Self {
+                    jobs: mpsc::channel().0,
+                    events: rx,
+                    latest,
+                    finished: 0,
+                    submitted_at: None,
+                    thread: None,
+                };
+            }
+        };
+        Self {
+            jobs: job_tx,
+            events: event_rx,
+            latest,
+            finished: 0,
+            submitted_at: None,
+            thread: Some(spawned),
         }
-        Self { jobs: job_tx, events: event_rx, latest, finished: 0, submitted_at: None }
     }
 
     /// Queue a render; anything older that has not started is dropped. Returns the job's id.
@@ -293,6 +348,71 @@ struct Renderers {
     b: Option<Renderer>,
     /// What the last map picture sent was drawn from.
     last_map: Option<MapKey>,
+    /// Ground truths at probes finished lately, newest last: what each depends on, the value at
+    /// the probed pixel and the samples averaged.
+    probe_truths: Vec<(ReferenceKey, f32, u32)>,
+    /// The view's last finished ground truth.
+    view_truth: Option<(ReferenceKey, Vec<f32>, u32)>,
+}
+
+/// Probes' ground truths kept.
+const PROBE_TRUTHS_KEPT: usize = 16;
+
+/// Everything a ground truth depends on: the surface under each pixel (camera, frame, pixel,
+/// objects, time), the light it averages over and the settings its hard shadows read
+/// (`reference::settings_read`): the technique, filter and bias shown are not among them.
+#[derive(Clone, Debug, PartialEq)]
+struct ReferenceKey {
+    camera: Camera,
+    size: (u32, u32),
+    /// The one pixel shaded (a probe); None: the whole view.
+    pixel: Option<(u32, u32)>,
+    time_bits: u32,
+    objects: Vec<ObjectKey>,
+    light_index: usize,
+    light: Option<Light>,
+    settings: ShadowSettings,
+}
+
+/// An object as the camera and the shadow passes see it: its mesh (kept alive here, so the
+/// comparison by address cannot be fooled by a new mesh at a freed one's address) and placement.
+#[derive(Clone)]
+struct ObjectKey(Arc<Mesh>, [f32; 12]);
+
+impl std::fmt::Debug for ObjectKey {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "ObjectKey({} at {:p}, {:?})", self.0.name, Arc::as_ptr(&self.0), self.1)
+    }
+}
+
+impl PartialEq for ObjectKey {
+    fn eq(&self, other: &Self) -> bool {
+        Arc::ptr_eq(&self.0, &other.0) && self.1 == other.1
+    }
+}
+
+impl ReferenceKey {
+    fn new(scene: &Scene, request: &FrameRequest, pixel: Option<(u32, u32)>, light_index: usize) -> Self {
+        Self {
+            camera: scene.camera,
+            size: request.size,
+            pixel,
+            time_bits: request.time_s.to_bits(),
+            objects: scene.objects.iter().map(|o| ObjectKey(o.mesh.clone(), placement(o))).collect(),
+            light_index,
+            light: scene.lights.get(light_index).copied(),
+            settings: crate::reference::settings_read(&scene.shadow),
+        }
+    }
+}
+
+/// An object's translation, rotation, scale and spin, in a row.
+fn placement(o: &crate::scene::Object) -> [f32; 12] {
+    let mut placement = [0.0; 12];
+    for (chunk, v) in placement.chunks_mut(3).zip([o.translate, o.rotate_deg, o.scale, o.spin_deg_per_s]) {
+        chunk.copy_from_slice(&v.to_array());
+    }
+    placement
 }
 
 /// Everything the selected light's shadow map and its picture depend on. Dragging a value that
@@ -311,19 +431,8 @@ struct MapKey {
 
 impl MapKey {
     fn new(scene: &Scene, light: &LightGpu, time_s: f32, picture_texels: u32) -> Self {
-        let objects = scene
-            .objects
-            .iter()
-            .map(|o| {
-                let mut placement = [0.0; 12];
-                for (chunk, v) in
-                    placement.chunks_mut(3).zip([o.translate, o.rotate_deg, o.scale, o.spin_deg_per_s])
-                {
-                    chunk.copy_from_slice(&v.to_array());
-                }
-                (std::sync::Arc::as_ptr(&o.mesh) as usize, placement)
-            })
-            .collect();
+        let objects =
+            scene.objects.iter().map(|o| (std::sync::Arc::as_ptr(&o.mesh) as usize, placement(o))).collect();
         let s = &scene.shadow;
         Self {
             light_clip_from_world: light.clip_from_world,
@@ -345,7 +454,7 @@ fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
     }))
     .map_err(|e| RenderError::Device(e.to_string()))?;
     let a = Renderer::new(&device, &queue)?;
-    Ok(Renderers { device, queue, a, b: None, last_map: None })
+    Ok(Renderers { device, queue, a, b: None, last_map: None, probe_truths: Vec::new(), view_truth: None })
 }
 
 impl Renderers {
@@ -423,8 +532,8 @@ impl Renderers {
 
 impl Renderers {
     /// The selected light's analysis for the overlays (drawn with the image), then the probe
-    /// (one pixel of the analysis pass per light). The ground truth after them starts from the
-    /// view's analysis, so it is drawn again after a probe when the ground truth is wanted.
+    /// (one pixel of the analysis pass per light, which leaves the probe's frame as the last one
+    /// rendered).
     fn details(&mut self, job: &RenderJob) -> Result<(ProbeOutcome, Option<Analysis>), RenderError> {
         let scene = &job.scene;
         let mut analysis = if job.analysis { Some(self.a.read_analysis()?) } else { None };
@@ -447,10 +556,94 @@ impl Renderers {
             let frame = FrameRequest { size: spot.frame, ..request };
             probe::probe(&mut self.a, scene, &frame, spot.pixel, false).map_err(|e| e.to_string())
         });
-        if job.reference && job.analysis && job.probe.is_some() {
-            self.a.render(scene, &request)?;
-        }
         Ok((probe, analysis))
+    }
+
+    /// The ground truth at the probe for each light the job asks for, right after `details` (the
+    /// probe's frame is the last one rendered): `progress` hears (light, samples done, samples in
+    /// all, the average at the pixel so far) after every batch, once for a ground truth kept from
+    /// before; returning false stops it.
+    fn probe_reference(
+        &mut self,
+        job: &RenderJob,
+        progress: &mut dyn FnMut(usize, u32, u32, f32) -> bool,
+    ) -> Result<(), RenderError> {
+        let Some(spot) = job.probe else { return Ok(()) };
+        let (x, y) = spot.pixel;
+        let index = (y * spot.frame.0 + x) as usize;
+        let frame = FrameRequest { size: spot.frame, ..job.request };
+        for &light in &job.probe_reference {
+            if light >= job.scene.lights.len() {
+                continue;
+            }
+            let key = ReferenceKey::new(&job.scene, &frame, Some(spot.pixel), light);
+            if let Some((_, value, total)) = self.probe_truths.iter().find(|(k, ..)| *k == key) {
+                if !progress(light, *total, *total, *value) {
+                    return Ok(());
+                }
+                continue;
+            }
+            let (mut stopped, mut total) = (false, 0);
+            let done = self.a.render_reference_progressive(
+                &job.scene,
+                light,
+                REFERENCE_BATCH_FIRST,
+                REFERENCE_BATCH_MAX,
+                &mut |done, all, values| {
+                    total = all;
+                    let go_on = progress(light, done, all, values.get(index).copied().unwrap_or(1.0));
+                    stopped |= !go_on;
+                    go_on
+                },
+            )?;
+            // Finished (even where the last report came after a newer job): keep it.
+            if let Some(values) = done {
+                if self.probe_truths.len() >= PROBE_TRUTHS_KEPT {
+                    self.probe_truths.remove(0);
+                }
+                self.probe_truths.push((key, values.get(index).copied().unwrap_or(1.0), total));
+            }
+            if stopped {
+                return Ok(());
+            }
+        }
+        Ok(())
+    }
+
+    /// The view's ground truth for the selected light (its analysis is drawn again where a probe
+    /// rendered since), reported after every batch, or at once where nothing it depends on has
+    /// changed since the last one finished.
+    fn view_reference(
+        &mut self,
+        job: &RenderJob,
+        progress: &mut dyn FnMut(u32, u32, &[f32]) -> bool,
+    ) -> Result<(), RenderError> {
+        let light = job.request.selected_light;
+        let key = ReferenceKey::new(&job.scene, &job.request, None, light);
+        if let Some((_, values, total)) = self.view_truth.as_ref().filter(|(k, ..)| *k == key) {
+            progress(*total, *total, values);
+            return Ok(());
+        }
+        if job.probe.is_some() {
+            let request =
+                FrameRequest { final_color: false, analysis: true, timestamps: false, ..job.request };
+            self.a.render(&job.scene, &request)?;
+        }
+        let mut total = 0;
+        let done = self.a.render_reference_progressive(
+            &job.scene,
+            light,
+            REFERENCE_BATCH_FIRST,
+            REFERENCE_BATCH_MAX,
+            &mut |done, all, values| {
+                total = all;
+                progress(done, all, values)
+            },
+        )?;
+        if let Some(values) = done {
+            self.view_truth = Some((key, values, total));
+        }
+        Ok(())
     }
 }
 
@@ -505,6 +698,46 @@ mod tests {
         let mut biased = scene.clone();
         biased.shadow.depth_bias_constant = 4;
         assert_ne!(key(&biased, 0.0), base);
+    }
+
+    #[test]
+    fn the_ground_truths_key_follows_what_the_ground_truth_depends_on() {
+        let path = crate::shipped_path("assets/scenes/contact.toml");
+        let scene = crate::scene::load_scene(&path, &[]).expect("scene");
+        let request = FrameRequest { size: (960, 540), ..Default::default() };
+        let key = |scene: &Scene| ReferenceKey::new(scene, &request, Some((650, 200)), 0);
+        let base = key(&scene);
+        assert_eq!(key(&scene.clone()), base);
+        // The technique's own settings do not change the ground truth: it is kept.
+        let mut filtered = scene.clone();
+        filtered.shadow.technique = Technique::Pcf;
+        filtered.shadow.samples = 7;
+        filtered.shadow.bias_mode = crate::scene::BiasMode::ReceiverPlane;
+        filtered.shadow.blocker_samples = 8;
+        assert_eq!(key(&filtered), base);
+        // The light, the camera, an object, its mesh, the time, the pixel, the frame and the
+        // samples averaged do.
+        let mut wider = scene.clone();
+        wider.lights[0].size = crate::scene::LightSize::Width { width_world: 8.0 };
+        assert_ne!(key(&wider), base);
+        let mut turned = scene.clone();
+        turned.camera.position.x += 1.0;
+        assert_ne!(key(&turned), base);
+        let mut moved = scene.clone();
+        moved.objects[1].translate.y += 0.5;
+        assert_ne!(key(&moved), base);
+        let mut remeshed = scene.clone();
+        remeshed.objects[1].mesh = std::sync::Arc::new((*scene.objects[1].mesh).clone());
+        assert_ne!(key(&remeshed), base);
+        let mut more = scene.clone();
+        more.shadow.reference_samples *= 2;
+        assert_ne!(key(&more), base);
+        let later = FrameRequest { time_s: 1.0, ..request };
+        assert_ne!(ReferenceKey::new(&scene, &later, Some((650, 200)), 0), base);
+        assert_ne!(ReferenceKey::new(&scene, &request, Some((651, 200)), 0), base);
+        assert_ne!(ReferenceKey::new(&scene, &request, None, 0), base);
+        let smaller = FrameRequest { size: (480, 270), ..request };
+        assert_ne!(ReferenceKey::new(&scene, &smaller, Some((650, 200)), 0), base);
     }
 
     #[test]

@@ -53,6 +53,12 @@ impl View {
         }
     }
 
+    /// The view's name as the panels show it in `lang`: the `--view` name in English, a
+    /// translation in Chinese (lesson texts name views by it).
+    pub fn label(self, lang: Lang) -> &'static str {
+        crate::i18n::tr(lang, self.name())
+    }
+
     pub fn from_name(name: &str) -> Option<View> {
         View::ALL.into_iter().find(|v| v.name() == name)
     }
@@ -269,8 +275,9 @@ pub fn moments_image(moments: &crate::render::MomentsLevel, light: &LightGpu) ->
     )
 }
 
-/// |technique - reference| over the surfaces, and its mean.
-pub fn error_image(analysis: &Analysis, reference: &[f32]) -> (RgbaImage, Legend, f32) {
+/// Mean |visibility - ground truth| over the pixels with a surface (0 where there are none): the
+/// number the error view's and the error overlay's legends give, and `{frame.mean_abs_error}`.
+pub fn mean_abs_error(analysis: &Analysis, reference: &[f32]) -> f32 {
     let mut sum = 0.0f64;
     let mut count = 0usize;
     for (i, (shadow, truth)) in analysis.shadow.iter().zip(reference).enumerate() {
@@ -279,7 +286,12 @@ pub fn error_image(analysis: &Analysis, reference: &[f32]) -> (RgbaImage, Legend
             count += 1;
         }
     }
-    let mae = if count > 0 { (sum / count as f64) as f32 } else { 0.0 };
+    if count > 0 { (sum / count as f64) as f32 } else { 0.0 }
+}
+
+/// |technique - reference| over the surfaces, and its mean.
+pub fn error_image(analysis: &Analysis, reference: &[f32]) -> (RgbaImage, Legend, f32) {
+    let mae = mean_abs_error(analysis, reference);
     let image = RgbaImage::from_fn(analysis.width, analysis.height, |x, y| {
         let i = analysis.index(x, y);
         if analysis.hit(i) { heat_color((analysis.shadow[i][0] - reference[i]).abs()) } else { NO_SURFACE }
@@ -298,6 +310,28 @@ pub fn render_view(
     size: (u32, u32),
     lang: Lang,
 ) -> Result<(RgbaImage, Option<String>), crate::render::RenderError> {
+    let rendered = render_view_measured(renderer, scene, view, light, time_s, size, lang)?;
+    Ok((rendered.image, rendered.summary))
+}
+
+/// A view as [`render_view`] makes it, with the numbers its legend gives.
+pub struct RenderedView {
+    pub image: RgbaImage,
+    pub summary: Option<String>,
+    /// The error view's mean absolute error against the ground truth (None for other views).
+    pub mean_abs_error: Option<f32>,
+}
+
+/// [`render_view`], keeping the numbers of the legend.
+pub fn render_view_measured(
+    renderer: &mut crate::render::Renderer,
+    scene: &crate::scene::Scene,
+    view: View,
+    light: usize,
+    time_s: f32,
+    size: (u32, u32),
+    lang: Lang,
+) -> Result<RenderedView, crate::render::RenderError> {
     let request = crate::render::FrameRequest {
         time_s,
         size,
@@ -307,12 +341,13 @@ pub fn render_view(
         ..Default::default()
     };
     let frame = renderer.render(scene, &request)?;
+    let plain = |image, summary| RenderedView { image, summary, mean_abs_error: None };
     Ok(match view {
-        View::Final => (renderer.read_color()?, None),
+        View::Final => plain(renderer.read_color()?, None),
         View::ShadowMap => {
             let map = renderer.read_shadow_map(light)?;
             let (image, legend) = shadow_map_image(&map, &frame.lights[light]);
-            (image, Some(legend.to_string()))
+            plain(image, Some(legend.to_string()))
         }
         _ => {
             let mut a = renderer.read_analysis()?;
@@ -327,7 +362,9 @@ pub fn render_view(
                 analysis_view(view, &a, reference.as_deref(), samples, light_and_params, lang).ok_or_else(
                     || crate::render::RenderError::Usage(format!("view {} has no image", view.name())),
                 )?;
-            (image, Some(legend))
+            let mean_abs_error =
+                reference.as_deref().filter(|_| view == View::Error).map(|r| mean_abs_error(&a, r));
+            RenderedView { image, summary: Some(legend), mean_abs_error }
         }
     })
 }

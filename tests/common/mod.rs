@@ -76,3 +76,90 @@ pub fn run(command: &mut std::process::Command) -> Run {
         stderr: String::from_utf8_lossy(&output.stderr).into_owned(),
     }
 }
+
+/// A virtual X server of this test's own, killed on drop. Xvfb picks a free display itself and
+/// says which once it accepts connections (`-displayfd`), so tests never guess a display number
+/// or wait on `xvfb-run`'s start-up handshake. One at a time in a test binary, so that two
+/// windows never share a server's CPU.
+#[allow(dead_code)]
+pub struct Xvfb {
+    child: std::process::Child,
+    /// `:N`, for DISPLAY.
+    pub display: String,
+    _one_at_a_time: std::sync::MutexGuard<'static, ()>,
+}
+
+static X_SERVER: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+#[allow(dead_code)]
+impl Xvfb {
+    pub fn start(screen: &str) -> Xvfb {
+        use std::io::BufRead;
+        // A test that failed while holding it leaves nothing behind to protect.
+        let guard = X_SERVER.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+        let mut child = std::process::Command::new("Xvfb")
+            .args(["-displayfd", "1", "-nolisten", "tcp", "-screen", "0", screen])
+            .stdout(std::process::Stdio::piped())
+            .stderr(
+                std::fs::File::create(std::env::temp_dir().join(format!("xvfb-{}.log", std::process::id())))
+                    .expect("log"),
+            )
+            .spawn()
+            .expect("Xvfb runs (apt-get install xvfb)");
+        let mut line = String::new();
+        let stdout = child.stdout.take().expect("Xvfb's stdout");
+        let mut stdout = std::io::BufReader::new(stdout);
+        stdout.read_line(&mut line).expect("Xvfb names its display");
+        // Keep reading what else it says (the keymap compiler's warnings, when the first client
+        // connects): with the pipe closed, that write would kill the server with SIGPIPE.
+        std::thread::spawn(move || std::io::copy(&mut stdout, &mut std::io::sink()));
+        let number = line.trim();
+        assert!(!number.is_empty() && number.bytes().all(|b| b.is_ascii_digit()), "Xvfb said {line:?}");
+        Xvfb { child, display: format!(":{number}"), _one_at_a_time: guard }
+    }
+}
+
+#[allow(dead_code)]
+impl Xvfb {
+    /// What became of the server, for a failing test's message.
+    pub fn state(&mut self) -> String {
+        let log =
+            std::fs::read_to_string(std::env::temp_dir().join(format!("xvfb-{}.log", std::process::id())))
+                .unwrap_or_default();
+        let socket = std::path::Path::new("/tmp/.X11-unix").join(format!("X{}", &self.display[1..]));
+        format!(
+            "Xvfb {}: {:?}, socket {} exists: {}, log:\n{log}",
+            self.display,
+            self.child.try_wait(),
+            socket.display(),
+            socket.exists()
+        )
+    }
+}
+
+impl Drop for Xvfb {
+    fn drop(&mut self) {
+        let _ = self.child.kill();
+        let _ = self.child.wait();
+    }
+}
+
+/// Run `shadowlab ARGS` in a window on an Xvfb of its own. Now and then (about one run in ten
+/// on a loaded machine, not explained yet) a window cannot connect to a server that is up and
+/// whose socket is there; that one failure, and only it, is tried again on a fresh server, up to
+/// three times, each attempt said on stderr.
+#[allow(dead_code)]
+pub fn run_in_window(args: &[&str]) -> Run {
+    const REFUSED: &str = "Failed to open connection to X server";
+    let mut attempt = 1;
+    loop {
+        let mut xvfb = Xvfb::start("1600x900x24");
+        let result =
+            run(shadowlab_command().args(args).env("DISPLAY", &xvfb.display).env_remove("WAYLAND_DISPLAY"));
+        if !result.stderr.contains(REFUSED) || attempt == 3 {
+            return result;
+        }
+        eprintln!("attempt {attempt}: the window could not connect; {}", xvfb.state());
+        attempt += 1;
+    }
+}

@@ -1,0 +1,312 @@
+//! `shadowlab bench --app --window --soak SECONDS`: a class hour in the real window. The PCSS and
+//! multi-light lessons play in turn with a probe pinned and overlays on; every few seconds the
+//! playback pauses until the full-detail frame is in (probe, overlays, read-backs), the view
+//! changes, and playback goes on. It reports how much was rendered, how far scene time went, and
+//! the process's memory a minute in and at the end, and fails where the scene stopped moving.
+
+use super::bench_app::{SETTLE_LIMIT, WINDOW};
+use super::{BenchArgs, CliError};
+use crate::lessons::Overlay;
+use crate::ui::{PLAYBACK_RANGE_S, Settings, ShadowlabApp, app_for_test};
+use crate::views::View;
+use serde::Serialize;
+use std::sync::{Arc, Mutex};
+use std::time::{Duration, Instant};
+
+/// The lessons played in turn: (id, step from 0). PCSS step 2 (blocker search, a probe) and
+/// multi-light step 4 (orbiting lights, spinning objects).
+const LESSONS: [(&str, usize); 2] = [("pcss", 1), ("multi-light", 3)];
+/// Overlays kept on throughout (camera-space ones, over the views that take them).
+const OVERLAYS: [Overlay; 3] = [Overlay::Penumbra, Overlay::OutsideFrustum, Overlay::LightFrustum];
+/// The views gone through, one per cycle.
+const VIEWS: [View; 5] =
+    [View::Final, View::Visibility, View::Penumbra, View::ShadowMap, View::BlockerRadius];
+/// Playback between two pauses, seconds of wall-clock time.
+const PLAY: Duration = Duration::from_secs(4);
+/// Cycles (play, pause for the full detail, switch the view) per lesson before the next one.
+const CYCLES_PER_LESSON: u32 = 5;
+/// Memory is first read this far in at the earliest (see `advance`).
+const EARLY: Duration = Duration::from_secs(60);
+/// Memory is judged on soaks at least this long (shorter ones are all start-up).
+const JUDGE_MEMORY_FROM: Duration = Duration::from_secs(120);
+/// At the end, memory may be this much above the early reading.
+const MEMORY_GROWTH_ALLOWED: f64 = 0.10;
+
+#[derive(Serialize, Default)]
+pub struct SoakReport {
+    pub seconds: f64,
+    pub painter: String,
+    /// New images on screen, and those of them with the full detail (probe, overlays).
+    pub frames_rendered: u64,
+    pub full_detail_frames: u32,
+    /// Scene time played, seconds (it loops over the time range).
+    pub scene_time_advanced_s: f64,
+    pub view_switches: u32,
+    pub lesson_switches: u32,
+    /// Resident memory of the process, MB: `rss_early_at_s` in (a minute in, once every lesson
+    /// was shown in every view), and at the end.
+    pub rss_early_at_s: f64,
+    pub rss_early_mb: Option<f64>,
+    pub rss_end_mb: Option<f64>,
+    /// (end - early) / early.
+    pub rss_growth: Option<f64>,
+    /// Resident memory every 30 s of the soak, MB.
+    pub rss_every_30_s_mb: Vec<f64>,
+    /// GPU memory, where the adapter reports it (lavapipe does not).
+    pub gpu_memory_mb: Option<f64>,
+    /// Every play period advanced scene time and put new images on screen.
+    pub moving_throughout: bool,
+    /// Judged on soaks of `JUDGE_MEMORY_FROM` or longer: end within 10% of the early reading.
+    pub memory_held: Option<bool>,
+}
+
+enum Stage {
+    Starting,
+    Playing {
+        since: Instant,
+        time_before: f32,
+        frames_before: u64,
+    },
+    /// Paused: waiting for the full-detail frame.
+    Pausing {
+        since: Instant,
+    },
+    Done,
+}
+
+struct Soak {
+    app: ShadowlabApp,
+    stage: Stage,
+    length: Duration,
+    started: Instant,
+    lesson: usize,
+    cycle: u32,
+    report: SoakReport,
+    last_time: f32,
+    outcome: Arc<Mutex<Option<Result<SoakReport, String>>>>,
+}
+
+/// Resident memory of this process, MB (Linux).
+fn rss_mb() -> Option<f64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
+    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kb / 1024.0)
+}
+
+impl Soak {
+    fn open_lesson(&mut self, which: usize) -> Result<(), String> {
+        let (id, step) = LESSONS[which % LESSONS.len()];
+        let lesson = self.app.lessons.iter().position(|l| l.id == id).ok_or(format!("no lesson {id}"))?;
+        self.app.go_to_step(lesson, step);
+        self.app.overlays = OVERLAYS.to_vec();
+        if self.app.probe_at.is_none() {
+            self.app.probe_at = Some(crate::ui::ProbeAt::View(0.5, 0.6));
+        }
+        self.app.mark_dirty();
+        Ok(())
+    }
+
+    fn play(&mut self) {
+        self.app.playing = true;
+        self.last_time = self.app.time_s;
+        self.stage = Stage::Playing {
+            since: Instant::now(),
+            time_before: self.app.time_s,
+            frames_before: self.app.frames_shown(),
+        };
+    }
+
+    /// Scene time played since the last frame (it wraps at the end of the range).
+    fn track_time(&mut self) {
+        let t = self.app.time_s;
+        let d = (t - self.last_time).rem_euclid(PLAYBACK_RANGE_S);
+        self.report.scene_time_advanced_s += f64::from(d);
+        self.last_time = t;
+    }
+
+    fn advance(&mut self) -> Result<(), String> {
+        let elapsed = self.started.elapsed();
+        // The first reading comes once every lesson has been shown in every view (what the
+        // caches hold by then, they hold for the rest of the hour), a minute in at the earliest;
+        // on a soak too short to judge memory by, at half of it.
+        let warm = self.cycle >= LESSONS.len() as u32 * CYCLES_PER_LESSON && elapsed >= EARLY;
+        let early_due = if self.length >= JUDGE_MEMORY_FROM { warm } else { elapsed >= self.length / 2 };
+        if elapsed.as_secs_f64() >= 30.0 * (self.report.rss_every_30_s_mb.len() + 1) as f64 {
+            self.report.rss_every_30_s_mb.extend(rss_mb());
+        }
+        if self.report.rss_early_mb.is_none() && early_due {
+            self.report.rss_early_mb = rss_mb();
+            self.report.rss_early_at_s = elapsed.as_secs_f64();
+        }
+        match self.stage {
+            Stage::Starting => {
+                if self.app.camera_image().is_some() && !self.app.render_pending() {
+                    self.play();
+                } else if elapsed > SETTLE_LIMIT {
+                    return Err(self.app.gpu_problem().unwrap_or_else(|| "no first frame".into()));
+                }
+            }
+            Stage::Playing { since, time_before, frames_before } => {
+                self.track_time();
+                if since.elapsed() >= PLAY {
+                    let moved = self.app.time_s != time_before;
+                    let refreshed = self.app.frames_shown() > frames_before;
+                    if !(moved && refreshed) {
+                        return Err(format!(
+                            "the scene stopped moving {:.0} s in (time {:.2} s, {} new images in {:.0} s of play)",
+                            elapsed.as_secs_f64(),
+                            self.app.time_s,
+                            self.app.frames_shown() - frames_before,
+                            PLAY.as_secs_f64()
+                        ));
+                    }
+                    self.app.playing = false;
+                    self.app.mark_dirty();
+                    self.stage = Stage::Pausing { since: Instant::now() };
+                }
+            }
+            Stage::Pausing { since } => {
+                if since.elapsed() > Duration::from_millis(50) && !self.app.render_pending() {
+                    if self.app.probe_report().is_none() {
+                        return Err(format!("no probe after a pause {:.0} s in", elapsed.as_secs_f64()));
+                    }
+                    self.report.full_detail_frames += 1;
+                    if elapsed >= self.length {
+                        self.stage = Stage::Done;
+                        return Ok(());
+                    }
+                    self.cycle += 1;
+                    if self.cycle.is_multiple_of(CYCLES_PER_LESSON) {
+                        self.lesson += 1;
+                        self.report.lesson_switches += 1;
+                        self.open_lesson(self.lesson)?;
+                    }
+                    self.app.view = VIEWS[self.cycle as usize % VIEWS.len()];
+                    self.report.view_switches += 1;
+                    self.app.mark_dirty();
+                    self.play();
+                } else if since.elapsed() > SETTLE_LIMIT {
+                    return Err("the app did not settle after a pause".into());
+                }
+            }
+            Stage::Done => {}
+        }
+        Ok(())
+    }
+
+    fn finish(&mut self, ctx: &egui::Context, result: Result<(), String>) {
+        let result = result.map(|()| {
+            let mut report = std::mem::take(&mut self.report);
+            report.seconds = self.started.elapsed().as_secs_f64();
+            report.frames_rendered = self.app.frames_shown();
+            report.rss_end_mb = rss_mb();
+            report.rss_growth = report.rss_early_mb.zip(report.rss_end_mb).map(|(a, b)| (b - a) / a);
+            report.moving_throughout = true;
+            report.memory_held = (self.length >= JUDGE_MEMORY_FROM)
+                .then(|| report.rss_growth.is_some_and(|g| g <= MEMORY_GROWTH_ALLOWED));
+            report
+        });
+        if let Ok(mut slot) = self.outcome.lock() {
+            slot.get_or_insert(result);
+        }
+        self.stage = Stage::Done;
+        ctx.send_viewport_cmd(egui::ViewportCommand::Close);
+    }
+}
+
+impl eframe::App for Soak {
+    fn clear_color(&self, visuals: &egui::Visuals) -> [f32; 4] {
+        self.app.clear_color(visuals)
+    }
+
+    fn ui(&mut self, ui: &mut egui::Ui, frame: &mut eframe::Frame) {
+        let ctx = ui.ctx().clone();
+        self.app.ui(ui, frame);
+        if matches!(self.stage, Stage::Done) {
+            return;
+        }
+        match self.advance() {
+            Ok(()) if matches!(self.stage, Stage::Done) => self.finish(&ctx, Ok(())),
+            Ok(()) => ctx.request_repaint(),
+            Err(e) => self.finish(&ctx, Err(e)),
+        }
+    }
+}
+
+pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
+    if !(5.0..=86_400.0).contains(&seconds) {
+        return Err(CliError::input(format!("--soak {seconds} is out of range 5..=86400 seconds")));
+    }
+    if !args.window {
+        return Err(CliError::input("--soak plays in the real window: add --window"));
+    }
+    if !crate::ui::display_available() {
+        return Err(CliError::input(
+            "bench --app --window --soak: no display found (DISPLAY and WAYLAND_DISPLAY are unset); run \
+             it under `xvfb-run -a`",
+        ));
+    }
+    let painter = crate::ui::ui_painter();
+    let outcome = Arc::new(Mutex::new(None));
+    let sink = outcome.clone();
+    let mut options = crate::ui::window_options(painter);
+    options.viewport = options.viewport.with_inner_size(WINDOW);
+    options.persist_window = false;
+    let result = eframe::run_native(
+        "shadowlab-soak",
+        options,
+        Box::new(move |cc| {
+            let app = app_for_test(cc, Settings::default());
+            crate::ui::clear_paints_panels(&cc.egui_ctx);
+            let mut soak = Soak {
+                app,
+                stage: Stage::Starting,
+                length: Duration::from_secs_f32(seconds),
+                started: Instant::now(),
+                lesson: 0,
+                cycle: 0,
+                report: SoakReport { painter: format!("{painter} (window)"), ..Default::default() },
+                last_time: 0.0,
+                outcome: sink,
+            };
+            soak.open_lesson(0)?;
+            Ok(Box::new(soak))
+        }),
+    );
+    if let Err(e) = result {
+        return Err(CliError { code: 2, message: format!("could not open the window: {e}") });
+    }
+    let taken = outcome.lock().ok().and_then(|mut slot| slot.take());
+    let report = match taken {
+        Some(Ok(report)) => report,
+        Some(Err(e)) => return Err(CliError { code: 1, message: format!("soak: {e}") }),
+        None => return Err(CliError { code: 1, message: "soak: the window closed before the end".into() }),
+    };
+    if args.json {
+        let text = serde_json::to_string_pretty(&report)
+            .map_err(|e| CliError { code: 1, message: e.to_string() })?;
+        println!("{text}");
+    } else {
+        let mb = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.1} MB"));
+        println!("soak {:.0} s ({})", report.seconds, report.painter);
+        println!("  images on screen        {}", report.frames_rendered);
+        println!("  full-detail frames      {}", report.full_detail_frames);
+        println!("  scene time played       {:.1} s", report.scene_time_advanced_s);
+        println!("  view / lesson switches  {} / {}", report.view_switches, report.lesson_switches);
+        println!("  memory at {:.0} s        {}", report.rss_early_at_s, mb(report.rss_early_mb));
+        println!("  memory at the end       {}", mb(report.rss_end_mb));
+        println!("  GPU memory              {}", mb(report.gpu_memory_mb));
+    }
+    if report.memory_held == Some(false) {
+        return Err(CliError {
+            code: 1,
+            message: format!(
+                "soak: memory grew {:.0}% after the first reading (allowed {:.0}%)",
+                report.rss_growth.unwrap_or(0.0) * 100.0,
+                MEMORY_GROWTH_ALLOWED * 100.0
+            ),
+        });
+    }
+    Ok(())
+}
