@@ -172,7 +172,8 @@ impl Soak {
                         return Err(format!("no probe after a pause {:.0} s in", elapsed.as_secs_f64()));
                     }
                     self.report.full_detail_frames += 1;
-                    if elapsed >= self.length {
+                    // However slow the machine, a soak goes through one view switch at least.
+                    if elapsed >= self.length && self.cycle >= 1 {
                         self.stage = Stage::Done;
                         return Ok(());
                     }
