@@ -1134,6 +1134,12 @@ fn browse_without_a_dialog_service_points_at_the_path_box() {
     assert_eq!((lesson.id.as_str(), index), ("vsm", 0));
 }
 
+/// (lesson, step) of every step of every lesson, in order.
+fn every_step(h: &Harness<'_, ShadowlabApp>) -> Vec<(usize, usize)> {
+    let lessons = &h.state().lessons;
+    lessons.iter().enumerate().flat_map(|(l, lesson)| (0..lesson.steps.len()).map(move |s| (l, s))).collect()
+}
+
 fn lesson_index(h: &Harness<'_, ShadowlabApp>, id: &str) -> usize {
     h.state().lessons.iter().position(|l| l.id == id).unwrap_or_else(|| panic!("no lesson {id}"))
 }
@@ -1178,13 +1184,7 @@ fn every_steps_frame_is_shown_whole_at_classroom_sizes() {
     let frame_aspect = fw as f32 / fh as f32;
     for size in [[1280.0, 720.0], [1600.0, 900.0]] {
         let mut h = harness_sized(size);
-        let steps: Vec<(usize, usize)> = h
-            .state()
-            .lessons
-            .iter()
-            .enumerate()
-            .flat_map(|(l, lesson)| (0..lesson.steps.len()).map(move |s| (l, s)))
-            .collect();
+        let steps = every_step(&h);
         for (l, s) in steps {
             h.state_mut().go_to_step(l, s);
             h.run_steps(2);
@@ -1349,13 +1349,7 @@ fn long_status_messages_stop_short_of_the_timings_and_show_once_on_hover() {
 fn walk_every_step_to_pictures() {
     let out = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("walk");
     let mut h = harness_sized([1600.0, 900.0]);
-    let steps: Vec<(usize, usize)> = h
-        .state()
-        .lessons
-        .iter()
-        .enumerate()
-        .flat_map(|(l, lesson)| (0..lesson.steps.len()).map(move |s| (l, s)))
-        .collect();
+    let steps = every_step(&h);
     for lang in [Lang::En, Lang::Zh] {
         for present in [false, true] {
             let dir = out.join(format!("{}{}", lang.code(), if present { "-present" } else { "" }));
