@@ -176,14 +176,8 @@ pub fn probe(
         let mut twin = Twin::new(&light_gpu, &params, &map);
         twin.trace = Some(Vec::new());
         let (coord, result) = twin.analysis_at(pixel, position, normal);
-        let filter_radius_texels = match scene.shadow.technique {
-            Technique::None | Technique::Hard => 0.0,
-            Technique::Pcf | Technique::Vsm => scene.shadow.radius_texels,
-            Technique::Pcss | Technique::Vssm if result.search.found > 0 => {
-                result.penumbra.filter_radius_texels
-            }
-            Technique::Pcss | Technique::Vssm => 0.0,
-        };
+        let penumbra = (result.search.found > 0).then_some(&result.penumbra);
+        let filter_radius_texels = crate::shadow::filter_radius_texels(&params, penumbra);
         let map_size = light_gpu.map_size_texels;
         let stored = twin.stored_depth_ndc(coord.uv);
         let taps = twin.trace.take().unwrap_or_default();
@@ -231,11 +225,12 @@ pub fn probe(
             blocker_search_radius_uv: result.search.radius_texels / map_size,
             blocker_search_radius_texels: result.search.radius_texels,
             blockers_found: result.search.found,
-            // Only PCSS searches; the search uses Vogel where the filter is the hardware kernel.
+            // Only PCSS searches, with the search's own pattern.
             blocker_samples: match scene.shadow.technique {
-                Technique::Pcss => {
-                    kernels::filter_taps(scene.shadow.pcf_kernel, scene.shadow.blocker_samples)
-                }
+                Technique::Pcss => kernels::filter_taps(
+                    crate::shadow::search_kernel(scene.shadow.pcf_kernel),
+                    scene.shadow.blocker_samples,
+                ),
                 _ => 0,
             },
             avg_blocker_depth_linear: (result.search.found > 0).then_some(result.search.avg_depth_linear),

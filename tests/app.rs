@@ -5,7 +5,7 @@
 
 use egui_kittest::kittest::{NodeT, Queryable};
 use egui_kittest::{Harness, SnapshotOptions};
-use shadowlab::lessons::Lang;
+use shadowlab::i18n::Lang;
 use shadowlab::lessons::live::{self, Verdict};
 use shadowlab::probe::ProbeReport;
 use shadowlab::ui::{ProbeAt, Settings, ShadowlabApp, Source, app_for_test};
@@ -347,7 +347,7 @@ fn dragging_a_slider_previews_at_half_resolution_and_refines_on_release() {
 fn the_ground_truth_fills_in_batch_by_batch() {
     let mut h = harness();
     h.state_mut().scene.shadow.reference_samples = 256;
-    h.state_mut().overlays = vec![shadowlab::lessons::Overlay::Error];
+    h.state_mut().overlays = vec![shadowlab::views::overlays::Overlay::Error];
     h.state_mut().mark_dirty();
     let mut partial = None;
     for _ in 0..6000 {
@@ -903,7 +903,7 @@ fn f5_presents_the_views_diagram_and_lesson_text_alone_and_esc_returns() {
     assert!(h.query_by_label("Screenshot").is_none(), "the top bar is hidden");
     h.get_by_label("F5 or Esc: leave present mode");
     let step = h.state().current_step().map(|(_, s, _)| s.clone()).expect("step");
-    h.get_by_label(&step.text_filled(shadowlab::lessons::Lang::En, h.state().probe_report()));
+    h.get_by_label(&step.text_filled(shadowlab::i18n::Lang::En, h.state().probe_report()));
     let present_view = shadowlab::ui::landmark(&h.ctx, shadowlab::ui::LANDMARK_CAMERA_VIEW).expect("view");
     assert!(present_view.width() > normal_view.width() * 1.1, "{present_view:?} vs {normal_view:?}");
     h.get_by_label("Shadow map");
@@ -944,7 +944,7 @@ fn at_1600x900_diagram_text_is_at_least_14_points_in_both_layouts_and_languages(
     h.state_mut().go_to_step(lesson, 0);
     settle(&mut h);
     assert!(h.state().panel_visible(shadowlab::lessons::Panel::Diagram));
-    for lang in [shadowlab::lessons::Lang::En, shadowlab::lessons::Lang::Zh] {
+    for lang in [shadowlab::i18n::Lang::En, shadowlab::i18n::Lang::Zh] {
         for present in [false, true] {
             h.state_mut().lang = lang;
             h.state_mut().present = present;

@@ -143,7 +143,7 @@ fn chinese_slides_differ_from_english_ones() {
 /// its caption names the view as the Chinese app's view menu does.
 #[test]
 fn slides_name_the_probed_surface_and_the_view_in_the_slides_language() {
-    use shadowlab::lessons::Lang;
+    use shadowlab::i18n::Lang;
     use shadowlab::views::View;
     let all = lessons::load_all(&lessons::default_dir()).expect("the shipped lessons load");
     let lesson = lessons::find(&all, LESSON).expect("the lesson exists");
@@ -272,7 +272,8 @@ fn a_steps_overlays_are_on_its_camera_picture() {
 /// "…" left (the slides render deterministically, so nothing is still being worked out).
 #[test]
 fn a_slide_fills_the_ground_truth_and_the_mean_error_it_shows() {
-    use shadowlab::lessons::{Lang, live};
+    use shadowlab::i18n::Lang;
+    use shadowlab::lessons::live;
     let (_ctx, mut renderer) = common::gpu();
     let all = lessons::load_all(&lessons::default_dir()).expect("the shipped lessons load");
     let lesson = lessons::find(&all, "pcss").expect("lesson 4");

@@ -104,7 +104,7 @@ fn check_diagram(
     name: &str,
     kind: shadowlab::diagrams::DiagramKind,
     inputs: &shadowlab::diagrams::DiagramInputs,
-    lang: shadowlab::lessons::Lang,
+    lang: shadowlab::i18n::Lang,
 ) {
     let pixmap = shadowlab::diagrams::draw(kind, inputs, lang, 960, 540).expect("draw");
     let png = shadowlab::diagrams::encode_png(&pixmap).expect("encode");
@@ -115,7 +115,7 @@ fn check_diagram(
 #[test]
 fn diagrams_at_fixed_inputs() {
     let defaults = shadowlab::diagrams::DiagramInputs::default();
-    let en = shadowlab::lessons::Lang::En;
+    let en = shadowlab::i18n::Lang::En;
     for kind in shadowlab::diagrams::DiagramKind::ALL {
         check_diagram(&format!("diagram_{}", kind.id()), kind, &defaults, en);
     }
@@ -133,7 +133,7 @@ fn diagrams_at_fixed_inputs() {
 fn diagrams_in_chinese() {
     let defaults = shadowlab::diagrams::DiagramInputs::default();
     for kind in shadowlab::diagrams::DiagramKind::ALL {
-        check_diagram(&format!("diagram_{}_zh", kind.id()), kind, &defaults, shadowlab::lessons::Lang::Zh);
+        check_diagram(&format!("diagram_{}_zh", kind.id()), kind, &defaults, shadowlab::i18n::Lang::Zh);
     }
 }
 
@@ -260,7 +260,7 @@ fn without_the_pre_pass_every_pixel_is_the_pre_pass_pixel() {
 #[test]
 fn text_paragraphs_in_both_languages() {
     use shadowlab::diagrams::Canvas;
-    use shadowlab::lessons::Lang;
+    use shadowlab::i18n::Lang;
     let ink = tiny_skia::Color::from_rgba8(20, 24, 28, 255);
     let paper = tiny_skia::Color::from_rgba8(250, 250, 246, 255);
     let mut c = Canvas::in_pixels(tiny_skia::Pixmap::new(640, 200).expect("pixmap"), Lang::Zh, paper);

@@ -3,8 +3,9 @@
 
 mod common;
 
+use shadowlab::i18n::Lang;
 use shadowlab::lessons::live::{self, Namespace, Verdict};
-use shadowlab::lessons::{self, Lang, Lesson, LessonError, Text};
+use shadowlab::lessons::{self, Lesson, LessonError, Text};
 use shadowlab::probe::ProbeReport;
 use shadowlab::views::{View, render_view};
 use std::collections::HashSet;

@@ -305,7 +305,7 @@ fn light_kind_specific_keys_are_checked() {
 
 #[test]
 fn an_object_may_carry_a_chinese_name_shown_only_in_chinese() {
-    use shadowlab::lessons::Lang;
+    use shadowlab::i18n::Lang;
     let text = format!("{CAMERA}\n[[object]]\nname = \"floor\"\nname_zh = \"地面\"\nmesh = \"plane\"\n");
     let scene = parse_ok(&text);
     let floor = &scene.objects[0];

@@ -1,7 +1,8 @@
 //! Every composed shader module parses and validates with naga, and the GPU structs have the
 //! same size in WGSL as in Rust.
 
-use shadowlab::render::{LightGpu, ShadowParamsGpu, shaders};
+use shadowlab::render::shaders;
+use shadowlab::shadow::{LightGpu, ShadowParamsGpu};
 
 fn validate(source: &shaders::ShaderSource) -> (naga::Module, naga::valid::ModuleInfo) {
     let module = naga::front::wgsl::parse_str(&source.source)

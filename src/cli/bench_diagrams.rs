@@ -11,7 +11,7 @@ use serde::Serialize;
 use super::bench::median;
 use super::{BenchArgs, CliError};
 use crate::diagrams::{self, DiagramInputs, DiagramKind};
-use crate::lessons::Lang;
+use crate::i18n::Lang;
 use crate::ui::DIAGRAM_MIN_TEXT_PT;
 
 #[derive(Serialize)]

@@ -6,9 +6,9 @@
 
 use super::bench_app::{SETTLE_LIMIT, WINDOW};
 use super::{BenchArgs, CliError};
-use crate::lessons::Overlay;
 use crate::ui::{PLAYBACK_RANGE_S, Settings, ShadowlabApp, app_for_test};
 use crate::views::View;
+use crate::views::overlays::Overlay;
 use serde::Serialize;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};

@@ -46,7 +46,7 @@ pub struct OpenArgs {
     pub step: Option<u32>,
     /// The app's language: en or zh.
     #[arg(long, value_parser = export_cmd::parse_lang)]
-    pub lang: Option<crate::lessons::Lang>,
+    pub lang: Option<crate::i18n::Lang>,
 }
 
 #[derive(Subcommand, Debug)]
@@ -176,7 +176,7 @@ pub struct ExportArgs {
     pub lesson: String,
     /// Language of the slides: en or zh.
     #[arg(long, default_value = "en", value_parser = export_cmd::parse_lang)]
-    pub lang: lessons::Lang,
+    pub lang: crate::i18n::Lang,
     /// Slide size, pixels.
     #[arg(long, default_value = "1920x1080", value_parser = parse_size)]
     pub size: (u32, u32),
@@ -424,7 +424,7 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
         light,
         resolved.time_s,
         args.frame.size,
-        lessons::Lang::En,
+        crate::i18n::Lang::En,
     )?;
     export::write_png(&args.out, &image)?;
     println!(

@@ -12,7 +12,7 @@ use tiny_skia::{
 use super::style::{Anchor, Style, col, fin, pal};
 use super::text::{TextRenderer, TextStyle};
 use crate::i18n;
-use crate::lessons::Lang;
+use crate::i18n::Lang;
 
 /// A label laid out by [`Canvas::plan_label`]: its lines (translated) and their boxes.
 pub struct Planned {

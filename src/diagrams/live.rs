@@ -10,7 +10,7 @@ use glam::{Vec2, Vec3};
 use super::{DiagramInputs, LightTopView};
 use crate::probe::LightProbe;
 use crate::scene::{BiasMode, LightKind, LightSize, Scene, Technique};
-use crate::shadow::{self, kernels};
+use crate::shadow::{self, LightGpu, ShadowParamsGpu, kernels};
 
 /// Objects flatter than this fraction of their width are receivers (floors), not drawn in the
 /// top view: a floor would be one disc covering the whole picture.
@@ -137,27 +137,20 @@ pub fn inputs_from_scene(
             out.stored_depth_linear = d;
             out.blocker_depth_linear = None;
             out.penumbra_width_world = 0.0;
-            out.filter_radius_texels = match shadow.technique {
-                Technique::None | Technique::Hard => 0.0,
-                Technique::Pcf | Technique::Vsm => shadow.radius_texels,
-                Technique::Pcss | Technique::Vssm => shadow.min_filter_radius_texels,
+            // The twin's formulas for a lit receiver there (no blockers: PCSS's filter is its
+            // minimum), with the light and parameters a render of this scene would use.
+            let light_gpu = LightGpu::new(light, time_s, 0, light.shadow_map_size.max(1));
+            let params = ShadowParamsGpu::new(shadow);
+            let no_blockers =
+                shadow::Penumbra { width_world: 0.0, filter_radius_texels: params.min_filter_radius_texels };
+            out.filter_radius_texels = shadow::filter_radius_texels(&params, Some(&no_blockers));
+            out.search_radius_texels = if searches_blockers(shadow.technique) {
+                shadow::blocker_search_radius_uv(&light_gpu, &params, d) * map
+            } else {
+                0.0
             };
-            out.search_radius_texels = match shadow.technique {
-                Technique::Pcss | Technique::Vssm => {
-                    search_radius_uv(light, d) * shadow.search_radius_scale * map
-                }
-                _ => 0.0,
-            };
-            let texel_world = light.texel_world_at(d);
-            out.bias_ndc = match shadow.bias_mode {
-                BiasMode::None => 0.0,
-                BiasMode::Constant | BiasMode::ReceiverPlane => shadow.bias,
-                BiasMode::Slope => (shadow.slope_bias * (1.0 - n_dot_l)).max(shadow.bias),
-                BiasMode::Adaptive => {
-                    let a = (1.0 + out.filter_radius_texels.ceil()) * 0.5 * texel_world;
-                    shadow.adaptive_c * a.max(a * (1.0 - n_dot_l)) * light.ndc_per_world_at(d)
-                }
-            };
+            let coord = shadow::ShadowCoord { depth_linear: d, n_dot_l, ..Default::default() };
+            out.bias_ndc = shadow::receiver_bias_ndc(&light_gpu, &params, &coord, out.filter_radius_texels);
             let seed = kernels::pixel_seed((0, 0), shadow.noise_seed, false);
             out.pcf_samples = match shadow.technique {
                 Technique::None | Technique::Hard | Technique::Vsm | Technique::Vssm => vec![[0.0, 0.0]],
@@ -168,23 +161,17 @@ pub fn inputs_from_scene(
             };
             out.sample_blocked = Vec::new();
             out.blockers_found = 0;
-            out.blocker_samples = kernels::filter_taps(shadow.pcf_kernel, shadow.blocker_samples);
+            out.blocker_samples =
+                kernels::filter_taps(shadow::search_kernel(shadow.pcf_kernel), shadow.blocker_samples);
             out.visibility = 1.0;
         }
     }
     out
 }
 
-/// The blocker-search radius in shadow-map uv for a receiver at linear depth `d` (the twin's
-/// `search_blockers` formula).
-fn search_radius_uv(light: &crate::scene::Light, d: f32) -> f32 {
-    let world = match light.size {
-        LightSize::AngularDiameter { angular_diameter_deg } => {
-            (d - light.near) * (0.5 * angular_diameter_deg.to_radians()).tan()
-        }
-        LightSize::Width { width_world } => 0.5 * width_world * (d - light.near) / d.max(1e-6),
-    };
-    world.max(0.0) / light.frustum_width_world().max(1e-6)
+/// PCSS and VSSM search for blockers and size their filter from the penumbra.
+fn searches_blockers(technique: Technique) -> bool {
+    matches!(technique, Technique::Pcss | Technique::Vssm)
 }
 
 /// Every light seen from above at `time_s`.

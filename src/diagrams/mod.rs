@@ -18,7 +18,7 @@ mod widgets;
 #[cfg(test)]
 mod tests;
 
-use crate::lessons::Lang;
+use crate::i18n::Lang;
 use crate::scene::Technique;
 pub use canvas::{Canvas, MAX_TEXT_GROWTH};
 pub use text::{
@@ -310,13 +310,39 @@ fn planes(inputs: &DiagramInputs) -> (f32, f32) {
     (near, far)
 }
 
+/// The light as the twin's formulas take it, from the diagram's numbers made safe to draw
+/// (finite, near > 0, far > near, a map at least one texel wide).
+pub(crate) fn light_gpu(inputs: &DiagramInputs) -> crate::shadow::LightGpu {
+    let (near, far) = planes(inputs);
+    let width = style::fin(inputs.frustum_width_world, 200.0).abs().max(1e-6);
+    let (size_model, light_width_world, tan_half_angle) = match inputs.light_angular_diameter_deg {
+        Some(deg) => {
+            let theta = style::fin(deg, 0.53).abs().min(170.0).to_radians();
+            (crate::shadow::SIZE_MODEL_ANGULAR, 0.0, (0.5 * theta).tan())
+        }
+        None => (0, style::fin(inputs.light_width_world.unwrap_or(0.0), 0.0).abs().min(1e9), 0.0),
+    };
+    crate::shadow::LightGpu {
+        size_model,
+        light_width_world,
+        tan_half_angle,
+        near,
+        far,
+        frustum_width_world: width,
+        // W is the near plane's width for a perspective light.
+        tan_half_fov: 0.5 * width / near,
+        orthographic: u32::from(inputs.orthographic),
+        map_size_texels: inputs.shadow_map_size_texels.max(1) as f32,
+        atlas_scale: 1.0,
+        ..bytemuck::Zeroable::zeroed()
+    }
+}
+
 /// NDC depth in [0, 1] (wgpu range) of linear depth `d` for the light described by `inputs`.
 fn ndc_from_linear(inputs: &DiagramInputs, d: f32) -> f32 {
     let (near, far) = planes(inputs);
     let d = style::fin(d, far).clamp(near * 1e-3, 1e12);
-    let z =
-        if inputs.orthographic { (d - near) / (far - near) } else { far / (far - near) * ((d - near) / d) };
-    style::fin(z, 1.0)
+    style::fin(crate::shadow::depth_ndc_from_linear(&light_gpu(inputs), d), 1.0)
 }
 
 /// World length of the NDC bias at linear depth `d` (exact for orthographic; the local slope of
@@ -325,25 +351,16 @@ fn bias_world(inputs: &DiagramInputs, d: f32) -> f32 {
     style::fin(style::fin(inputs.bias_ndc, 0.0) / ndc_per_world(inputs, d), 0.0)
 }
 
-/// World width of one shadow-map texel at linear depth `d`: W / map size for an orthographic
-/// map; a perspective map's W is its near-plane width, so the footprint grows with depth, times
-/// d / near.
+/// World width of one shadow-map texel at linear depth `d` (the twin's `texel_world_at`).
 fn texel_world(inputs: &DiagramInputs, d: f32) -> f32 {
-    let map = inputs.shadow_map_size_texels.max(1) as f32;
-    let w = style::fin(inputs.frustum_width_world, 200.0).abs().max(1e-6);
-    let near = style::fin(inputs.light_near, 1.0).abs().max(1e-6);
-    if inputs.orthographic { w / map } else { w / map * style::fin(d, near).abs() / near }
+    let (near, _) = planes(inputs);
+    crate::shadow::texel_world_at(&light_gpu(inputs), style::fin(d, near).abs())
 }
 
-/// NDC depth per world unit at linear depth `d` (constant for orthographic).
+/// NDC depth per world unit at linear depth `d` (constant for orthographic), within the planes.
 fn ndc_per_world(inputs: &DiagramInputs, d: f32) -> f32 {
     let (near, far) = planes(inputs);
-    if inputs.orthographic {
-        1.0 / (far - near)
-    } else {
-        let d = style::fin(d, near).clamp(near, far);
-        near * far / ((far - near) * d * d)
-    }
+    crate::shadow::ndc_per_world(&light_gpu(inputs), style::fin(d, near).clamp(near, far))
 }
 
 /// Draws `kind` from `inputs` with labels in `lang` onto a new `width_px` x `height_px`

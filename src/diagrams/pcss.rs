@@ -6,6 +6,7 @@ use super::style::{Anchor, FS_LABEL, FS_SMALL, Style, Swatch, col, fin, nice_flo
 use super::widgets::Column;
 use super::{DiagramInputs, planes};
 use crate::scene::Technique;
+use crate::shadow::{self, ShadowParamsGpu};
 
 /// Drawing area (x, y, w, h); depths run from `Y_LIGHT` down to `Y_RECV`.
 const AREA: [f32; 4] = [20.0, 52.0, 580.0, 450.0];
@@ -39,12 +40,14 @@ fn numbers(inp: &DiagramInputs) -> Numbers {
     let theta = ad.map(|t| fin(t, 0.53).abs().min(170.0).to_radians());
     let w_light = fin(inp.light_width_world.unwrap_or(0.0), 0.0);
     let w_light = w_light.abs().min(1e9);
-    let (w_pen, w_search, top_w) = match theta.map(|t| 2.0 * (t * 0.5).tan()) {
-        Some(k) => ((d_r - d_b).max(0.0) * k, (d_r - near).max(0.0) * k, d_b * k),
-        None => {
-            let pen = w_light * (d_r - d_b).max(0.0) / d_b;
-            (pen, w_light * (d_r - near).max(0.0) / d_r, w_light)
-        }
+    // The twin's similar triangles (search region and penumbra), unscaled and unclamped.
+    let light = super::light_gpu(inp);
+    let params = ShadowParamsGpu { search_radius_scale: 1.0, ..bytemuck::Zeroable::zeroed() };
+    let w_pen = shadow::estimate_penumbra(&light, &params, d_r, d_b).width_world;
+    let w_search = 2.0 * shadow::blocker_search_radius_uv(&light, &params, d_r) * light.frustum_width_world;
+    let top_w = match theta {
+        Some(t) => d_b * 2.0 * (t * 0.5).tan(),
+        None => w_light,
     };
     let has_blocker = blocker.is_some();
     let w_pen = if has_blocker { fin(w_pen, 0.0) } else { 0.0 };

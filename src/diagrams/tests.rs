@@ -1,5 +1,5 @@
 use super::*;
-use crate::lessons::Lang;
+use crate::i18n::Lang;
 use crate::scene::Technique;
 use tiny_skia::Pixmap;
 

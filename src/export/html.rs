@@ -2,7 +2,7 @@
 //! links to the pictures (relative paths, so the folder can be moved or served as is).
 
 use super::slide::tr;
-use crate::lessons::Lang;
+use crate::i18n::Lang;
 use std::fmt::Write;
 
 /// One exported step.

@@ -8,7 +8,7 @@
 
 use super::step::{PROBE_FRAME, StepPictures};
 use crate::diagrams::{Canvas, is_cjk};
-use crate::lessons::Lang;
+use crate::i18n::Lang;
 use crate::scene::Technique;
 use crate::views::View;
 use image::RgbaImage;

@@ -3,11 +3,13 @@
 //! diagram inputs taken from it.
 
 use crate::diagrams::{DiagramInputs, DiagramKind, live};
+use crate::i18n::Lang;
 use crate::lessons::live::{FrameValues, Namespace, Sources};
-use crate::lessons::{Lang, Lesson, Overlay, Step};
+use crate::lessons::{Lesson, Step};
 use crate::probe::{ProbeReport, probe};
 use crate::render::{Analysis, FrameRequest, RenderError, Renderer};
 use crate::scene::{Scene, Technique};
+use crate::views::overlays::Overlay;
 use crate::views::{self, Legend, View};
 use image::RgbaImage;
 

@@ -7,8 +7,10 @@ pub mod live;
 
 use crate::diagrams::DiagramKind;
 use crate::files::OneLine;
+use crate::i18n::Lang;
 use crate::scene::{Scene, SceneError, load_scene};
 use crate::views::View;
+use crate::views::overlays::Overlay;
 use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use toml::Spanned;
@@ -23,29 +25,6 @@ pub enum LessonError {
     Step { path: String, line: usize, step: usize, message: String },
     #[error("{}", OneLine(.0))]
     NotFound(String),
-}
-
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Serialize, serde::Deserialize)]
-pub enum Lang {
-    #[default]
-    En,
-    Zh,
-}
-
-impl Lang {
-    pub fn code(self) -> &'static str {
-        match self {
-            Lang::En => "en",
-            Lang::Zh => "zh",
-        }
-    }
-    pub fn from_code(code: &str) -> Option<Lang> {
-        match code {
-            "en" => Some(Lang::En),
-            "zh" => Some(Lang::Zh),
-            _ => None,
-        }
-    }
 }
 
 /// Text in both languages; both are required.
@@ -78,51 +57,6 @@ pub enum Panel {
     Diagram,
     KernelPlot,
     Probe,
-}
-
-/// Overlays on the camera view.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Deserialize, serde::Serialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum Overlay {
-    BlockerRadius,
-    Penumbra,
-    Blockers,
-    TexelGrid,
-    OutsideFrustum,
-    Error,
-    /// Where VSM's bound lets through light that the same filter window blocks (light bleeding).
-    Bleeding,
-    LightFrustum,
-}
-
-impl Overlay {
-    pub const ALL: [Overlay; 8] = [
-        Overlay::BlockerRadius,
-        Overlay::Penumbra,
-        Overlay::Blockers,
-        Overlay::TexelGrid,
-        Overlay::OutsideFrustum,
-        Overlay::Error,
-        Overlay::Bleeding,
-        Overlay::LightFrustum,
-    ];
-    pub fn name(self) -> &'static str {
-        match self {
-            Overlay::BlockerRadius => "blocker-search radius",
-            Overlay::Penumbra => "penumbra width",
-            Overlay::Blockers => "blockers found",
-            Overlay::TexelGrid => "shadow-map texel grid",
-            Overlay::OutsideFrustum => "outside the light frustum",
-            Overlay::Error => "error vs ground truth",
-            Overlay::Bleeding => "light bleeding",
-            Overlay::LightFrustum => "light frustum wireframe",
-        }
-    }
-
-    /// Drawn against the ground truth.
-    pub fn needs_reference(self) -> bool {
-        self == Overlay::Error
-    }
 }
 
 #[derive(Deserialize)]

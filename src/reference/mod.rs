@@ -4,8 +4,8 @@
 //! turned into the angle it subtends at the light's target).
 //! REFERENCES "Ground truth for soft shadows"; published comparisons use 1024 hard shadows.
 
-use crate::render::LightGpu;
 use crate::scene::{BiasMode, DepthStorage, Light, LightKind, LightSize, ShadowSettings, Technique};
+use crate::shadow::LightGpu;
 use glam::{Mat4, Vec2, Vec3};
 
 const GOLDEN_ANGLE: f32 = 2.399_963_2;

@@ -4,8 +4,6 @@
 
 use bytemuck::{Pod, Zeroable};
 
-pub use crate::shadow::gpu::{LightGpu, ShadowParamsGpu};
-
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct FrameGpu {

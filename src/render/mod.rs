@@ -14,13 +14,12 @@ mod shadow_pass;
 mod targets;
 mod timing;
 
-pub use crate::shadow::DepthImage;
+use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
 pub use context::{GpuContext, describe_adapter, headless_adapter, optional_features};
-pub use gpu_types::{LightGpu, ShadowParamsGpu};
 pub use pipelines::COLOR_FORMAT;
 pub use timing::PassTimes;
 
-use crate::scene::{Kernel, MAX_LIGHTS, Scene, ShadowSettings, Technique};
+use crate::scene::{MAX_LIGHTS, Scene, ShadowSettings, Technique};
 use crate::shadow::kernels::{MAX_TAPS, filter_taps, kernel_table};
 use gpu_types::{DYNAMIC_STRIDE, FrameGpu, ShadowViewGpu};
 use moments::Moments;
@@ -541,8 +540,7 @@ impl Renderer {
     /// The filter's and the blocker search's patterns for these settings (what `kernel_offset`
     /// in shaders/shadow_sampling.wgsl turns per pixel).
     fn write_kernel_table(&self, shadow: &ShadowSettings) {
-        let search_kernel =
-            if shadow.pcf_kernel == Kernel::Hardware { Kernel::Vogel } else { shadow.pcf_kernel };
+        let search_kernel = crate::shadow::search_kernel(shadow.pcf_kernel);
         let filter = kernel_table(shadow.pcf_kernel, filter_taps(shadow.pcf_kernel, shadow.samples));
         let search = kernel_table(search_kernel, filter_taps(search_kernel, shadow.blocker_samples));
         // Tap i: filter in xy, search in zw.

@@ -1,10 +1,10 @@
 //! Bind group layouts and pipelines. Bind groups by update rate: 0 per frame, 1 lights and
 //! shadow maps, 2 per object (the shadow pass uses 0 = light view, 1 = object).
 
-use super::gpu_types::{LightGpu, ShadowParamsGpu};
 use super::moments::MomentsPipelines;
 use super::shaders;
 use crate::scene::Vertex;
+use crate::shadow::{LightGpu, ShadowParamsGpu};
 use std::collections::HashMap;
 
 /// The camera view's texture: sRGB-encoded bytes in an Rgba8Unorm texture (what egui's native

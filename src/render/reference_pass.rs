@@ -1,12 +1,13 @@
 //! Ground truth on the GPU: for each light sample, render a hard shadow map and add the hard
 //! visibility of every camera pixel (from the analysis pass's positions and normals).
 
-use super::gpu_types::{DYNAMIC_STRIDE, LightGpu, ReferenceInfoGpu, ShadowParamsGpu, ShadowViewGpu};
+use super::gpu_types::{DYNAMIC_STRIDE, ReferenceInfoGpu, ShadowViewGpu};
 use super::pipelines::ShadowPipelineKey;
 use super::targets::ShadowMaps;
 use super::{RenderError, Renderer, readback, shadow_view_group};
 use crate::reference;
 use crate::scene::Scene;
+use crate::shadow::{LightGpu, ShadowParamsGpu};
 
 /// Samples recorded per command buffer (keeps a submission's size bounded).
 const BATCH: usize = 32;

@@ -91,32 +91,6 @@ impl Light {
             LightKind::Spot { fov_deg } => 2.0 * self.near * (0.5 * fov_deg.to_radians()).tan(),
         }
     }
-
-    /// Size of one shadow-map texel on a surface facing the light at distance `d`, world units.
-    pub fn texel_world_at(&self, depth_linear: f32) -> f32 {
-        match self.kind {
-            LightKind::Directional { extent_world } => 2.0 * extent_world / self.shadow_map_size as f32,
-            LightKind::Spot { fov_deg } => {
-                2.0 * depth_linear * (0.5 * fov_deg.to_radians()).tan() / self.shadow_map_size as f32
-            }
-        }
-    }
-
-    pub fn depth_linear_from_ndc(&self, z: f32) -> f32 {
-        let (n, f) = (self.near, self.far);
-        if self.is_orthographic() { n + z * (f - n) } else { n * f / (f - z * (f - n)) }
-    }
-
-    pub fn depth_ndc_from_linear(&self, d: f32) -> f32 {
-        let (n, f) = (self.near, self.far);
-        if self.is_orthographic() { (d - n) / (f - n) } else { f * (d - n) / (d * (f - n)) }
-    }
-
-    /// dz/dd at distance `d`: converts a world-unit depth bias into NDC depth units.
-    pub fn ndc_per_world_at(&self, depth_linear: f32) -> f32 {
-        let (n, f) = (self.near, self.far);
-        if self.is_orthographic() { 1.0 / (f - n) } else { f * n / (depth_linear * depth_linear * (f - n)) }
-    }
 }
 
 /// An up vector that is not parallel to `forward` (look_at needs one).

@@ -45,9 +45,9 @@ pub struct Object {
 
 impl Object {
     /// The object's name as a reader of `lang` sees it: `name_zh` in Chinese where there is one.
-    pub fn label(&self, lang: crate::lessons::Lang) -> &str {
+    pub fn label(&self, lang: crate::i18n::Lang) -> &str {
         match (lang, &self.name_zh) {
-            (crate::lessons::Lang::Zh, Some(zh)) => zh,
+            (crate::i18n::Lang::Zh, Some(zh)) => zh,
             _ => &self.name,
         }
     }
@@ -103,7 +103,7 @@ pub struct Scene {
 impl Scene {
     /// The object named `name` (as a probe reports it) as a reader of `lang` sees it; the name
     /// itself where no object has it. Objects sharing a name are shown by the first one's label.
-    pub fn object_label<'a>(&'a self, name: &'a str, lang: crate::lessons::Lang) -> &'a str {
+    pub fn object_label<'a>(&'a self, name: &'a str, lang: crate::i18n::Lang) -> &'a str {
         self.objects.iter().find(|o| o.name == name).map_or(name, |o| o.label(lang))
     }
 }

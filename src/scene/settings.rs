@@ -71,7 +71,7 @@ macro_rules! enum_names {
                 match name { $($s => Some(<$t>::$v),)* _ => None }
             }
             /// The name as the panels show it in `lang` (the English panels show the name).
-            pub fn label(self, lang: crate::lessons::Lang) -> &'static str {
+            pub fn label(self, lang: crate::i18n::Lang) -> &'static str {
                 crate::i18n::tr(lang, self.name())
             }
         }

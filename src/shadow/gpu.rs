@@ -124,7 +124,7 @@ pub struct LightGpu {
 }
 
 #[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+#[derive(Clone, Copy, Debug, Default, Pod, Zeroable, PartialEq)]
 pub struct ShadowParamsGpu {
     pub technique: u32,
     pub bias_mode: u32,

@@ -2,8 +2,8 @@
 //! bar (errors, timings) and the shortcut help.
 
 use super::{ShadowlabApp, Source, shipped_path};
+use crate::i18n::Lang;
 use crate::i18n::tr;
-use crate::lessons::Lang;
 use std::path::PathBuf;
 
 /// The status bar's error headline.

@@ -2,9 +2,10 @@
 //! the probe's numbers. Any change re-renders at once.
 
 use super::{AbSplit, ShadowlabApp};
+use crate::i18n::Lang;
 use crate::i18n::tr as translate;
-use crate::lessons::{Lang, Overlay};
 use crate::scene::{BiasMode, DepthStorage, Kernel, LightKind, LightSize, Projection, Technique};
+use crate::views::overlays::Overlay;
 use egui::{Slider, Ui};
 
 fn combo<T: Copy + PartialEq>(

@@ -2,7 +2,8 @@
 //! out and checked before any window opens, so a bad argument is one line and exit 2, as in the
 //! rest of the command line.
 
-use crate::lessons::{self, Lang, Lesson};
+use crate::i18n::Lang;
+use crate::lessons::{self, Lesson};
 use std::path::{Path, PathBuf};
 
 /// What the app shows first.

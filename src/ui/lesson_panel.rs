@@ -2,7 +2,8 @@
 //! probe's numbers when the step names the probe.
 
 use super::ShadowlabApp;
-use crate::lessons::{Lang, Panel};
+use crate::i18n::Lang;
+use crate::lessons::Panel;
 use egui::{RichText, Ui};
 
 /// The Apply button's tooltip: each control it sets and the value.

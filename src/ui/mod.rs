@@ -23,11 +23,13 @@ pub use window::{
     window_render_options,
 };
 
-use crate::lessons::{self, Lang, Lesson, Overlay};
+use crate::i18n::Lang;
+use crate::lessons::{self, Lesson};
 use crate::probe::ProbeReport;
 use crate::render::Analysis;
 use crate::scene::{Camera, Scene, Technique, load_scene, parse_scene_str};
 use crate::views::View;
+use crate::views::overlays::Overlay;
 use rendering::{Shown, Submitted};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};

@@ -3,7 +3,8 @@
 
 use super::ShadowlabApp;
 use crate::diagrams::{self, DiagramInputs, DiagramKind};
-use crate::lessons::{Lang, Panel};
+use crate::i18n::Lang;
+use crate::lessons::Panel;
 use crate::shadow::kernels;
 use egui::{Color32, Rect, Sense, Stroke, Ui, pos2, vec2};
 

@@ -4,10 +4,11 @@
 
 use super::worker::{ProbeSpot, RenderJob, RenderOutput, WorkerEvent};
 use super::{ProbeAt, ShadowlabApp};
-use crate::lessons::Overlay;
-use crate::render::{FrameRequest, LightGpu, PassTimes};
+use crate::render::{FrameRequest, PassTimes};
 use crate::scene::Technique;
+use crate::shadow::{LightGpu, ShadowParamsGpu};
 use crate::views::View;
+use crate::views::overlays::Overlay;
 use std::time::{Duration, Instant};
 
 /// The time range of playback and of the time slider, seconds (playback loops over it).
@@ -34,6 +35,8 @@ pub struct Shown {
     pub color_b: Option<image::RgbaImage>,
     /// The lights as the GPU saw them in that frame.
     pub lights: Vec<LightGpu>,
+    /// The shadow parameters of that frame (the views read these, not the scene's newer ones).
+    pub params: ShadowParamsGpu,
     /// Resolution it was rendered at, pixels.
     pub size: (u32, u32),
     pub preview: bool,
@@ -131,6 +134,7 @@ impl ShadowlabApp {
         self.shown.color = Some(out.color);
         self.shown.color_b = out.color_b;
         self.shown.lights = out.lights;
+        self.shown.params = out.params;
         self.shown.size = out.size;
         self.shown.preview = out.preview;
         if out.preview {

@@ -1,6 +1,7 @@
 //! What the app remembers between runs (eframe storage).
 
-use crate::lessons::{Lang, Overlay};
+use crate::i18n::Lang;
+use crate::views::overlays::Overlay;
 use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
 

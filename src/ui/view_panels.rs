@@ -5,11 +5,12 @@
 
 use super::worker::MapView;
 use super::{ProbeAt, ShadowlabApp};
+use crate::i18n::Lang;
 use crate::i18n::tr;
-use crate::lessons::{Lang, Overlay};
-use crate::render::{DepthImage, LightGpu};
 use crate::shadow::depth_linear_from_ndc;
+use crate::shadow::{DepthImage, LightGpu};
 use crate::views::View;
+use crate::views::overlays::Overlay;
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
 use glam::{Mat4, Vec4};
 
@@ -121,8 +122,7 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     app.view_state.overlay_picture = None;
     if let Some(analysis) = &app.analysis {
         let samples = app.scene.shadow.reference_samples;
-        let params = crate::render::ShadowParamsGpu::new(&app.scene.shadow);
-        let light_and_params = light.as_ref().map(|l| (l, &params));
+        let light_and_params = light.as_ref().map(|l| (l, &app.shown.params));
         if let Some((image, legend)) = crate::views::analysis_view(
             app.view,
             analysis,
@@ -474,7 +474,7 @@ fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         let a_uv = Rect::from_min_max(Pos2::ZERO, pos2((a_side.width() / rect.width()).min(1.0), 1.0));
         painter.image(overlay.id(), a_side, a_uv, Color32::WHITE);
     }
-    let frusta = camera_space && app.overlays.contains(&crate::lessons::Overlay::LightFrustum);
+    let frusta = camera_space && app.overlays.contains(&crate::views::overlays::Overlay::LightFrustum);
     if frusta {
         draw_light_frusta(app, &painter, rect);
     }

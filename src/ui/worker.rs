@@ -9,8 +9,9 @@
 //! kept: a job whose ground truth depends on nothing that changed gets it again at once.
 
 use crate::probe::{self, ProbeReport};
-use crate::render::{Analysis, DepthImage, FrameRequest, LightGpu, PassTimes, RenderError, Renderer};
+use crate::render::{Analysis, FrameRequest, PassTimes, RenderError, Renderer};
 use crate::scene::{Camera, Light, Mesh, Scene, ShadowSettings, Technique};
+use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
 use crate::views;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
@@ -70,8 +71,9 @@ pub struct RenderOutput {
     pub size: (u32, u32),
     pub color: image::RgbaImage,
     pub color_b: Option<image::RgbaImage>,
-    /// The lights as the GPU saw them.
+    /// The lights and the shadow parameters as the GPU had them.
     pub lights: Vec<LightGpu>,
+    pub params: ShadowParamsGpu,
     /// A `Details` event for this job follows (the probe, the overlays' analysis).
     pub details_follow: bool,
     /// GPU time of the last frame's passes (where the adapter has timestamps).
@@ -489,6 +491,7 @@ impl Renderers {
             color,
             color_b,
             lights: rendered.lights,
+            params: rendered.params,
             details_follow: job.wants_details(),
             pass_times,
             render_ms: start.elapsed().as_secs_f64() * 1e3,

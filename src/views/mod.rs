@@ -3,9 +3,10 @@
 
 pub mod overlays;
 
-use crate::lessons::Lang;
-use crate::render::{Analysis, DepthImage, LightGpu};
+use crate::i18n::Lang;
+use crate::render::Analysis;
 use crate::shadow::depth_linear_from_ndc;
+use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
 use image::{Rgba, RgbaImage};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -171,16 +172,16 @@ const NO_BLOCKER: Rgba<u8> = Rgba([120, 120, 120, 255]);
 
 /// d_blocker per pixel, world units from the light, recovered from what the analysis pass
 /// wrote: the penumbra width w_p (texels on the receiver, times the texel's world size at the
-/// receiver's depth d_r) inverts the similar-triangle step exactly, d_blocker = w_L d_r / (w_p + w_L)
-/// for a width, d_r - w_p / (2 tan(theta / 2)) for an angle. None where nothing was found, or
-/// where the light has no size (w_p is then 0 whatever d_blocker is). Where the blockers average
+/// receiver's depth d_r) through the twin's inverse of the similar-triangle step
+/// (`shadow::blocker_depth_from_penumbra`). None where nothing was found, or where the light has
+/// no size (w_p is then 0 whatever d_blocker is). Where the blockers average
 /// at or behind the receiver (the receiver-plane bias on a curved surface) there is no gap and
 /// no penumbra, and this gives d_r.
 pub fn blocker_depth_at(
     analysis: &Analysis,
     i: usize,
     light: &LightGpu,
-    params: &crate::render::ShadowParamsGpu,
+    params: &ShadowParamsGpu,
 ) -> Option<f32> {
     if !analysis.hit(i) || analysis.shadow[i][3] < 0.5 {
         return None;
@@ -189,20 +190,14 @@ pub fn blocker_depth_at(
     let normal = glam::Vec3::from_slice(&analysis.normal[i][..3]);
     let d_r = crate::shadow::light_space_lookup(light, params, position, normal).depth_linear;
     let w_p = analysis.shadow[i][2] * crate::shadow::texel_world_at(light, d_r);
-    let d_b = if light.size_model == crate::shadow::SIZE_MODEL_ANGULAR {
-        (light.tan_half_angle > 0.0).then(|| d_r - w_p / (2.0 * light.tan_half_angle))
-    } else {
-        (light.light_width_world > 0.0)
-            .then(|| light.light_width_world * d_r / (w_p + light.light_width_world))
-    };
-    d_b.filter(|d| d.is_finite())
+    crate::shadow::blocker_depth_from_penumbra(light, d_r, w_p)
 }
 
 /// The blocker-depth view: d_blocker as a heatmap over its own range, grey where none was found.
 pub fn blocker_depth_image(
     analysis: &Analysis,
     light: &LightGpu,
-    params: &crate::render::ShadowParamsGpu,
+    params: &ShadowParamsGpu,
 ) -> (RgbaImage, Legend) {
     let depths: Vec<Option<f32>> =
         (0..analysis.shadow.len()).map(|i| blocker_depth_at(analysis, i, light, params)).collect();
@@ -377,7 +372,7 @@ pub fn analysis_view(
     a: &Analysis,
     reference: Option<&[f32]>,
     reference_samples: u32,
-    light: Option<(&LightGpu, &crate::render::ShadowParamsGpu)>,
+    light: Option<(&LightGpu, &ShadowParamsGpu)>,
     lang: Lang,
 ) -> Option<(RgbaImage, String)> {
     let zh = lang == Lang::Zh;

@@ -2,12 +2,58 @@
 //! texel grid projected on surfaces, the outside-the-frustum tint, and the error against the
 //! ground truth. Each comes with a legend line. The app and the slides draw the same ones.
 
-use crate::lessons::{Lang, Overlay};
-use crate::render::{Analysis, LightGpu};
+use crate::i18n::Lang;
+use crate::render::Analysis;
 use crate::shadow::project_to_light;
+use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
 use crate::views::heat_color;
 use glam::Vec3;
 use image::{Rgba, RgbaImage};
+
+/// Overlays on the camera view.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Overlay {
+    BlockerRadius,
+    Penumbra,
+    Blockers,
+    TexelGrid,
+    OutsideFrustum,
+    Error,
+    /// Where VSM's bound lets through light that the same filter window blocks (light bleeding).
+    Bleeding,
+    LightFrustum,
+}
+
+impl Overlay {
+    pub const ALL: [Overlay; 8] = [
+        Overlay::BlockerRadius,
+        Overlay::Penumbra,
+        Overlay::Blockers,
+        Overlay::TexelGrid,
+        Overlay::OutsideFrustum,
+        Overlay::Error,
+        Overlay::Bleeding,
+        Overlay::LightFrustum,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            Overlay::BlockerRadius => "blocker-search radius",
+            Overlay::Penumbra => "penumbra width",
+            Overlay::Blockers => "blockers found",
+            Overlay::TexelGrid => "shadow-map texel grid",
+            Overlay::OutsideFrustum => "outside the light frustum",
+            Overlay::Error => "error vs ground truth",
+            Overlay::Bleeding => "light bleeding",
+            Overlay::LightFrustum => "light frustum wireframe",
+        }
+    }
+
+    /// Drawn against the ground truth.
+    pub fn needs_reference(self) -> bool {
+        self == Overlay::Error
+    }
+}
 
 /// The overlays combined into one translucent image, and their legends.
 pub fn compose(
@@ -88,7 +134,9 @@ pub fn compose(
                 );
                 paint(&mut image, analysis, |i| {
                     let s = project_to_light(light, Vec3::from_slice(&analysis.position[i][..3]));
-                    let outside = s.x < 0.0 || s.y < 0.0 || s.x > 1.0 || s.y > 1.0 || s.z < 0.0 || s.z > 1.0;
+                    // The twin's rule: NaN (a point in a spot light's own plane) is outside too.
+                    let outside = crate::shadow::outside_map(glam::Vec2::new(s.x, s.y))
+                        || crate::shadow::outside_depth(s.z);
                     outside.then_some(Rgba([255, 140, 0, 110]))
                 });
             }
@@ -199,9 +247,9 @@ pub fn bleeding_of_last_frame(
 /// receiver's plane), worked out by the CPU twin on `map`. Only pixels that are neither fully lit nor dark can bleed; the rest are 0.
 pub fn vsm_light_bleeding(
     analysis: &Analysis,
-    map: &crate::render::DepthImage,
+    map: &DepthImage,
     light: &LightGpu,
-    params: &crate::render::ShadowParamsGpu,
+    params: &ShadowParamsGpu,
 ) -> Vec<f32> {
     let mut twin = crate::shadow::Twin::new(light, params, map);
     (0..analysis.shadow.len())

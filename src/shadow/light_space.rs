@@ -1,0 +1,210 @@
+//! What to sample (the twin of the first half of shaders/shadow_sampling.wgsl): where a surface
+//! point lands in a light's map, at which depth, with which bias; and the light-space formulas
+//! every other part of shadowlab (probe, views, overlays, diagrams) calls rather than copies.
+
+use super::{
+    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, LightGpu, SIZE_MODEL_ANGULAR, ShadowCoord,
+    ShadowParamsGpu,
+};
+use glam::{Vec2, Vec3, Vec4};
+
+fn orthographic(light: &LightGpu) -> bool {
+    light.orthographic == 1
+}
+
+pub fn depth_linear_from_ndc(light: &LightGpu, z: f32) -> f32 {
+    if orthographic(light) {
+        return light.near + z * (light.far - light.near);
+    }
+    light.near * light.far / (light.far - z * (light.far - light.near))
+}
+
+/// The inverse of [`depth_linear_from_ndc`]: the NDC depth (0..1, wgpu's range) the map stores
+/// for a surface `depth_linear` world units from the light along its axis.
+pub fn depth_ndc_from_linear(light: &LightGpu, depth_linear: f32) -> f32 {
+    let (n, f) = (light.near, light.far);
+    if orthographic(light) {
+        (depth_linear - n) / (f - n)
+    } else {
+        f * (depth_linear - n) / (depth_linear * (f - n))
+    }
+}
+
+/// dz/dd at distance d: turns a world-unit bias into NDC depth units.
+pub fn ndc_per_world(light: &LightGpu, depth_linear: f32) -> f32 {
+    if orthographic(light) {
+        return 1.0 / (light.far - light.near);
+    }
+    light.far * light.near / (depth_linear * depth_linear * (light.far - light.near))
+}
+
+/// One texel's footprint on a surface facing the light at distance d, world units.
+pub fn texel_world_at(light: &LightGpu, depth_linear: f32) -> f32 {
+    if orthographic(light) {
+        return light.frustum_width_world / light.map_size_texels;
+    }
+    2.0 * depth_linear * light.tan_half_fov / light.map_size_texels
+}
+
+pub fn light_dir_to(light: &LightGpu, world_pos: Vec3) -> Vec3 {
+    if orthographic(light) {
+        return -Vec4::from(light.direction).truncate();
+    }
+    (Vec4::from(light.position).truncate() - world_pos).normalize()
+}
+
+pub fn project_to_light(light: &LightGpu, world_pos: Vec3) -> Vec3 {
+    let clip = glam::Mat4::from_cols_array_2d(&light.clip_from_world) * world_pos.extend(1.0);
+    let ndc = clip.truncate() / clip.w;
+    Vec3::new(ndc.x * 0.5 + 0.5, ndc.y * -0.5 + 0.5, ndc.z)
+}
+
+/// The uv lies off the shadow map. Written as "not inside", like the shader, so NaN counts as
+/// outside.
+pub fn outside_map(uv: Vec2) -> bool {
+    !(uv.x >= 0.0 && uv.y >= 0.0 && uv.x <= 1.0 && uv.y <= 1.0)
+}
+
+/// The NDC depth lies outside the map's range, 0..1.
+pub fn outside_depth(z: f32) -> bool {
+    !(0.0..=1.0).contains(&z)
+}
+
+/// The receiver has no shadow-map data: outside the map or past its depth range.
+pub fn outside_frustum(coord: &ShadowCoord) -> bool {
+    outside_map(coord.uv) || outside_depth(coord.depth_ndc)
+}
+
+/// Two unit vectors that span the plane with unit normal n (Duff et al. 2017).
+fn tangents_of(n: Vec3) -> [Vec3; 2] {
+    let sign = if n.z >= 0.0 { 1.0 } else { -1.0 };
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    [Vec3::new(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3::new(b, sign + n.y * n.y * a, -n.y)]
+}
+
+/// The receiver's plane (through p, normal n, projected at s) as NDC depth per uv of the map,
+/// from two points of the plane a texel from p; 0 edge-on to the light.
+pub fn receiver_plane_gradient(light: &LightGpu, p: Vec3, n: Vec3, s: Vec3) -> Vec2 {
+    let step = texel_world_at(light, depth_linear_from_ndc(light, s.z));
+    let t = tangents_of(n);
+    let a = project_to_light(light, p + t[0] * step) - s;
+    let b = project_to_light(light, p + t[1] * step) - s;
+    let det = a.x * b.y - a.y * b.x;
+    let (a_uv, b_uv) = (Vec2::new(a.x, a.y), Vec2::new(b.x, b.y));
+    // Also false for NaN, as in the shader.
+    let spans_the_map = det.abs() > 1e-3 * a_uv.length() * b_uv.length();
+    if !spans_the_map {
+        return Vec2::ZERO;
+    }
+    Vec2::new(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det
+}
+
+/// The GAMES202 framework's RGBA8 depth round trip (`pack`, 8-bit storage, `unpack`); see the
+/// shader's `rgba8_round_trip`.
+pub fn rgba8_round_trip(depth_ndc: f32) -> f32 {
+    let unpack_shift = Vec4::new(1.0, 1.0 / 256.0, 1.0 / 65_536.0, 1.0 / 16_777_216.0);
+    if depth_ndc >= 1.0 {
+        return ((unpack_shift.x + unpack_shift.y) + unpack_shift.z) + unpack_shift.w;
+    }
+    let scaled = depth_ndc * Vec4::new(1.0, 256.0, 65_536.0, 16_777_216.0);
+    let mut rgba = scaled - scaled.floor();
+    rgba -= Vec4::new(rgba.y, rgba.z, rgba.w, rgba.w) * Vec4::new(1.0 / 256.0, 1.0 / 256.0, 1.0 / 256.0, 0.0);
+    let quantised = (rgba.clamp(Vec4::ZERO, Vec4::ONE) * 255.0).to_array().map(f32::round_ties_even);
+    let parts = Vec4::from_array(quantised) * (1.0 / 255.0) * unpack_shift;
+    ((parts.x + parts.y) + parts.z) + parts.w
+}
+
+/// The light-space lookup of a surface point (the shader's `light_space_lookup`): it needs the
+/// light and the parameters, not the map.
+pub fn light_space_lookup(
+    light: &LightGpu,
+    params: &ShadowParamsGpu,
+    world_pos: Vec3,
+    normal: Vec3,
+) -> ShadowCoord {
+    let mut out = ShadowCoord { n_dot_l: normal.dot(light_dir_to(light, world_pos)), ..Default::default() };
+    let mut p = world_pos;
+    if params.normal_offset_texels > 0.0 {
+        let d = depth_linear_from_ndc(light, project_to_light(light, world_pos).z);
+        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(light, d));
+    }
+    let s = project_to_light(light, p);
+    out.uv = Vec2::new(s.x, s.y);
+    out.depth_ndc = s.z;
+    out.depth_linear = depth_linear_from_ndc(light, s.z);
+    if params.bias_mode == BIAS_RECEIVER_PLANE {
+        out.depth_gradient = receiver_plane_gradient(light, p, normal, s);
+    }
+    out
+}
+
+/// Depth bias in NDC units (REFERENCES "Bias"; the shader's `receiver_bias_ndc`):
+/// `filter_radius_texels` grows the adaptive bias with the filter it has to cover.
+pub fn receiver_bias_ndc(
+    light: &LightGpu,
+    params: &ShadowParamsGpu,
+    coord: &ShadowCoord,
+    filter_radius_texels: f32,
+) -> f32 {
+    let p = params;
+    match p.bias_mode {
+        BIAS_CONSTANT => p.bias,
+        BIAS_SLOPE => (p.slope_bias * (1.0 - coord.n_dot_l)).max(p.bias),
+        BIAS_RECEIVER_PLANE => p.bias,
+        BIAS_ADAPTIVE => {
+            let a = (1.0 + filter_radius_texels.ceil()) * 0.5 * texel_world_at(light, coord.depth_linear);
+            let b = 1.0 - coord.n_dot_l;
+            let bias_world = p.adaptive_c * a.max(a * b);
+            bias_world * ndc_per_world(light, coord.depth_linear)
+        }
+        _ => 0.0,
+    }
+}
+
+/// PCSS step 1's region (the shader's `blocker_search_radius_uv`): the part of the map between
+/// the light's area and a receiver at `depth_linear`, in uv of the map.
+pub fn blocker_search_radius_uv(light: &LightGpu, params: &ShadowParamsGpu, depth_linear: f32) -> f32 {
+    let d_r = depth_linear;
+    let radius_world = if light.size_model == SIZE_MODEL_ANGULAR {
+        (d_r - light.near) * light.tan_half_angle
+    } else {
+        0.5 * light.light_width_world * (d_r - light.near) / d_r
+    };
+    radius_world.max(0.0) * params.search_radius_scale / light.frustum_width_world
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The homework's pack / RGBA8 / unpack round trip: channels in 1/256 steps kept in 1/255
+    /// steps give +z/255 below the middle of the depth range and -(1 - z)/255 above it; the
+    /// clear colour, white, reads back just past 1.
+    #[test]
+    fn the_rgba8_round_trip_is_off_by_about_a_255th_with_a_sign_change_at_half_depth() {
+        for z in [0.05f32, 0.2, 0.3, 0.45, 0.5] {
+            let error = rgba8_round_trip(z) - z;
+            assert!((error - z / 255.0).abs() < 2e-5, "z {z}: error {error}");
+        }
+        for z in [0.51f32, 0.6, 0.8, 0.99] {
+            let error = rgba8_round_trip(z) - z;
+            assert!((error + (1.0 - z) / 255.0).abs() < 2e-5, "z {z}: error {error}");
+        }
+        let white = 1.0 + 1.0 / 256.0 + 1.0 / 65_536.0 + 1.0 / 16_777_216.0;
+        assert_eq!(rgba8_round_trip(1.0), white);
+        // Monotone within each half: a nearer depth never reads back farther.
+        let samples: Vec<f32> = (0..2000).map(|i| i as f32 / 4000.0).collect();
+        for w in samples.windows(2) {
+            assert!(rgba8_round_trip(w[0]) <= rgba8_round_trip(w[1]), "{w:?}");
+        }
+    }
+
+    #[test]
+    fn nan_counts_as_outside_the_map_as_in_the_shader() {
+        assert!(outside_map(Vec2::new(f32::NAN, 0.5)));
+        assert!(outside_depth(f32::NAN));
+        assert!(!outside_map(Vec2::new(0.0, 1.0)));
+        assert!(outside_map(Vec2::new(-1e-6, 0.5)));
+    }
+}
