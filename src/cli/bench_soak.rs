@@ -25,7 +25,9 @@ const VIEWS: [View; 5] =
 const PLAY: Duration = Duration::from_secs(4);
 /// Cycles (play, pause for the full detail, switch the view) per lesson before the next one.
 const CYCLES_PER_LESSON: u32 = 5;
-/// Memory is first read this far in at the earliest (see `advance`).
+/// Memory is first read this far in at the earliest, and not before a third of the soak (see
+/// `advance`): on lavapipe the first minutes still build pipelines (one per technique, kernel,
+/// bias mode and light count met) and fill the allocator's pools.
 const EARLY: Duration = Duration::from_secs(60);
 /// Memory is judged on soaks at least this long (shorter ones are all start-up).
 const JUDGE_MEMORY_FROM: Duration = Duration::from_secs(120);
@@ -43,7 +45,12 @@ pub struct SoakReport {
     pub scene_time_advanced_s: f64,
     pub view_switches: u32,
     pub lesson_switches: u32,
-    /// Resident memory of the process, MB: `rss_early_at_s` in (a minute in, once every lesson
+    /// Resident memory a minute in, MB, and the growth from there to the end: what is left of
+    /// start-up by then, reported beside the judged figures.
+    pub rss_at_60_s_mb: Option<f64>,
+    pub rss_growth_from_60_s: Option<f64>,
+    /// Resident memory of the process, MB: `rss_early_at_s` in (a third of the soak, a minute at
+    /// the least, once every lesson
     /// was shown in every view), and at the end.
     pub rss_early_at_s: f64,
     pub rss_early_mb: Option<f64>,
@@ -52,6 +59,12 @@ pub struct SoakReport {
     pub rss_growth: Option<f64>,
     /// Resident memory every 30 s of the soak, MB.
     pub rss_every_30_s_mb: Vec<f64>,
+    /// Specialised pipelines built by then (each cached for good: memory grows with them).
+    pub pipelines_every_30_s: Vec<u64>,
+    /// When the last new pipeline was built, seconds in, and memory then and at the end:
+    /// what is left of the growth once every pipeline the session uses exists.
+    pub last_new_pipeline_at_s: f64,
+    pub rss_at_last_new_pipeline_mb: Option<f64>,
     /// GPU memory, where the adapter reports it (lavapipe does not).
     pub gpu_memory_mb: Option<f64>,
     /// Every play period advanced scene time and put new images on screen.
@@ -83,6 +96,7 @@ struct Soak {
     cycle: u32,
     report: SoakReport,
     last_time: f32,
+    pipelines_seen: u64,
     outcome: Arc<Mutex<Option<Result<SoakReport, String>>>>,
 }
 
@@ -130,10 +144,22 @@ impl Soak {
         // The first reading comes once every lesson has been shown in every view (what the
         // caches hold by then, they hold for the rest of the hour), a minute in at the earliest;
         // on a soak too short to judge memory by, at half of it.
-        let warm = self.cycle >= LESSONS.len() as u32 * CYCLES_PER_LESSON && elapsed >= EARLY;
+        let warm = self.cycle >= LESSONS.len() as u32 * CYCLES_PER_LESSON
+            && elapsed >= EARLY
+            && elapsed >= self.length / 3;
+        if self.report.rss_at_60_s_mb.is_none() && elapsed >= EARLY {
+            self.report.rss_at_60_s_mb = rss_mb();
+        }
         let early_due = if self.length >= JUDGE_MEMORY_FROM { warm } else { elapsed >= self.length / 2 };
         if elapsed.as_secs_f64() >= 30.0 * (self.report.rss_every_30_s_mb.len() + 1) as f64 {
             self.report.rss_every_30_s_mb.extend(rss_mb());
+            self.report.pipelines_every_30_s.push(crate::render::pipelines_built());
+        }
+        let pipelines = crate::render::pipelines_built();
+        if pipelines != self.pipelines_seen {
+            self.pipelines_seen = pipelines;
+            self.report.last_new_pipeline_at_s = elapsed.as_secs_f64();
+            self.report.rss_at_last_new_pipeline_mb = rss_mb();
         }
         if self.report.rss_early_mb.is_none() && early_due {
             self.report.rss_early_mb = rss_mb();
@@ -203,6 +229,8 @@ impl Soak {
             report.frames_rendered = self.app.frames_shown();
             report.rss_end_mb = rss_mb();
             report.rss_growth = report.rss_early_mb.zip(report.rss_end_mb).map(|(a, b)| (b - a) / a);
+            report.rss_growth_from_60_s =
+                report.rss_at_60_s_mb.zip(report.rss_end_mb).map(|(a, b)| (b - a) / a);
             report.moving_throughout = true;
             report.memory_held = (self.length >= JUDGE_MEMORY_FROM)
                 .then(|| report.rss_growth.is_some_and(|g| g <= MEMORY_GROWTH_ALLOWED));
@@ -269,6 +297,7 @@ pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
                 cycle: 0,
                 report: SoakReport { painter: format!("{painter} (window)"), ..Default::default() },
                 last_time: 0.0,
+                pipelines_seen: 0,
                 outcome: sink,
             };
             soak.open_lesson(0)?;
@@ -295,8 +324,15 @@ pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
         println!("  full-detail frames      {}", report.full_detail_frames);
         println!("  scene time played       {:.1} s", report.scene_time_advanced_s);
         println!("  view / lesson switches  {} / {}", report.view_switches, report.lesson_switches);
+        println!("  memory at 60 s          {}", mb(report.rss_at_60_s_mb));
         println!("  memory at {:.0} s        {}", report.rss_early_at_s, mb(report.rss_early_mb));
         println!("  memory at the end       {}", mb(report.rss_end_mb));
+        println!(
+            "  pipelines built         {} (the last {:.0} s in, memory then {})",
+            report.pipelines_every_30_s.last().copied().unwrap_or(crate::render::pipelines_built()),
+            report.last_new_pipeline_at_s,
+            mb(report.rss_at_last_new_pipeline_mb)
+        );
         println!("  GPU memory              {}", mb(report.gpu_memory_mb));
     }
     if report.memory_held == Some(false) {

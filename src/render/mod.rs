@@ -1,11 +1,14 @@
 //! The renderer: offscreen, into textures it owns. It knows nothing of windows, egui or files;
 //! the app shows its textures, the CLI and the tests read them back.
 
+mod analysis;
 mod camera_pass;
 mod context;
+mod frame;
 pub mod gpu_types;
 mod moments;
 mod pipelines;
+mod prepare;
 pub mod readback;
 mod reference_pass;
 mod scene_gpu;
@@ -15,8 +18,10 @@ mod targets;
 mod timing;
 
 use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
+pub use analysis::{Analysis, AnalysisPixel, MomentsLevel};
 pub use context::{GpuContext, describe_adapter, headless_adapter, optional_features};
-pub use pipelines::COLOR_FORMAT;
+pub use frame::{Frame, FrameRequest};
+pub use pipelines::{COLOR_FORMAT, pipelines_built};
 pub use timing::PassTimes;
 
 use crate::scene::{MAX_LIGHTS, Scene, ShadowSettings, Technique};
@@ -41,89 +46,6 @@ pub enum RenderError {
     Readback(String),
     #[error("{0}")]
     Usage(String),
-}
-
-/// What to render for one frame.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct FrameRequest {
-    pub time_s: f32,
-    /// Camera view size, pixels.
-    pub size: (u32, u32),
-    /// The light the analysis outputs (visibility, PCSS terms) describe.
-    pub selected_light: usize,
-    pub final_color: bool,
-    pub analysis: bool,
-    /// Record GPU timestamps (where the adapter supports them).
-    pub timestamps: bool,
-    /// Shade only this pixel of the camera passes (a scissor): the probe reads no other, and a
-    /// full PCSS analysis pass to read one pixel would cost as much as the frame.
-    pub only_pixel: Option<(u32, u32)>,
-}
-
-impl Default for FrameRequest {
-    fn default() -> Self {
-        Self {
-            time_s: 0.0,
-            size: (960, 540),
-            selected_light: 0,
-            final_color: true,
-            analysis: true,
-            timestamps: false,
-            only_pixel: None,
-        }
-    }
-}
-
-/// The analysis pass at one pixel: the three targets' values there.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct AnalysisPixel {
-    /// visibility, blocker-search radius (texels), penumbra width (texels), blockers found.
-    pub shadow: [f32; 4],
-    /// World position; w = 1 where a surface was hit.
-    pub position: [f32; 4],
-    /// Shading normal; w = object index.
-    pub normal: [f32; 4],
-}
-
-/// The analysis pass read back: per pixel, row-major, top row first.
-#[derive(Clone, Debug)]
-pub struct Analysis {
-    pub width: u32,
-    pub height: u32,
-    /// visibility, blocker-search radius (texels), penumbra width (texels), blockers found.
-    pub shadow: Vec<[f32; 4]>,
-    /// World position; w = 1 where a surface was hit.
-    pub position: Vec<[f32; 4]>,
-    /// Shading normal; w = object index.
-    pub normal: Vec<[f32; 4]>,
-    /// The level of the selected light's VSM moments the filter reads, when it was asked for
-    /// (`Renderer::read_moments_for_radius`).
-    pub moments: Option<MomentsLevel>,
-    /// VSM's light bleeding per pixel, when it was asked for (`views::overlays::vsm_light_bleeding`).
-    pub bleeding: Option<Vec<f32>>,
-}
-
-/// One level of one light's VSM moments, read back.
-#[derive(Clone, Debug)]
-pub struct MomentsLevel {
-    pub level: u32,
-    /// Map texels per side of one texel of this level.
-    pub span_texels: u32,
-    /// The filter radius (map texels) whose lookups read this level.
-    pub radius_texels: f32,
-    /// Texels per side of the light's part.
-    pub side: u32,
-    /// (mean depth, mean squared depth) per texel, NDC, rows first.
-    pub texels: Vec<[f32; 2]>,
-}
-
-impl Analysis {
-    pub fn index(&self, x: u32, y: u32) -> usize {
-        (y * self.width + x) as usize
-    }
-    pub fn hit(&self, i: usize) -> bool {
-        self.position[i][3] > 0.5
-    }
 }
 
 pub struct Renderer {
@@ -156,22 +78,6 @@ pub struct Renderer {
     timer: Option<timing::Timer>,
     /// The last frame rendered: its targets are the ones the read-backs and the ground truth use.
     last_frame: Option<Frame>,
-}
-
-/// What one `render` drew: the request, and the lights and parameters exactly as the GPU saw
-/// them (the CPU twin and the probe use these).
-#[derive(Clone, Debug, PartialEq)]
-pub struct Frame {
-    pub request: FrameRequest,
-    pub lights: Vec<LightGpu>,
-    pub params: ShadowParamsGpu,
-    /// The still textured objects' albedo came from the view's cache (the camera, the size and
-    /// those objects were as in the frame before), not from sampling their textures again.
-    pub albedo_from_cache: bool,
-    /// The shadow maps were kept from an earlier frame: nothing they depend on had changed.
-    pub shadow_maps_kept: bool,
-    /// The VSM moments were rebuilt this frame.
-    pub moments_built: bool,
 }
 
 fn uniform_buffer(device: &wgpu::Device, label: &str, size: u64) -> wgpu::Buffer {
@@ -446,151 +352,6 @@ impl Renderer {
             .map_err(|e| RenderError::Readback(e.to_string()))
     }
 
-    /// Whether this frame reads the view's albedo cache, and whether it fills it first. Only whole
-    /// views use it (a probe's one-pixel render samples directly), and only when the camera, the
-    /// view's size and the still textured objects are as they were last frame.
-    fn plan_albedo_cache(&mut self, scene: &Scene, request: &FrameRequest) -> (bool, bool) {
-        let (Some(scene_gpu), Some(targets)) = (&self.scene_gpu, &mut self.targets) else {
-            return (false, false);
-        };
-        let usable =
-            request.final_color && request.only_pixel.is_none() && scene_gpu.has_cacheable_albedo(scene);
-        let key = usable.then(|| {
-            let aspect = request.size.0 as f32 / request.size.1 as f32;
-            targets::AlbedoKey {
-                clip_from_world: scene.camera.clip_from_world(aspect).to_cols_array().map(f32::to_bits),
-                scene_upload: scene_gpu.generation,
-                object_transforms: scene_gpu.cacheable_albedo_transforms(scene),
-            }
-        });
-        targets.albedo_cache.plan(key)
-    }
-
-    /// Upload what this frame needs; returns its lights and parameters as the GPU will see them.
-    fn prepare(&mut self, scene: &Scene, request: &FrameRequest) -> (Vec<LightGpu>, ShadowParamsGpu) {
-        let device = &self.device;
-        if !self.scene_gpu.as_ref().is_some_and(|s| s.matches(scene)) {
-            self.scene_gpu = Some(SceneGpu::new(device, &self.queue, &self.layouts, scene));
-        }
-        let atlas_size = scene.lights.iter().map(|l| l.shadow_map_size).max().unwrap_or(256);
-        let layers = scene.lights.len().max(1) as u32;
-        let maps_changed =
-            !self.shadow_maps.as_ref().is_some_and(|m| m.atlas_size == atlas_size && m.layers == layers);
-        if maps_changed {
-            self.shadow_maps = Some(ShadowMaps::new(device, atlas_size, layers));
-        }
-        // The moments are made the first time a frame uses VSM (and kept after), a placeholder
-        // stands in before.
-        let vsm = scene.shadow.technique.uses_moments();
-        let moments_wanted = vsm && self.moments.as_ref().is_none_or(Moments::is_placeholder);
-        if let Some(maps) = self.shadow_maps.as_ref().filter(|_| maps_changed || moments_wanted) {
-            let moments = if vsm {
-                Moments::new(device, &self.pipelines.moments, maps)
-            } else {
-                Moments::placeholder(device)
-            };
-            self.lights_bind_group = Some(self.shadow_inputs_group(
-                &self.layouts.lights,
-                self.lights_buffer.as_entire_binding(),
-                &self.params_buffer,
-                maps,
-                Some(&moments),
-            ));
-            self.moments = Some(moments);
-        }
-        if self.targets.as_ref().is_none_or(|t| t.size != request.size) {
-            let reuse = self.spare_targets.take().filter(|t| t.size == request.size);
-            let targets =
-                reuse.unwrap_or_else(|| ViewTargets::new(device, request.size, &self.layouts.albedo_cache));
-            self.spare_targets = self.targets.replace(targets);
-        }
-        let t = request.time_s;
-        let frame_lights: Vec<LightGpu> =
-            scene.lights.iter().enumerate().map(|(i, l)| LightGpu::new(l, t, i as u32, atlas_size)).collect();
-        let mut lights = [bytemuck::Zeroable::zeroed(); MAX_LIGHTS];
-        lights[..frame_lights.len()].copy_from_slice(&frame_lights);
-        self.queue.write_buffer(&self.lights_buffer, 0, bytemuck::cast_slice(&lights));
-        for (i, light) in frame_lights.iter().enumerate() {
-            let view = ShadowViewGpu { clip_from_world: light.clip_from_world };
-            self.queue.write_buffer(
-                &self.shadow_view_buffer,
-                i as u64 * DYNAMIC_STRIDE,
-                bytemuck::bytes_of(&view),
-            );
-        }
-        let params = ShadowParamsGpu::new(&scene.shadow);
-        self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
-        self.write_kernel_table(&scene.shadow);
-        let aspect = request.size.0 as f32 / request.size.1 as f32;
-        let frame = FrameGpu {
-            clip_from_world: scene.camera.clip_from_world(aspect).to_cols_array_2d(),
-            camera_position: scene.camera.position.extend(1.0).to_array(),
-            ambient: scene.ambient.extend(1.0).to_array(),
-            light_count: scene.lights.len() as u32,
-            selected_light: request.selected_light.min(MAX_LIGHTS - 1) as u32,
-            _pad: [0; 2],
-        };
-        self.queue.write_buffer(&self.frame_buffer, 0, bytemuck::bytes_of(&frame));
-        if let Some(scene_gpu) = &self.scene_gpu {
-            scene_gpu.update(&self.queue, scene, t);
-        }
-        (frame_lights, params)
-    }
-
-    /// The filter's and the blocker search's patterns for these settings (what `kernel_offset`
-    /// in shaders/shadow_sampling.wgsl turns per pixel).
-    fn write_kernel_table(&self, shadow: &ShadowSettings) {
-        let search_kernel = crate::shadow::search_kernel(shadow.pcf_kernel);
-        let filter = kernel_table(shadow.pcf_kernel, filter_taps(shadow.pcf_kernel, shadow.samples));
-        let search = kernel_table(search_kernel, filter_taps(search_kernel, shadow.blocker_samples));
-        // Tap i: filter in xy, search in zw.
-        let mut table = vec![[0.0f32; 4]; MAX_TAPS as usize];
-        for (slot, tap) in table.iter_mut().zip(&filter) {
-            slot[..2].copy_from_slice(&tap.to_array());
-        }
-        for (slot, tap) in table.iter_mut().zip(&search) {
-            slot[2..].copy_from_slice(&tap.to_array());
-        }
-        self.queue.write_buffer(&self.kernel_table_buffer, 0, bytemuck::cast_slice(&table));
-    }
-
-    /// Group 1 of the camera and reference shaders: light(s), parameters, maps, compare sampler,
-    /// kernel table, and the VSM moments where the layout has them (the camera's).
-    fn shadow_inputs_group(
-        &self,
-        layout: &wgpu::BindGroupLayout,
-        lights: wgpu::BindingResource<'_>,
-        params: &wgpu::Buffer,
-        maps: &ShadowMaps,
-        moments: Option<&Moments>,
-    ) -> wgpu::BindGroup {
-        let moments = moments.map(|m| wgpu::BindGroupEntry {
-            binding: 5,
-            resource: wgpu::BindingResource::TextureView(&m.view),
-        });
-        let entries: Vec<_> = [
-            wgpu::BindGroupEntry { binding: 0, resource: lights },
-            wgpu::BindGroupEntry { binding: 1, resource: params.as_entire_binding() },
-            wgpu::BindGroupEntry {
-                binding: 2,
-                resource: wgpu::BindingResource::TextureView(&maps.array_view),
-            },
-            wgpu::BindGroupEntry {
-                binding: 3,
-                resource: wgpu::BindingResource::Sampler(&self.compare_sampler),
-            },
-            wgpu::BindGroupEntry { binding: 4, resource: self.kernel_table_buffer.as_entire_binding() },
-        ]
-        .into_iter()
-        .chain(moments)
-        .collect();
-        self.device.create_bind_group(&wgpu::BindGroupDescriptor {
-            label: Some("shadow inputs"),
-            layout,
-            entries: &entries,
-        })
-    }
-
     /// The camera view's colour texture (Rgba8Unorm holding sRGB-encoded bytes).
     pub fn color_texture(&self) -> Option<&wgpu::Texture> {
         self.targets.as_ref().map(|t| &t.color)
@@ -615,115 +376,6 @@ impl Renderer {
         )?;
         image::RgbaImage::from_raw(w, h, bytes)
             .ok_or_else(|| RenderError::Readback("colour buffer has the wrong size".into()))
-    }
-
-    pub fn read_analysis(&self) -> Result<Analysis, RenderError> {
-        let targets = self.targets()?;
-        let (width, height) = targets.size;
-        let mut planes = Vec::with_capacity(targets.analysis.len());
-        for texture in &targets.analysis {
-            let mut plane = Vec::with_capacity((width * height) as usize);
-            let region = readback::Region {
-                layer: 0,
-                mip_level: 0,
-                origin: (0, 0),
-                size: targets.size,
-                bytes_per_texel: 16,
-                aspect: wgpu::TextureAspect::All,
-            };
-            readback::for_each_row(&self.device, &self.queue, texture, region, |row| {
-                plane.extend(row.chunks_exact(16).map(|t| {
-                    let mut texel = readback::f32s(t);
-                    std::array::from_fn(|_| texel.next().unwrap_or_default())
-                }));
-            })?;
-            planes.push(plane);
-        }
-        let normal = planes.pop().unwrap_or_default();
-        let position = planes.pop().unwrap_or_default();
-        let shadow = planes.pop().unwrap_or_default();
-        Ok(Analysis { width, height, shadow, position, normal, moments: None, bleeding: None })
-    }
-
-    /// The analysis targets at one pixel of the last frame (a 1x1 read-back each).
-    pub fn read_analysis_pixel(&self, x: u32, y: u32) -> Result<AnalysisPixel, RenderError> {
-        let targets = self.targets()?;
-        let (width, height) = targets.size;
-        if x >= width || y >= height {
-            return Err(RenderError::Usage(format!("pixel {x},{y} is outside the {width}x{height} image")));
-        }
-        let mut values = [[0.0f32; 4]; 3];
-        for (value, texture) in values.iter_mut().zip(&targets.analysis) {
-            let bytes = readback::read_texture_region(
-                &self.device,
-                &self.queue,
-                texture,
-                0,
-                (x, y),
-                (1, 1),
-                16,
-                wgpu::TextureAspect::All,
-            )?;
-            let floats = readback::f32s_from_bytes(&bytes);
-            value.copy_from_slice(&floats[..4]);
-        }
-        let [shadow, position, normal] = values;
-        Ok(AnalysisPixel { shadow, position, normal })
-    }
-
-    /// The finer of the two levels of light `index`'s moments a VSM filter of `radius_texels`
-    /// reads (`filtered_moments` in shaders/shadow_sampling.wgsl), as the last frame left it.
-    pub fn read_moments_for_radius(
-        &self,
-        index: usize,
-        radius_texels: f32,
-    ) -> Result<MomentsLevel, RenderError> {
-        let moments = self.moments.as_ref().filter(|m| !m.is_placeholder());
-        let (block, levels) = moments.map_or((1, 1), |m| (m.block, m.texture.mip_level_count()));
-        let level = crate::shadow::moments::level_for_radius(radius_texels, block, levels).floor() as u32;
-        let (side, texels) = self.read_moments(index, level)?;
-        Ok(MomentsLevel { level, span_texels: block << level, radius_texels, side, texels })
-    }
-
-    /// Level `level` of light `index`'s VSM moments as the last frame left them: the side of
-    /// the light's part in texels, and (mean depth, mean squared depth) per texel, NDC, rows
-    /// first. Each texel covers `moments_block << level` map texels per side.
-    pub fn read_moments(&self, index: usize, level: u32) -> Result<(u32, Vec<[f32; 2]>), RenderError> {
-        // Only for a frame that filtered with them: the view shows what VSM's lookups read.
-        let vsm_frame = self.last_frame.as_ref().is_some_and(|f| f.params.uses_moments());
-        let moments = self.moments.as_ref().filter(|m| vsm_frame && m.current && !m.is_placeholder());
-        let moments = moments.ok_or_else(|| {
-            RenderError::Usage("the moments exist for the vsm and vssm techniques only".into())
-        })?;
-        let lights = self.last_frame.as_ref().map_or(&[][..], |f| &f.lights[..]);
-        let light = lights.get(index).ok_or_else(|| {
-            RenderError::Usage(format!("light {index} does not exist (the scene has {})", lights.len()))
-        })?;
-        let levels = moments.texture.mip_level_count();
-        if level >= levels {
-            return Err(RenderError::Usage(format!(
-                "the moments have levels 0..{}, not {level}",
-                levels - 1
-            )));
-        }
-        let level_side = (moments.texture.width() >> level).max(1);
-        let side = (light.map_size_texels as u32).div_ceil(moments.block << level).clamp(1, level_side);
-        let region = readback::Region {
-            layer: index as u32,
-            mip_level: level,
-            origin: (0, 0),
-            size: (side, side),
-            bytes_per_texel: 8,
-            aspect: wgpu::TextureAspect::All,
-        };
-        let mut texels = Vec::with_capacity((side * side) as usize);
-        readback::for_each_row(&self.device, &self.queue, &moments.texture, region, |row| {
-            texels.extend(row.chunks_exact(8).map(|t| {
-                let mut m = readback::f32s(t);
-                [m.next().unwrap_or_default(), m.next().unwrap_or_default()]
-            }));
-        })?;
-        Ok((side, texels))
     }
 
     /// The shadow map of light `index` as rendered in the last frame.

@@ -6,6 +6,7 @@ use super::shaders;
 use crate::scene::Vertex;
 use crate::shadow::{LightGpu, ShadowParamsGpu};
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The camera view's texture: sRGB-encoded bytes in an Rgba8Unorm texture (what egui's native
 /// textures expect and what is read back to PNG)...
@@ -234,6 +235,15 @@ impl CameraPipelineKey {
     }
 }
 
+/// Specialised pipelines built so far by every renderer of this process. Each stays cached
+/// for its renderer's life, so a long session's memory grows with every new combination of
+/// settings until all it uses are built (`bench --app --window --soak` reports it beside memory).
+static PIPELINES_BUILT: AtomicU64 = AtomicU64::new(0);
+
+pub fn pipelines_built() -> u64 {
+    PIPELINES_BUILT.load(Ordering::Relaxed)
+}
+
 pub struct Pipelines {
     shadow_module: wgpu::ShaderModule,
     shadow_layout: wgpu::PipelineLayout,
@@ -376,6 +386,7 @@ impl Pipelines {
     pub fn camera(&mut self, device: &wgpu::Device, key: CameraPipelineKey) -> &wgpu::RenderPipeline {
         let (module, layout) = (&self.camera_module, &self.camera_layout);
         self.camera.entry(key).or_insert_with(|| {
+            PIPELINES_BUILT.fetch_add(1, Ordering::Relaxed);
             let constants = [
                 ("SPECIALISED", 1.0),
                 ("SPEC_TECHNIQUE", f64::from(key.technique)),
@@ -436,6 +447,7 @@ impl Pipelines {
     pub fn shadow(&mut self, device: &wgpu::Device, key: ShadowPipelineKey) -> &wgpu::RenderPipeline {
         let (module, layout) = (&self.shadow_module, &self.shadow_layout);
         self.shadow.entry(key).or_insert_with(|| {
+            PIPELINES_BUILT.fetch_add(1, Ordering::Relaxed);
             device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
                 label: Some("shadow pass"),
                 layout: Some(layout),

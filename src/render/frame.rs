@@ -1,0 +1,51 @@
+//! What a render is asked for and what it drew: the request, and the lights and parameters
+//! exactly as the GPU saw them (everything downstream of a render reads these, never the scene).
+
+use crate::shadow::{LightGpu, ShadowParamsGpu};
+
+/// What to render for one frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrameRequest {
+    pub time_s: f32,
+    /// Camera view size, pixels.
+    pub size: (u32, u32),
+    /// The light the analysis outputs (visibility, PCSS terms) describe.
+    pub selected_light: usize,
+    pub final_color: bool,
+    pub analysis: bool,
+    /// Record GPU timestamps (where the adapter supports them).
+    pub timestamps: bool,
+    /// Shade only this pixel of the camera passes (a scissor): the probe reads no other, and a
+    /// full PCSS analysis pass to read one pixel would cost as much as the frame.
+    pub only_pixel: Option<(u32, u32)>,
+}
+
+impl Default for FrameRequest {
+    fn default() -> Self {
+        Self {
+            time_s: 0.0,
+            size: (960, 540),
+            selected_light: 0,
+            final_color: true,
+            analysis: true,
+            timestamps: false,
+            only_pixel: None,
+        }
+    }
+}
+
+/// What one `render` drew: the request, and the lights and parameters exactly as the GPU saw
+/// them (the CPU twin and the probe use these).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Frame {
+    pub request: FrameRequest,
+    pub lights: Vec<LightGpu>,
+    pub params: ShadowParamsGpu,
+    /// The still textured objects' albedo came from the view's cache (the camera, the size and
+    /// those objects were as in the frame before), not from sampling their textures again.
+    pub albedo_from_cache: bool,
+    /// The shadow maps were kept from an earlier frame: nothing they depend on had changed.
+    pub shadow_maps_kept: bool,
+    /// The VSM moments were rebuilt this frame.
+    pub moments_built: bool,
+}
