@@ -1,6 +1,7 @@
 //! shadowlab: learn real-time shadows — shadow mapping, bias, PCF and PCSS — with a CPU twin
 //! of every shader function and a ground truth to compare against.
 
+pub mod app;
 pub mod cli;
 pub mod diagrams;
 pub mod export;

@@ -104,7 +104,7 @@ pub fn is_lesson_file(path: &Path) -> bool {
         .is_some_and(|table| table.contains_key("step"))
 }
 
-impl super::ShadowlabApp {
+impl super::AppState {
     /// Show what the command line asked for (after the saved settings are restored).
     pub fn apply_launch(&mut self, launch: Launch) {
         if let Some(lang) = launch.lang {

@@ -251,4 +251,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("vogel", "黄金角螺线"),
     ("grid", "规则方格"),
     ("hardware", "硬件比较"),
+    ("pixel {},{} of the lesson's {}x{} frame", "像素 {},{}（本课 {}x{} 画面）"),
+    ("pixel {},{}", "像素 {},{}"),
+    ("{}, on {}", "{}，位于 {}"),
 ];

@@ -1,9 +1,10 @@
 //! The top bar (scene and lesson picker, file box, playback, screenshot, language), the status
 //! bar (errors, timings) and the shortcut help.
 
-use super::{ShadowlabApp, Source, shipped_path};
+use super::{ShadowlabApp, Source};
 use crate::i18n::Lang;
 use crate::i18n::tr;
+use crate::shipped_path;
 use std::path::PathBuf;
 
 /// The status bar's error headline.
@@ -11,7 +12,7 @@ const ERROR_RED: egui::Color32 = egui::Color32::from_rgb(255, 120, 110);
 
 impl ShadowlabApp {
     pub(super) fn top_bar(&mut self, ui: &mut egui::Ui) {
-        let lang = self.lang;
+        let lang = self.state.lang;
         let tr = move |en: &'static str| tr(lang, en);
         ui.horizontal_wrapped(|ui| {
             ui.strong("shadowlab");
@@ -32,7 +33,7 @@ impl ShadowlabApp {
             let entered = field.lost_focus() && ui.input(|i| i.key_pressed(egui::Key::Enter));
             if (ui.button(tr("Open")).clicked() || entered) && !self.open_path.trim().is_empty() {
                 let path = PathBuf::from(self.open_path.trim());
-                self.open_any(&path);
+                self.state.open_any(&path);
             }
             let browse = ui
                 .add_enabled(!self.browsing(), egui::Button::new(tr("Browse…")))
@@ -41,20 +42,20 @@ impl ShadowlabApp {
                 self.browse(ui.ctx());
             }
             ui.separator();
-            let play_label = tr(if self.playing { "Pause" } else { "Play" });
+            let play_label = tr(if self.state.playing { "Pause" } else { "Play" });
             if ui.button(play_label).on_hover_text(tr("Space")).clicked() {
-                self.playing = !self.playing;
+                self.state.playing = !self.state.playing;
             }
             let time_label = ui.label(tr("time (s)"));
-            let range = 0.0..=super::rendering::PLAYBACK_RANGE_S;
+            let range = 0.0..=crate::app::PLAYBACK_RANGE_S;
             let time = ui
-                .add(egui::Slider::new(&mut self.time_s, range).max_decimals(2))
+                .add(egui::Slider::new(&mut self.state.time_s, range).max_decimals(2))
                 .on_hover_text(tr("playback loops back to 0 at the end of the range"));
             if time.labelled_by(time_label.id).changed() {
-                self.mark_dirty();
+                self.state.mark_dirty();
             }
             let speed_label = ui.label(tr("speed"));
-            ui.add(egui::DragValue::new(&mut self.speed).speed(0.05).range(0.0..=10.0).suffix("×"))
+            ui.add(egui::DragValue::new(&mut self.state.speed).speed(0.05).range(0.0..=10.0).suffix("×"))
                 .labelled_by(speed_label.id);
             ui.separator();
             if ui.button(tr("Screenshot")).on_hover_text(tr("S: window and each view as PNGs")).clicked() {
@@ -62,34 +63,34 @@ impl ShadowlabApp {
             }
             let lang_label = ui.label(tr("language"));
             egui::ComboBox::from_id_salt("lang")
-                .selected_text(match self.lang {
+                .selected_text(match self.state.lang {
                     Lang::En => "English",
                     Lang::Zh => "中文",
                 })
                 .show_ui(ui, |ui| {
-                    ui.selectable_value(&mut self.lang, Lang::En, "English");
-                    ui.selectable_value(&mut self.lang, Lang::Zh, "中文");
+                    ui.selectable_value(&mut self.state.lang, Lang::En, "English");
+                    ui.selectable_value(&mut self.state.lang, Lang::Zh, "中文");
                 })
                 .response
                 .labelled_by(lang_label.id);
             if ui.button(tr("F1 Help")).clicked() {
-                self.show_help = !self.show_help;
+                self.state.show_help = !self.state.show_help;
             }
             if ui
                 .button(tr("Present (F5)"))
                 .on_hover_text(tr("camera view, map, diagram and lesson text, large"))
                 .clicked()
             {
-                self.present = true;
+                self.state.present = true;
             }
         });
     }
 
     /// The lessons come first: a teacher opens one, a student steps through it.
     pub(super) fn lesson_selector(&mut self, ui: &mut egui::Ui) {
-        let lang = self.lang;
+        let lang = self.state.lang;
         let tr = move |en: &'static str| tr(lang, en);
-        let current = match &self.source {
+        let current = match &self.state.source {
             Source::Lesson { lesson, step } => self
                 .lessons
                 .get(*lesson)
@@ -107,8 +108,8 @@ impl ShadowlabApp {
         let label = ui.label(tr("lesson"));
         let combo =
             egui::ComboBox::from_id_salt("lesson").selected_text(current).width(250.0).show_ui(ui, |ui| {
-                for (i, lesson) in self.lessons.iter().enumerate() {
-                    let selected = matches!(self.source, Source::Lesson { lesson, .. } if lesson == i);
+                for (i, lesson) in self.state.lessons.iter().enumerate() {
+                    let selected = matches!(self.state.source, Source::Lesson { lesson, .. } if lesson == i);
                     let item =
                         ui.selectable_label(selected, format!("{}. {}", i + 1, lesson.title.get(lang)));
                     if item.on_hover_text(lesson.summary.get(lang)).clicked() {
@@ -118,15 +119,15 @@ impl ShadowlabApp {
             });
         combo.response.labelled_by(label.id);
         if let Some(lesson) = choice {
-            self.go_to_step(lesson, 0);
+            self.state.go_to_step(lesson, 0);
         }
     }
 
     /// The shipped scenes, to explore without a lesson.
     pub(super) fn scene_selector(&mut self, ui: &mut egui::Ui) {
-        let lang = self.lang;
+        let lang = self.state.lang;
         let tr = move |en: &'static str| tr(lang, en);
-        let current = match &self.source {
+        let current = match &self.state.source {
             Source::Scene(p) => p.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default(),
             Source::Lesson { lesson, step } => self
                 .lessons
@@ -148,13 +149,13 @@ impl ShadowlabApp {
                 scenes.sort();
                 for path in scenes {
                     let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();
-                    if ui.selectable_label(self.source == Source::Scene(path.clone()), name).clicked() {
+                    if ui.selectable_label(self.state.source == Source::Scene(path.clone()), name).clicked() {
                         choice = Some(path);
                     }
                 }
                 // Files opened from elsewhere (those since moved or deleted are left out).
-                let recent: Vec<&PathBuf> = self.settings.recent_files.iter().filter(|p| p.exists()).collect();
-                let current = match &self.source {
+                let recent: Vec<&PathBuf> = self.state.settings.recent_files.iter().filter(|p| p.exists()).collect();
+                let current = match &self.state.source {
                     Source::Scene(p) => std::fs::canonicalize(p).ok(),
                     Source::Lesson { .. } => None,
                 };
@@ -173,16 +174,16 @@ impl ShadowlabApp {
             });
         combo.response.labelled_by(label.id);
         if let Some(path) = choice {
-            self.open(&path);
+            self.state.open(&path);
         }
     }
 
     /// On start: the lessons, with what each teaches, or free exploration.
     pub(super) fn lesson_list(&mut self, ctx: &egui::Context) {
-        if !self.show_lesson_list {
+        if !self.state.show_lesson_list {
             return;
         }
-        let lang = self.lang;
+        let lang = self.state.lang;
         let tr = move |en: &'static str| tr(lang, en);
         let mut open = true;
         let mut choice = None;
@@ -193,7 +194,7 @@ impl ShadowlabApp {
             .default_width(560.0)
             .anchor(egui::Align2::CENTER_CENTER, egui::Vec2::ZERO)
             .show(ctx, |ui| {
-                for (i, lesson) in self.lessons.iter().enumerate() {
+                for (i, lesson) in self.state.lessons.iter().enumerate() {
                     if ui
                         .button(
                             egui::RichText::new(format!("{}. {}", i + 1, lesson.title.get(lang))).size(17.0),
@@ -212,11 +213,11 @@ impl ShadowlabApp {
             });
         if let Some(lesson) = choice {
             if let Some(i) = lesson {
-                self.go_to_step(i, 0);
+                self.state.go_to_step(i, 0);
             }
             open = false;
         }
-        self.show_lesson_list = open;
+        self.state.show_lesson_list = open;
     }
 
     /// The error and the last message at the left, the timings at the right. The timings are
@@ -224,7 +225,7 @@ impl ShadowlabApp {
     /// under the timings nor widen the window's layout), each cut with an ellipsis where it does
     /// not fit and then shown whole on hover, once.
     pub(super) fn status_bar(&mut self, ui: &mut egui::Ui) {
-        let timings = self.settings.show_timings.then(|| self.timing_text(ui.ctx()));
+        let timings = self.state.settings.show_timings.then(|| self.timing_text(ui.ctx()));
         // One row high even when empty (as a horizontal row is), so the views keep their size
         // when a message comes and goes.
         ui.set_min_height(ui.spacing().interact_size.y);
@@ -242,9 +243,9 @@ impl ShadowlabApp {
     /// The error (headline, details and its dismiss button) and the status message, within the
     /// width `ui` has. Where both are too long, the error keeps at least 60% of the text's room.
     fn status_messages(&mut self, ui: &mut egui::Ui) {
-        let lang = self.lang;
-        let status = (!self.status.is_empty()).then_some(self.status.as_str());
-        let Some(error) = &self.error else {
+        let lang = self.state.lang;
+        let status = (!self.state.status.is_empty()).then_some(self.state.status.as_str());
+        let Some(error) = &self.state.error else {
             if let Some(status) = status {
                 ui.add(egui::Label::new(status).truncate());
             }
@@ -293,7 +294,7 @@ impl ShadowlabApp {
         let button = ui.small_button(dismiss);
         ui.data_mut(|d| d.insert_temp(dismiss_id, button.rect.width()));
         if button.clicked() {
-            self.error = None;
+            self.state.error = None;
         }
         if let Some(status) = status {
             ui.separator();
@@ -302,8 +303,8 @@ impl ShadowlabApp {
     }
 
     pub(super) fn help_window(&mut self, ctx: &egui::Context) {
-        let lang = self.lang;
-        let mut open = self.show_help;
+        let lang = self.state.lang;
+        let mut open = self.state.show_help;
         egui::Window::new(tr(lang, "Shortcuts")).open(&mut open).collapsible(false).show(ctx, |ui| {
             egui::Grid::new("keys").striped(true).show(ui, |ui| {
                 for (key, what) in [
@@ -327,7 +328,7 @@ impl ShadowlabApp {
                 }
             });
         });
-        self.show_help = open;
+        self.state.show_help = open;
     }
 
     /// The status bar's timings: the UI's own frame time, the last render per pass and the
@@ -335,7 +336,7 @@ impl ShadowlabApp {
     pub(super) fn timing_text(&self, ctx: &egui::Context) -> String {
         let ui_ms = ctx.input(|i| i.unstable_dt) * 1e3;
         let shown = &self.shown;
-        let zh = self.lang == Lang::Zh;
+        let zh = self.state.lang == Lang::Zh;
         let mut text = if zh {
             format!("界面 {ui_ms:.0} ms · 渲染 {:.0} ms", shown.render_ms)
         } else {

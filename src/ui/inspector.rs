@@ -1,5 +1,5 @@
-//! The inspector: every scene, light and `[shadow]` parameter, with units in the labels, and
-//! the probe's numbers. Any change re-renders at once.
+//! The inspector: every scene, light and `[shadow]` parameter, with units in the labels, then
+//! the probe's numbers (src/ui/probe_panel.rs). Any change re-renders at once.
 
 use super::{AbSplit, ShadowlabApp};
 use crate::i18n::Lang;
@@ -99,10 +99,10 @@ fn key_hint(lang: Lang, key: &str) -> String {
 }
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
-    let lang = app.lang;
+    let lang = app.state.lang;
     let tr = move |en: &'static str| translate(lang, en);
     let mut changed = false;
-    let s = &mut app.scene.shadow;
+    let s = &mut app.state.scene.shadow;
     ui.heading(tr("Technique"));
     changed |= combo(
         lang,
@@ -113,16 +113,16 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         Technique::label,
         Some("technique"),
     );
-    let mut ab_on = app.ab.is_some();
+    let mut ab_on = app.state.ab.is_some();
     if ui
         .checkbox(&mut ab_on, tr("A/B split against"))
         .on_hover_text(tr("drag the divider in the camera view"))
         .changed()
     {
-        app.ab = ab_on.then_some(AbSplit { b: Technique::Hard, divider: 0.5, grabbed: false });
+        app.state.ab = ab_on.then_some(AbSplit { b: Technique::Hard, divider: 0.5, grabbed: false });
         changed = true;
     }
-    if let Some(ab) = &mut app.ab {
+    if let Some(ab) = &mut app.state.ab {
         changed |= combo(lang, ui, tr("right side"), &mut ab.b, Technique::ALL, Technique::label, None);
     }
 
@@ -245,22 +245,22 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
 
     ui.separator();
     ui.heading(tr("Camera"));
-    if let Projection::Perspective { fov_deg } = &mut app.scene.camera.projection {
+    if let Projection::Perspective { fov_deg } = &mut app.state.scene.camera.projection {
         changed |= ui.add(Slider::new(fov_deg, 10.0..=120.0).text(tr("field of view (°)"))).changed();
     }
     if ui.button(tr("Reset camera (R)")).clicked() {
-        app.reset_camera();
+        app.state.reset_camera();
     }
 
     ui.separator();
     ui.heading(tr("Overlays"));
     for overlay in Overlay::ALL {
-        let mut on = app.overlays.contains(&overlay);
+        let mut on = app.state.overlays.contains(&overlay);
         if ui.checkbox(&mut on, tr(overlay.name())).changed() {
             if on {
-                app.overlays.push(overlay);
+                app.state.overlays.push(overlay);
             } else {
-                app.overlays.retain(|o| *o != overlay);
+                app.state.overlays.retain(|o| *o != overlay);
             }
             changed = true;
         }
@@ -268,41 +268,41 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
 
     ui.separator();
     if ui.button(tr("Reset to scene/lesson values")).clicked() {
-        app.reset();
+        app.state.reset();
     }
     ui.horizontal(|ui| {
         let label = ui.label(tr("screenshot folder"));
-        let mut folder = app.settings.screenshot_dir.display().to_string();
+        let mut folder = app.state.settings.screenshot_dir.display().to_string();
         if ui.text_edit_singleline(&mut folder).labelled_by(label.id).changed() {
-            app.settings.screenshot_dir = folder.into();
+            app.state.settings.screenshot_dir = folder.into();
         }
     });
     ui.separator();
-    probe_values(app, ui);
+    super::probe_panel::probe_values(app, ui);
     if changed {
-        app.mark_dirty();
+        app.state.mark_dirty();
     }
 }
 
 fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
-    let lang = app.lang;
+    let lang = app.state.lang;
     let tr = move |en: &'static str| translate(lang, en);
     let mut changed = false;
     ui.heading(tr("Lights"));
-    let count = app.scene.lights.len();
+    let count = app.state.scene.lights.len();
     if count == 0 {
         ui.label(tr("this scene has no lights"));
         return false;
     }
     ui.horizontal(|ui| {
         for i in 0..count {
-            if ui.selectable_label(app.selected_light == i, format!("{} {i}", tr("light"))).clicked() {
-                app.selected_light = i;
+            if ui.selectable_label(app.state.selected_light == i, format!("{} {i}", tr("light"))).clicked() {
+                app.state.selected_light = i;
                 changed = true;
             }
         }
     });
-    let Some(light) = app.scene.lights.get_mut(app.selected_light) else { return changed };
+    let Some(light) = app.state.scene.lights.get_mut(app.state.selected_light) else { return changed };
     for (label, key, point) in [
         ("position", "light.N.position", &mut light.position),
         ("target", "light.N.target", &mut light.target),
@@ -384,143 +384,4 @@ fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
         .on_hover_text(key_hint(lang, "light.N.orbit_deg_per_s"))
         .changed();
     changed
-}
-
-pub(super) fn probe_values(app: &mut ShadowlabApp, ui: &mut Ui) {
-    let lang = app.lang;
-    let tr = move |en: &'static str| translate(lang, en);
-    ui.heading(tr("Probe"));
-    let Some(report) = app.probe_report() else {
-        ui.label(tr("click the camera view to pin a probe"));
-        return;
-    };
-    // A lesson's probe is a pixel of the lesson's own frame, not of this view.
-    let ([x, y], [w, h]) = (report.pixel, report.size);
-    let lesson_frame = matches!(app.probe_at, Some(super::ProbeAt::LessonFrame(..)));
-    let pixel = match (lang, lesson_frame) {
-        (Lang::En, true) => format!("pixel {x},{y} of the lesson's {w}x{h} frame"),
-        (Lang::Zh, true) => format!("本课 {w}x{h} 画面中的像素 {x},{y}"),
-        (Lang::En, false) => format!("pixel {x},{y}"),
-        (Lang::Zh, false) => format!("像素 {x},{y}"),
-    };
-    if !report.hit {
-        ui.label(format!("{pixel}: {}", tr("no surface")));
-        return;
-    }
-    let object = report.object.as_deref().map_or("?", |name| app.scene.object_label(name, lang));
-    ui.label(match lang {
-        Lang::En => format!("{pixel}, on {object}"),
-        Lang::Zh => format!("{pixel}，位于 {object}"),
-    });
-    let Some(l) = report.lights.iter().find(|l| l.light == app.selected_light) else { return };
-    let truth = match (l.visibility_reference, app.probe_reference_progress(l.light)) {
-        (Some(value), progress) => Truth::Value(value, progress.map(|(_, total)| total)),
-        (None, Some((done, total))) if done < total => Truth::Accumulating(done, total),
-        _ => Truth::NotAsked,
-    };
-    let mut ask = false;
-    egui::Grid::new("probe").striped(true).num_columns(2).show(ui, |ui| {
-        let mut row = |name: &str, value: String| {
-            ui.label(name);
-            // Wraps at the " · " between units rather than running past a narrow column.
-            ui.add(
-                egui::Label::new(egui::RichText::new(value).monospace()).wrap_mode(egui::TextWrapMode::Wrap),
-            );
-            ui.end_row();
-        };
-        row(tr("shadow-map uv"), format!("{:.4}, {:.4}", l.shadow_map_uv[0], l.shadow_map_uv[1]));
-        row(tr("texel"), format!("{}, {}", l.shadow_map_texel[0], l.shadow_map_texel[1]));
-        row(
-            tr("receiver depth"),
-            format!("{:.4} NDC · {:.3} {}", l.receiver_depth_ndc, l.receiver_depth_linear, tr("world")),
-        );
-        row(
-            tr("stored depth"),
-            format!("{:.4} NDC · {:.3} {}", l.stored_depth_ndc, l.stored_depth_linear, tr("world")),
-        );
-        if let Some(v) = &l.vsm {
-            row(
-                tr("VSM mean, variance"),
-                format!("{:.4} NDC, {:.2e} NDC²", v.mean_depth_ndc, v.variance_ndc2),
-            );
-            row(
-                tr("Chebyshev bound / true share"),
-                format!("{:.3} / {:.3}", v.chebyshev_bound, v.true_lit_fraction),
-            );
-            if v.visibility != v.chebyshev_bound {
-                row(tr("after bleed reduction"), format!("{:.3}", v.visibility));
-            }
-        }
-        if let Some(error) = l.stored_depth_rgba8_error_ndc {
-            row(tr("RGBA8 round trip"), format!("{error:+.6} NDC"));
-        }
-        row(tr("bias"), format!("{:.6} NDC", l.bias_ndc));
-        if let Some(per_texel) = l.receiver_plane_depth_per_texel_world {
-            row(tr("receiver plane"), format!("{per_texel:.4} {} / {}", tr("world"), tr("texel")));
-        }
-        row(tr("N·L"), format!("{:.3}", l.n_dot_l));
-        row(tr("blocker search"), format!("{:.2} {}", l.blocker_search_radius_texels, tr("texels")));
-        row(tr("blockers found"), format!("{} / {}", l.blockers_found, l.blocker_samples));
-        row(
-            tr("avg blocker depth"),
-            l.avg_blocker_depth_linear.map_or(tr("none").into(), |d| format!("{d:.3} {}", tr("world"))),
-        );
-        if let Some(v) = &l.vssm {
-            let depth = |d: Option<f32>| d.map_or(tr("none").into(), |d| format!("{d:.3}"));
-            row(
-                tr("VSSM / true / PCSS blocker depth"),
-                format!(
-                    "{:.3} / {} / {} {}",
-                    v.estimated_blocker_depth_linear,
-                    depth(v.footprint_blocker_depth_linear),
-                    depth(v.pcss_blocker_depth_linear),
-                    tr("world")
-                ),
-            );
-        }
-        row(tr("penumbra width"), format!("{:.4} {}", l.penumbra_width_world, tr("world")));
-        row(
-            tr("filter radius"),
-            format!("{:.2} {} ({} {})", l.filter_radius_texels, tr("texels"), l.filter_samples, tr("taps")),
-        );
-        row(tr("visibility (CPU twin)"), format!("{:.4}", l.visibility_twin));
-        row(tr("visibility (GPU)"), format!("{:.4}", l.visibility_gpu));
-        // The ground truth at this pixel: on demand (a few seconds on a software rasteriser), or
-        // at once where the lesson text quotes it.
-        ui.label(tr("ground truth"));
-        let fill = |template, args: &[&dyn std::fmt::Display]| crate::i18n::fill(lang, template, args);
-        let value = |text: String| egui::RichText::new(text).monospace();
-        match truth {
-            Truth::Value(v, Some(total)) => {
-                ui.label(value(fill("{} ({} samples)", &[&format!("{v:.4}"), &total])));
-            }
-            Truth::Value(v, None) => {
-                ui.label(value(format!("{v:.4}")));
-            }
-            Truth::Accumulating(done, total) => {
-                ui.label(value(fill("{} / {} samples…", &[&done, &total])));
-            }
-            Truth::NotAsked => {
-                ask = ui
-                    .button(tr("work it out"))
-                    .on_hover_text(tr(
-                        "average the ground truth's hard shadows at this pixel (a few seconds)",
-                    ))
-                    .clicked();
-            }
-        }
-        ui.end_row();
-    });
-    if ask {
-        app.ask_probe_truth();
-    }
-}
-
-/// The probe panel's ground-truth row.
-enum Truth {
-    /// Known (with the samples averaged, where this probe worked it out).
-    Value(f32, Option<u32>),
-    /// Samples done of all.
-    Accumulating(u32, u32),
-    NotAsked,
 }

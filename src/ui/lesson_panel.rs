@@ -26,13 +26,13 @@ fn what_apply_sets(prompt: &crate::lessons::TryThis, lang: Lang) -> String {
 }
 
 fn step_prompts(app: &ShadowlabApp) -> Vec<crate::lessons::TryThis> {
-    app.current_step().map(|(_, s, _)| s.try_this.clone()).unwrap_or_default()
+    app.state.current_step().map(|(_, s, _)| s.try_this.clone()).unwrap_or_default()
 }
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
-    let lang = app.lang;
+    let lang = app.state.lang;
     let tr = move |en: &'static str| crate::i18n::tr(lang, en);
-    let Some((lesson, step, index)) = app.current_step() else { return };
+    let Some((lesson, step, index)) = app.state.current_step() else { return };
     let count = lesson.steps.len();
     let lesson_title = lesson.title.get(lang).to_string();
     let title = step.title.get(lang).to_string();
@@ -44,19 +44,19 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     // Navigation first, so it stays in reach however long the text is.
     ui.horizontal(|ui| {
         if ui.button(tr("Previous")).on_hover_text(tr("Left arrow")).clicked() {
-            app.step_lesson(-1);
+            app.state.step_lesson(-1);
         }
         ui.label(RichText::new(format!("{} {} / {count}", tr("step"), index + 1)).weak());
         if ui.button(tr("Next")).on_hover_text(tr("Right arrow")).clicked() {
-            app.step_lesson(1);
+            app.state.step_lesson(1);
         }
     });
     // Present mode (F5): larger text for a projector, and a way back.
-    let (body, heading) = if app.present { (22.0, 30.0) } else { (15.0, 20.0) };
-    if app.present {
+    let (body, heading) = if app.state.present { (22.0, 30.0) } else { (15.0, 20.0) };
+    if app.state.present {
         ui.label(RichText::new(tr("F5 or Esc: leave present mode")).weak());
     } else {
-        ui.checkbox(&mut app.show_all_panels, tr("show every panel"));
+        ui.checkbox(&mut app.state.show_all_panels, tr("show every panel"));
     }
     ui.separator();
     // Where in the course this is, readable at a glance.
@@ -70,7 +70,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     ui.add_space(4.0);
     // The text describes the step as set: once a setting moves, its fixed figures and sentences
     // may no longer hold, so it says so, is greyed, and offers the way back.
-    let changed = app.changed_from_step();
+    let changed = app.state.changed_from_step();
     if changed.is_empty() {
         ui.label(RichText::new(text).size(body));
     } else {
@@ -84,13 +84,13 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
             .size(body * 0.85)
             .color(egui::Color32::from_rgb(255, 200, 90)),
         );
-        if app.applied_try_this.is_none() && ui.button(tr("Back to the step's settings")).clicked() {
-            app.back_to_step_settings();
+        if app.state.applied_try_this.is_none() && ui.button(tr("Back to the step's settings")).clicked() {
+            app.state.back_to_step_settings();
         }
         ui.label(RichText::new(text).size(body).weak());
     }
     // The numbers follow whatever probe is pinned; say so when it is not the lesson's own.
-    if lesson_probe.is_some() && app.probe_at != lesson_probe {
+    if lesson_probe.is_some() && app.state.probe_at != lesson_probe {
         let (note, back) = match lang {
             Lang::En => (
                 "The numbers above are read at your probe; the sentences around them describe the lesson's.",
@@ -101,8 +101,8 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(note).italics());
             if ui.button(back).clicked() {
-                app.probe_at = lesson_probe;
-                app.mark_dirty();
+                app.state.probe_at = lesson_probe;
+                app.state.mark_dirty();
             }
         });
     }
@@ -120,20 +120,20 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
                 if let Some(p) = prompt
                     && ui.button(tr("Apply")).on_hover_text(what_apply_sets(p, lang)).clicked()
                 {
-                    app.apply_try_this(i);
+                    app.state.apply_try_this(i);
                 }
-                if app.applied_try_this == Some(i) {
+                if app.state.applied_try_this == Some(i) {
                     ui.label(RichText::new(tr("applied")).weak());
                     if ui.button(tr("Back to the step's settings")).clicked() {
-                        app.back_to_step_settings();
+                        app.state.back_to_step_settings();
                     }
                 }
             });
         }
     }
-    if app.panel_visible(Panel::Probe) && app.probe_report().is_some() {
+    if app.state.panel_visible(Panel::Probe) && app.state.probe_report().is_some() {
         ui.add_space(8.0);
         ui.separator();
-        super::inspector::probe_values(app, ui);
+        super::probe_panel::probe_values(app, ui);
     }
 }

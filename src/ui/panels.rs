@@ -27,39 +27,42 @@ struct DiagramKey {
 }
 
 fn live_inputs(app: &ShadowlabApp) -> DiagramInputs {
-    let probe = app.probe.as_ref();
-    let light_probe = probe.and_then(|p| p.lights.iter().find(|l| l.light == app.selected_light));
+    let probe = app.state.probe.as_ref();
+    let light_probe = probe.and_then(|p| p.lights.iter().find(|l| l.light == app.state.selected_light));
     diagrams::live::inputs_from_scene(
-        &app.scene,
-        app.selected_light,
-        app.time_s,
+        &app.state.scene,
+        app.state.selected_light,
+        app.state.time_s,
         light_probe,
         probe.and_then(|p| p.normal),
     )
 }
 
 pub fn show_bottom(app: &mut ShadowlabApp, ui: &mut Ui) {
-    let show_diagram = app.panel_visible(Panel::Diagram);
+    let show_diagram = app.state.panel_visible(Panel::Diagram);
     ui.horizontal(|ui| {
         if show_diagram {
-            ui.strong(crate::i18n::tr(app.lang, "Diagram"));
+            ui.strong(crate::i18n::tr(app.state.lang, "Diagram"));
             for kind in DiagramKind::ALL {
                 if ui
-                    .selectable_label(app.diagram == kind, kind.label(app.lang))
-                    .on_hover_text(crate::i18n::tr(app.lang, kind.title()))
+                    .selectable_label(app.state.diagram == kind, kind.label(app.state.lang))
+                    .on_hover_text(crate::i18n::tr(app.state.lang, kind.title()))
                     .clicked()
                 {
-                    app.diagram = kind;
+                    app.state.diagram = kind;
                 }
             }
             ui.separator();
         }
-        if app.current_step().is_none() {
-            ui.checkbox(&mut app.settings.show_kernel_plot, crate::i18n::tr(app.lang, "sample pattern"));
+        if app.state.current_step().is_none() {
+            ui.checkbox(
+                &mut app.state.settings.show_kernel_plot,
+                crate::i18n::tr(app.state.lang, "sample pattern"),
+            );
         }
     });
     // On a projector the diagram takes the whole width (the sample pattern beside it is left out).
-    let show_plot = app.panel_visible(Panel::KernelPlot) && !(app.present && show_diagram);
+    let show_plot = app.state.panel_visible(Panel::KernelPlot) && !(app.state.present && show_diagram);
     let avail = ui.available_rect_before_wrap();
     let plot_width = match (show_plot, show_diagram) {
         (false, _) => 0.0,
@@ -89,16 +92,16 @@ fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let ppp = ui.ctx().pixels_per_point();
     let size_px = ((w * ppp).max(32.0) as u32, (h * ppp).max(18.0) as u32);
     let key = DiagramKey {
-        kind: app.diagram,
+        kind: app.state.diagram,
         inputs: live_inputs(app),
-        lang: app.lang,
+        lang: app.state.lang,
         size_px,
-        present: app.present,
+        present: app.state.present,
     };
     let current = app.panel_state.diagram.as_ref().is_some_and(|(_, drawn)| *drawn == key);
     if !current {
         // On a projector, the lesson text's size (the diagram is read from the back row too).
-        let min_text_pt = if app.present { PRESENT_DIAGRAM_MIN_TEXT_PT } else { DIAGRAM_MIN_TEXT_PT };
+        let min_text_pt = if app.state.present { PRESENT_DIAGRAM_MIN_TEXT_PT } else { DIAGRAM_MIN_TEXT_PT };
         let min_text_px = min_text_pt * ppp;
         match diagrams::draw_traced(key.kind, &key.inputs, key.lang, [size_px.0, size_px.1], min_text_px) {
             Ok((pixmap, texts)) => {
@@ -111,7 +114,7 @@ fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
                 let texture = ui.ctx().load_texture("diagram", image, egui::TextureOptions::LINEAR);
                 app.panel_state.diagram = Some((texture, key));
             }
-            Err(e) => app.error = Some(super::AppError::new("could not draw the diagram", e)),
+            Err(e) => app.state.error = Some(super::AppError::new("could not draw the diagram", e)),
         }
     }
     if let Some((texture, ..)) = &app.panel_state.diagram {
@@ -128,7 +131,7 @@ fn diagram(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
 fn kernel_plot(app: &ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let painter = ui.painter_at(rect);
     painter.rect_filled(rect, 4.0, Color32::from_gray(24));
-    let s = &app.scene.shadow;
+    let s = &app.state.scene.shadow;
     let seed = app
         .probe
         .as_ref()
@@ -154,7 +157,7 @@ fn kernel_plot(app: &ShadowlabApp, ui: &mut Ui, rect: Rect) {
     painter.text(
         pos2(rect.left() + 6.0, rect.top() + 4.0),
         egui::Align2::LEFT_TOP,
-        match app.lang {
+        match app.state.lang {
             Lang::En => format!(
                 "{} · {} taps{}",
                 s.pcf_kernel.name(),
@@ -163,7 +166,7 @@ fn kernel_plot(app: &ShadowlabApp, ui: &mut Ui, rect: Rect) {
             ),
             Lang::Zh => format!(
                 "{} · {} 个采样点{}",
-                s.pcf_kernel.label(app.lang),
+                s.pcf_kernel.label(app.state.lang),
                 points.len(),
                 if s.rotate_per_pixel { " · 每个像素旋转" } else { "" }
             ),

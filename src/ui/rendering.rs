@@ -2,8 +2,8 @@
 //! The views always show the last finished frame; while a value is being dragged they ask for
 //! previews (half resolution or less, PCSS with fewer taps) and refine once it is let go.
 
-use super::worker::{ProbeSpot, RenderJob, RenderOutput, WorkerEvent};
 use super::{ProbeAt, ShadowlabApp};
+use crate::app::scheduler::{ProbeSpot, RenderEvent, RenderJob, RenderOutput};
 use crate::render::{FrameRequest, PassTimes};
 use crate::scene::Technique;
 use crate::shadow::{LightGpu, ShadowParamsGpu};
@@ -11,8 +11,6 @@ use crate::views::View;
 use crate::views::overlays::Overlay;
 use std::time::{Duration, Instant};
 
-/// The time range of playback and of the time slider, seconds (playback loops over it).
-pub const PLAYBACK_RANGE_S: f32 = 60.0;
 /// Show "rendering..." over a view that has waited this long for its frame.
 pub const SLOW_RENDER: Duration = Duration::from_millis(150);
 /// What a preview may take, milliseconds: the preview resolution adapts to keep views refreshing
@@ -70,16 +68,16 @@ impl ShadowlabApp {
         let Some(worker) = self.worker.as_mut() else { return };
         for event in worker.poll() {
             match event {
-                WorkerEvent::Ready(Ok(_)) => {}
-                WorkerEvent::Ready(Err(e)) => {
+                RenderEvent::Ready(Ok(_)) => {}
+                RenderEvent::Ready(Err(e)) => {
                     self.gpu_error = Some(e);
                     self.worker = None;
                     return;
                 }
-                WorkerEvent::Frame(output) => self.show_output(ctx, *output),
-                WorkerEvent::Maps(maps) => self.show_maps(ctx, *maps),
-                WorkerEvent::Details(details) => self.show_details(*details),
-                WorkerEvent::Reference { job, done, total, values } => {
+                RenderEvent::Frame(output) => self.show_output(ctx, *output),
+                RenderEvent::Maps(maps) => self.show_maps(ctx, *maps),
+                RenderEvent::Details(details) => self.show_details(*details),
+                RenderEvent::Reference { job, done, total, values } => {
                     if job == self.submitted.job {
                         // The error legend's number, once the ground truth is all there.
                         self.shown.mean_abs_error = self
@@ -87,21 +85,21 @@ impl ShadowlabApp {
                             .as_ref()
                             .filter(|a| done == total && a.shadow.len() == values.len())
                             .map(|a| crate::views::mean_abs_error(a, &values));
-                        self.reference = Some(values);
+                        self.state.reference = Some(values);
                         self.shown.reference_progress = Some((done, total));
                         self.view_state.invalidate();
                     }
                 }
-                WorkerEvent::ProbeReference { job, light, done, total, value } => {
+                RenderEvent::ProbeReference { job, light, done, total, value } => {
                     if job == self.submitted.job && self.shown.probe_job == Some(job) {
                         self.show_probe_reference(light, done, total, value);
                     }
                 }
-                WorkerEvent::Failed { job, message } => {
+                RenderEvent::Failed { job, message } => {
                     if job == self.submitted.job {
                         self.shown.reference_progress = None;
                         self.shown.probe_reference.clear();
-                        self.error = Some(super::AppError::new("rendering failed", message));
+                        self.state.error = Some(super::AppError::new("rendering failed", message));
                     }
                 }
             }
@@ -152,15 +150,15 @@ impl ShadowlabApp {
         if !out.preview && !out.details_follow {
             // A full frame with no overlays on and no probe pinned.
             self.analysis = None;
-            if self.probe_at.is_none() {
-                self.probe = None;
+            if self.state.probe_at.is_none() {
+                self.state.probe = None;
             }
         }
         self.view_state.invalidate();
     }
 
     /// The shadow-map pictures of the frame just shown.
-    fn show_maps(&mut self, ctx: &egui::Context, maps: super::worker::Maps) {
+    fn show_maps(&mut self, ctx: &egui::Context, maps: crate::app::scheduler::Maps) {
         if maps.job < self.shown_job {
             return;
         }
@@ -173,7 +171,7 @@ impl ShadowlabApp {
         self.view_state.invalidate();
     }
 
-    fn show_details(&mut self, details: super::worker::Details) {
+    fn show_details(&mut self, details: crate::app::scheduler::Details) {
         if self.shown.details_pending != Some(details.job) {
             return;
         }
@@ -186,25 +184,25 @@ impl ShadowlabApp {
                 if !report.hit {
                     self.shown.probe_reference.clear();
                 }
-                self.probe = Some(report);
+                self.state.probe = Some(report);
                 self.shown.probe_job = Some(details.job);
             }
             Some(Err(e)) => {
-                self.probe = None;
+                self.state.probe = None;
                 self.shown.probe_reference.clear();
-                self.error = Some(super::AppError::new("the probe failed", e));
+                self.state.error = Some(super::AppError::new("the probe failed", e));
             }
-            None if self.probe_at.is_none() => self.probe = None,
+            None if self.state.probe_at.is_none() => self.state.probe = None,
             None => {}
         }
         if self.focus_on_probe
-            && let Some(p) = self.probe.as_ref().and_then(|p| p.world_position)
+            && let Some(p) = self.state.probe.as_ref().and_then(|p| p.world_position)
         {
-            self.scene.camera.target = glam::Vec3::from(p);
+            self.state.scene.camera.target = glam::Vec3::from(p);
             // The focused point now projects to the centre of the view, and so does the probe.
-            self.probe_at = Some(ProbeAt::View(0.5, 0.5));
+            self.state.probe_at = Some(ProbeAt::View(0.5, 0.5));
             self.focus_on_probe = false;
-            self.mark_dirty();
+            self.state.mark_dirty();
         }
         self.view_state.invalidate();
     }
@@ -217,7 +215,8 @@ impl ShadowlabApp {
             None => self.shown.probe_reference.push((light, done, total)),
         }
         if done == total
-            && let Some(l) = self.probe.as_mut().and_then(|p| p.lights.iter_mut().find(|l| l.light == light))
+            && let Some(l) =
+                self.state.probe.as_mut().and_then(|p| p.lights.iter_mut().find(|l| l.light == light))
         {
             l.visibility_reference = Some(value);
         }
@@ -252,15 +251,15 @@ impl ShadowlabApp {
         // A preview is followed by the full-quality frame once the drag ends.
         let refine = self.submitted.preview && !preview;
         let resized = self.submitted.size != size;
-        if !(self.dirty || resized || refine || self.playing) {
+        if !(self.state.dirty || resized || refine || self.state.playing) {
             return;
         }
-        if self.scene.lights.is_empty() {
-            self.selected_light = 0;
+        if self.state.scene.lights.is_empty() {
+            self.state.selected_light = 0;
         }
-        let has_lights = !self.scene.lights.is_empty();
-        let full_detail = !preview && !self.playing;
-        let probe = self.probe_at.filter(|_| full_detail).map(|at| match at {
+        let has_lights = !self.state.scene.lights.is_empty();
+        let full_detail = !preview && !self.state.playing;
+        let probe = self.state.probe_at.filter(|_| full_detail).map(|at| match at {
             ProbeAt::View(fx, fy) => ProbeSpot {
                 pixel: (
                     ((fx * size.0 as f32) as u32).min(size.0 - 1),
@@ -271,10 +270,10 @@ impl ShadowlabApp {
             ProbeAt::LessonFrame(x, y) => ProbeSpot { pixel: (x, y), frame: crate::lessons::PROBE_FRAME },
         });
         // The analysis pass feeds the overlays only: skip it when none is on.
-        let overlays_need_analysis = self.overlays.iter().any(|o| *o != Overlay::LightFrustum);
-        let view_needs_analysis = !matches!(self.view, View::Final | View::ShadowMap);
+        let overlays_need_analysis = self.state.overlays.iter().any(|o| *o != Overlay::LightFrustum);
+        let view_needs_analysis = !matches!(self.state.view, View::Final | View::ShadowMap);
         let analysis = full_detail && (overlays_need_analysis || view_needs_analysis) && has_lights;
-        let mut scene = self.scene.clone();
+        let mut scene = self.state.scene.clone();
         if preview && scene.shadow.technique == Technique::Pcss {
             scene.shadow.samples = scene.shadow.samples.min(PREVIEW_PCSS_SAMPLES);
             scene.shadow.blocker_samples = scene.shadow.blocker_samples.min(PREVIEW_PCSS_SAMPLES);
@@ -282,9 +281,9 @@ impl ShadowlabApp {
         let job = RenderJob {
             scene,
             request: FrameRequest {
-                time_s: self.time_s,
+                time_s: self.state.time_s,
                 size,
-                selected_light: self.selected_light,
+                selected_light: self.state.selected_light,
                 final_color: true,
                 analysis: false,
                 timestamps: true,
@@ -293,28 +292,30 @@ impl ShadowlabApp {
             probe,
             analysis,
             reference: analysis
-                && (self.overlays.iter().any(|o| o.needs_reference()) || self.view.needs_reference()),
+                && (self.state.overlays.iter().any(|o| o.needs_reference())
+                    || self.state.view.needs_reference()),
             probe_reference: if probe.is_some() && has_lights {
-                self.probe_truth_lights()
+                self.state.probe_truth_lights()
             } else {
                 Vec::new()
             },
-            moments: analysis && self.view == View::Moments,
-            bleeding: analysis && self.overlays.contains(&Overlay::Bleeding),
-            technique_b: self.ab.as_ref().map(|ab| ab.b),
+            moments: analysis && self.state.view == View::Moments,
+            bleeding: analysis && self.state.overlays.contains(&Overlay::Bleeding),
+            technique_b: self.state.ab.as_ref().map(|ab| ab.b),
             thumbnails: full_detail,
             preview,
             map_texels: if self.view_state.zoomed() { MAP_PICTURE_TEXELS_ZOOMED } else { MAP_PICTURE_TEXELS },
         };
         // Waiting for the ground truths from now on, until their last batch comes (a probe that
         // finds no surface and a failed job clear them).
-        self.shown.reference_progress = job.reference.then_some((0, self.scene.shadow.reference_samples));
+        self.shown.reference_progress =
+            job.reference.then_some((0, self.state.scene.shadow.reference_samples));
         self.shown.probe_reference =
-            job.probe_reference.iter().map(|&l| (l, 0, self.scene.shadow.reference_samples)).collect();
+            job.probe_reference.iter().map(|&l| (l, 0, self.state.scene.shadow.reference_samples)).collect();
         let Some(worker) = self.worker.as_mut() else { return };
         let id = worker.submit(job);
         self.submitted = Submitted { job: id, preview, size };
-        self.dirty = false;
+        self.state.dirty = false;
     }
 
     /// A render is waiting or in progress (or a ground truth is still accumulating).
@@ -322,7 +323,7 @@ impl ShadowlabApp {
         let Some(worker) = self.worker.as_ref() else { return false };
         let reference_running = self.shown.reference_progress.is_some_and(|(done, total)| done < total);
         let probe_reference_running = self.shown.probe_reference.iter().any(|(_, done, total)| done < total);
-        self.dirty
+        self.state.dirty
             || worker.busy()
             || reference_running
             || probe_reference_running
@@ -365,12 +366,6 @@ impl ShadowlabApp {
     pub(super) fn advance_time(&mut self, now: Instant) {
         let dt = self.last_tick.map_or(0.0, |t| now.duration_since(t).as_secs_f32());
         self.last_tick = Some(now);
-        if self.playing {
-            // A stall (window dragged, machine asleep) should not jump the scene; past the end of
-            // the time range playback starts again from 0, so a demo left running keeps moving.
-            self.time_s = (self.time_s + dt.min(0.5) * self.speed).rem_euclid(PLAYBACK_RANGE_S);
-            self.reference = None;
-            self.dirty = true;
-        }
+        self.state.advance_playback(dt);
     }
 }

@@ -13,7 +13,7 @@ impl ShadowlabApp {
             }
         });
         self.screenshot_pending = true;
-        self.status = crate::i18n::tr(self.lang, "taking a screenshot...").into();
+        self.state.status = crate::i18n::tr(self.state.lang, "taking a screenshot...").into();
     }
 
     /// Save a finished window screenshot and each viewport as PNGs.
@@ -27,9 +27,10 @@ impl ShadowlabApp {
         match self.save_screenshot(&window) {
             Ok(paths) => {
                 let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
-                self.status = format!("{} {}", crate::i18n::tr(self.lang, "saved"), names.join(", "));
+                self.state.status =
+                    format!("{} {}", crate::i18n::tr(self.state.lang, "saved"), names.join(", "));
             }
-            Err(e) => self.error = Some(super::AppError::new("could not save the screenshot", e)),
+            Err(e) => self.state.error = Some(super::AppError::new("could not save the screenshot", e)),
         }
     }
 
@@ -61,8 +62,8 @@ impl ShadowlabApp {
 
     pub(super) fn save_screenshot(&mut self, window: &egui::ColorImage) -> Result<Vec<PathBuf>, String> {
         // Reported and written as an absolute path: the working directory is nobody's business.
-        let dir = std::path::absolute(&self.settings.screenshot_dir)
-            .map_err(|e| format!("{}: {e}", self.settings.screenshot_dir.display()))?;
+        let dir = std::path::absolute(&self.state.settings.screenshot_dir)
+            .map_err(|e| format!("{}: {e}", self.state.settings.screenshot_dir.display()))?;
         std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
         let n = (1..10_000).find(|n| !dir.join(format!("shot-{n:03}-window.png")).exists()).unwrap_or(0);
         let mut written = Vec::new();

@@ -79,7 +79,7 @@ fn open_window(painter: eframe::Renderer, launch: super::launch::Launch) -> Resu
         window_options(painter),
         Box::new(|cc| {
             let mut app = ShadowlabApp::new(cc);
-            app.apply_launch(launch);
+            app.state.apply_launch(launch);
             clear_paints_panels(&cc.egui_ctx);
             Ok(Box::new(app))
         }),

@@ -1,0 +1,199 @@
+//! Render scheduling: the app asks for frames (`RenderJob`s) and hears back (`RenderEvent`s)
+//! through a [`RenderScheduler`], which knows nothing of egui. Two of them: [`WorkerThread`]
+//! renders on a thread and device of its own, so that a slow render never holds up the window
+//! (native); [`FrameDriven`] renders on the caller's thread a stage at a time, from the UI's frame
+//! callback (what a browser, which has no threads to give, needs; tested natively too).
+//!
+//! Newest request wins: requests still waiting when a render ends are dropped, all but the last;
+//! a ground truth in progress stops at its next batch when a newer request arrives, and reports
+//! its partial average after every batch so the view can show it filling in. The ground truth at
+//! the probe comes first (the probe panel and the lesson text quote it), then the view's. Both are
+//! kept: a job whose ground truth depends on nothing that changed gets it again at once.
+
+mod frame;
+mod renderers;
+mod thread;
+
+pub use frame::FrameDriven;
+pub use thread::WorkerThread;
+
+use crate::probe::ProbeReport;
+use crate::render::{Analysis, FrameRequest, PassTimes};
+use crate::scene::{Scene, Technique};
+use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
+use std::time::Duration;
+
+/// Something that renders the app's jobs and reports back. `submit` never waits for the GPU;
+/// `poll` returns what has finished since the last call (a frame-driven scheduler does the next
+/// piece of work there).
+pub trait RenderScheduler {
+    /// Queue a render; anything older that has not started is dropped. Returns the job's id.
+    fn submit(&mut self, job: RenderJob) -> u64;
+    /// Events that have arrived since the last call.
+    fn poll(&mut self) -> Vec<RenderEvent>;
+    /// A frame is being rendered (or waits to be).
+    fn busy(&self) -> bool;
+    /// How long the views have been waiting for a frame.
+    fn waiting_for(&self) -> Option<Duration>;
+    /// Work waits for the next `poll`: the caller should come back next frame, not only when
+    /// woken (a frame-driven scheduler renders only when polled).
+    fn needs_polling(&self) -> bool {
+        false
+    }
+}
+
+/// What the app wants rendered.
+#[derive(Clone)]
+pub struct RenderJob {
+    pub scene: Scene,
+    /// Time, size (the resolution rendered at) and the light the analysis describes.
+    pub request: FrameRequest,
+    /// Probe here (full-quality renders only).
+    pub probe: Option<ProbeSpot>,
+    /// Render the analysis targets of the selected light (the overlays need them).
+    pub analysis: bool,
+    /// Accumulate the ground truth of the selected light (needs `analysis`).
+    pub reference: bool,
+    /// Accumulate the ground truth at the probe for these lights (needs `probe`).
+    pub probe_reference: Vec<usize>,
+    /// Work out VSM's light bleeding for the selected light (needs `analysis`).
+    pub bleeding: bool,
+    /// Read back the level of the selected light's VSM moments the filter reads (needs
+    /// `analysis`; VSM techniques only).
+    pub moments: bool,
+    /// The A/B split's right side: the same frame with this technique.
+    pub technique_b: Option<Technique>,
+    /// A small picture of every light's map (several lights, full quality).
+    pub thumbnails: bool,
+    /// A reduced-quality render while a value is being dragged.
+    pub preview: bool,
+    /// Texels per side of the shadow-map picture at most (the map is subsampled beyond).
+    pub map_texels: u32,
+}
+
+/// A pixel to probe, in a frame of its own size: the view's, or a lesson's own frame.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ProbeSpot {
+    pub pixel: (u32, u32),
+    pub frame: (u32, u32),
+}
+
+/// The selected light's shadow map: the depths (for the hover readout and the probe picture)
+/// and the picture shown, with the depth range of its colour bar (world units).
+pub struct MapView {
+    pub depth: DepthImage,
+    pub light: LightGpu,
+    pub image: image::RgbaImage,
+    pub range: (f32, f32),
+}
+
+/// One finished render.
+pub struct RenderOutput {
+    pub job: u64,
+    pub preview: bool,
+    /// The resolution the camera view was rendered at, pixels.
+    pub size: (u32, u32),
+    pub color: image::RgbaImage,
+    pub color_b: Option<image::RgbaImage>,
+    /// The lights and the shadow parameters as the GPU had them.
+    pub lights: Vec<LightGpu>,
+    pub params: ShadowParamsGpu,
+    /// A `Details` event for this job follows (the probe, the overlays' analysis).
+    pub details_follow: bool,
+    /// GPU time of the last frame's passes (where the adapter has timestamps).
+    pub pass_times: Option<PassTimes>,
+    /// Wall-clock time of the whole job (renders, read-backs, probe), milliseconds.
+    pub render_ms: f64,
+}
+
+/// The shadow-map pictures of one frame, sent after its image.
+pub struct Maps {
+    pub job: u64,
+    /// The selected light's map; None where it is the same as in the last frame sent (the views
+    /// keep the picture they have).
+    pub map: Option<MapView>,
+    pub thumbnails: Vec<image::RgbaImage>,
+}
+
+/// The probe's report: None where no probe was asked for, Some(Err) where it failed.
+pub type ProbeOutcome = Option<Result<ProbeReport, String>>;
+
+/// What a full-quality frame adds after its image: the probe and the analysis the overlays draw.
+pub struct Details {
+    pub job: u64,
+    pub probe: ProbeOutcome,
+    pub analysis: Option<Analysis>,
+    /// Wall-clock time of the whole job so far, milliseconds.
+    pub render_ms: f64,
+}
+
+pub enum RenderEvent {
+    /// The worker's device is ready (adapter description) or could not be opened.
+    Ready(Result<String, String>),
+    /// The image first: it goes on screen while the maps and the details are worked out.
+    Frame(Box<RenderOutput>),
+    Maps(Box<Maps>),
+    Details(Box<Details>),
+    /// The ground truth so far: `done` of `total` light samples averaged.
+    Reference {
+        job: u64,
+        done: u32,
+        total: u32,
+        values: Vec<f32>,
+    },
+    /// The ground truth at the probe so far, for light `light`: `done` of `total` samples
+    /// averaged at the probed pixel.
+    ProbeReference {
+        job: u64,
+        light: usize,
+        done: u32,
+        total: u32,
+        value: f32,
+    },
+    Failed {
+        job: u64,
+        message: String,
+    },
+}
+
+/// What a scheduler remembers of the jobs it was given: the newest submitted, the newest
+/// finished, and since when the views wait (both schedulers keep the same books).
+#[derive(Default)]
+struct JobBook {
+    latest: u64,
+    finished: u64,
+    submitted_at: Option<std::time::Instant>,
+}
+
+impl JobBook {
+    fn submitted(&mut self, id: u64) {
+        self.latest = id;
+        self.submitted_at.get_or_insert_with(std::time::Instant::now);
+    }
+
+    /// Note what `events` finish.
+    fn heard(&mut self, events: &[RenderEvent]) {
+        for event in events {
+            match event {
+                // A frame arrived: the views are waiting only for the newer ones from now on.
+                RenderEvent::Frame(_) => self.submitted_at = Some(std::time::Instant::now()),
+                // The maps complete a job (its details, if any, follow).
+                RenderEvent::Maps(maps) => self.finished = self.finished.max(maps.job),
+                RenderEvent::Details(details) => self.finished = self.finished.max(details.job),
+                RenderEvent::Failed { job, .. } => self.finished = self.finished.max(*job),
+                _ => {}
+            }
+        }
+        if !self.busy() {
+            self.submitted_at = None;
+        }
+    }
+
+    fn busy(&self) -> bool {
+        self.finished < self.latest
+    }
+
+    fn waiting_for(&self) -> Option<Duration> {
+        self.submitted_at.filter(|_| self.busy()).map(|t| t.elapsed())
+    }
+}

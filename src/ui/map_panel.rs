@@ -1,0 +1,178 @@
+//! The shadow-map panel: linear depth with a colour bar, hover readout, the probe's uv with its
+//! search and filter circles and every tap at its real size; drag to move the light.
+
+use super::ShadowlabApp;
+use super::camera_panel::legend_bar;
+use crate::i18n::Lang;
+use crate::i18n::tr;
+use crate::shadow::depth_linear_from_ndc;
+use egui::{Color32, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
+use glam::{Mat4, Vec4};
+
+pub(super) fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
+    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect));
+    let ui = &mut child;
+    // Nothing of the map panel spills over the panel beside it (the lesson text).
+    ui.set_clip_rect(rect.intersect(ui.clip_rect()));
+    let light_count = app.state.scene.lights.len();
+    ui.horizontal(|ui| {
+        ui.strong(tr(app.state.lang, "Shadow map"));
+        for i in 0..light_count {
+            let selected = app.state.selected_light == i;
+            let clicked = match app.view_state.thumbnails.get(i) {
+                Some(t) => ui
+                    .add(
+                        egui::Button::image_and_text(
+                            egui::Image::new(t).fit_to_exact_size(vec2(40.0, 40.0)),
+                            format!("{} {i}", tr(app.state.lang, "light")),
+                        )
+                        .selected(selected),
+                    )
+                    .clicked(),
+                None => {
+                    ui.selectable_label(selected, format!("{} {i}", tr(app.state.lang, "light"))).clicked()
+                }
+            };
+            if clicked && !selected {
+                app.state.selected_light = i;
+                app.state.mark_dirty();
+            }
+        }
+    });
+    legend_bar(ui, app.state.lang, app.view_state.map_range, app.state.present);
+    let zoom = app.view_state.zoom.max(1.0);
+    let Some((texture, map, light)) = &app.view_state.map else {
+        ui.label(tr(app.state.lang, "no light in this scene"));
+        return;
+    };
+    let avail = ui.available_rect_before_wrap();
+    // The column's own width: a long legend line must not widen the map past it.
+    let side = rect.width().min(avail.height() - 60.0).max(64.0);
+    let map_rect = Rect::from_min_size(avail.min, vec2(side, side));
+    let response = ui.allocate_rect(map_rect, Sense::click_and_drag());
+    super::set_landmark(ui.ctx(), super::LANDMARK_SHADOW_MAP, map_rect);
+    let painter = ui.painter_at(map_rect);
+    // The part of the map shown: all of it, or a window of 1/zoom around the zoom centre.
+    let half = 0.5 / zoom;
+    let (cx, cy) = app.view_state.zoom_centre;
+    let (cx, cy) =
+        if zoom > 1.0 { (cx.clamp(half, 1.0 - half), cy.clamp(half, 1.0 - half)) } else { (0.5, 0.5) };
+    let shown = Rect::from_min_max(pos2(cx - half, cy - half), pos2(cx + half, cy + half));
+    painter.image(texture.id(), map_rect, shown, Color32::WHITE);
+    let side = side * zoom;
+    let to_rect = |uv: [f32; 2]| {
+        pos2(map_rect.left() + (uv[0] - shown.left()) * side, map_rect.top() + (uv[1] - shown.top()) * side)
+    };
+
+    // The probe on the map, at its real size.
+    if let Some(report) = &app.state.probe
+        && let Some(l) = report.lights.iter().find(|l| l.light == app.state.selected_light)
+    {
+        let centre = to_rect(l.shadow_map_uv);
+        if l.blocker_search_radius_uv > 0.0 {
+            painter.circle_stroke(
+                centre,
+                l.blocker_search_radius_uv * side,
+                Stroke::new(1.5, Color32::from_rgb(86, 180, 233)),
+            );
+        }
+        if l.filter_radius_uv > 0.0 {
+            painter.circle_stroke(centre, l.filter_radius_uv * side, Stroke::new(1.5, Color32::WHITE));
+        }
+        for tap in &l.taps {
+            let p = to_rect(tap.uv);
+            let (fill, search) = match tap.kind.as_str() {
+                "blocker-search" => (tap.value > 0.5, true),
+                _ => (tap.value < 0.5, false),
+            };
+            let color = if fill { Color32::from_rgb(204, 121, 167) } else { Color32::from_rgb(0, 158, 115) };
+            if search {
+                painter.circle_stroke(p, 2.5, Stroke::new(1.0, color));
+            } else {
+                painter.circle_filled(p, 2.5, color);
+            }
+        }
+        painter.circle_stroke(centre, 4.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
+    }
+    let info_pos = pos2(map_rect.left(), map_rect.bottom() + 4.0);
+    let mut info = String::from(tr(
+        app.state.lang,
+        "drag to move the light · blue: blocker search · white: filter · green lit, pink blocked",
+    ));
+    if let Some(pos) = response.hover_pos() {
+        let u = (shown.left() + (pos.x - map_rect.left()) / side).clamp(0.0, 0.9999);
+        let v = (shown.top() + (pos.y - map_rect.top()) / side).clamp(0.0, 0.9999);
+        let (tx, ty) = ((u * map.size as f32) as u32, (v * map.size as f32) as u32);
+        let z = map.depth_ndc[(ty * map.size + tx) as usize];
+        if z < 1.0 {
+            let ndc = Vec4::new(u * 2.0 - 1.0, 1.0 - v * 2.0, z, 1.0);
+            let w = Mat4::from_cols_array_2d(&light.clip_from_world).inverse() * ndc;
+            let p = w.truncate() / w.w;
+            let d = depth_linear_from_ndc(light, z);
+            info = match app.state.lang {
+                Lang::En => format!(
+                    "texel {tx},{ty} · stored {z:.5} NDC = {d:.3} world · point ({:.2}, {:.2}, {:.2})",
+                    p.x, p.y, p.z
+                ),
+                Lang::Zh => format!(
+                    "纹素 {tx},{ty} · 存储 {z:.5} NDC = {d:.3} 世界单位 · 点 ({:.2}, {:.2}, {:.2})",
+                    p.x, p.y, p.z
+                ),
+            };
+        } else {
+            info = match app.state.lang {
+                Lang::En => format!("texel {tx},{ty} · nothing stored (cleared to 1.0)"),
+                Lang::Zh => format!("纹素 {tx},{ty} · 没有存储任何东西（清除值 1.0）"),
+            };
+        }
+    }
+    // Wrapped to the map's width: the column may be narrow.
+    let info_font = egui::FontId::proportional(if app.state.present { 18.0 } else { 13.0 });
+    let galley = ui.painter().layout(info, info_font, Color32::LIGHT_GRAY, side);
+    ui.painter().galley(info_pos, galley, Color32::LIGHT_GRAY);
+
+    // Wheel over the map zooms around the probe (or the pointer), to see taps at texel scale.
+    let map_size = map.size;
+    let probe_uv = app
+        .probe
+        .as_ref()
+        .and_then(|r| r.lights.iter().find(|l| l.light == app.state.selected_light))
+        .map(|l| (l.shadow_map_uv[0], l.shadow_map_uv[1]));
+    if response.hovered() {
+        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+        if scroll != 0.0 {
+            let max_zoom = (map_size as f32 / 16.0).max(1.0);
+            let was_zoomed = app.view_state.zoomed();
+            app.view_state.zoom = (zoom * (scroll * 0.004).exp()).clamp(1.0, max_zoom);
+            if app.view_state.zoomed() != was_zoomed {
+                // The picture's resolution follows the zoom.
+                app.state.dirty = true;
+            }
+            let pointer = response.hover_pos().map(|p| {
+                (shown.left() + (p.x - map_rect.left()) / side, shown.top() + (p.y - map_rect.top()) / side)
+            });
+            if let Some(centre) = probe_uv.or(pointer) {
+                app.view_state.zoom_centre = centre;
+            }
+        }
+    }
+
+    // Dragging on the map moves the light: yaw about its up axis, pitch towards it.
+    if response.dragged() && response.drag_delta() != Vec2::ZERO {
+        let d = response.drag_delta();
+        if let Some(l) = app.state.scene.lights.get_mut(app.state.selected_light) {
+            let offset = l.position - l.target;
+            let up = l.up.normalize_or(glam::Vec3::Y);
+            let yawed = glam::Quat::from_axis_angle(up, -d.x * 0.005) * offset;
+            let right = yawed.cross(up).normalize_or(glam::Vec3::X);
+            let pitched = glam::Quat::from_axis_angle(right, -d.y * 0.005) * yawed;
+            if pitched.normalize().dot(up).abs() < 0.995 {
+                l.position = l.target + pitched;
+            } else {
+                l.position = l.target + yawed;
+            }
+        }
+        app.interacting = true;
+        app.state.mark_dirty();
+    }
+}

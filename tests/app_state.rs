@@ -1,0 +1,125 @@
+//! The app's state driven as the window drives it, without a window, a GPU or threads: what each
+//! action (open, step, apply a "Try this", reset, play) leaves the state showing.
+
+use shadowlab::app::{AppState, PLAYBACK_RANGE_S, ProbeAt, Settings, Source, launch};
+use shadowlab::i18n::Lang;
+use shadowlab::scene::Technique;
+use std::path::Path;
+
+fn fresh() -> AppState {
+    AppState::new(Settings::default())
+}
+
+fn lesson_index(state: &AppState, id: &str) -> usize {
+    state.lessons.iter().position(|l| l.id == id).unwrap_or_else(|| panic!("no lesson {id}"))
+}
+
+#[test]
+fn a_fresh_state_shows_the_default_scene_with_every_lesson_loaded() {
+    let state = fresh();
+    assert!(state.error.is_none(), "{:?}", state.error);
+    assert!(matches!(&state.source, Source::Scene(p) if p.ends_with("games202.toml")), "{:?}", state.source);
+    assert!(state.lessons.len() >= 6, "{} lessons", state.lessons.len());
+    assert!(state.current_step().is_none());
+    assert!(state.dirty, "the first frame is still to be rendered");
+}
+
+#[test]
+fn a_lesson_step_sets_what_its_file_says() {
+    let mut state = fresh();
+    let lesson = lesson_index(&state, "hard-shadows");
+    state.go_to_step(lesson, 0);
+    let (l, step, index) = state.current_step().expect("in a lesson");
+    assert_eq!((l.id.as_str(), index), ("hard-shadows", 0));
+    let (view, overlays, probe, time_s) = (step.view, step.overlays.clone(), step.probe, step.time_s);
+    assert_eq!(state.view, view);
+    assert_eq!(state.overlays, overlays);
+    assert_eq!(state.probe_at, probe.map(|[x, y]| ProbeAt::LessonFrame(x, y)));
+    assert_eq!(state.time_s, time_s);
+    assert_eq!(state.scene.shadow.technique, Technique::Hard, "the step's `set` is applied");
+    assert_eq!(state.settings.last_lesson, Some(("hard-shadows".to_string(), 0)), "remembered for next time");
+    assert!(state.changed_from_step().is_empty(), "{:?}", state.changed_from_step());
+}
+
+#[test]
+fn try_this_changes_the_settings_and_back_to_the_step_undoes_it() {
+    let mut state = fresh();
+    let lesson = lesson_index(&state, "hard-shadows");
+    state.go_to_step(lesson, 0);
+    let before = state.scene.lights[0].shadow_map_size;
+    state.apply_try_this(1);
+    assert_eq!(state.applied_try_this, Some(1));
+    assert_eq!(state.scene.lights[0].shadow_map_size, 256, "was {before}");
+    assert_eq!(state.changed_from_step(), vec!["lights"]);
+    state.back_to_step_settings();
+    assert_eq!(state.scene.lights[0].shadow_map_size, before);
+    assert!(state.changed_from_step().is_empty());
+    assert_eq!(state.applied_try_this, None);
+}
+
+#[test]
+fn stepping_walks_every_step_of_every_lesson_and_stops_at_both_ends() {
+    let mut state = fresh();
+    state.step_lesson(1);
+    assert!(matches!(state.source, Source::Lesson { lesson: 0, step: 0 }), "{:?}", state.source);
+    let total: usize = state.lessons.iter().map(|l| l.steps.len()).sum();
+    let mut seen = 1;
+    loop {
+        let before = state.source.clone();
+        state.step_lesson(1);
+        if state.source == before {
+            break;
+        }
+        assert!(state.error.is_none(), "{:?} at {:?}", state.error, state.source);
+        seen += 1;
+    }
+    assert_eq!(seen, total, "every step once");
+    for _ in 0..total + 3 {
+        state.step_lesson(-1);
+    }
+    assert!(matches!(state.source, Source::Lesson { lesson: 0, step: 0 }), "{:?}", state.source);
+}
+
+#[test]
+fn a_bad_file_keeps_the_last_good_scene_and_says_why() {
+    let mut state = fresh();
+    let good = state.scene.clone();
+    let bad = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/scenes/missing_mesh.toml");
+    state.open(&bad);
+    let error = state.error.clone().expect("an error");
+    assert!(error.detail.contains("no_such_mesh.obj"), "names the file it could not read: {error}");
+    assert_eq!(state.scene.objects.len(), good.objects.len(), "the last good scene stays");
+    assert_eq!(state.scene.path, good.path);
+    // A good one clears it.
+    state.open(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/scenes/minimal.toml"));
+    assert!(state.error.is_none(), "{:?}", state.error);
+    assert_eq!(state.scenes_opened, 1);
+}
+
+#[test]
+fn playback_loops_over_the_time_range_and_a_stall_does_not_jump_it() {
+    let mut state = fresh();
+    let start = PLAYBACK_RANGE_S - 0.1;
+    state.time_s = start;
+    state.dirty = false;
+    state.advance_playback(0.3);
+    assert_eq!(state.time_s, start, "paused: nothing moves");
+    assert!(!state.dirty);
+    state.playing = true;
+    state.advance_playback(0.3);
+    assert!((state.time_s - 0.2).abs() < 1e-4, "wrapped to {}", state.time_s);
+    assert!(state.dirty, "a new frame is due");
+    state.advance_playback(30.0);
+    assert!((state.time_s - 0.7).abs() < 1e-4, "a 30 s stall moves half a second: {}", state.time_s);
+}
+
+#[test]
+fn a_launch_opens_the_lesson_step_in_the_language_asked_for() {
+    let mut state = fresh();
+    let wanted = launch::resolve(None, Some("pcss"), Some(3), Some(Lang::Zh)).expect("resolves");
+    state.apply_launch(wanted);
+    assert_eq!(state.lang, Lang::Zh);
+    let (lesson, _, step) = state.current_step().expect("in a lesson");
+    assert_eq!((lesson.id.as_str(), step), ("pcss", 2));
+    assert!(launch::resolve(None, Some("pcss"), Some(99), None).is_err(), "no step 99");
+}
