@@ -2,7 +2,7 @@
 // Level 0 holds one texel per `block` x `block` map texels (block = 1 for maps up to 2048 texels);
 // each further level averages 2x2 texels of the one before (sizes halve rounding down, so an odd
 // last row or column is left out). The camera pass reads one level bilinearly
-// (`filtered_moments` in shadow_sampling.wgsl). Built after the shadow pass for frames that use
+// (`filtered_moments` in shadow_filter.wgsl). Built after the shadow pass for frames that use
 // VSM; the CPU twin builds the same chain (src/shadow/moments.rs).
 
 struct MomentsInfo {

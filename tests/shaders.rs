@@ -53,7 +53,7 @@ fn visibility_functions_have_their_lesson_names() {
         "fn receiver_bias_ndc",
         "fn light_space_lookup",
     ] {
-        assert!(source.contains(name), "shaders/shadow_sampling.wgsl lost `{name}`");
+        assert!(source.contains(name), "shaders/shadow_lookup.wgsl or shadow_filter.wgsl lost `{name}`");
     }
 }
 

@@ -113,7 +113,7 @@ impl Renderer {
     }
 
     /// The finer of the two levels of light `index`'s moments a VSM filter of `radius_texels`
-    /// reads (`filtered_moments` in shaders/shadow_sampling.wgsl), as the last frame left it.
+    /// reads (`filtered_moments` in shaders/shadow_filter.wgsl), as the last frame left it.
     pub fn read_moments_for_radius(
         &self,
         index: usize,

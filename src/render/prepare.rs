@@ -102,7 +102,7 @@ impl Renderer {
     }
 
     /// The filter's and the blocker search's patterns for these settings (what `kernel_offset`
-    /// in shaders/shadow_sampling.wgsl turns per pixel).
+    /// in shaders/shadow_filter.wgsl turns per pixel).
     pub(super) fn write_kernel_table(&self, shadow: &ShadowSettings) {
         let search_kernel = crate::shadow::search_kernel(shadow.pcf_kernel);
         let filter = kernel_table(shadow.pcf_kernel, filter_taps(shadow.pcf_kernel, shadow.samples));

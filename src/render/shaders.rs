@@ -1,7 +1,8 @@
 //! WGSL sources, composed from shaders/*.wgsl (one concern per file; no preprocessor).
 
 const COMMON: &str = include_str!("../../shaders/common.wgsl");
-const SHADOW_SAMPLING: &str = include_str!("../../shaders/shadow_sampling.wgsl");
+const SHADOW_LOOKUP: &str = include_str!("../../shaders/shadow_lookup.wgsl");
+const SHADOW_FILTER: &str = include_str!("../../shaders/shadow_filter.wgsl");
 const SHADOW_PASS: &str = include_str!("../../shaders/shadow_pass.wgsl");
 const CAMERA: &str = include_str!("../../shaders/camera.wgsl");
 const MOMENTS: &str = include_str!("../../shaders/moments.wgsl");
@@ -35,7 +36,12 @@ pub fn shadow_pass() -> ShaderSource {
 pub fn camera() -> ShaderSource {
     compose(
         "camera",
-        &[("common.wgsl", COMMON), ("shadow_sampling.wgsl", SHADOW_SAMPLING), ("camera.wgsl", CAMERA)],
+        &[
+            ("common.wgsl", COMMON),
+            ("shadow_lookup.wgsl", SHADOW_LOOKUP),
+            ("shadow_filter.wgsl", SHADOW_FILTER),
+            ("camera.wgsl", CAMERA),
+        ],
     )
 }
 
@@ -46,7 +52,12 @@ pub fn moments() -> ShaderSource {
 pub fn reference() -> ShaderSource {
     compose(
         "reference",
-        &[("common.wgsl", COMMON), ("shadow_sampling.wgsl", SHADOW_SAMPLING), ("reference.wgsl", REFERENCE)],
+        &[
+            ("common.wgsl", COMMON),
+            ("shadow_lookup.wgsl", SHADOW_LOOKUP),
+            ("shadow_filter.wgsl", SHADOW_FILTER),
+            ("reference.wgsl", REFERENCE),
+        ],
     )
 }
 

@@ -1,5 +1,5 @@
 //! Sample patterns and noise: the twin of the "sample patterns" part of
-//! shaders/shadow_sampling.wgsl and the hash in shaders/common.wgsl (same names, same bits).
+//! shaders/shadow_filter.wgsl and the hash in shaders/common.wgsl (same names, same bits).
 
 use crate::scene::Kernel;
 pub use crate::scene::{MAX_TAPS, filter_taps, grid_side};

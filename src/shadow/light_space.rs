@@ -1,4 +1,4 @@
-//! What to sample (the twin of the first half of shaders/shadow_sampling.wgsl): where a surface
+//! What to sample (the twin of shaders/shadow_lookup.wgsl): where a surface
 //! point lands in a light's map, at which depth, with which bias; and the light-space formulas
 //! every other part of shadowlab (probe, views, overlays, diagrams) calls rather than copies.
 

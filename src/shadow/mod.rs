@@ -1,5 +1,6 @@
-//! The CPU twin of shaders/shadow_sampling.wgsl: the same functions with the same names and
-//! units, run on a read-back shadow map. It powers the pixel probe and the tests that hold the
+//! The CPU twin of shaders/shadow_lookup.wgsl (light_space.rs) and shaders/shadow_filter.wgsl
+//! (this file, kernels.rs and vsm.rs): the same functions with the same names and units, run on
+//! a read-back shadow map. It powers the pixel probe and the tests that hold the
 //! GPU to the maths. A formula is fixed in both places or in neither.
 
 pub mod gpu;

@@ -1,5 +1,5 @@
 //! The twin of the VSM moments (shaders/moments.wgsl) and of `filtered_moments` in
-//! shaders/shadow_sampling.wgsl: the same chain, built the same way from the read-back map.
+//! shaders/shadow_filter.wgsl: the same chain, built the same way from the read-back map.
 
 use super::{DepthImage, LightGpu};
 use glam::Vec2;
@@ -14,7 +14,7 @@ pub fn atlas_depth(map: &DepthImage, atlas: u32, x: u32, y: u32) -> f32 {
 
 /// The fractional level of a chain of `level_count` levels that a filter of `radius_texels`
 /// map texels reads: the level whose texels span the radius (`filtered_moments` in
-/// shaders/shadow_sampling.wgsl). Its floor and the level above are blended.
+/// shaders/shadow_filter.wgsl). Its floor and the level above are blended.
 pub fn level_for_radius(radius_texels: f32, block: u32, level_count: u32) -> f32 {
     let widest = level_count.saturating_sub(1) as f32;
     (radius_texels / block as f32).max(1.0).log2().clamp(0.0, widest)

@@ -1,4 +1,4 @@
-//! VSM and VSSM in the twin (the moments half of shaders/shadow_sampling.wgsl).
+//! VSM and VSSM in the twin (the moments part of shaders/shadow_filter.wgsl).
 
 use super::*;
 

@@ -1,0 +1,303 @@
+// What to sample: where a surface point lands in a light's map (light-space lookup, normal
+// offset), at which depth, with which bias, and one tap's depth test. How to filter those taps is
+// shaders/shadow_filter.wgsl. The CPU twin's src/shadow/light_space.rs has the same functions with
+// the same names; fix a formula in both.
+//
+// Units: `depth_ndc` is what the map stores (0..1); `depth_linear` is world units from the light
+// along its axis; `_uv` is shadow-map uv (0..1 over the light's map); `_texels` is map texels.
+
+@group(1) @binding(1) var<uniform> params: ShadowParamsGpu;
+@group(1) @binding(2) var shadow_maps: texture_depth_2d_array;
+@group(1) @binding(3) var shadow_compare_sampler: sampler_comparison;
+// Unit-disk sample patterns, unrotated: tap i of the filter in .xy, of the blocker search in
+// .zw (filled from params by the renderer; see `kernel_offset`).
+@group(1) @binding(4) var<uniform> kernel_table: array<vec4<f32>, MAX_TAPS>;
+const FILTER_TABLE: u32 = 0u;
+const SEARCH_TABLE: u32 = 1u;
+// VSM: (depth, depth²) averaged per block of map texels, a mip chain (shaders/moments.wgsl).
+@group(1) @binding(5) var moments: texture_2d_array<f32>;
+
+// ---------------------------------------------------------------- pipeline specialisation
+// The camera pipelines are built once per technique, kernel, bias mode and clamping, with these
+// override constants set (SPECIALISED = true): the shader compiler then drops every branch the
+// pipeline never takes. Without it a SIMD rasteriser (lavapipe) runs masked copies of every
+// technique's loops for every pixel. SPECIALISED = false (the ground-truth pass) reads `params`.
+override SPECIALISED: bool = false;
+override SPEC_TECHNIQUE: u32 = 0u;
+override SPEC_KERNEL: u32 = 0u;
+override SPEC_BIAS_MODE: u32 = 0u;
+override SPEC_CLAMP_OUTSIDE: u32 = 1u;
+override SPEC_DEPTH_STORAGE: u32 = 0u;
+// What every light of the scene shares: SPEC_ALL_* (or SPEC_MIXED: read it from the light).
+override SPEC_PROJECTION: u32 = 0u;
+override SPEC_SIZE_MODEL: u32 = 0u;
+const SPEC_MIXED: u32 = 0u;
+const SPEC_ALL_ORTHOGRAPHIC: u32 = 1u;
+const SPEC_ALL_PERSPECTIVE: u32 = 2u;
+const SPEC_ALL_WIDTH: u32 = 1u;
+const SPEC_ALL_ANGULAR: u32 = 2u;
+
+fn technique() -> u32 {
+    if SPECIALISED {
+        return SPEC_TECHNIQUE;
+    }
+    return params.technique;
+}
+
+fn kernel() -> u32 {
+    if SPECIALISED {
+        return SPEC_KERNEL;
+    }
+    return params.kernel;
+}
+
+fn bias_mode() -> u32 {
+    if SPECIALISED {
+        return SPEC_BIAS_MODE;
+    }
+    return params.bias_mode;
+}
+
+fn clamp_outside() -> u32 {
+    if SPECIALISED {
+        return SPEC_CLAMP_OUTSIDE;
+    }
+    return params.clamp_outside;
+}
+
+fn depth_storage() -> u32 {
+    if SPECIALISED {
+        return SPEC_DEPTH_STORAGE;
+    }
+    return params.depth_storage;
+}
+
+fn is_orthographic(light: LightGpu) -> bool {
+    if SPECIALISED && SPEC_PROJECTION != SPEC_MIXED {
+        return SPEC_PROJECTION == SPEC_ALL_ORTHOGRAPHIC;
+    }
+    return light.orthographic == 1u;
+}
+
+fn is_angular(light: LightGpu) -> bool {
+    if SPECIALISED && SPEC_SIZE_MODEL != SPEC_MIXED {
+        return SPEC_SIZE_MODEL == SPEC_ALL_ANGULAR;
+    }
+    return light.size_model == SIZE_MODEL_ANGULAR;
+}
+
+// ---------------------------------------------------------------- what to sample
+
+struct ShadowCoord {
+    uv: vec2<f32>,          // wgpu: uv = ndc.xy * (0.5, -0.5) + 0.5
+    depth_ndc: f32,         // receiver depth as the map would store it
+    depth_linear: f32,      // receiver distance from the light, world units
+    n_dot_l: f32,
+    // Receiver-plane bias only (else 0): the receiver's plane in the map, as NDC depth per uv,
+    // so that the plane's depth at uv + delta is depth_ndc + dot(depth_gradient, delta).
+    depth_gradient: vec2<f32>,
+}
+
+fn depth_linear_from_ndc(light: LightGpu, z: f32) -> f32 {
+    if is_orthographic(light) {
+        return light.near + z * (light.far - light.near);
+    }
+    return light.near * light.far / (light.far - z * (light.far - light.near));
+}
+
+// dz/dd at distance d: turns a world-unit bias into NDC depth units.
+fn ndc_per_world(light: LightGpu, depth_linear: f32) -> f32 {
+    if is_orthographic(light) {
+        return 1.0 / (light.far - light.near);
+    }
+    return light.far * light.near / (depth_linear * depth_linear * (light.far - light.near));
+}
+
+// One texel's footprint on a surface facing the light at distance d, world units.
+fn texel_world_at(light: LightGpu, depth_linear: f32) -> f32 {
+    if is_orthographic(light) {
+        return light.frustum_width_world / light.map_size_texels;
+    }
+    return 2.0 * depth_linear * light.tan_half_fov / light.map_size_texels;
+}
+
+fn light_dir_to(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
+    if is_orthographic(light) {
+        return -light.direction.xyz;
+    }
+    return normalize(light.position.xyz - world_pos);
+}
+
+fn project_to_light(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
+    let clip = light.clip_from_world * vec4<f32>(world_pos, 1.0);
+    let ndc = clip.xyz / clip.w;
+    return vec3<f32>(ndc.xy * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5), ndc.z);
+}
+
+// Light-space lookup of a surface point, with the normal offset applied
+// (three.js normalBias; Bevy uses 1.8 texels): move along the normal by k texels in world units.
+fn light_space_lookup(light: LightGpu, world_pos: vec3<f32>, normal: vec3<f32>) -> ShadowCoord {
+    var out: ShadowCoord;
+    out.n_dot_l = dot(normal, light_dir_to(light, world_pos));
+    var p = world_pos;
+    if params.normal_offset_texels > 0.0 {
+        let d = depth_linear_from_ndc(light, project_to_light(light, world_pos).z);
+        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(light, d));
+    }
+    let s = project_to_light(light, p);
+    out.uv = s.xy;
+    out.depth_ndc = s.z;
+    out.depth_linear = depth_linear_from_ndc(light, s.z);
+    if bias_mode() == BIAS_RECEIVER_PLANE {
+        out.depth_gradient = receiver_plane_gradient(light, p, normal, s);
+    }
+    return out;
+}
+
+// Two unit vectors that span the plane with unit normal n (Duff et al. 2017, branchless).
+fn tangents_of(n: vec3<f32>) -> array<vec3<f32>, 2> {
+    let sign = select(-1.0, 1.0, n.z >= 0.0);
+    let a = -1.0 / (sign + n.z);
+    let b = n.x * n.y * a;
+    return array<vec3<f32>, 2>(
+        vec3<f32>(1.0 + sign * n.x * n.x * a, sign * b, -sign * n.x),
+        vec3<f32>(b, sign + n.y * n.y * a, -n.y),
+    );
+}
+
+// The receiver's plane (through p, normal n) as NDC depth per uv of the map: two points of the
+// plane a texel from p, projected like p (at s), fix it. A light's projection maps planes to
+// planes, so this is exact for spot lights too. Edge-on to the light (the two projected steps
+// parallel) there is no such plane: 0, the constant bias alone.
+fn receiver_plane_gradient(light: LightGpu, p: vec3<f32>, n: vec3<f32>, s: vec3<f32>) -> vec2<f32> {
+    let step = texel_world_at(light, depth_linear_from_ndc(light, s.z));
+    let t = tangents_of(n);
+    let a = project_to_light(light, p + t[0] * step) - s;
+    let b = project_to_light(light, p + t[1] * step) - s;
+    let det = a.x * b.y - a.y * b.x;
+    if !(abs(det) > 1e-3 * length(a.xy) * length(b.xy)) {
+        return vec2<f32>(0.0);
+    }
+    return vec2<f32>(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
+}
+
+// Depth bias in NDC units (REFERENCES "Bias"). `filter_radius_texels` grows the adaptive bias.
+fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: f32) -> f32 {
+    switch bias_mode() {
+        case BIAS_CONSTANT: {
+            return params.bias;
+        }
+        case BIAS_SLOPE: {
+            // LearnOpenGL: max(0.05 * (1 - N.L), 0.005)
+            return max(params.slope_bias * (1.0 - coord.n_dot_l), params.bias);
+        }
+        case BIAS_RECEIVER_PLANE: {
+            // The plane does the rest, per tap (`tap_reference_ndc`); this is the margin for
+            // depth precision.
+            return params.bias;
+        }
+        case BIAS_ADAPTIVE: {
+            // Seed 000: A = (1 + ceil(R)) * W / (2 * map_size) is half a texel in world units,
+            // grown with the filter; B = 1 - N.L; bias = c * max(A, A * B). As published,
+            // max(A, A*B) is A wherever the light reaches (N.L >= 0, so B <= 1): texel-aware,
+            // not slope-aware.
+            let a = (1.0 + ceil(filter_radius_texels)) * 0.5 * texel_world_at(light, coord.depth_linear);
+            let b = 1.0 - coord.n_dot_l;
+            let bias_world = params.adaptive_c * max(a, a * b);
+            return bias_world * ndc_per_world(light, coord.depth_linear);
+        }
+        default: {
+            return 0.0;
+        }
+    }
+}
+
+// Written as "not inside" so that NaN (a point in a spot light's own plane) counts as outside.
+fn outside_map(uv: vec2<f32>) -> bool {
+    return !(all(uv >= vec2<f32>(0.0)) && all(uv <= vec2<f32>(1.0)));
+}
+
+fn outside_depth(z: f32) -> bool {
+    return !(z >= 0.0 && z <= 1.0);
+}
+
+// The receiver has no shadow-map data: outside the map or past its depth range.
+fn outside_frustum(coord: ShadowCoord) -> bool {
+    return outside_map(coord.uv) || outside_depth(coord.depth_ndc);
+}
+
+// The GAMES202 framework's RGBA8 depth: `pack` splits the depth over the four 8-bit channels of
+// a colour target, which keeps each as round(255 v) / 255 like any RGBA8 target, and `unpack`
+// sums them back. Without three.js's 256/255 correction the round trip is off by up to about
+// 1/255: too far below half the depth range, too near above it. Texels nothing was drawn to hold
+// the clear colour, white: unpack(1, 1, 1, 1).
+fn rgba8_round_trip(depth_ndc: f32) -> f32 {
+    if depth_ndc >= 1.0 {
+        return ((1.0 + 1.0 / 256.0) + 1.0 / 65536.0) + 1.0 / 16777216.0;
+    }
+    // pack: fract(depth * (1, 256, 256², 256³)), each channel less the next one's share.
+    let scaled = fract(depth_ndc * vec4<f32>(1.0, 256.0, 65536.0, 16777216.0));
+    let next = vec4<f32>(scaled.y, scaled.z, scaled.w, 0.0);
+    let rgba = scaled - next * (1.0 / 256.0);
+    // The RGBA8 target keeps round(255 v) of each channel.
+    let stored = round(saturate(rgba) * 255.0) * (1.0 / 255.0);
+    // unpack: dot with (1, 1/256, 1/256², 1/256³), summed in order.
+    let parts = stored * vec4<f32>(1.0, 1.0 / 256.0, 1.0 / 65536.0, 1.0 / 16777216.0);
+    return ((parts.x + parts.y) + parts.z) + parts.w;
+}
+
+// Stored depth at a uv, point-sampled. Without clamping the lookup wraps, the classic bug.
+fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
+    var lookup = uv;
+    if clamp_outside() == 0u {
+        lookup = fract(uv);
+    }
+    let size = i32(light.map_size_texels);
+    let texel = clamp(vec2<i32>(floor(lookup * light.map_size_texels)), vec2<i32>(0), vec2<i32>(size - 1));
+    let depth = textureLoad(shadow_maps, texel, i32(light.layer), 0);
+    if depth_storage() == DEPTH_RGBA8 {
+        return rgba8_round_trip(depth);
+    }
+    return depth;
+}
+
+// The depth a tap at `uv` compares the map's with: the receiver's, less the bias. With the
+// receiver-plane bias it is the receiver's plane at the centre of the texel the tap reads (where
+// that texel's depth was rendered), so a flat receiver never shadows itself however far the tap
+// lands from the pixel; a bilinear tap of the sampler (not `point_sampled`) uses the plane at the
+// tap itself.
+fn tap_reference_ndc(
+    light: LightGpu,
+    coord: ShadowCoord,
+    uv: vec2<f32>,
+    bias_ndc: f32,
+    point_sampled: bool,
+) -> f32 {
+    if bias_mode() == BIAS_RECEIVER_PLANE {
+        var at = uv;
+        if point_sampled {
+            at = (floor(uv * light.map_size_texels) + 0.5) / light.map_size_texels;
+        }
+        return coord.depth_ndc + dot(coord.depth_gradient, at - coord.uv) - bias_ndc;
+    }
+    return coord.depth_ndc - bias_ndc;
+}
+
+// 1 = lit, 0 = shadowed, for one tap. Outside the light frustum counts as lit when clamped.
+fn depth_test(light: LightGpu, coord: ShadowCoord, uv: vec2<f32>, bias_ndc: f32) -> f32 {
+    if clamp_outside() == 1u && (outside_map(uv) || outside_depth(coord.depth_ndc)) {
+        return 1.0;
+    }
+    let bilinear = kernel() == KERNEL_HARDWARE && technique() != TECHNIQUE_HARD;
+    let reference = tap_reference_ndc(light, coord, uv, bias_ndc, !bilinear);
+    if bilinear {
+        var lookup = uv;
+        if clamp_outside() == 0u {
+            lookup = fract(uv);
+        }
+        // Bilinear 2x2 comparison in the sampler (LessEqual: lit where reference <= stored).
+        return textureSampleCompareLevel(shadow_maps, shadow_compare_sampler, lookup * light.atlas_scale,
+                                         i32(light.layer), reference);
+    }
+    return select(0.0, 1.0, reference <= stored_depth_ndc(light, uv));
+}
