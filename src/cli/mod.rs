@@ -219,7 +219,12 @@ impl From<RenderError> for CliError {
 
 impl From<export::ExportError> for CliError {
     fn from(e: export::ExportError) -> Self {
-        Self { code: 1, message: e.to_string() }
+        match e {
+            export::ExportError::Render(e) => e.into(),
+            // A folder that cannot be made is the user's input, as a bad path is.
+            export::ExportError::Folder { .. } => Self::input(e.to_string()),
+            _ => Self { code: 1, message: e.to_string() },
+        }
     }
 }
 

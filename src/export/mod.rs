@@ -1,8 +1,9 @@
 //! Writing output files atomically (see [`crate::files`]), and the lesson slides `shadowlab export` writes:
-//! the pictures of a step (`step`), the slide itself (`slide`, drawn on the diagrams' canvas)
-//! and the index page (`html`).
+//! the pictures of a step (`step`), the slide itself (`slide`, drawn on the diagrams' canvas),
+//! the index page (`html`) and the loop over the lessons that writes them all (`lessons`).
 
 pub mod html;
+pub mod lessons;
 pub mod slide;
 pub mod step;
 
@@ -14,6 +15,12 @@ pub enum ExportError {
     Write { path: String, reason: String },
     #[error("{path}: {reason}")]
     Encode { path: String, reason: String },
+    #[error("{path}: cannot create the folder: {reason}")]
+    Folder { path: String, reason: String },
+    #[error("{0}")]
+    Draw(String),
+    #[error(transparent)]
+    Render(#[from] crate::render::RenderError),
 }
 
 /// Write `bytes` to `path` atomically.
