@@ -984,7 +984,7 @@ fn every_try_this_apply_button_sets_what_its_prompt_says() {
                 assert_eq!(app.time_s, prompt.time_s.unwrap_or(step.time_s), "{at}");
                 assert_eq!(app.view, prompt.view.unwrap_or(step.view), "{at}");
                 // Every control the prompt names is on screen for the student to move.
-                for (key, _) in &prompt.overrides {
+                for key in prompt.overrides.iter().map(|o| &o.key) {
                     if let Some(n) = key.strip_prefix("light.").and_then(|k| k.split('.').next()) {
                         h.state_mut().selected_light = n.parse().expect("light index");
                         h.run_steps(2);

@@ -226,14 +226,15 @@ fn try_this_prompts_name_the_apps_controls_and_apply_what_they_say() {
                         "{at}: command-line syntax in {text:?}"
                     );
                 }
-                for (key, value) in &prompt.overrides {
+                for o in &prompt.overrides {
+                    let (key, value) = (&o.key, o.value_text());
                     let label = shadowlab::ui::control_label(key)
                         .unwrap_or_else(|| panic!("{at}: `{key}` has no control in the app"));
                     let en_name = format!("“{}”", short_label(label));
                     let zh_name = format!("「{}」", short_label(shadowlab::i18n::tr(Lang::Zh, label)));
                     assert!(en.contains(&en_name), "{at}: the English text does not name {en_name}: {en}");
                     assert!(zh.contains(&zh_name), "{at}: the Chinese text does not name {zh_name}: {zh}");
-                    let value = value.trim_matches('"');
+                    let value = value.as_str();
                     // A value the inspector shows by a label (a technique, kernel...) is named by
                     // the label the student sees in the combo box.
                     let zh_value = shadowlab::ui::value_label(key, value, Lang::Zh);
@@ -586,8 +587,8 @@ fn documented_constants(lesson: &Lesson, index: usize) -> Vec<f64> {
     let scene = step.scene().expect("the step's scene");
     out.extend(numbers_in(&format!("{:?} {:?} {:?}", scene.shadow, scene.lights, scene.camera)));
     let prompts = step.try_this.iter().flat_map(|t| &t.overrides);
-    for (_, value) in step.overrides.iter().chain(prompts) {
-        out.extend(numbers_in(value));
+    for o in step.overrides.iter().chain(prompts) {
+        out.extend(numbers_in(&o.value_text()));
     }
     out.extend(DERIVED.iter().filter(|d| d.0 == lesson.id && d.1 == index + 1).map(|d| d.2));
     out

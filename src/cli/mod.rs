@@ -297,9 +297,9 @@ fn load(frame: &FrameArgs) -> Result<Resolved, CliError> {
             ))
         })?;
         let mut overrides = step.overrides.clone();
-        overrides.extend(frame.set.iter().cloned());
+        overrides.extend(frame.set.iter().map(|(key, value)| crate::scene::Override::parse(key, value)));
         return Ok(Resolved {
-            scene: load_scene(&step.scene_path, &overrides)?,
+            scene: step.source.build(&overrides)?,
             label: format!("lesson {} step {}", lesson.id, frame.step),
             time_s: frame.time.unwrap_or(step.time_s),
             view: step.view,

@@ -8,11 +8,13 @@ pub mod live;
 use crate::diagrams::DiagramKind;
 use crate::files::OneLine;
 use crate::i18n::Lang;
-use crate::scene::{Scene, SceneError, load_scene};
+use crate::scene::{Override, Scene, SceneError, SceneSource};
 use crate::views::View;
 use crate::views::overlays::Overlay;
 use serde::Deserialize;
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use toml::Spanned;
 
 #[derive(Debug, thiserror::Error)]
@@ -117,7 +119,7 @@ struct StepFile {
 #[derive(Clone, Debug, PartialEq)]
 pub struct TryThis {
     pub text: Text,
-    pub overrides: Vec<(String, String)>,
+    pub overrides: Vec<Override>,
     pub time_s: Option<f32>,
     pub view: Option<View>,
 }
@@ -136,8 +138,10 @@ pub struct Step {
     pub text: Text,
     pub try_this: Vec<TryThis>,
     pub scene_path: PathBuf,
-    /// `--set`-style overrides, in file order.
-    pub overrides: Vec<(String, String)>,
+    /// The scene file, read once for every step of the lesson that names it.
+    pub source: Arc<SceneSource>,
+    /// The `set` table's values, typed, in file order.
+    pub overrides: Vec<Override>,
     pub time_s: f32,
     pub play: bool,
     pub panels: Vec<Panel>,
@@ -153,14 +157,14 @@ pub struct Step {
 impl Step {
     /// The step's scene with its overrides applied.
     pub fn scene(&self) -> Result<Scene, SceneError> {
-        load_scene(&self.scene_path, &self.overrides)
+        self.source.build(&self.overrides)
     }
 
     /// The step's scene with prompt `index`'s changes on top (what its Apply button shows).
     pub fn scene_with_try_this(&self, index: usize) -> Result<Scene, SceneError> {
         let extra = self.try_this.get(index).map_or(&[][..], |t| &t.overrides[..]);
-        let all: Vec<(String, String)> = self.overrides.iter().chain(extra).cloned().collect();
-        load_scene(&self.scene_path, &all)
+        let all: Vec<Override> = self.overrides.iter().chain(extra).cloned().collect();
+        self.source.build(&all)
     }
 }
 
@@ -183,15 +187,14 @@ fn line_of(text: &str, byte: usize) -> usize {
     text.as_bytes()[..byte.min(text.len())].iter().filter(|&&b| b == b'\n').count() + 1
 }
 
-/// Flatten a `set` table into `--set` pairs: `{ light = { 0 = { width = 4 } } }` and
-/// `"light.0.width" = 4` both give `light.0.width=4`.
-fn flatten(prefix: &str, table: &toml::Table, out: &mut Vec<(String, String)>) {
+/// Flatten a `set` table into overrides, values kept as typed: `{ light = { 0 = { width = 4 } } }`
+/// and `"light.0.width" = 4` both give `light.0.width` = 4.
+fn flatten(prefix: &str, table: &toml::Table, out: &mut Vec<Override>) {
     for (key, value) in table {
         let full = if prefix.is_empty() { key.clone() } else { format!("{prefix}.{key}") };
         match value {
             toml::Value::Table(inner) => flatten(&full, inner, out),
-            toml::Value::String(s) => out.push((full, s.clone())),
-            other => out.push((full, other.to_string())),
+            other => out.push(Override { key: full, value: other.clone() }),
         }
     }
 }
@@ -262,6 +265,7 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
     }
     let base = path.parent().unwrap_or(Path::new("."));
     let mut steps = Vec::with_capacity(file.steps.len());
+    let mut sources: HashMap<PathBuf, Arc<SceneSource>> = HashMap::new();
     for (index, spanned) in file.steps.into_iter().enumerate() {
         let step_line = line_of(&text, spanned.span().start);
         let s = spanned.into_inner();
@@ -318,11 +322,23 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
             }
             try_this.push(TryThis { text: Text { en: t.en, zh: t.zh }, overrides, time_s: t.time, view });
         }
+        let scene_path = base.join(s.scene.get_ref());
+        let source = match sources.get(&scene_path) {
+            Some(source) => source.clone(),
+            None => {
+                let source = Arc::new(
+                    SceneSource::read(&scene_path).map_err(|e| error(s.scene.span(), e.to_string()))?,
+                );
+                sources.insert(scene_path.clone(), source.clone());
+                source
+            }
+        };
         let step = Step {
             title: s.title,
             text: s.text,
             try_this,
-            scene_path: base.join(s.scene.get_ref()),
+            scene_path,
+            source,
             overrides,
             time_s: s.time,
             play: s.play,

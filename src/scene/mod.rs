@@ -8,11 +8,12 @@ mod checks;
 mod file;
 mod light;
 pub mod mesh;
+mod primitives;
 mod settings;
 
 pub use camera::{Camera, Projection};
 pub(crate) use file::describe_toml_error;
-pub use file::{SceneError, load_scene, parse_scene_str};
+pub use file::{Override, SceneError, SceneSource, load_scene, parse_scene_str};
 pub use light::{Light, LightKind, LightSize, safe_up as safe_up_for};
 pub use mesh::{Material, Mesh, MeshError, MeshPart, TextureImage, Vertex};
 pub use settings::{

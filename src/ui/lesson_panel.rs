@@ -10,11 +10,12 @@ use egui::{RichText, Ui};
 fn what_apply_sets(prompt: &crate::lessons::TryThis, lang: Lang) -> String {
     let tr = |en: &'static str| crate::i18n::tr(lang, en);
     let mut lines = vec![tr("set what this prompt says").to_string()];
-    for (key, value) in &prompt.overrides {
+    for o in &prompt.overrides {
+        let (key, value) = (&o.key, o.value_text());
         let control = super::control_label(key).map_or(key.as_str(), tr);
         let light = key.strip_prefix("light.").and_then(|k| k.split('.').next());
         let of_light = light.map(|n| format!(" ({} {n})", tr("light"))).unwrap_or_default();
-        lines.push(format!("{control}{of_light} = {}", super::value_label(key, value, lang)));
+        lines.push(format!("{control}{of_light} = {}", super::value_label(key, &value, lang)));
     }
     if let Some(t) = prompt.time_s {
         lines.push(format!("{} = {t}", tr("time (s)")));

@@ -1,302 +1,17 @@
-//! Scene files (TOML). Paths inside a scene are relative to the file.
-//!
-//! `--set key=value` overrides are applied to the parsed TOML table before the strict
-//! (`deny_unknown_fields`) deserialisation, so an unknown key or a wrong type is reported
-//! with the key's name. Bare keys mean `[shadow]` keys (`technique=pcss`); others are paths:
-//! `camera.fov_deg=40`, `light.0.width=4`, `object.1.spin_deg_per_s=[0,90,0]`.
+//! From a parsed scene file to a `Scene`: every value checked against its range (with the key
+//! and, where it can be found, the line named), the meshes resolved and loaded once.
 
-use super::light::{Light, LightKind, LightSize};
-use super::mesh::{self, Mesh, MeshError};
-use super::settings::ShadowSettings;
-use super::{Camera, MAX_LIGHTS, Object, Projection, Scene};
-use crate::files::OneLine;
-use glam::Vec3;
-use serde::Deserialize;
-use std::collections::HashMap;
-use std::path::{Path, PathBuf};
-use std::sync::Arc;
-
-#[derive(Debug, thiserror::Error)]
-pub enum SceneError {
-    #[error("{}: cannot read: {}", OneLine(path), OneLine(reason))]
-    Io { path: String, reason: String },
-    #[error("{}:{line}: {}", OneLine(path), OneLine(message))]
-    Parse { path: String, line: usize, message: String },
-    #[error("{}: {}", OneLine(path), OneLine(message))]
-    Invalid { path: String, message: String },
-    #[error("--set {}: {}", OneLine(key), OneLine(message))]
-    Override { key: String, message: String },
-    #[error(transparent)]
-    Mesh(#[from] MeshError),
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct SceneFile {
-    camera: CameraFile,
-    #[serde(default, rename = "object")]
-    objects: Vec<ObjectFile>,
-    #[serde(default, rename = "light")]
-    lights: Vec<LightFile>,
-    #[serde(default)]
-    shadow: ShadowSettings,
-    #[serde(default = "default_ambient")]
-    ambient: [f32; 3],
-}
-
-#[derive(Deserialize, Clone, Copy, PartialEq)]
-#[serde(rename_all = "lowercase")]
-enum ProjectionName {
-    Perspective,
-    Orthographic,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct CameraFile {
-    #[serde(default = "default_projection")]
-    projection: ProjectionName,
-    position: [f32; 3],
-    #[serde(default)]
-    target: [f32; 3],
-    #[serde(default = "default_up")]
-    up: [f32; 3],
-    fov_deg: Option<f32>,
-    height: Option<f32>,
-    #[serde(default = "default_camera_near")]
-    near: f32,
-    #[serde(default = "default_camera_far")]
-    far: f32,
-}
-
-#[derive(Deserialize)]
-#[serde(untagged)]
-enum ScaleFile {
-    Uniform(f32),
-    PerAxis([f32; 3]),
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct ObjectFile {
-    name: Option<String>,
-    /// The name in Chinese, for the probe panel and the slides.
-    name_zh: Option<String>,
-    mesh: String,
-    #[serde(default = "default_color")]
-    color: [f32; 3],
-    #[serde(default)]
-    translate: [f32; 3],
-    #[serde(default)]
-    rotate_deg: [f32; 3],
-    scale: Option<ScaleFile>,
-    #[serde(default)]
-    spin_deg_per_s: [f32; 3],
-}
-
-#[derive(Deserialize, Clone, Copy, PartialEq)]
-#[serde(rename_all = "lowercase")]
-enum LightKindName {
-    Directional,
-    Spot,
-}
-
-#[derive(Deserialize)]
-#[serde(deny_unknown_fields)]
-struct LightFile {
-    kind: LightKindName,
-    position: [f32; 3],
-    #[serde(default)]
-    target: [f32; 3],
-    #[serde(default = "default_up")]
-    up: [f32; 3],
-    #[serde(default = "default_light_color")]
-    color: [f32; 3],
-    #[serde(default = "default_intensity")]
-    intensity: f32,
-    #[serde(default = "default_map_size")]
-    shadow_map_size: u32,
-    extent: Option<f32>,
-    fov_deg: Option<f32>,
-    near: Option<f32>,
-    #[serde(default = "default_light_far")]
-    far: f32,
-    width: Option<f32>,
-    angular_diameter_deg: Option<f32>,
-    #[serde(default)]
-    orbit_deg_per_s: f32,
-}
-
-fn default_ambient() -> [f32; 3] {
-    [0.08, 0.08, 0.1]
-}
-fn default_projection() -> ProjectionName {
-    ProjectionName::Perspective
-}
-fn default_up() -> [f32; 3] {
-    [0.0, 1.0, 0.0]
-}
-fn default_camera_near() -> f32 {
-    0.1
-}
-fn default_camera_far() -> f32 {
-    1000.0
-}
-fn default_color() -> [f32; 3] {
-    [0.8, 0.8, 0.8]
-}
-fn default_light_color() -> [f32; 3] {
-    [1.0, 1.0, 1.0]
-}
-fn default_intensity() -> f32 {
-    1.0
-}
-fn default_map_size() -> u32 {
-    2048
-}
-fn default_light_far() -> f32 {
-    500.0
-}
-
-/// Read a scene file and apply `--set` overrides (in order).
-pub fn load_scene(path: &Path, overrides: &[(String, String)]) -> Result<Scene, SceneError> {
-    let label = path.display().to_string();
-    let text = crate::files::read_input_text(path, crate::files::MAX_TEXT_FILE_BYTES)
-        .map_err(|reason| SceneError::Io { path: label.clone(), reason })?;
-    let base_dir = path.parent().unwrap_or(Path::new("."));
-    let mut scene = parse_scene_str(&text, base_dir, &label, overrides)?;
-    scene.path = Some(path.to_path_buf());
-    Ok(scene)
-}
-
-/// Parse scene text. `label` names the source in errors; mesh paths resolve against `base_dir`.
-pub fn parse_scene_str(
-    text: &str,
-    base_dir: &Path,
-    label: &str,
-    overrides: &[(String, String)],
-) -> Result<Scene, SceneError> {
-    let parse_error = |e: toml::de::Error| {
-        let (line, message) = describe_toml_error(text, &e);
-        SceneError::Parse { path: label.to_string(), line, message }
-    };
-    let mut table: toml::Table = toml::from_str(text).map_err(parse_error)?;
-    // The file alone must be valid, so its errors point at its lines, not at an override.
-    let file: SceneFile = toml::from_str(text).map_err(parse_error)?;
-    // Meshes load once even though each override is validated with a full build.
-    let mut meshes = HashMap::new();
-    build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_path(label, Some(text)))?;
-
-    for (key, value) in overrides {
-        apply_override(&mut table, key, value)?;
-        let file = SceneFile::deserialize(toml::Value::Table(table.clone())).map_err(|e| {
-            SceneError::Override { key: key.clone(), message: short_numbers(e.message().trim()) }
-        })?;
-        build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_override(key))?;
-    }
-    let file = SceneFile::deserialize(toml::Value::Table(table))
-        .map_err(|e| SceneError::Invalid { path: label.to_string(), message: e.message().to_string() })?;
-    build_scene(file, base_dir, &mut meshes).map_err(|e| e.with_path(label, None))
-}
-
-/// Set one key in the scene table; `value` is TOML (`4`, `[0,1,0]`, `true`) or a bare word.
-pub fn apply_override(table: &mut toml::Table, key: &str, value: &str) -> Result<(), SceneError> {
-    let err = |message: String| SceneError::Override { key: key.to_string(), message };
-    let parsed: toml::Value = match toml::from_str::<toml::Table>(&format!("v = {value}")) {
-        Ok(mut t) => t.remove("v").unwrap_or(toml::Value::String(value.to_string())),
-        Err(_) => toml::Value::String(value.to_string()),
-    };
-    let parts: Vec<&str> = key.split('.').collect();
-    if parts.iter().any(|p| p.is_empty()) {
-        return Err(err("malformed key".into()));
-    }
-    let (section, rest): (&str, &[&str]) = match parts[0] {
-        "camera" | "shadow" | "light" | "object" | "ambient" => (parts[0], &parts[1..]),
-        _ => ("shadow", &parts[..]),
-    };
-    let slot: &mut toml::Value = match section {
-        "ambient" if rest.is_empty() => {
-            table.insert("ambient".into(), parsed);
-            return Ok(());
-        }
-        "camera" | "shadow" if rest.len() == 1 => {
-            let entry =
-                table.entry(section.to_string()).or_insert_with(|| toml::Value::Table(toml::Table::new()));
-            entry
-                .as_table_mut()
-                .ok_or_else(|| err(format!("[{section}] is not a table")))?
-                .insert(rest[0].to_string(), parsed);
-            return Ok(());
-        }
-        "light" | "object" if rest.len() == 2 => {
-            let index: usize =
-                rest[0].parse().map_err(|_| err(format!("`{}` is not a {section} index", rest[0])))?;
-            let list = table
-                .get_mut(section)
-                .and_then(|v| v.as_array_mut())
-                .ok_or_else(|| err(format!("the scene has no [[{section}]]")))?;
-            let count = list.len();
-            list.get_mut(index).ok_or_else(|| err(format!("no {section} {index} (the scene has {count})")))?
-        }
-        _ => {
-            return Err(err(
-                "unknown key (use a [shadow] key, camera.KEY, light.N.KEY or object.N.KEY)".into()
-            ));
-        }
-    };
-    slot.as_table_mut()
-        .ok_or_else(|| err(format!("{section} {} is not a table", rest[0])))?
-        .insert(rest[1].to_string(), parsed);
-    Ok(())
-}
-
-pub(crate) fn line_of(text: &str, byte: usize) -> usize {
-    text.as_bytes()[..byte.min(text.len())].iter().filter(|&&b| b == b'\n').count() + 1
-}
-
-/// The line of a TOML error and its message, naming the key where serde's message does not
-/// (`unknown variant 'blurry'` becomes "`technique`: unknown variant ...").
-pub(crate) fn describe_toml_error(text: &str, e: &toml::de::Error) -> (usize, String) {
-    let message = short_numbers(e.message().trim());
-    let Some(span) = e.span() else { return (1, message) };
-    let line = line_of(text, span.start);
-    let line_text = text.lines().nth(line - 1).unwrap_or("");
-    let key = line_text
-        .split_once('=')
-        .map(|(k, _)| k.trim().trim_matches('"'))
-        .filter(|k| !k.is_empty() && !k.contains(['[', ']', '{']) && !message.contains(&format!("`{k}`")));
-    match key {
-        Some(key) => (line, format!("`{key}`: {message}")),
-        None => (line, message),
-    }
-}
-
-/// serde spells out a float it did not expect in full (`floating point
-/// \`340000000000000000000000000000000000000.0\``): a quoted number that long is written in
-/// exponent form instead.
-fn short_numbers(message: &str) -> String {
-    let mut out = String::with_capacity(message.len());
-    for (i, part) in message.split('`').enumerate() {
-        if i > 0 {
-            out.push('`');
-        }
-        match part.parse::<f64>() {
-            Ok(v) if i % 2 == 1 && part.len() > 24 => out.push_str(&format!("{v:e}")),
-            _ => out.push_str(part),
-        }
-    }
-    out
-}
+use super::*;
 
 /// A problem found while building, before we know whether the file or an override caused it.
-enum BuildError {
+pub(super) enum BuildError {
     Invalid(String),
     Mesh(MeshError),
 }
 
 impl BuildError {
     /// The error of a file: at the line of the key it names where `text` (the file) is given.
-    fn with_path(self, label: &str, text: Option<&str>) -> SceneError {
+    pub(super) fn with_path(self, label: &str, text: Option<&str>) -> SceneError {
         match self {
             BuildError::Invalid(message) => match text.and_then(|text| key_line(text, &message)) {
                 Some(line) => SceneError::Parse { path: label.into(), line, message },
@@ -305,7 +20,7 @@ impl BuildError {
             BuildError::Mesh(e) => SceneError::Mesh(e),
         }
     }
-    fn with_override(self, key: &str) -> SceneError {
+    pub(super) fn with_override(self, key: &str) -> SceneError {
         match self {
             BuildError::Invalid(message) => SceneError::Override { key: key.into(), message },
             BuildError::Mesh(e) => SceneError::Mesh(e),
@@ -421,7 +136,7 @@ fn ranged(name: &str, v: f32, lo: f32, hi: f32) -> Result<f32, BuildError> {
     }
 }
 
-fn build_scene(
+pub(super) fn build_scene(
     file: SceneFile,
     base_dir: &Path,
     cache: &mut HashMap<PathBuf, Arc<Mesh>>,
