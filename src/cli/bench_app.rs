@@ -180,6 +180,27 @@ fn settle(h: &mut Harness<'_, ShadowlabApp>) -> Result<Duration, CliError> {
     }
 }
 
+/// Step frames until `rect` (a widget's, as the last frame drew it) has kept its place for
+/// `STILL_FRAMES` frames; returns it. A press on a widget still moving (scrolling, a panel
+/// resized by a new frame) misses it under load.
+fn wait_still(
+    h: &mut Harness<'_, ShadowlabApp>,
+    rect: impl Fn(&Harness<'_, ShadowlabApp>) -> Result<egui::Rect, CliError>,
+    what: &str,
+) -> Result<egui::Rect, CliError> {
+    let (mut last, mut still) = (rect(h)?, 0);
+    for _ in 0..STILL_FRAMES_LIMIT {
+        if still >= STILL_FRAMES {
+            return Ok(last);
+        }
+        step(h)?;
+        let now = rect(h)?;
+        still = if now == last { still + 1 } else { 0 };
+        last = now;
+    }
+    Err(fail(format!("{what} kept moving ({last:?})")))
+}
+
 /// One UI frame: the app's logic, then painting it (as a window would each frame). Returns the
 /// time of each part.
 fn step(h: &mut Harness<'_, ShadowlabApp>) -> Result<(Duration, Duration), CliError> {
@@ -320,28 +341,20 @@ fn offscreen(args: &BenchArgs) -> Result<AppReport, CliError> {
             .map(|node| node.rect())
             .ok_or_else(|| fail(format!("the app shows no '{slider_label}' slider")))
     };
-    let (mut slider, mut still) = (slider_rect(&h)?, 0);
-    for _ in 0..STILL_FRAMES_LIMIT {
-        if still >= STILL_FRAMES {
-            break;
-        }
-        step(&mut h)?;
-        let now = slider_rect(&h)?;
-        still = if now == slider { still + 1 } else { 0 };
-        slider = now;
-    }
-    if still < STILL_FRAMES {
-        return Err(fail(format!("the '{slider_label}' slider kept moving ({slider:?})")));
-    }
+    let slider = wait_still(&mut h, slider_rect, &format!("the '{slider_label}' slider"))?;
     let (left, width, y) = (slider.left() + 4.0, (slider.width() * 0.5).max(40.0), slider.center().y);
     let slider_phase = drag_phase(&mut h, 0, slider.left_center(), args.seconds, |t| {
         egui::pos2(left + width * (0.3 + 0.25 * (t * 2.0).sin()), y)
     })?;
 
-    // The middle of the map's picture, where the app last drew it.
-    let map = landmark(&h.ctx, LANDMARK_SHADOW_MAP)
-        .ok_or_else(|| fail(format!("the app shows no {LANDMARK_SHADOW_MAP}")))?;
-    let centre = map.center();
+    // The middle of the map's picture, once it has kept its place for a few frames (the full
+    // frame after the slider's release can move the panels).
+    let map_rect = |h: &Harness<'_, ShadowlabApp>| {
+        landmark(&h.ctx, LANDMARK_SHADOW_MAP)
+            .ok_or_else(|| fail(format!("the app shows no {LANDMARK_SHADOW_MAP}")))
+    };
+    settle(&mut h)?;
+    let centre = wait_still(&mut h, map_rect, LANDMARK_SHADOW_MAP)?.center();
     let map_phase = drag_phase(&mut h, 1, centre, args.seconds, |t| {
         centre + egui::vec2(30.0 * (t * 1.5).sin(), 20.0 * (t * 1.1).cos() - 20.0)
     })?;
