@@ -452,6 +452,7 @@ impl Renderers {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::Technique;
 
     #[test]
     fn the_map_key_follows_what_the_map_depends_on() {
