@@ -109,6 +109,7 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
     for lesson in &selected {
         check_id(lesson)?;
     }
+    // A font check, not a translation.
     if args.lang == Lang::Zh && !TextRenderer::shared().covers('中') {
         return Err(CliError::input(
             "Chinese slides need a CJK font and none is installed: \

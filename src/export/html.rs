@@ -1,8 +1,7 @@
 //! `index.html`: one self-contained page with every exported slide in order, its text, and
 //! links to the pictures (relative paths, so the folder can be moved or served as is).
 
-use super::slide::tr;
-use crate::i18n::Lang;
+use crate::i18n::{Lang, fill, tr};
 use std::fmt::Write;
 
 /// One exported step.
@@ -91,7 +90,7 @@ const start=slides.findIndex(s=>'#'+s.id===location.hash);if(start>=0)current=st
 /// The whole page.
 pub fn index_html(lang: Lang, lessons: &[LessonEntry]) -> String {
     let mut h = String::new();
-    let title = tr(lang, "shadowlab lessons", "shadowlab 课程");
+    let title = tr(lang, "shadowlab lessons");
     let count: usize = lessons.iter().map(|l| l.slides.len()).sum();
     let _ = write!(
         h,
@@ -99,17 +98,15 @@ pub fn index_html(lang: Lang, lessons: &[LessonEntry]) -> String {
          <meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n\
          <title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n<header>\n<h1>{}</h1>\n<p>{}</p>\n\
          <p class=\"hint\">{}</p>\n</header>\n<nav>\n<ol>\n",
+        // The page's language tag, not a translation.
         match lang {
             Lang::En => "en",
             Lang::Zh => "zh-Hans",
         },
         escape(title),
         escape(title),
-        escape(&match lang {
-            Lang::En => format!("{} lessons, {count} slides", lessons.len()),
-            Lang::Zh => format!("{} 课，共 {count} 张幻灯片", lessons.len()),
-        }),
-        escape(tr(lang, "Left / Right arrow keys: previous / next slide", "左右方向键：上一张 / 下一张")),
+        escape(&fill(lang, "{} lessons, {} slides", &[&lessons.len(), &count])),
+        escape(tr(lang, "Left / Right arrow keys: previous / next slide")),
     );
     for lesson in lessons {
         let _ = writeln!(
@@ -121,7 +118,6 @@ pub fn index_html(lang: Lang, lessons: &[LessonEntry]) -> String {
         );
     }
     h.push_str("</ol>\n</nav>\n<main>\n");
-    let step_word = tr(lang, "Step", "第");
     for lesson in lessons {
         let _ = writeln!(
             h,
@@ -132,10 +128,7 @@ pub fn index_html(lang: Lang, lessons: &[LessonEntry]) -> String {
         );
         let n = lesson.slides.len();
         for (i, s) in lesson.slides.iter().enumerate() {
-            let heading = match lang {
-                Lang::En => format!("{step_word} {}/{n}: {}", i + 1, s.title),
-                Lang::Zh => format!("{step_word} {}/{n} 步：{}", i + 1, s.title),
-            };
+            let heading = fill(lang, "Step {}/{}: {}", &[&(i + 1), &n, &s.title]);
             let _ = write!(
                 h,
                 "<section class=\"slide\" id=\"{}-{}\" tabindex=\"-1\">\n<h3>{}</h3>\n\
@@ -149,11 +142,7 @@ pub fn index_html(lang: Lang, lessons: &[LessonEntry]) -> String {
                 rich(&s.body).replace('\n', "<br>\n"),
             );
             if !s.try_this.is_empty() {
-                let _ = write!(
-                    h,
-                    "<div class=\"try\">\n<h4>{}</h4>\n<ul>\n",
-                    escape(tr(lang, "Try this", "试一试"))
-                );
+                let _ = write!(h, "<div class=\"try\">\n<h4>{}</h4>\n<ul>\n", escape(tr(lang, "Try this")));
                 for t in &s.try_this {
                     let _ = writeln!(h, "<li>{}</li>", rich(t));
                 }
@@ -164,13 +153,13 @@ pub fn index_html(lang: Lang, lessons: &[LessonEntry]) -> String {
                 "<p class=\"files\"><a href=\"{}\">{}</a><a href=\"{}\">{}</a>\
                  <a href=\"{}\">{}</a><a href=\"{}\">{}</a></p>\n</section>",
                 escape(&s.slide),
-                escape(tr(lang, "slide", "幻灯片")),
+                escape(tr(lang, "slide")),
                 escape(&s.camera),
-                escape(tr(lang, "camera view", "相机画面")),
+                escape(tr(lang, "camera view@slides")),
                 escape(&s.shadow_map),
-                escape(tr(lang, "shadow map", "阴影贴图")),
+                escape(tr(lang, "shadow map")),
                 escape(&s.diagram),
-                escape(tr(lang, "diagram", "示意图")),
+                escape(tr(lang, "diagram")),
             );
         }
     }

@@ -8,7 +8,7 @@
 
 use super::step::{PROBE_FRAME, StepPictures};
 use crate::diagrams::{Canvas, is_cjk};
-use crate::i18n::Lang;
+use crate::i18n::{Lang, fill, tr};
 use crate::scene::Technique;
 use crate::views::View;
 use image::RgbaImage;
@@ -106,14 +106,6 @@ pub struct SlideText<'a> {
     pub try_this: Vec<&'a str>,
 }
 
-/// `en` or `zh`.
-pub fn tr(lang: Lang, en: &'static str, zh: &'static str) -> &'static str {
-    match lang {
-        Lang::En => en,
-        Lang::Zh => zh,
-    }
-}
-
 mod pal {
     pub const BG: [u8; 3] = [250, 250, 246];
     pub const INK: [u8; 3] = [20, 24, 28];
@@ -134,21 +126,21 @@ fn rgb(c: [u8; 3]) -> Color {
 
 /// The view's name as the caption shows it: in Chinese the label the app's view menu shows.
 pub fn view_label(view: View, lang: Lang) -> &'static str {
-    if lang == Lang::Zh {
-        return view.label(lang);
-    }
-    match view {
-        View::Final => "shaded",
-        View::Visibility => "visibility",
-        View::ShadowMap => "shadow map",
-        View::BlockerRadius => "blocker-search radius",
-        View::Penumbra => "penumbra width",
-        View::Blockers => "blockers found",
-        View::BlockerDepth => "average blocker depth",
-        View::Moments => "VSM moments",
-        View::Reference => "ground truth",
-        View::Error => "error vs ground truth",
-    }
+    tr(
+        lang,
+        match view {
+            View::Final => "shaded",
+            View::Visibility => "visibility",
+            View::ShadowMap => "shadow map",
+            View::BlockerRadius => "blocker-search radius",
+            View::Penumbra => "penumbra width",
+            View::Blockers => "blockers found",
+            View::BlockerDepth => "average blocker depth",
+            View::Moments => "VSM moments",
+            View::Reference => "ground truth",
+            View::Error => "error vs ground truth",
+        },
+    )
 }
 
 /// A number with about three significant digits.
@@ -190,13 +182,14 @@ pub fn legend_caption(summary: &str, lang: Lang) -> String {
                 .join(" ")
         })
         .collect();
-    let mut s = shortened.join(" · ").replace("  ", " ");
-    if lang == Lang::Zh {
-        // The legends come in Chinese from the views; a range reads better with 至 than "..".
-        s = s.replace("..", "至");
-        s = s.replace("： ", "：").replace(" （", "（");
-    }
-    s
+    // The legends come from the views in the slide's language; a Chinese range reads better
+    // with 至 than "..", and full-width punctuation needs no space beside it.
+    shortened
+        .join(" · ")
+        .replace("  ", " ")
+        .replace("..", tr(lang, ".."))
+        .replace("： ", "：")
+        .replace(" （", "（")
 }
 
 /// Slide shorthands on the diagrams' canvas (in pixels): colours from the slide palette,
@@ -244,6 +237,7 @@ impl SlideDraw for Canvas {
     }
 
     fn leading(&self, px: f32) -> f32 {
+        // Typography, not a translation: CJK lines need more room between them.
         px * if self.lang == Lang::Zh { 1.62 } else { 1.42 }
     }
 }
@@ -289,10 +283,7 @@ pub fn compose(
     let bar = layout.title_bar;
     p.fill_rgb([0.0, 0.0, w as f32, bar.h as f32], pal::TITLE_BG);
     let (tx, title_max) = (layout.camera.x as f32, layout.text.right() - layout.camera.x as f32);
-    let counter = match lang {
-        Lang::En => format!("step {}/{}", text.step_number, text.step_count),
-        Lang::Zh => format!("第 {}/{} 步", text.step_number, text.step_count),
-    };
+    let counter = fill(lang, "step {}/{}", &[&text.step_number, &text.step_count]);
     let sep = "  ·  ";
     let mut px = u(38.0);
     let parts_width = |p: &Canvas, px: f32| {
@@ -325,7 +316,7 @@ pub fn compose(
         None => {
             let r = layout.shadow_map;
             p.fill_rgb([r.x as f32, r.y as f32, r.w as f32, r.h as f32], pal::PANEL);
-            let msg = tr(lang, "no light, no shadow map", "没有光源，也就没有阴影贴图");
+            let msg = tr(lang, "no light, no shadow map");
             let m = p.fit_label(msg, u(24.0), r.w as f32 - u(20.0));
             let mx = r.x as f32 + (r.w as f32 - p.text_width(&m, u(24.0))) * 0.5;
             p.run(&m, mx, r.y as f32 + r.h as f32 * 0.5, u(24.0), pal::MUTED, false);
@@ -350,33 +341,25 @@ pub fn compose(
     }
 
     // Captions.
-    let mut first = format!("{}{}", tr(lang, "Camera view: ", "相机画面："), view_label(pictures.view, lang));
+    let mut first = format!("{}{}", tr(lang, "Camera view: "), view_label(pictures.view, lang));
     if let Some((x, y)) = pictures.probe_pixel {
-        first += &match lang {
-            Lang::En => format!("  ·  probe + at ({x}, {y}) in {}×{}", PROBE_FRAME.0, PROBE_FRAME.1),
-            Lang::Zh => format!("  ·  探针 + 位于 {}×{} 画面的 ({x}, {y})", PROBE_FRAME.0, PROBE_FRAME.1),
-        };
+        first += &fill(lang, "  ·  probe + at ({}, {}) in {}×{}", &[&x, &y, &PROBE_FRAME.0, &PROBE_FRAME.1]);
     }
     let legend = pictures.camera_summary.as_ref().map(|summary| legend_caption(summary, lang));
     caption(&mut p, layout, layout.camera_caption, &first, legend.as_deref());
     let (first, second) = match &pictures.shadow_map {
         Some((img, legend)) => {
             let kind = match pictures.inputs.orthographic {
-                true => tr(lang, "orthographic", "正交"),
-                false => tr(lang, "perspective", "透视"),
+                true => tr(lang, "orthographic"),
+                false => tr(lang, "perspective"),
             };
-            let first = match lang {
-                Lang::En => format!("Shadow map: light {} · {}² · {kind}", pictures.light, img.width()),
-                Lang::Zh => format!("阴影贴图：光源 {} · {}² · {kind}", pictures.light, img.width()),
-            };
+            let first =
+                fill(lang, "Shadow map: light {} · {}² · {}", &[&pictures.light, &img.width(), &kind]);
             let (lo, hi) = (short_num(legend.min), short_num(legend.max));
-            let second = match lang {
-                Lang::En => format!("depth from the light {lo} (dark) .. {hi} (bright)"),
-                Lang::Zh => format!("到光源的深度 {lo}（暗）至 {hi}（亮）"),
-            };
+            let second = fill(lang, "depth from the light {} (dark) .. {} (bright)", &[&lo, &hi]);
             (first, second)
         }
-        None => (tr(lang, "Shadow map", "阴影贴图").to_string(), String::new()),
+        None => (tr(lang, "Shadow map").to_string(), String::new()),
     };
     caption(&mut p, layout, layout.shadow_map_caption, &first, Some(&second));
 
@@ -401,11 +384,11 @@ fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
     let head = u(26.0);
     let mut y = r.y as f32 + pad + head;
     p.marker([r.x as f32 + pad + u(10.0), y - head * 0.35], u(12.0));
-    let title = tr(lang, "Probe", "探针");
+    let title = tr(lang, "Probe");
     p.run(title, r.x as f32 + pad + u(30.0), y, head, pal::INK, true);
     let technique_name = match technique {
-        Technique::None => tr(lang, "no shadows", "无阴影"),
-        Technique::Hard => tr(lang, "hard shadows", "硬阴影"),
+        Technique::None => tr(lang, "no shadows"),
+        Technique::Hard => tr(lang, "hard shadows"),
         Technique::Pcf => "PCF",
         Technique::Pcss => "PCSS",
         Technique::Vsm => "VSM",
@@ -419,51 +402,43 @@ fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
     let report = pictures.probe.as_ref();
     let light = report.and_then(|rep| rep.lights.iter().find(|l| l.light == pictures.light));
     match (pictures.probe_pixel, report, light) {
-        (None, _, _) => rows.push(("", tr(lang, "nothing to probe", "没有可探测的表面").into())),
-        (Some(_), Some(rep), _) if !rep.hit => {
-            rows.push(("", tr(lang, "no surface under the probe", "探针下没有表面").into()))
-        }
+        (None, _, _) => rows.push(("", tr(lang, "nothing to probe").into())),
+        (Some(_), Some(rep), _) if !rep.hit => rows.push(("", tr(lang, "no surface under the probe").into())),
         (Some((x, y)), Some(_), Some(l)) => {
             let source = match pictures.probe_from_lesson {
-                true => tr(lang, " (lesson)", "（课程指定）"),
-                false => tr(lang, " (auto)", "（自动选取）"),
+                true => tr(lang, " (lesson)"),
+                false => tr(lang, " (auto)"),
             };
-            rows.push((tr(lang, "pixel", "像素"), format!("{x}, {y}{source}")));
+            rows.push((tr(lang, "pixel"), format!("{x}, {y}{source}")));
             if let Some(object) = &pictures.probe_object {
-                rows.push((tr(lang, "surface", "表面"), object.clone()));
+                rows.push((tr(lang, "surface"), object.clone()));
             }
             let [mu, mv] = l.shadow_map_uv;
-            rows.push((tr(lang, "map uv", "贴图 uv"), format!("{mu:.3}, {mv:.3}")));
+            rows.push((tr(lang, "map uv"), format!("{mu:.3}, {mv:.3}")));
             let angle = l.n_dot_l.clamp(-1.0, 1.0).acos().to_degrees();
-            rows.push((tr(lang, "light angle", "光线夹角"), format!("{angle:.0}°  (N·L {:.2})", l.n_dot_l)));
+            rows.push((tr(lang, "light angle"), format!("{angle:.0}°  (N·L {:.2})", l.n_dot_l)));
             let depth = |linear: f32, ndc: f32| format!("{}  (NDC {ndc:.4})", depth_num(linear));
-            rows.push((
-                tr(lang, "receiver depth", "接收点深度"),
-                depth(l.receiver_depth_linear, l.receiver_depth_ndc),
-            ));
-            rows.push((
-                tr(lang, "stored depth", "贴图存的深度"),
-                depth(l.stored_depth_linear, l.stored_depth_ndc),
-            ));
-            rows.push((tr(lang, "bias", "偏移"), format!("{} NDC", bias_num(l.bias_ndc))));
-            let texels = tr(lang, "texels", "纹素");
+            rows.push((tr(lang, "receiver depth"), depth(l.receiver_depth_linear, l.receiver_depth_ndc)));
+            rows.push((tr(lang, "stored depth@slides"), depth(l.stored_depth_linear, l.stored_depth_ndc)));
+            rows.push((tr(lang, "bias"), format!("{} NDC", bias_num(l.bias_ndc))));
+            let texels = tr(lang, "texels");
             match technique {
                 Technique::None | Technique::Hard => {}
                 Technique::Pcf => {
                     rows.push((
-                        tr(lang, "filter radius", "滤波半径"),
+                        tr(lang, "filter radius"),
                         format!("{} {texels}", short_num(l.filter_radius_texels)),
                     ));
-                    rows.push((tr(lang, "samples", "采样数"), l.filter_samples.to_string()));
+                    rows.push((tr(lang, "samples"), l.filter_samples.to_string()));
                 }
                 Technique::Vsm => {
                     rows.push((
-                        tr(lang, "filter radius", "滤波半径"),
+                        tr(lang, "filter radius"),
                         format!("{} {texels}", short_num(l.filter_radius_texels)),
                     ));
                     if let Some(v) = &l.vsm {
                         rows.push((
-                            tr(lang, "bound / true", "上界 / 真实"),
+                            tr(lang, "bound / true"),
                             format!("{:.3} / {:.3}", v.chebyshev_bound, v.true_lit_fraction),
                         ));
                     }
@@ -472,33 +447,30 @@ fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
                     // VSSM estimates its blockers from the moments: there is no count.
                     if technique == Technique::Pcss {
                         rows.push((
-                            tr(lang, "blockers", "遮挡物"),
+                            tr(lang, "blockers@slides"),
                             format!("{} / {}", l.blockers_found, l.blocker_samples),
                         ));
                     }
                     if let Some(d) = l.avg_blocker_depth_linear {
-                        rows.push((tr(lang, "blocker depth", "遮挡物深度"), depth_num(d)));
+                        rows.push((tr(lang, "blocker depth"), depth_num(d)));
                     }
-                    rows.push((tr(lang, "penumbra", "半影宽度"), short_num(l.penumbra_width_world)));
+                    rows.push((tr(lang, "penumbra"), short_num(l.penumbra_width_world)));
                     rows.push((
-                        tr(lang, "filter radius", "滤波半径"),
+                        tr(lang, "filter radius"),
                         format!("{} {texels}", short_num(l.filter_radius_texels)),
                     ));
                 }
             }
             let mut vis = format!("{:.2}", l.visibility_twin);
             if let Some(t) = l.visibility_reference {
-                vis += &match lang {
-                    Lang::En => format!("  (truth {t:.2})"),
-                    Lang::Zh => format!("（真值 {t:.2}）"),
-                };
+                vis += &fill(lang, "  (truth {})", &[&format!("{t:.2}")]);
             }
-            rows.push((tr(lang, "visibility", "可见度"), vis));
+            rows.push((tr(lang, "visibility@slides"), vis));
             if !l.inside_light_frustum {
-                rows.push(("", tr(lang, "outside the light's frustum", "在光源视锥之外").into()));
+                rows.push(("", tr(lang, "outside the light's frustum").into()));
             }
         }
-        _ => rows.push(("", tr(lang, "no light to probe", "没有光源").into())),
+        _ => rows.push(("", tr(lang, "no light to probe").into())),
     }
 
     // The largest size at which the rows fit the panel, down and across.
@@ -640,7 +612,7 @@ fn text_column(p: &mut Canvas, layout: &SlideLayout, text: &SlideText) -> bool {
     p.fill_rgb([r.x as f32, top, width, prompts_h], pal::TRY_BG);
     p.fill_rgb([r.x as f32, top, u(6.0), prompts_h], pal::TRY_EDGE);
     let mut y = top + pad + heading;
-    p.run(tr(lang, "Try this", "试一试"), r.x as f32 + pad, y, heading, pal::INK, true);
+    p.run(tr(lang, "Try this"), r.x as f32 + pad, y, heading, pal::INK, true);
     y += p.leading(heading) - heading;
     let lead = p.leading(block.prompt_px);
     for prompt in &block.prompts {

@@ -3,7 +3,7 @@
 //! diagram inputs taken from it.
 
 use crate::diagrams::{DiagramInputs, DiagramKind, live};
-use crate::i18n::Lang;
+use crate::i18n::{Lang, tr};
 use crate::lessons::live::{FrameValues, Namespace, Sources};
 use crate::lessons::{Lesson, Step};
 use crate::probe::{ProbeReport, probe};
@@ -206,11 +206,7 @@ pub fn render_step(
             &lights,
             light,
         );
-        let legend = match lang {
-            Lang::En => "frusta: yellow = this light, blue = the others",
-            Lang::Zh => "视锥：黄 = 本光源，蓝 = 其他光源",
-        }
-        .to_string();
+        let legend = tr(lang, "frusta: yellow = this light, blue = the others").to_string();
         camera_summary = Some(camera_summary.map_or(legend.clone(), |s| format!("{s}\n{legend}")));
     }
     let shadow_map = if has_lights {

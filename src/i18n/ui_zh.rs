@@ -75,6 +75,12 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("move the light", "移动光源"),
     ("Drop a .toml or .obj", "拖入 .toml 或 .obj 文件"),
     ("open it", "打开它"),
+    // Status bar: timings.
+    ("UI {} ms · render {} ms", "界面 {} ms · 渲染 {} ms"),
+    (" (GPU shadow {} ms, camera {} ms)", "（GPU 阴影趟 {} ms，相机趟 {} ms）"),
+    (" at {}x{}", "，分辨率 {}x{}"),
+    (" · preview", " · 预览"),
+    (" · rendering {} s", " · 渲染中 {} s"),
     // Lesson panel.
     ("Previous", "上一步"),
     ("Next", "下一步"),
@@ -82,6 +88,15 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("Right arrow", "→ 键"),
     ("step", "步骤"),
     ("show every panel", "显示所有面板"),
+    ("Try this", "试一试"),
+    (
+        "The numbers above are read at your probe; the sentences around them describe the lesson's.",
+        "上面的数字取自你放置的探针；数字周围的文字描述的是本课的探针。",
+    ),
+    ("Back to the lesson's probe", "回到本课的探针"),
+    // What a lesson's `{probe.verdict}` says.
+    ("shadowed", "处于阴影中"),
+    ("partly lit", "部分受光"),
     // Inspector.
     ("Technique", "技术"),
     ("technique", "技术"),
@@ -101,6 +116,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("PCF", "PCF 滤波"),
     ("kernel", "采样图案"),
     ("samples", "采样数"),
+    ("grid uses {}×{} = {} taps", "网格实际用 {}×{} = {} 个采样点"),
     ("radius (texels)", "半径（纹素）"),
     ("rotate the pattern per pixel", "每个像素旋转采样图案"),
     ("noise seed", "噪声种子"),
@@ -149,6 +165,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("use a width instead", "改用宽度"),
     ("intensity", "强度"),
     ("orbit (°/s)", "环绕速度（°/秒）"),
+    ("scene key `{}` (lessons and --set use it)", "场景键 `{}`（课程文件和 --set 都用它）"),
     // Probe.
     ("Probe", "探针"),
     ("click the camera view to pin a probe", "单击相机视图放置探针"),
@@ -193,8 +210,46 @@ pub(super) const UI: &[(&str, &str)] = &[
     ),
     ("(overlays refresh when you let go)", "（松开鼠标后叠加层才会刷新）"),
     ("(working out the overlays...)", "（正在计算叠加层……）"),
+    (
+        "texel {},{} · stored {} NDC = {} world · point ({}, {}, {})",
+        "纹素 {},{} · 存储 {} NDC = {} 世界单位 · 点 ({}, {}, {})",
+    ),
+    ("texel {},{} · nothing stored (cleared to 1.0)", "纹素 {},{} · 没有存储任何东西（清除值 1.0）"),
+    ("ground truth {} / {} samples", "真实结果 {} / {} 个采样"),
     ("Diagram", "示意图"),
     ("sample pattern", "采样图案"),
+    ("{} · {} taps{}", "{} · {} 个采样点{}"),
+    (" · rotated per pixel", " · 每个像素旋转"),
+    // The views' legends ("blocker-search radius", "texels" and the other names are above).
+    ("{}: {} .. {} {} (dark blue .. yellow)", "{}：{} .. {} {}（深蓝 .. 黄）"),
+    (
+        "VSM moments, level {} (each texel averages {}x{} map texels), read by a filter of {} texels, dark blue .. yellow\nleft: mean depth {} .. {} world units from the light; right: standard deviation 0 .. {} world units",
+        "VSM 矩，第 {} 级（每个纹素平均 {}×{} 个贴图纹素），由半径 {} 纹素的滤波读取\n左：平均深度 {} .. {}；右：标准差 0 .. {}（世界单位，深蓝 .. 黄）",
+    ),
+    (
+        "average blocker depth: {:.4} .. {:.4} world units from the light (grey: no blocker) (dark blue .. yellow)",
+        "平均遮挡深度：{:.2} .. {:.2} 到光源的世界单位（深蓝 .. 黄；灰：没有遮挡物）",
+    ),
+    ("visibility: black = shadowed, white = lit", "可见性：黑 = 处于阴影中，白 = 受光"),
+    ("reference: {} hard shadows averaged", "真实结果：{} 张硬阴影的平均"),
+    (
+        "|visibility - reference|: {} .. {}  (dark blue .. yellow)\nmean absolute error: {}",
+        "|PCSS − 真实结果|：{} .. {}（深蓝 .. 黄）\n平均绝对误差：{}",
+    ),
+    // The overlays' legends.
+    ("{}: 0 .. {} {} (dark blue .. yellow)", "{}：0 .. {} {}（深蓝 .. 黄）"),
+    (
+        "texel grid: lines where the shadow-map texel changes ({}² map)",
+        "纹素网格：线条标出阴影贴图纹素变化的地方（{}² 贴图）",
+    ),
+    ("orange: outside the light's frustum (no map data)", "橙色：光源视锥之外（无贴图数据）"),
+    ("error: computing the ground truth...", "误差：正在计算真实结果……"),
+    ("|visibility − ground truth|: 0 .. 1, mean {}", "|可见性 − 真实结果|：0 .. 1，平均 {}"),
+    ("light bleeding: only VSM and VSSM bound their lit share", "漏光：只有 VSM 和 VSSM 用上界估计受光比例"),
+    (
+        "magenta stripes: light bleeding ≥ {}, up to {}; {} % of the surface",
+        "品红条纹：漏光 ≥ {}，最多 {}；占表面的 {} %",
+    ),
     // Lesson panel: "Try this" prompts.
     ("Apply", "应用"),
     ("set what this prompt says", "按这条提示设置"),

@@ -162,14 +162,14 @@ impl Verdict {
     }
 
     pub fn name(self, lang: Lang) -> &'static str {
-        match (self, lang) {
-            (Verdict::Lit, Lang::En) => "lit",
-            (Verdict::Shadowed, Lang::En) => "shadowed",
-            (Verdict::PartlyLit, Lang::En) => "partly lit",
-            (Verdict::Lit, Lang::Zh) => "受光",
-            (Verdict::Shadowed, Lang::Zh) => "处于阴影中",
-            (Verdict::PartlyLit, Lang::Zh) => "部分受光",
-        }
+        crate::i18n::tr(
+            lang,
+            match self {
+                Verdict::Lit => "lit",
+                Verdict::Shadowed => "shadowed",
+                Verdict::PartlyLit => "partly lit",
+            },
+        )
     }
 }
 

@@ -39,6 +39,7 @@ pub struct Text {
 
 impl Text {
     pub fn get(&self, lang: Lang) -> &str {
+        // Lesson text carries its own translation: not a table lookup.
         match lang {
             Lang::En => &self.en,
             Lang::Zh => &self.zh,

@@ -47,6 +47,7 @@ pub struct Object {
 impl Object {
     /// The object's name as a reader of `lang` sees it: `name_zh` in Chinese where there is one.
     pub fn label(&self, lang: crate::i18n::Lang) -> &str {
+        // The scene file's own Chinese name: not a table lookup.
         match (lang, &self.name_zh) {
             (crate::i18n::Lang::Zh, Some(zh)) => zh,
             _ => &self.name,

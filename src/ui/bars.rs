@@ -3,7 +3,7 @@
 
 use super::{ShadowlabApp, Source};
 use crate::i18n::Lang;
-use crate::i18n::tr;
+use crate::i18n::{fill, tr};
 use crate::shipped_path;
 use std::path::PathBuf;
 
@@ -62,6 +62,7 @@ impl ShadowlabApp {
                 self.request_screenshot(ui.ctx());
             }
             let lang_label = ui.label(tr("language"));
+            // Each language named in itself, not a translation.
             egui::ComboBox::from_id_salt("lang")
                 .selected_text(match self.state.lang {
                     Lang::En => "English",
@@ -336,30 +337,22 @@ impl ShadowlabApp {
     pub(super) fn timing_text(&self, ctx: &egui::Context) -> String {
         let ui_ms = ctx.input(|i| i.unstable_dt) * 1e3;
         let shown = &self.shown;
-        let zh = self.state.lang == Lang::Zh;
-        let mut text = if zh {
-            format!("界面 {ui_ms:.0} ms · 渲染 {:.0} ms", shown.render_ms)
-        } else {
-            format!("UI {ui_ms:.0} ms · render {:.0} ms", shown.render_ms)
-        };
+        let lang = self.state.lang;
+        let mut text = fill(
+            lang,
+            "UI {} ms · render {} ms",
+            &[&format!("{ui_ms:.0}"), &format!("{:.0}", shown.render_ms)],
+        );
         if let Some(t) = shown.pass_times {
-            text += &if zh {
-                format!("（GPU 阴影趟 {:.1} ms，相机趟 {:.1} ms）", t.shadow_ms, t.camera_ms)
-            } else {
-                format!(" (GPU shadow {:.1} ms, camera {:.1} ms)", t.shadow_ms, t.camera_ms)
-            };
+            let (shadow, camera) = (format!("{:.1}", t.shadow_ms), format!("{:.1}", t.camera_ms));
+            text += &fill(lang, " (GPU shadow {} ms, camera {} ms)", &[&shadow, &camera]);
         }
-        text += &if zh {
-            format!("，分辨率 {}x{}", shown.size.0, shown.size.1)
-        } else {
-            format!(" at {}x{}", shown.size.0, shown.size.1)
-        };
+        text += &fill(lang, " at {}x{}", &[&shown.size.0, &shown.size.1]);
         if shown.preview {
-            text += if zh { " · 预览" } else { " · preview" };
+            text += tr(lang, " · preview");
         }
         if let Some(waited) = self.render_is_slow() {
-            let label = if zh { "渲染中" } else { "rendering" };
-            text += &format!(" · {label} {:.1} s", waited.as_secs_f32());
+            text += &fill(lang, " · rendering {} s", &[&format!("{:.1}", waited.as_secs_f32())]);
         }
         text
     }

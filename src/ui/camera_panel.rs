@@ -3,8 +3,7 @@
 
 use super::view_panels::{is_light_space, view_selector};
 use super::{ProbeAt, ShadowlabApp};
-use crate::i18n::Lang;
-use crate::i18n::tr;
+use crate::i18n::{Lang, tr};
 use crate::views::View;
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
 
@@ -255,10 +254,7 @@ fn render_progress(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
             Rect::from_min_size(bar.min, vec2(bar.width() * done as f32 / total.max(1) as f32, bar.height()));
         painter.rect_filled(filled, 2.0, Color32::from_rgb(255, 210, 0));
         label(
-            match app.state.lang {
-                Lang::En => format!("ground truth {done} / {total} samples"),
-                Lang::Zh => format!("真实结果 {done} / {total} 个采样"),
-            },
+            crate::i18n::fill(app.state.lang, "ground truth {} / {} samples", &[&done, &total]),
             bar.left_top() + vec2(0.0, -6.0),
             egui::Align2::LEFT_BOTTOM,
         );

@@ -92,10 +92,7 @@ pub fn value_label<'a>(key: &str, value: &'a str, lang: Lang) -> &'a str {
 }
 
 fn key_hint(lang: Lang, key: &str) -> String {
-    match lang {
-        Lang::En => format!("scene key `{key}` (lessons and --set use it)"),
-        Lang::Zh => format!("场景键 `{key}`（课程文件和 --set 都用它）"),
-    }
+    crate::i18n::fill(lang, "scene key `{}` (lessons and --set use it)", &[&key])
 }
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
@@ -182,10 +179,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         .changed();
     if s.pcf_kernel == Kernel::Grid {
         let side = crate::shadow::kernels::grid_side(s.samples);
-        ui.small(match lang {
-            Lang::En => format!("grid uses {side}×{side} = {} taps", side * side),
-            Lang::Zh => format!("网格实际用 {side}×{side} = {} 个采样点", side * side),
-        });
+        ui.small(crate::i18n::fill(lang, "grid uses {}×{} = {} taps", &[&side, &side, &(side * side)]));
     }
     changed |= ui
         .add(Slider::new(&mut s.radius_texels, 0.0..=32.0).text(tr("radius (texels)")))

@@ -92,13 +92,9 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     }
     // The numbers follow whatever probe is pinned; say so when it is not the lesson's own.
     if lesson_probe.is_some() && app.state.probe_at != lesson_probe {
-        let (note, back) = match lang {
-            Lang::En => (
-                "The numbers above are read at your probe; the sentences around them describe the lesson's.",
-                "Back to the lesson's probe",
-            ),
-            Lang::Zh => ("上面的数字取自你放置的探针；数字周围的文字描述的是本课的探针。", "回到本课的探针"),
-        };
+        let note =
+            tr("The numbers above are read at your probe; the sentences around them describe the lesson's.");
+        let back = tr("Back to the lesson's probe");
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(note).italics());
             if ui.button(back).clicked() {
@@ -109,10 +105,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     }
     if !tries.is_empty() {
         ui.add_space(8.0);
-        ui.strong(match lang {
-            Lang::En => "Try this",
-            Lang::Zh => "试一试",
-        });
+        ui.strong(tr("Try this"));
         let prompts = step_prompts(app);
         for (i, t) in tries.iter().enumerate() {
             ui.label(RichText::new(format!("• {t}")).size(body * 0.8));

@@ -3,8 +3,7 @@
 
 use super::ShadowlabApp;
 use super::camera_panel::legend_bar;
-use crate::i18n::Lang;
-use crate::i18n::tr;
+use crate::i18n::{fill, tr};
 use crate::shadow::depth_linear_from_ndc;
 use egui::{Color32, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
 use glam::{Mat4, Vec4};
@@ -109,21 +108,21 @@ pub(super) fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) 
             let w = Mat4::from_cols_array_2d(&light.clip_from_world).inverse() * ndc;
             let p = w.truncate() / w.w;
             let d = depth_linear_from_ndc(light, z);
-            info = match app.state.lang {
-                Lang::En => format!(
-                    "texel {tx},{ty} · stored {z:.5} NDC = {d:.3} world · point ({:.2}, {:.2}, {:.2})",
-                    p.x, p.y, p.z
-                ),
-                Lang::Zh => format!(
-                    "纹素 {tx},{ty} · 存储 {z:.5} NDC = {d:.3} 世界单位 · 点 ({:.2}, {:.2}, {:.2})",
-                    p.x, p.y, p.z
-                ),
-            };
+            info = fill(
+                app.state.lang,
+                "texel {},{} · stored {} NDC = {} world · point ({}, {}, {})",
+                &[
+                    &tx,
+                    &ty,
+                    &format!("{z:.5}"),
+                    &format!("{d:.3}"),
+                    &format!("{:.2}", p.x),
+                    &format!("{:.2}", p.y),
+                    &format!("{:.2}", p.z),
+                ],
+            );
         } else {
-            info = match app.state.lang {
-                Lang::En => format!("texel {tx},{ty} · nothing stored (cleared to 1.0)"),
-                Lang::Zh => format!("纹素 {tx},{ty} · 没有存储任何东西（清除值 1.0）"),
-            };
+            info = fill(app.state.lang, "texel {},{} · nothing stored (cleared to 1.0)", &[&tx, &ty]);
         }
     }
     // Wrapped to the map's width: the column may be narrow.

@@ -157,20 +157,19 @@ fn kernel_plot(app: &ShadowlabApp, ui: &mut Ui, rect: Rect) {
     painter.text(
         pos2(rect.left() + 6.0, rect.top() + 4.0),
         egui::Align2::LEFT_TOP,
-        match app.state.lang {
-            Lang::En => format!(
-                "{} · {} taps{}",
-                s.pcf_kernel.name(),
-                points.len(),
-                if s.rotate_per_pixel { " · rotated per pixel" } else { "" }
-            ),
-            Lang::Zh => format!(
-                "{} · {} 个采样点{}",
-                s.pcf_kernel.label(app.state.lang),
-                points.len(),
-                if s.rotate_per_pixel { " · 每个像素旋转" } else { "" }
-            ),
-        },
+        crate::i18n::fill(
+            app.state.lang,
+            "{} · {} taps{}",
+            &[
+                &s.pcf_kernel.label(app.state.lang),
+                &points.len(),
+                &if s.rotate_per_pixel {
+                    crate::i18n::tr(app.state.lang, " · rotated per pixel")
+                } else {
+                    ""
+                },
+            ],
+        ),
         egui::FontId::proportional(13.0),
         Color32::LIGHT_GRAY,
     );

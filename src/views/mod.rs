@@ -375,57 +375,41 @@ pub fn analysis_view(
     light: Option<(&LightGpu, &ShadowParamsGpu)>,
     lang: Lang,
 ) -> Option<(RgbaImage, String)> {
-    let zh = lang == Lang::Zh;
+    use crate::i18n::{fill, tr};
     match view {
         View::Final | View::ShadowMap => None,
         View::Moments => {
             let (light, _) = light?;
             let moments = a.moments.as_ref()?;
             let (image, mean, sigma) = moments_image(moments, light);
-            let text = if zh {
-                format!(
-                    "VSM 矩，第 {} 级，半径 {:.1} 纹素的滤波读取这一级（每个纹素平均 {}×{} 个贴图纹素）\n左：平均深度 {:.2} .. {:.2}；右：标准差 0 .. {:.3}（世界单位，深蓝 .. 黄）",
-                    moments.level,
-                    moments.radius_texels,
-                    moments.span_texels,
-                    moments.span_texels,
-                    mean.min,
-                    mean.max,
-                    sigma.max
-                )
-            } else {
-                format!(
-                    "VSM moments, level {} (each texel averages {}x{} map texels), read by a filter of {:.1} texels, dark blue .. yellow\nleft: mean depth {:.2} .. {:.2} world units from the light; right: standard deviation 0 .. {:.3} world units",
-                    moments.level,
-                    moments.span_texels,
-                    moments.span_texels,
-                    moments.radius_texels,
-                    mean.min,
-                    mean.max,
-                    sigma.max
-                )
-            };
+            let text = fill(
+                lang,
+                "VSM moments, level {} (each texel averages {}x{} map texels), read by a filter of {} texels, dark blue .. yellow\nleft: mean depth {} .. {} world units from the light; right: standard deviation 0 .. {} world units",
+                &[
+                    &moments.level,
+                    &moments.span_texels,
+                    &moments.span_texels,
+                    &format!("{:.1}", moments.radius_texels),
+                    &format!("{:.2}", mean.min),
+                    &format!("{:.2}", mean.max),
+                    &format!("{:.3}", sigma.max),
+                ],
+            );
             Some((image, text))
         }
         View::BlockerDepth => {
             let (light, params) = light?;
             let (image, legend) = blocker_depth_image(a, light, params);
-            let text = if zh {
-                format!(
-                    "平均遮挡深度：{:.2} .. {:.2} 到光源的世界单位（深蓝 .. 黄；灰：没有遮挡物）",
-                    legend.min, legend.max
-                )
-            } else {
-                legend.to_string()
-            };
+            // The languages round differently: the template gives the decimals.
+            let text = fill(
+                lang,
+                "average blocker depth: {:.4} .. {:.4} world units from the light (grey: no blocker) (dark blue .. yellow)",
+                &[&legend.min, &legend.max],
+            );
             Some((image, text))
         }
         View::Visibility => {
-            let legend = if zh {
-                "可见性：黑 = 处于阴影中，白 = 受光"
-            } else {
-                "visibility: black = shadowed, white = lit"
-            };
+            let legend = tr(lang, "visibility: black = shadowed, white = lit");
             Some((gray_image(a, |i| a.shadow[i][0]), legend.into()))
         }
         View::BlockerRadius | View::Penumbra | View::Blockers => {
@@ -435,37 +419,30 @@ pub fn analysis_view(
                 _ => ("blockers found", "taps", 3),
             };
             let (image, legend) = heat_image(a, label, unit, |i| a.shadow[i][channel]);
-            let legend = if zh {
-                let (label, unit) = match channel {
-                    1 => ("遮挡物搜索半径", "纹素"),
-                    2 => ("半影宽度", "纹素"),
-                    _ => ("找到的遮挡物", "个采样点"),
-                };
-                format!("{label}：{:.4} .. {:.4} {unit}（深蓝 .. 黄）", legend.min, legend.max)
-            } else {
-                legend.to_string()
-            };
+            let legend = fill(
+                lang,
+                "{}: {} .. {} {} (dark blue .. yellow)",
+                &[
+                    &tr(lang, label),
+                    &format!("{:.4}", legend.min),
+                    &format!("{:.4}", legend.max),
+                    &tr(lang, unit),
+                ],
+            );
             Some((image, legend))
         }
         View::Reference => {
             let reference = reference?;
-            let note = if zh {
-                format!("真实结果：{reference_samples} 张硬阴影的平均")
-            } else {
-                format!("reference: {reference_samples} hard shadows averaged")
-            };
+            let note = fill(lang, "reference: {} hard shadows averaged", &[&reference_samples]);
             Some((gray_image(a, |i| reference[i]), note))
         }
         View::Error => {
             let (image, legend, mae) = error_image(a, reference?);
-            let text = if zh {
-                format!(
-                    "|PCSS − 真实结果|：{:.4} .. {:.4}（深蓝 .. 黄）\n平均绝对误差：{mae:.5}",
-                    legend.min, legend.max
-                )
-            } else {
-                format!("{legend}\nmean absolute error: {mae:.5}")
-            };
+            let text = fill(
+                lang,
+                "|visibility - reference|: {} .. {}  (dark blue .. yellow)\nmean absolute error: {}",
+                &[&format!("{:.4}", legend.min), &format!("{:.4}", legend.max), &format!("{mae:.5}")],
+            );
             Some((image, text))
         }
     }

@@ -2,7 +2,7 @@
 //! texel grid projected on surfaces, the outside-the-frustum tint, and the error against the
 //! ground truth. Each comes with a legend line. The app and the slides draw the same ones.
 
-use crate::i18n::Lang;
+use crate::i18n::{Lang, fill, tr};
 use crate::render::Analysis;
 use crate::shadow::project_to_light;
 use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
@@ -77,18 +77,11 @@ pub fn compose(
                     .filter(|&i| analysis.hit(i))
                     .map(|i| analysis.shadow[i][channel])
                     .fold(0.0f32, f32::max);
-                let (label, unit) = match lang {
-                    Lang::En => (label, unit),
-                    Lang::Zh => match channel {
-                        1 => ("遮挡物搜索半径", "纹素"),
-                        2 => ("半影宽度", "纹素"),
-                        _ => ("找到的遮挡物", "个采样点"),
-                    },
-                };
-                legends.push(match lang {
-                    Lang::En => format!("{label}: 0 .. {max:.2} {unit} (dark blue .. yellow)"),
-                    Lang::Zh => format!("{label}：0 .. {max:.2} {unit}（深蓝 .. 黄）"),
-                });
+                legends.push(fill(
+                    lang,
+                    "{}: 0 .. {} {} (dark blue .. yellow)",
+                    &[&tr(lang, label), &format!("{max:.2}"), &tr(lang, unit)],
+                ));
                 let scale = if max > 0.0 { 1.0 / max } else { 0.0 };
                 paint(&mut image, analysis, |i| {
                     let v = analysis.shadow[i][channel];
@@ -98,10 +91,11 @@ pub fn compose(
             Overlay::TexelGrid => {
                 let Some(light) = light else { continue };
                 let size = light.map_size_texels;
-                legends.push(match lang {
-                    Lang::En => format!("texel grid: lines where the shadow-map texel changes ({size}² map)"),
-                    Lang::Zh => format!("纹素网格：线条标出阴影贴图纹素变化的地方（{size}² 贴图）"),
-                });
+                legends.push(fill(
+                    lang,
+                    "texel grid: lines where the shadow-map texel changes ({}² map)",
+                    &[&size],
+                ));
                 let texel = |i: usize| {
                     let p = Vec3::from_slice(&analysis.position[i][..3]);
                     let s = project_to_light(light, p);
@@ -125,13 +119,7 @@ pub fn compose(
             }
             Overlay::OutsideFrustum => {
                 let Some(light) = light else { continue };
-                legends.push(
-                    match lang {
-                        Lang::En => "orange: outside the light's frustum (no map data)",
-                        Lang::Zh => "橙色：光源视锥之外（无贴图数据）",
-                    }
-                    .into(),
-                );
+                legends.push(tr(lang, "orange: outside the light's frustum (no map data)").into());
                 paint(&mut image, analysis, |i| {
                     let s = project_to_light(light, Vec3::from_slice(&analysis.position[i][..3]));
                     // The twin's rule: NaN (a point in a spot light's own plane) is outside too.
@@ -142,20 +130,15 @@ pub fn compose(
             }
             Overlay::Error => {
                 let Some(reference) = reference else {
-                    legends.push(
-                        match lang {
-                            Lang::En => "error: computing the ground truth...",
-                            Lang::Zh => "误差：正在计算真实结果……",
-                        }
-                        .into(),
-                    );
+                    legends.push(tr(lang, "error: computing the ground truth...").into());
                     continue;
                 };
                 let (_, _, mae) = crate::views::error_image(analysis, reference);
-                legends.push(match lang {
-                    Lang::En => format!("|visibility − ground truth|: 0 .. 1, mean {mae:.4}"),
-                    Lang::Zh => format!("|可见性 − 真实结果|：0 .. 1，平均 {mae:.4}"),
-                });
+                legends.push(fill(
+                    lang,
+                    "|visibility − ground truth|: 0 .. 1, mean {}",
+                    &[&format!("{mae:.4}")],
+                ));
                 paint(&mut image, analysis, |i| {
                     let e = (analysis.shadow[i][0] - reference[i]).abs();
                     (e > 0.02).then(|| with_alpha(heat_color(e), 200))
@@ -163,28 +146,19 @@ pub fn compose(
             }
             Overlay::Bleeding => {
                 let Some(bleeding) = analysis.bleeding.as_deref() else {
-                    legends.push(
-                        match lang {
-                            Lang::En => "light bleeding: only VSM and VSSM bound their lit share",
-                            Lang::Zh => "漏光：只有 VSM 和 VSSM 用上界估计受光比例",
-                        }
-                        .into(),
-                    );
+                    legends.push(tr(lang, "light bleeding: only VSM and VSSM bound their lit share").into());
                     continue;
                 };
                 let summary = light_bleeding(analysis, bleeding);
-                legends.push(match lang {
-                    Lang::En => format!(
-                        "magenta stripes: light bleeding ≥ {BLEED_THRESHOLD}, up to {:.2}; {:.1} % of the surface",
-                        summary.max,
-                        100.0 * summary.share
-                    ),
-                    Lang::Zh => format!(
-                        "品红条纹：漏光 ≥ {BLEED_THRESHOLD}，最多 {:.2}；占表面的 {:.1} %",
-                        summary.max,
-                        100.0 * summary.share
-                    ),
-                });
+                legends.push(fill(
+                    lang,
+                    "magenta stripes: light bleeding ≥ {}, up to {}; {} % of the surface",
+                    &[
+                        &BLEED_THRESHOLD,
+                        &format!("{:.2}", summary.max),
+                        &format!("{:.1}", 100.0 * summary.share),
+                    ],
+                ));
                 // Hatched, so the light that bleeds stays visible between the stripes; the
                 // stripes' opacity grows with the amount.
                 let width = analysis.width as usize;
