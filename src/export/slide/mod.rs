@@ -6,105 +6,19 @@
 //! when a long text needs it), captions 22. A slide of another shape keeps the grid centred
 //! across, with the spare room at the bottom.
 
+mod layout;
+mod probe_panel;
+
+pub use layout::{DESIGN, MIN_SIZE, Rect, SlideLayout, SlideText};
+
 use super::step::{PROBE_FRAME, StepPictures};
 use crate::diagrams::{Canvas, is_cjk};
 use crate::i18n::{Lang, fill, tr};
 use crate::scene::Technique;
 use crate::views::View;
 use image::RgbaImage;
+use probe_panel::probe_panel;
 use tiny_skia::{Color, Pixmap};
-
-/// The design grid.
-pub const DESIGN: (f32, f32) = (1920.0, 1080.0);
-/// Smallest slide accepted (text below this size is no longer readable).
-pub const MIN_SIZE: (u32, u32) = (480, 270);
-
-/// A rectangle in slide pixels.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Rect {
-    pub x: u32,
-    pub y: u32,
-    pub w: u32,
-    pub h: u32,
-}
-
-impl Rect {
-    fn right(&self) -> f32 {
-        (self.x + self.w) as f32
-    }
-    fn bottom(&self) -> f32 {
-        (self.y + self.h) as f32
-    }
-}
-
-/// Where everything goes on a slide of a given size.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SlideLayout {
-    pub size: (u32, u32),
-    /// Slide pixels per design unit.
-    pub scale: f32,
-    pub title_bar: Rect,
-    /// The camera view; the camera image is rendered at exactly this size.
-    pub camera: Rect,
-    /// The shadow map panel (square).
-    pub shadow_map: Rect,
-    /// Captions under the camera view and the shadow map.
-    pub camera_caption: Rect,
-    pub shadow_map_caption: Rect,
-    /// The diagram, drawn at exactly this size.
-    pub diagram: Rect,
-    /// The probe's numbers.
-    pub probe: Rect,
-    /// The explanation and the try-this prompts.
-    pub text: Rect,
-}
-
-impl SlideLayout {
-    pub fn new(width: u32, height: u32) -> Self {
-        let scale = (width as f32 / DESIGN.0).min(height as f32 / DESIGN.1);
-        // Centred across, from the top down (a taller slide keeps its spare room at the bottom).
-        let origin = ((width as f32 - DESIGN.0 * scale) * 0.5, 0.0);
-        let r = |x: f32, y: f32, w: f32, h: f32| {
-            let x0 = (origin.0 + x * scale).round();
-            let y0 = (origin.1 + y * scale).round();
-            let x1 = (origin.0 + (x + w) * scale).round();
-            let y1 = (origin.1 + (y + h) * scale).round();
-            Rect { x: x0 as u32, y: y0 as u32, w: ((x1 - x0) as u32).max(1), h: ((y1 - y0) as u32).max(1) }
-        };
-        let camera = r(28.0, 96.0, 768.0, 432.0);
-        // The map is as tall as the camera view, to the pixel.
-        let map_x = r(816.0, 96.0, 432.0, 432.0);
-        let shadow_map = Rect { h: camera.h, w: camera.h, y: camera.y, ..map_x };
-        Self {
-            size: (width, height),
-            scale,
-            title_bar: Rect { x: 0, y: 0, w: width, h: (72.0 * scale).round().max(1.0) as u32 },
-            camera,
-            shadow_map,
-            camera_caption: r(28.0, 534.0, 768.0, 56.0),
-            shadow_map_caption: r(816.0, 534.0, 432.0, 56.0),
-            diagram: r(28.0, 598.0, 807.0, 454.0),
-            probe: r(855.0, 598.0, 393.0, 454.0),
-            text: r(1276.0, 96.0, 616.0, 956.0),
-        }
-    }
-
-    /// Design units to slide pixels.
-    pub fn px(&self, design: f32) -> f32 {
-        design * self.scale
-    }
-}
-
-/// The words on a slide, in one language.
-pub struct SlideText<'a> {
-    pub lang: Lang,
-    pub lesson_title: &'a str,
-    pub step_number: usize,
-    pub step_count: usize,
-    pub step_title: &'a str,
-    pub body: &'a str,
-    pub try_this: Vec<&'a str>,
-}
 
 mod pal {
     pub const BG: [u8; 3] = [250, 250, 246];
@@ -373,139 +287,6 @@ pub fn compose(
     Some(Slide { pixmap: p.pixmap, text_cut, shortened: p.shortened })
 }
 
-fn probe_panel(p: &mut Canvas, layout: &SlideLayout, pictures: &StepPictures) {
-    let technique = pictures.technique;
-    let lang = p.lang;
-    let u = |v: f32| layout.px(v);
-    let r = layout.probe;
-    p.fill_rgb([r.x as f32, r.y as f32, r.w as f32, r.h as f32], pal::PANEL);
-    p.frame(r, pal::FRAME, u(2.0));
-    let pad = u(18.0);
-    let head = u(26.0);
-    let mut y = r.y as f32 + pad + head;
-    p.marker([r.x as f32 + pad + u(10.0), y - head * 0.35], u(12.0));
-    let title = tr(lang, "Probe");
-    p.run(title, r.x as f32 + pad + u(30.0), y, head, pal::INK, true);
-    let technique_name = match technique {
-        Technique::None => tr(lang, "no shadows"),
-        Technique::Hard => tr(lang, "hard shadows"),
-        Technique::Pcf => "PCF",
-        Technique::Pcss => "PCSS",
-        Technique::Vsm => "VSM",
-        Technique::Vssm => "VSSM",
-    };
-    let tx = r.x as f32 + pad + u(30.0) + p.text_width(title, head) + u(14.0);
-    let tech = p.fit_label(technique_name, u(22.0), r.right() - pad - tx);
-    p.run(&tech, tx, y, u(22.0), pal::MUTED, false);
-
-    let mut rows: Vec<(&str, String)> = Vec::new();
-    let report = pictures.probe.as_ref();
-    let light = report.and_then(|rep| rep.lights.iter().find(|l| l.light == pictures.light));
-    match (pictures.probe_pixel, report, light) {
-        (None, _, _) => rows.push(("", tr(lang, "nothing to probe").into())),
-        (Some(_), Some(rep), _) if !rep.hit => rows.push(("", tr(lang, "no surface under the probe").into())),
-        (Some((x, y)), Some(_), Some(l)) => {
-            let source = match pictures.probe_from_lesson {
-                true => tr(lang, " (lesson)"),
-                false => tr(lang, " (auto)"),
-            };
-            rows.push((tr(lang, "pixel"), format!("{x}, {y}{source}")));
-            if let Some(object) = &pictures.probe_object {
-                rows.push((tr(lang, "surface"), object.clone()));
-            }
-            let [mu, mv] = l.shadow_map_uv;
-            rows.push((tr(lang, "map uv"), format!("{mu:.3}, {mv:.3}")));
-            let angle = l.n_dot_l.clamp(-1.0, 1.0).acos().to_degrees();
-            rows.push((tr(lang, "light angle"), format!("{angle:.0}°  (N·L {:.2})", l.n_dot_l)));
-            let depth = |linear: f32, ndc: f32| format!("{}  (NDC {ndc:.4})", depth_num(linear));
-            rows.push((tr(lang, "receiver depth"), depth(l.receiver_depth_linear, l.receiver_depth_ndc)));
-            rows.push((tr(lang, "stored depth@slides"), depth(l.stored_depth_linear, l.stored_depth_ndc)));
-            rows.push((tr(lang, "bias"), format!("{} NDC", bias_num(l.bias_ndc))));
-            let texels = tr(lang, "texels");
-            match technique {
-                Technique::None | Technique::Hard => {}
-                Technique::Pcf => {
-                    rows.push((
-                        tr(lang, "filter radius"),
-                        format!("{} {texels}", short_num(l.filter_radius_texels)),
-                    ));
-                    rows.push((tr(lang, "samples"), l.filter_samples.to_string()));
-                }
-                Technique::Vsm => {
-                    rows.push((
-                        tr(lang, "filter radius"),
-                        format!("{} {texels}", short_num(l.filter_radius_texels)),
-                    ));
-                    if let Some(v) = &l.vsm {
-                        rows.push((
-                            tr(lang, "bound / true"),
-                            format!("{:.3} / {:.3}", v.chebyshev_bound, v.true_lit_fraction),
-                        ));
-                    }
-                }
-                Technique::Pcss | Technique::Vssm => {
-                    // VSSM estimates its blockers from the moments: there is no count.
-                    if technique == Technique::Pcss {
-                        rows.push((
-                            tr(lang, "blockers@slides"),
-                            format!("{} / {}", l.blockers_found, l.blocker_samples),
-                        ));
-                    }
-                    if let Some(d) = l.avg_blocker_depth_linear {
-                        rows.push((tr(lang, "blocker depth"), depth_num(d)));
-                    }
-                    rows.push((tr(lang, "penumbra"), short_num(l.penumbra_width_world)));
-                    rows.push((
-                        tr(lang, "filter radius"),
-                        format!("{} {texels}", short_num(l.filter_radius_texels)),
-                    ));
-                }
-            }
-            let mut vis = format!("{:.2}", l.visibility_twin);
-            if let Some(t) = l.visibility_reference {
-                vis += &fill(lang, "  (truth {})", &[&format!("{t:.2}")]);
-            }
-            rows.push((tr(lang, "visibility@slides"), vis));
-            if !l.inside_light_frustum {
-                rows.push(("", tr(lang, "outside the light's frustum").into()));
-            }
-        }
-        _ => rows.push(("", tr(lang, "no light to probe").into())),
-    }
-
-    // The largest size at which the rows fit the panel, down and across.
-    let avail = r.bottom() - pad - y - u(12.0);
-    let widest = |p: &Canvas, px: f32| {
-        let label_w = rows.iter().map(|(l, _)| p.text_width(l, px)).fold(0.0f32, f32::max);
-        let gap = if label_w > 0.0 { u(16.0) } else { 0.0 };
-        let row_w =
-            |(l, v): &(&str, String)| if l.is_empty() { 0.0 } else { label_w + gap } + p.text_width(v, px);
-        (label_w + gap, rows.iter().map(row_w).fold(0.0f32, f32::max))
-    };
-    let mut px = u(24.0);
-    while px > u(16.0)
-        && (rows.len() as f32 * p.leading(px) > avail || widest(p, px).1 > r.w as f32 - 2.0 * pad)
-    {
-        px -= u(1.0);
-    }
-    let vx = r.x as f32 + pad + widest(p, px).0;
-    y += u(12.0);
-    for (label, value) in rows {
-        y += p.leading(px);
-        if y > r.bottom() - pad * 0.5 {
-            break;
-        }
-        if label.is_empty() {
-            let value = p.fit_label(&value, px, r.right() - pad - (r.x as f32 + pad));
-            p.run(&value, r.x as f32 + pad, y, px, pal::INK, true);
-            continue;
-        }
-        p.run(label, r.x as f32 + pad, y, px, pal::MUTED, false);
-        let value = p.fit_label(&value, px, r.right() - pad - vx);
-        p.run(&value, vx, y, px, pal::INK, false);
-    }
-}
-
 /// A caption in `r`: a bold first line, then a muted second one. Each is 22 units high, smaller
 /// (down to 17) where a long one needs it, and cut only past that.
 fn caption(p: &mut Canvas, layout: &SlideLayout, r: Rect, first: &str, second: Option<&str>) {
@@ -521,16 +302,6 @@ fn caption(p: &mut Canvas, layout: &SlideLayout, r: Rect, first: &str, second: O
         let s = p.fit_label(s, px, width);
         p.run(&s, r.x as f32, r.y as f32 + cap + below, px, color, bold);
     }
-}
-
-/// Linear depths: one decimal, as the lessons quote them.
-fn depth_num(v: f32) -> String {
-    if v.abs() >= 1000.0 { format!("{v:.0}") } else { format!("{v:.1}") }
-}
-
-/// A bias in NDC: four decimals, or scientific notation when smaller.
-fn bias_num(v: f32) -> String {
-    if v == 0.0 || v.abs() >= 0.001 { format!("{v:.4}") } else { format!("{v:.1e}") }
 }
 
 /// Draws the explanation and the prompts; true when the explanation had to be cut.

@@ -1,0 +1,150 @@
+//! The shape ARCHITECTURE.md describes, held: the top-level modules of src/ depend on each other
+//! without cycles, no source file is past 500 lines (test code aside), and the twin's formulas
+//! and the GPU parameters are made in one place each.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+const MAX_LINES: usize = 500;
+
+fn sources() -> Vec<PathBuf> {
+    fn walk(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).expect("src is readable").flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                walk(&path, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    let mut out = Vec::new();
+    walk(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"), &mut out);
+    out.sort();
+    out
+}
+
+/// The file's code without its unit tests: a `tests.rs` file is all test code, and a
+/// `#[cfg(test)]` module runs to the end of its file.
+fn code_of(path: &Path) -> String {
+    if path.file_name().is_some_and(|n| n == "tests.rs" || n == "mesh_tests.rs") {
+        return String::new();
+    }
+    let text = std::fs::read_to_string(path).expect("a source file");
+    match text.find("#[cfg(test)]\nmod tests") {
+        Some(at) => text[..at].to_string(),
+        None => text,
+    }
+}
+
+/// The top-level module a file belongs to (`render` for src/render/mod.rs and src/render/x.rs).
+fn module_of(path: &Path) -> String {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let rel = path.strip_prefix(&src).expect("under src");
+    let first = rel.components().next().expect("a file").as_os_str().to_string_lossy().to_string();
+    first.trim_end_matches(".rs").to_string()
+}
+
+#[test]
+fn no_source_file_is_past_500_lines_of_code() {
+    let long: Vec<String> = sources()
+        .iter()
+        .map(|p| (p, code_of(p).lines().count()))
+        .filter(|(_, n)| *n > MAX_LINES)
+        .map(|(p, n)| format!("{} ({n} lines)", p.display()))
+        .collect();
+    assert!(long.is_empty(), "split these by concern: {long:?}");
+}
+
+#[test]
+fn the_top_level_modules_form_no_cycle() {
+    let files = sources();
+    let modules: BTreeSet<String> =
+        files.iter().map(|p| module_of(p)).filter(|m| m != "lib" && m != "main").collect();
+    let mut uses: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for path in &files {
+        let from = module_of(path);
+        let code = code_of(path);
+        for (at, _) in code.match_indices("crate::") {
+            let name: String =
+                code[at + 7..].chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
+            if name != from && modules.contains(&name) {
+                uses.entry(from.clone()).or_default().insert(name);
+            }
+        }
+    }
+    // Depth-first search for a path back to where it started.
+    fn path_back(
+        uses: &BTreeMap<String, BTreeSet<String>>,
+        start: &str,
+        at: &str,
+        seen: &mut BTreeSet<String>,
+        trail: &mut Vec<String>,
+    ) -> bool {
+        for next in uses.get(at).into_iter().flatten() {
+            trail.push(next.clone());
+            if next == start || (seen.insert(next.clone()) && path_back(uses, start, next, seen, trail)) {
+                return true;
+            }
+            trail.pop();
+        }
+        false
+    }
+    for start in uses.keys() {
+        let mut trail = vec![start.clone()];
+        let cycle = path_back(&uses, start, start, &mut BTreeSet::new(), &mut trail);
+        assert!(!cycle, "a cycle between modules: {}", trail.join(" -> "));
+    }
+}
+
+/// Where the code outside the twin names a formula the twin defines, it calls it: no second
+/// definition of these functions anywhere in src.
+#[test]
+fn each_light_space_formula_is_defined_once() {
+    let formulas = [
+        "fn depth_linear_from_ndc",
+        "fn depth_ndc_from_linear",
+        "fn ndc_per_world",
+        "fn texel_world_at",
+        "fn outside_frustum",
+        "fn receiver_bias_ndc",
+        "fn blocker_search_radius_uv",
+        "fn estimate_penumbra",
+        "fn blocker_depth_from_penumbra",
+        "fn filter_radius_texels",
+        "fn search_kernel",
+    ];
+    for formula in formulas {
+        let defined: Vec<String> = sources()
+            .iter()
+            .filter(|p| {
+                code_of(p).lines().any(|l| l.trim_start().trim_start_matches("pub ").starts_with(formula))
+            })
+            .map(|p| p.display().to_string())
+            .collect();
+        // The twin's free function, and at most its method wrapper in the same folder.
+        assert!(
+            !defined.is_empty() && defined.iter().all(|p| p.contains("/src/shadow/")),
+            "`{formula}` is defined outside src/shadow: {defined:?}"
+        );
+    }
+}
+
+/// A frame's shadow parameters are made from the scene's settings in one place, the renderer's
+/// `prepare`; the ground truth makes its own from its own settings, and the pipeline cache its
+/// placeholder. Everything downstream reads them from the frame.
+#[test]
+fn shadow_params_are_built_from_settings_in_the_known_places_only() {
+    let allowed = [
+        "src/render/prepare.rs",
+        "src/render/reference_pass.rs",
+        "src/render/pipelines.rs",
+        "src/diagrams/live.rs",
+    ];
+    for path in sources() {
+        let shown = path.display().to_string();
+        if code_of(&path).contains("ShadowParamsGpu::new(") && !shown.contains("/src/shadow/") {
+            assert!(allowed.iter().any(|a| shown.ends_with(a)), "{shown} builds ShadowParamsGpu itself");
+        }
+    }
+}
