@@ -81,6 +81,11 @@ pub struct AppState {
     pub dirty: bool,
     /// The view's ground truth, per pixel, once complete (kept while nothing it depends on changes).
     pub reference: Option<Vec<f32>>,
+    /// The view's mean absolute error against its ground truth, once that is complete.
+    pub mean_abs_error: Option<f32>,
+    /// The ground truth at the probe, per light asked for: (light, samples averaged, samples in
+    /// all). Asked for and not started yet counts as 0 done.
+    pub probe_truth_progress: Vec<(usize, u32, u32)>,
 }
 
 const DEFAULT_SCENE: &str = "assets/scenes/games202.toml";
@@ -135,6 +140,8 @@ impl AppState {
             probe_truth_asked: None,
             dirty: true,
             reference: None,
+            mean_abs_error: None,
+            probe_truth_progress: Vec::new(),
         };
         if let Some((id, step)) = state.settings.last_lesson.clone()
             && let Some(index) = state.lessons.iter().position(|l| l.id == id)
@@ -399,6 +406,20 @@ impl AppState {
             Ok(launch) => self.apply_launch(launch),
             Err(e) => self.error = Some(AppError::new("could not open the scene", e)),
         }
+    }
+
+    /// The ground truth at the probe for `light` as it accumulates: (samples averaged, samples in
+    /// all); None where it was not asked for.
+    pub fn probe_reference_progress(&self, light: usize) -> Option<(u32, u32)> {
+        self.probe_truth_progress.iter().find(|(l, ..)| *l == light).map(|&(_, done, total)| (done, total))
+    }
+
+    /// What the lesson text's live numbers are filled from: the probe on screen and the view's
+    /// own numbers (its mean error against the ground truth, once that is complete).
+    pub fn live_sources(&self) -> lessons::live::Sources<'_> {
+        let frame =
+            lessons::live::FrameValues { mean_abs_error: self.reference.as_ref().and(self.mean_abs_error) };
+        lessons::live::Sources { probe: self.probe.as_ref(), frame }
     }
 
     /// Scene time advances by `dt_s` of wall-clock time times the speed while playing. A stall

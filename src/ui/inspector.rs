@@ -1,7 +1,7 @@
 //! The inspector: every scene, light and `[shadow]` parameter, with units in the labels, then
 //! the probe's numbers (src/ui/probe_panel.rs). Any change re-renders at once.
 
-use super::{AbSplit, ShadowlabApp};
+use super::{AbSplit, AppState};
 use crate::i18n::Lang;
 use crate::i18n::tr as translate;
 use crate::scene::{BiasMode, DepthStorage, Kernel, LightKind, LightSize, Projection, Technique};
@@ -95,11 +95,11 @@ fn key_hint(lang: Lang, key: &str) -> String {
     crate::i18n::fill(lang, "scene key `{}` (lessons and --set use it)", &[&key])
 }
 
-pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
-    let lang = app.state.lang;
+pub fn show(state: &mut AppState, ui: &mut Ui) {
+    let lang = state.lang;
     let tr = move |en: &'static str| translate(lang, en);
     let mut changed = false;
-    let s = &mut app.state.scene.shadow;
+    let s = &mut state.scene.shadow;
     ui.heading(tr("Technique"));
     changed |= combo(
         lang,
@@ -110,16 +110,16 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         Technique::label,
         Some("technique"),
     );
-    let mut ab_on = app.state.ab.is_some();
+    let mut ab_on = state.ab.is_some();
     if ui
         .checkbox(&mut ab_on, tr("A/B split against"))
         .on_hover_text(tr("drag the divider in the camera view"))
         .changed()
     {
-        app.state.ab = ab_on.then_some(AbSplit { b: Technique::Hard, divider: 0.5, grabbed: false });
+        state.ab = ab_on.then_some(AbSplit { b: Technique::Hard, divider: 0.5, grabbed: false });
         changed = true;
     }
-    if let Some(ab) = &mut app.state.ab {
+    if let Some(ab) = &mut state.ab {
         changed |= combo(lang, ui, tr("right side"), &mut ab.b, Technique::ALL, Technique::label, None);
     }
 
@@ -235,26 +235,26 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         .changed();
 
     ui.separator();
-    changed |= lights(app, ui);
+    changed |= lights(state, ui);
 
     ui.separator();
     ui.heading(tr("Camera"));
-    if let Projection::Perspective { fov_deg } = &mut app.state.scene.camera.projection {
+    if let Projection::Perspective { fov_deg } = &mut state.scene.camera.projection {
         changed |= ui.add(Slider::new(fov_deg, 10.0..=120.0).text(tr("field of view (°)"))).changed();
     }
     if ui.button(tr("Reset camera (R)")).clicked() {
-        app.state.reset_camera();
+        state.reset_camera();
     }
 
     ui.separator();
     ui.heading(tr("Overlays"));
     for overlay in Overlay::ALL {
-        let mut on = app.state.overlays.contains(&overlay);
+        let mut on = state.overlays.contains(&overlay);
         if ui.checkbox(&mut on, tr(overlay.name())).changed() {
             if on {
-                app.state.overlays.push(overlay);
+                state.overlays.push(overlay);
             } else {
-                app.state.overlays.retain(|o| *o != overlay);
+                state.overlays.retain(|o| *o != overlay);
             }
             changed = true;
         }
@@ -262,41 +262,41 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
 
     ui.separator();
     if ui.button(tr("Reset to scene/lesson values")).clicked() {
-        app.state.reset();
+        state.reset();
     }
     ui.horizontal(|ui| {
         let label = ui.label(tr("screenshot folder"));
-        let mut folder = app.state.settings.screenshot_dir.display().to_string();
+        let mut folder = state.settings.screenshot_dir.display().to_string();
         if ui.text_edit_singleline(&mut folder).labelled_by(label.id).changed() {
-            app.state.settings.screenshot_dir = folder.into();
+            state.settings.screenshot_dir = folder.into();
         }
     });
     ui.separator();
-    super::probe_panel::probe_values(app, ui);
+    super::probe_panel::probe_values(state, ui);
     if changed {
-        app.state.mark_dirty();
+        state.mark_dirty();
     }
 }
 
-fn lights(app: &mut ShadowlabApp, ui: &mut Ui) -> bool {
-    let lang = app.state.lang;
+fn lights(state: &mut AppState, ui: &mut Ui) -> bool {
+    let lang = state.lang;
     let tr = move |en: &'static str| translate(lang, en);
     let mut changed = false;
     ui.heading(tr("Lights"));
-    let count = app.state.scene.lights.len();
+    let count = state.scene.lights.len();
     if count == 0 {
         ui.label(tr("this scene has no lights"));
         return false;
     }
     ui.horizontal(|ui| {
         for i in 0..count {
-            if ui.selectable_label(app.state.selected_light == i, format!("{} {i}", tr("light"))).clicked() {
-                app.state.selected_light = i;
+            if ui.selectable_label(state.selected_light == i, format!("{} {i}", tr("light"))).clicked() {
+                state.selected_light = i;
                 changed = true;
             }
         }
     });
-    let Some(light) = app.state.scene.lights.get_mut(app.state.selected_light) else { return changed };
+    let Some(light) = state.scene.lights.get_mut(state.selected_light) else { return changed };
     for (label, key, point) in [
         ("position", "light.N.position", &mut light.position),
         ("target", "light.N.target", &mut light.target),

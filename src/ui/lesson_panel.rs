@@ -1,7 +1,7 @@
 //! The lesson panel: step navigation, the step's title, what to look at, what to try, and the
 //! probe's numbers when the step names the probe.
 
-use super::ShadowlabApp;
+use super::AppState;
 use crate::i18n::Lang;
 use crate::lessons::Panel;
 use egui::{RichText, Ui};
@@ -26,38 +26,38 @@ fn what_apply_sets(prompt: &crate::lessons::TryThis, lang: Lang) -> String {
     lines.join("\n")
 }
 
-fn step_prompts(app: &ShadowlabApp) -> Vec<crate::lessons::TryThis> {
-    app.state.current_step().map(|(_, s, _)| s.try_this.clone()).unwrap_or_default()
+fn step_prompts(state: &AppState) -> Vec<crate::lessons::TryThis> {
+    state.current_step().map(|(_, s, _)| s.try_this.clone()).unwrap_or_default()
 }
 
-pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
-    let lang = app.state.lang;
+pub fn show(state: &mut AppState, ui: &mut Ui) {
+    let lang = state.lang;
     let tr = move |en: &'static str| crate::i18n::tr(lang, en);
-    let Some((lesson, step, index)) = app.state.current_step() else { return };
+    let Some((lesson, step, index)) = state.current_step() else { return };
     let count = lesson.steps.len();
     let lesson_title = lesson.title.get(lang).to_string();
     let title = step.title.get(lang).to_string();
     // Live numbers from the probe and the view on screen (or "…" while they are worked out).
-    let text = step.text_filled(lang, app.live_sources());
-    let tries = step.try_this_filled(lang, app.live_sources());
+    let text = step.text_filled(lang, state.live_sources());
+    let tries = step.try_this_filled(lang, state.live_sources());
     let lesson_probe = step.probe.map(|[x, y]| super::ProbeAt::LessonFrame(x, y));
     let plays = step.play;
     // Navigation first, so it stays in reach however long the text is.
     ui.horizontal(|ui| {
         if ui.button(tr("Previous")).on_hover_text(tr("Left arrow")).clicked() {
-            app.state.step_lesson(-1);
+            state.step_lesson(-1);
         }
         ui.label(RichText::new(format!("{} {} / {count}", tr("step"), index + 1)).weak());
         if ui.button(tr("Next")).on_hover_text(tr("Right arrow")).clicked() {
-            app.state.step_lesson(1);
+            state.step_lesson(1);
         }
     });
     // Present mode (F5): larger text for a projector, and a way back.
-    let (body, heading) = if app.state.present { (22.0, 30.0) } else { (15.0, 20.0) };
-    if app.state.present {
+    let (body, heading) = if state.present { (22.0, 30.0) } else { (15.0, 20.0) };
+    if state.present {
         ui.label(RichText::new(tr("F5 or Esc: leave present mode")).weak());
     } else {
-        ui.checkbox(&mut app.state.show_all_panels, tr("show every panel"));
+        ui.checkbox(&mut state.show_all_panels, tr("show every panel"));
     }
     ui.separator();
     // Where in the course this is, readable at a glance.
@@ -71,7 +71,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     ui.add_space(4.0);
     // The text describes the step as set: once a setting moves, its fixed figures and sentences
     // may no longer hold, so it says so, is greyed, and offers the way back.
-    let changed = app.state.changed_from_step();
+    let changed = state.changed_from_step();
     if changed.is_empty() {
         ui.label(RichText::new(text).size(body));
     } else {
@@ -85,28 +85,28 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
             .size(body * 0.85)
             .color(egui::Color32::from_rgb(255, 200, 90)),
         );
-        if app.state.applied_try_this.is_none() && ui.button(tr("Back to the step's settings")).clicked() {
-            app.state.back_to_step_settings();
+        if state.applied_try_this.is_none() && ui.button(tr("Back to the step's settings")).clicked() {
+            state.back_to_step_settings();
         }
         ui.label(RichText::new(text).size(body).weak());
     }
     // The numbers follow whatever probe is pinned; say so when it is not the lesson's own.
-    if lesson_probe.is_some() && app.state.probe_at != lesson_probe {
+    if lesson_probe.is_some() && state.probe_at != lesson_probe {
         let note =
             tr("The numbers above are read at your probe; the sentences around them describe the lesson's.");
         let back = tr("Back to the lesson's probe");
         ui.horizontal_wrapped(|ui| {
             ui.label(RichText::new(note).italics());
             if ui.button(back).clicked() {
-                app.state.probe_at = lesson_probe;
-                app.state.mark_dirty();
+                state.probe_at = lesson_probe;
+                state.mark_dirty();
             }
         });
     }
     if !tries.is_empty() {
         ui.add_space(8.0);
         ui.strong(tr("Try this"));
-        let prompts = step_prompts(app);
+        let prompts = step_prompts(state);
         for (i, t) in tries.iter().enumerate() {
             ui.label(RichText::new(format!("• {t}")).size(body * 0.8));
             let prompt = prompts.get(i).filter(|p| p.applies_anything());
@@ -114,20 +114,20 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
                 if let Some(p) = prompt
                     && ui.button(tr("Apply")).on_hover_text(what_apply_sets(p, lang)).clicked()
                 {
-                    app.state.apply_try_this(i);
+                    state.apply_try_this(i);
                 }
-                if app.state.applied_try_this == Some(i) {
+                if state.applied_try_this == Some(i) {
                     ui.label(RichText::new(tr("applied")).weak());
                     if ui.button(tr("Back to the step's settings")).clicked() {
-                        app.state.back_to_step_settings();
+                        state.back_to_step_settings();
                     }
                 }
             });
         }
     }
-    if app.state.panel_visible(Panel::Probe) && app.state.probe_report().is_some() {
+    if state.panel_visible(Panel::Probe) && state.probe_report().is_some() {
         ui.add_space(8.0);
         ui.separator();
-        super::probe_panel::probe_values(app, ui);
+        super::probe_panel::probe_values(state, ui);
     }
 }

@@ -59,7 +59,7 @@ pub struct ShadowlabApp {
     preview_divisor: u32,
     analysis: Option<Analysis>,
     view_state: view_panels::ViewState,
-    panel_state: panels::PanelState,
+    diagram_panel: panels::DiagramPanel,
     open_path: String,
     /// The Open dialog, while it is up.
     open_dialog: Option<dialog::OpenDialog>,
@@ -116,7 +116,7 @@ impl ShadowlabApp {
             preview_divisor: 2,
             analysis: None,
             view_state: Default::default(),
-            panel_state: Default::default(),
+            diagram_panel: Default::default(),
             open_path: String::new(),
             open_dialog: None,
             focus_path_box: false,
@@ -127,16 +127,7 @@ impl ShadowlabApp {
 
     /// Size of the smallest text in the diagram on screen, points (`None` before one is drawn).
     pub fn smallest_diagram_text_pt(&self) -> Option<f32> {
-        self.panel_state.smallest_diagram_text_pt
-    }
-
-    /// What the lesson text's live numbers are filled from: the probe on screen and the view's
-    /// own numbers (its mean error against the ground truth, once that is complete).
-    pub fn live_sources(&self) -> lessons::live::Sources<'_> {
-        let frame = lessons::live::FrameValues {
-            mean_abs_error: self.state.reference.as_ref().and(self.shown.mean_abs_error),
-        };
-        lessons::live::Sources { probe: self.state.probe.as_ref(), frame }
+        self.diagram_panel.smallest_diagram_text_pt
     }
 
     /// Why there is no GPU view, or the last rendering error, if any.
@@ -342,7 +333,7 @@ impl eframe::App for ShadowlabApp {
                 )
                 .max_size((screen.width() * 0.35).max(220.0))
                 .show(ui, |ui| {
-                    egui::ScrollArea::vertical().show(ui, |ui| inspector::show(self, ui));
+                    egui::ScrollArea::vertical().show(ui, |ui| inspector::show(&mut self.state, ui));
                 });
             self.state.settings.inspector_width = inspector.response.rect.width();
         }
@@ -359,7 +350,7 @@ impl eframe::App for ShadowlabApp {
                     .max_size((screen.width() * 0.35).max(240.0))
             };
             panel.show(ui, |ui| {
-                egui::ScrollArea::vertical().show(ui, |ui| lesson_panel::show(self, ui));
+                egui::ScrollArea::vertical().show(ui, |ui| lesson_panel::show(&mut self.state, ui));
             });
         }
         if self.state.panel_visible(lessons::Panel::Diagram)
@@ -369,7 +360,7 @@ impl eframe::App for ShadowlabApp {
                 egui::Panel::bottom("diagrams (present)")
                     .resizable(false)
                     .exact_size(screen.height() * 0.4)
-                    .show(ui, |ui| panels::show_bottom(self, ui));
+                    .show(ui, |ui| self.diagram_panel.ui(ui, &mut self.state));
             } else {
                 let diagrams = egui::Panel::bottom("diagrams")
                     .resizable(true)
@@ -379,7 +370,7 @@ impl eframe::App for ShadowlabApp {
                         self.state.settings.diagram_height.clamp(140.0, (screen.height() * 0.34).max(140.0)),
                     )
                     .max_size((screen.height() * 0.45).max(140.0))
-                    .show(ui, |ui| panels::show_bottom(self, ui));
+                    .show(ui, |ui| self.diagram_panel.ui(ui, &mut self.state));
                 self.state.settings.diagram_height = diagrams.response.rect.height();
             }
         }

@@ -2,21 +2,21 @@
 //! depths and bias, the blocker search, the penumbra and filter, the visibility on the GPU, in
 //! the twin and (on request, or where the lesson quotes it) the ground truth.
 
-use super::ShadowlabApp;
+use super::AppState;
 use crate::i18n::{fill, tr as translate};
 use egui::Ui;
 
-pub(super) fn probe_values(app: &mut ShadowlabApp, ui: &mut Ui) {
-    let lang = app.state.lang;
+pub(super) fn probe_values(state: &mut AppState, ui: &mut Ui) {
+    let lang = state.lang;
     let tr = move |en: &'static str| translate(lang, en);
     ui.heading(tr("Probe"));
-    let Some(report) = app.state.probe_report() else {
+    let Some(report) = state.probe_report() else {
         ui.label(tr("click the camera view to pin a probe"));
         return;
     };
     // A lesson's probe is a pixel of the lesson's own frame, not of this view.
     let ([x, y], [w, h]) = (report.pixel, report.size);
-    let lesson_frame = matches!(app.state.probe_at, Some(super::ProbeAt::LessonFrame(..)));
+    let lesson_frame = matches!(state.probe_at, Some(super::ProbeAt::LessonFrame(..)));
     let pixel = match lesson_frame {
         true => fill(lang, "pixel {},{} of the lesson's {}x{} frame", &[&x, &y, &w, &h]),
         false => fill(lang, "pixel {},{}", &[&x, &y]),
@@ -25,10 +25,10 @@ pub(super) fn probe_values(app: &mut ShadowlabApp, ui: &mut Ui) {
         ui.label(format!("{pixel}: {}", tr("no surface")));
         return;
     }
-    let object = report.object.as_deref().map_or("?", |name| app.state.scene.object_label(name, lang));
+    let object = report.object.as_deref().map_or("?", |name| state.scene.object_label(name, lang));
     ui.label(fill(lang, "{}, on {}", &[&pixel, &object]));
-    let Some(l) = report.lights.iter().find(|l| l.light == app.state.selected_light) else { return };
-    let truth = match (l.visibility_reference, app.probe_reference_progress(l.light)) {
+    let Some(l) = report.lights.iter().find(|l| l.light == state.selected_light) else { return };
+    let truth = match (l.visibility_reference, state.probe_reference_progress(l.light)) {
         (Some(value), progress) => Truth::Value(value, progress.map(|(_, total)| total)),
         (None, Some((done, total))) if done < total => Truth::Accumulating(done, total),
         _ => Truth::NotAsked,
@@ -127,7 +127,7 @@ pub(super) fn probe_values(app: &mut ShadowlabApp, ui: &mut Ui) {
         ui.end_row();
     });
     if ask {
-        app.state.ask_probe_truth();
+        state.ask_probe_truth();
     }
 }
 

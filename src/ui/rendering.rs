@@ -43,11 +43,6 @@ pub struct Shown {
     pub render_ms: f64,
     /// Ground truth in progress or done: (samples averaged, samples in all).
     pub reference_progress: Option<(u32, u32)>,
-    /// The view's mean absolute error against its ground truth, once that is complete.
-    pub mean_abs_error: Option<f32>,
-    /// The ground truth at the probe, per light asked for: (light, samples averaged, samples in
-    /// all). Asked for and not started yet counts as 0 done.
-    pub probe_reference: Vec<(usize, u32, u32)>,
     /// The job whose probe report is shown.
     pub probe_job: Option<u64>,
     /// The job whose probe and analysis are still to come.
@@ -80,7 +75,7 @@ impl ShadowlabApp {
                 RenderEvent::Reference { job, done, total, values } => {
                     if job == self.submitted.job {
                         // The error legend's number, once the ground truth is all there.
-                        self.shown.mean_abs_error = self
+                        self.state.mean_abs_error = self
                             .analysis
                             .as_ref()
                             .filter(|a| done == total && a.shadow.len() == values.len())
@@ -98,7 +93,7 @@ impl ShadowlabApp {
                 RenderEvent::Failed { job, message } => {
                     if job == self.submitted.job {
                         self.shown.reference_progress = None;
-                        self.shown.probe_reference.clear();
+                        self.state.probe_truth_progress.clear();
                         self.state.error = Some(super::AppError::new("rendering failed", message));
                     }
                 }
@@ -142,7 +137,7 @@ impl ShadowlabApp {
         self.shown.render_ms = out.render_ms;
         if out.job == self.submitted.job {
             // The ground truths (progress since the job was asked for) follow with their events.
-            self.shown.mean_abs_error = None;
+            self.state.mean_abs_error = None;
         }
         // The probe and the overlays' analysis follow in a `Details` event; until then the old
         // ones stay (and the overlays hide, being about other settings).
@@ -182,14 +177,14 @@ impl ShadowlabApp {
             Some(Ok(report)) => {
                 // No surface, no ground truth to wait for.
                 if !report.hit {
-                    self.shown.probe_reference.clear();
+                    self.state.probe_truth_progress.clear();
                 }
                 self.state.probe = Some(report);
                 self.shown.probe_job = Some(details.job);
             }
             Some(Err(e)) => {
                 self.state.probe = None;
-                self.shown.probe_reference.clear();
+                self.state.probe_truth_progress.clear();
                 self.state.error = Some(super::AppError::new("the probe failed", e));
             }
             None if self.state.probe_at.is_none() => self.state.probe = None,
@@ -210,9 +205,9 @@ impl ShadowlabApp {
     /// The ground truth at the probe so far for `light`: its progress, and once complete, the
     /// value in the probe's report (where the panel and the lesson text read it).
     fn show_probe_reference(&mut self, light: usize, done: u32, total: u32, value: f32) {
-        match self.shown.probe_reference.iter_mut().find(|(l, ..)| *l == light) {
+        match self.state.probe_truth_progress.iter_mut().find(|(l, ..)| *l == light) {
             Some(progress) => *progress = (light, done, total),
-            None => self.shown.probe_reference.push((light, done, total)),
+            None => self.state.probe_truth_progress.push((light, done, total)),
         }
         if done == total
             && let Some(l) =
@@ -310,7 +305,7 @@ impl ShadowlabApp {
         // finds no surface and a failed job clear them).
         self.shown.reference_progress =
             job.reference.then_some((0, self.state.scene.shadow.reference_samples));
-        self.shown.probe_reference =
+        self.state.probe_truth_progress =
             job.probe_reference.iter().map(|&l| (l, 0, self.state.scene.shadow.reference_samples)).collect();
         let Some(worker) = self.worker.as_mut() else { return };
         let id = worker.submit(job);
@@ -322,19 +317,14 @@ impl ShadowlabApp {
     pub fn render_pending(&self) -> bool {
         let Some(worker) = self.worker.as_ref() else { return false };
         let reference_running = self.shown.reference_progress.is_some_and(|(done, total)| done < total);
-        let probe_reference_running = self.shown.probe_reference.iter().any(|(_, done, total)| done < total);
+        let probe_reference_running =
+            self.state.probe_truth_progress.iter().any(|(_, done, total)| done < total);
         self.state.dirty
             || worker.busy()
             || reference_running
             || probe_reference_running
             || self.shown_job < self.submitted.job
             || self.shown.details_pending.is_some()
-    }
-
-    /// The ground truth at the probe for `light` as it accumulates: (samples averaged, samples in
-    /// all); None where it was not asked for.
-    pub fn probe_reference_progress(&self, light: usize) -> Option<(u32, u32)> {
-        self.shown.probe_reference.iter().find(|(l, ..)| *l == light).map(|&(_, done, total)| (done, total))
     }
 
     /// How many frames have reached the views (each a new image on screen).

@@ -419,13 +419,15 @@ pub fn analysis_view(
                 _ => ("blockers found", "taps", 3),
             };
             let (image, legend) = heat_image(a, label, unit, |i| a.shadow[i][channel]);
+            // Blockers found are a count of taps: whole numbers.
+            let decimals = if channel == 3 { 0 } else { 4 };
             let legend = fill(
                 lang,
                 "{}: {} .. {} {} (dark blue .. yellow)",
                 &[
                     &tr(lang, label),
-                    &format!("{:.4}", legend.min),
-                    &format!("{:.4}", legend.max),
+                    &format!("{:.decimals$}", legend.min),
+                    &format!("{:.decimals$}", legend.max),
                     &tr(lang, unit),
                 ],
             );
