@@ -276,21 +276,14 @@ impl Renderers {
                 }
                 continue;
             }
-            let (mut stopped, mut total) = (false, 0);
-            let done = self.a.render_reference_progressive(
-                &job.scene,
-                light,
-                REFERENCE_BATCH_FIRST,
-                REFERENCE_BATCH_MAX,
-                &mut |done, all, values| {
-                    total = all;
-                    let go_on = progress(light, done, all, values.get(index).copied().unwrap_or(1.0));
-                    stopped |= !go_on;
-                    go_on
-                },
-            )?;
+            let mut stopped = false;
+            let done = self.ground_truth(&job.scene, light, &mut |done, all, values| {
+                let go_on = progress(light, done, all, values.get(index).copied().unwrap_or(1.0));
+                stopped |= !go_on;
+                go_on
+            })?;
             // Finished (even where the last report came after a newer job): keep it.
-            if let Some(values) = done {
+            if let Some((values, total)) = done {
                 if self.probe_truths.len() >= PROBE_TRUTHS_KEPT {
                     self.probe_truths.remove(0);
                 }
@@ -301,6 +294,28 @@ impl Renderers {
             }
         }
         Ok(())
+    }
+
+    /// Light `light`'s ground truth over the last analysis frame, batch after batch (each
+    /// reported; false stops it): the values and the samples averaged, once complete.
+    fn ground_truth(
+        &mut self,
+        scene: &Scene,
+        light: usize,
+        progress: &mut dyn FnMut(u32, u32, &[f32]) -> bool,
+    ) -> Result<Option<(Vec<f32>, u32)>, RenderError> {
+        let mut total = 0;
+        let done = self.a.render_reference_progressive(
+            scene,
+            light,
+            REFERENCE_BATCH_FIRST,
+            REFERENCE_BATCH_MAX,
+            &mut |done, all, values| {
+                total = all;
+                progress(done, all, values)
+            },
+        )?;
+        Ok(done.map(|values| (values, total)))
     }
 
     /// The view's ground truth for the selected light (its analysis is drawn again where a probe
@@ -322,18 +337,7 @@ impl Renderers {
                 FrameRequest { final_color: false, analysis: true, timestamps: false, ..job.request };
             self.a.render(&job.scene, &request)?;
         }
-        let mut total = 0;
-        let done = self.a.render_reference_progressive(
-            &job.scene,
-            light,
-            REFERENCE_BATCH_FIRST,
-            REFERENCE_BATCH_MAX,
-            &mut |done, all, values| {
-                total = all;
-                progress(done, all, values)
-            },
-        )?;
-        if let Some(values) = done {
+        if let Some((values, total)) = self.ground_truth(&job.scene, light, progress)? {
             self.view_truth = Some((key, values, total));
         }
         Ok(())
