@@ -124,7 +124,9 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     app.view_state.view_picture = None;
     app.view_state.overlay_picture = None;
     if let Some(analysis) = &app.analysis {
-        let samples = app.state.scene.shadow.reference_samples;
+        // The samples of the ground truth shown (it was worked out for the frame on screen).
+        let samples =
+            app.shown.reference_progress.map_or(app.state.scene.shadow.reference_samples, |(_, all)| all);
         let light_and_params = light.as_ref().map(|l| (l, &app.shown.params));
         if let Some((image, legend)) = crate::views::analysis_view(
             app.state.view,
