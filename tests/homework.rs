@@ -193,3 +193,22 @@ fn a_framework_uniform_with_the_wrong_type_is_an_error_on_its_line() {
     assert!(matches!(error, HomeworkError::Rewrite { line: 9, .. }), "{error}");
     assert!(error.in_file("f.glsl").to_string().starts_with("f.glsl:9: uniform uLightWidthUV"));
 }
+
+/// A student's own texture gets the next bindings (texture, then its linear sampler) and samples.
+#[test]
+fn a_students_own_texture_gets_its_own_bindings() {
+    let source = data("phongFragment_helpers.glsl")
+        .replace("uniform vec3 uLightPos;", "uniform vec3 uLightPos; uniform sampler2D uNoise;")
+        .replace("float light = max(", "float light = texture2D(uNoise, coords.xy).r * max(");
+    let layout = Interface::gather(&[&source]).expect("an interface");
+    assert_eq!(layout.texture_binding("uNoise"), Some((6, SamplerFilter::Linear)));
+    let f =
+        translate("phongFragment.glsl", &source, Stage::Fragment, &layout).unwrap_or_else(|e| panic!("{e}"));
+    assert!(f.rewritten.glsl.contains("texture(sampler2D(uNoise, uNoise_sampler), coords.xy)"));
+    let binding = |name: &str| {
+        f.rewritten.bindings.iter().find(|b| b.name == name).map(|b| (b.binding, b.kind.clone()))
+    };
+    assert_eq!(binding("uNoise"), Some((6, BindingKind::Texture)));
+    assert_eq!(binding("uNoise_sampler"), Some((7, BindingKind::Sampler(SamplerFilter::Linear))));
+    assert_wgsl_valid("phongFragment.glsl", &f.wgsl);
+}
