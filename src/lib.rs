@@ -6,6 +6,7 @@ pub mod cli;
 pub mod diagrams;
 pub mod export;
 pub mod files;
+pub mod homework;
 pub mod i18n;
 pub mod lessons;
 pub mod probe;

@@ -1,0 +1,116 @@
+//! Just enough of a GLSL lexer for the rewrite: identifiers, numbers, punctuation and preprocessor
+//! directives with their byte ranges and lines; whitespace and comments are skipped (the rewrite
+//! edits byte ranges of the source, so everything it does not touch stays as it was).
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kind {
+    Ident,
+    Number,
+    Punct,
+    /// `#` and the directive's name (`#define`); the rest of the line is lexed as usual with
+    /// `in_directive` set.
+    Directive,
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct Token {
+    pub kind: Kind,
+    pub start: usize,
+    pub end: usize,
+    /// 1-based line of the token's first byte.
+    pub line: usize,
+    /// Whether the token is on a preprocessor line (a directive's name or its arguments).
+    pub in_directive: bool,
+}
+
+/// The significant tokens of `source`, in order.
+pub fn tokens(source: &str) -> Vec<Token> {
+    let bytes = source.as_bytes();
+    let mut out = Vec::new();
+    let mut at = 0;
+    let mut line = 1;
+    let mut line_start = true; // only whitespace so far on this line
+    let mut in_directive = false;
+    while at < bytes.len() {
+        let c = bytes[at];
+        if c == b'\n' {
+            line += 1;
+            at += 1;
+            line_start = true;
+            in_directive = false;
+            continue;
+        }
+        if c == b'\\' && in_directive && bytes.get(at + 1) == Some(&b'\n') {
+            // A directive continued on the next line.
+            line += 1;
+            at += 2;
+            continue;
+        }
+        if c.is_ascii_whitespace() {
+            at += 1;
+            continue;
+        }
+        if c == b'/' && bytes.get(at + 1) == Some(&b'/') {
+            while at < bytes.len() && bytes[at] != b'\n' {
+                at += 1;
+            }
+            continue;
+        }
+        if c == b'/' && bytes.get(at + 1) == Some(&b'*') {
+            at += 2;
+            while at < bytes.len() && !(bytes[at] == b'*' && bytes.get(at + 1) == Some(&b'/')) {
+                if bytes[at] == b'\n' {
+                    line += 1;
+                }
+                at += 1;
+            }
+            at = (at + 2).min(bytes.len());
+            continue;
+        }
+        let start = at;
+        let kind = if c == b'#' && line_start {
+            at += 1;
+            while at < bytes.len() && (bytes[at] == b' ' || bytes[at] == b'\t') {
+                at += 1;
+            }
+            while at < bytes.len() && is_ident_byte(bytes[at]) {
+                at += 1;
+            }
+            in_directive = true;
+            Kind::Directive
+        } else if c.is_ascii_alphabetic() || c == b'_' {
+            while at < bytes.len() && is_ident_byte(bytes[at]) {
+                at += 1;
+            }
+            Kind::Ident
+        } else if c.is_ascii_digit() || (c == b'.' && bytes.get(at + 1).is_some_and(u8::is_ascii_digit)) {
+            while at < bytes.len() {
+                let b = bytes[at];
+                let exponent_sign = (b == b'+' || b == b'-')
+                    && matches!(bytes[at - 1], b'e' | b'E')
+                    && !is_hex(&bytes[start..at]);
+                if b.is_ascii_alphanumeric() || b == b'.' || exponent_sign {
+                    at += 1;
+                } else {
+                    break;
+                }
+            }
+            Kind::Number
+        } else {
+            // One byte, or one whole UTF-8 character outside ASCII (never valid GLSL, but kept whole).
+            at += source[at..].chars().next().map_or(1, char::len_utf8);
+            Kind::Punct
+        };
+        line_start = false;
+        out.push(Token { kind, start, end: at, line, in_directive });
+    }
+    out
+}
+
+fn is_ident_byte(b: u8) -> bool {
+    b.is_ascii_alphanumeric() || b == b'_'
+}
+
+fn is_hex(number: &[u8]) -> bool {
+    number.len() > 1 && number[0] == b'0' && matches!(number[1], b'x' | b'X')
+}

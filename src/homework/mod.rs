@@ -1,0 +1,75 @@
+//! A student's GAMES202 homework shader, written for the course's WebGL1 framework (GLSL ES 1.00),
+//! brought to wgpu.
+//!
+//! naga's GLSL front end reads Vulkan-style GLSL 440/450 only: `uniform sampler2D`, `varying`,
+//! `attribute`, `gl_FragColor` and loose uniforms all fail there. [`rewrite`] turns the student's
+//! shader into GLSL 450 mechanically and line for line: every line of the student's file stays on
+//! its own line, and whatever has to be added goes on a prelude of [`Rewritten::prelude_lines`]
+//! lines before it. naga ignores `#line`, so an error naga reports at line L of the rewritten text
+//! is the student's line L - prelude, and [`translate`] reports it that way
+//! (`phongFragment.glsl:57: ...`). [`translate`] then runs naga's GLSL front end, the validator
+//! and the WGSL back end.
+//!
+//! The interface (uniform names, varyings, textures) is the framework's, described in
+//! [`interface`]; a student's own uniforms and varyings are gathered from both stages with
+//! [`Interface::gather`] so that the two stages agree on locations and layout.
+
+mod interface;
+mod lex;
+mod rewrite;
+mod translate;
+
+pub use interface::{
+    ATTRIBUTES, Binding, BindingKind, FRAMEWORK_UNIFORMS, FRAMEWORK_UNIFORMS_SIZE_BYTES, FRAMEWORK_VARYINGS,
+    Interface, SamplerFilter, UniformField,
+};
+pub use rewrite::{Rewritten, rewrite};
+pub use translate::{Translated, translate, translate_rewritten};
+
+/// The two stages a homework shader can be.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Stage {
+    Vertex,
+    Fragment,
+}
+
+impl Stage {
+    pub fn naga(self) -> naga::ShaderStage {
+        match self {
+            Stage::Vertex => naga::ShaderStage::Vertex,
+            Stage::Fragment => naga::ShaderStage::Fragment,
+        }
+    }
+}
+
+/// What went wrong with a student's shader, on one line.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+pub enum HomeworkError {
+    /// The rewrite could not read a construct; `line` is the student's own (1-based).
+    #[error("line {line}: {message}")]
+    Rewrite { line: usize, message: String },
+    /// naga refused the shader; `line` is the student's own (1-based), or none when naga gave no
+    /// position or the position lies in the prelude the rewrite added.
+    #[error("{file}:{}{message}", line.map(|l| format!("{l}: ")).unwrap_or_else(|| " ".into()))]
+    Shader { file: String, line: Option<usize>, message: String },
+}
+
+impl HomeworkError {
+    /// The same error, naming the student's file.
+    pub fn in_file(self, file: &str) -> HomeworkError {
+        match self {
+            HomeworkError::Rewrite { line, message } => {
+                HomeworkError::Shader { file: file.to_string(), line: Some(line), message }
+            }
+            other => other,
+        }
+    }
+
+    /// The student's line the error is on, if it names one.
+    pub fn line(&self) -> Option<usize> {
+        match self {
+            HomeworkError::Rewrite { line, .. } => Some(*line),
+            HomeworkError::Shader { line, .. } => *line,
+        }
+    }
+}
