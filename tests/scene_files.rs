@@ -64,8 +64,8 @@ fn scene_with_lights(lights: &[&str]) -> String {
 const SPOT: &str = "kind = \"spot\"\nposition = [0.0, 10.0, 0.0]\nfov_deg = 60.0";
 const DIRECTIONAL: &str = "kind = \"directional\"\nposition = [5.0, 10.0, 0.0]\nextent = 10.0";
 
-#[test]
-fn every_shipped_scene_loads_with_lights_and_triangles() {
+/// Every scene file shipped in assets/scenes, sorted (at least one).
+fn shipped_scene_paths() -> Vec<PathBuf> {
     let dir = repo_path("assets/scenes");
     let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
         .expect("assets/scenes is readable")
@@ -74,6 +74,12 @@ fn every_shipped_scene_loads_with_lights_and_triangles() {
         .collect();
     paths.sort();
     assert!(!paths.is_empty(), "no scenes found in {}", dir.display());
+    paths
+}
+
+#[test]
+fn every_shipped_scene_loads_with_lights_and_triangles() {
+    let paths = shipped_scene_paths();
     for path in &paths {
         let scene = load_scene(path, &[]).unwrap_or_else(|e| panic!("{} should load: {e}", path.display()));
         assert_eq!(scene.path.as_deref(), Some(path.as_path()));
@@ -410,13 +416,7 @@ fn non_finite_and_degenerate_values_are_rejected() {
 
 #[test]
 fn shipped_scenes_and_lesson_steps_show_something() {
-    let dir = repo_path("assets/scenes");
-    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
-        .expect("assets/scenes is readable")
-        .map(|entry| entry.expect("directory entry").path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
+    let paths = shipped_scene_paths();
     for path in &paths {
         let scene = load_scene(path, &[]).unwrap_or_else(|e| panic!("{} should load: {e}", path.display()));
         assert_eq!(scene.warnings(0.0, 16.0 / 9.0), Vec::<String>::new(), "{}", path.display());
