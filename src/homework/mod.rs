@@ -20,10 +20,10 @@ mod rewrite;
 mod translate;
 
 pub use interface::{
-    ATTRIBUTES, Binding, BindingKind, FRAMEWORK_UNIFORMS, FRAMEWORK_UNIFORMS_SIZE_BYTES, FRAMEWORK_VARYINGS,
-    Interface, SamplerFilter, UniformField,
+    ATTRIBUTES, Binding, BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS,
+    FRAMEWORK_UNIFORMS_SIZE_BYTES, FRAMEWORK_VARYINGS, Interface, SamplerFilter, UniformField,
 };
-pub use rewrite::{Rewritten, rewrite};
+pub use rewrite::{CALLS_OUTPUT, RECORDED_FUNCTIONS, RETURNED_OUTPUT, Rewritten, rewrite};
 pub use translate::{Translated, translate, translate_rewritten};
 
 /// The two stages a homework shader can be.

@@ -20,14 +20,25 @@
 //! its definition goes (naga orders a prototyped function wrongly).
 
 use super::interface::{
-    Binding, BindingKind, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface, STUDENT_BLOCK_BINDING,
-    attribute_location, declarations, is_precision,
+    Binding, BindingKind, CLIP_Y_SIGN, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface,
+    STUDENT_BLOCK_BINDING, attribute_location, declarations, is_precision,
 };
 use super::lex::{Kind, Token, tokens};
 use super::{HomeworkError, Stage};
 
 /// The name the rewrite gives WebGL's `gl_FragColor`, declared at location 0 in the prelude.
 pub const FRAG_COLOR: &str = "shadowlab_FragColor";
+/// What the student's `main` is renamed to: the `main` the epilogue adds calls it.
+const STUDENT_MAIN: &str = "shadowlab_student_main";
+/// The student's functions whose results the fragment stage records at every call, in the
+/// order of the `Returned` output's channels. The first three give a visibility.
+pub const RECORDED_FUNCTIONS: [&str; 4] = ["useShadowMap", "PCF", "PCSS", "findBlocker"];
+/// The fragment outputs the instrumentation adds: the last value each recorded function returned
+/// (`vec4`, channels in `RECORDED_FUNCTIONS` order) and what ran (`uvec4`: a bit per function that
+/// ran, the visibility function + 1 (the last of the first three called from `main`'s level),
+/// calls in all (at most 255), 0).
+pub const RETURNED_OUTPUT: u32 = 1;
+pub const CALLS_OUTPUT: u32 = 2;
 
 /// A student's shader rewritten to GLSL 450.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -44,6 +55,13 @@ pub struct Rewritten {
     pub attributes: Vec<(String, u32)>,
     /// The student's lines where a function got the `return` it lacked.
     pub added_returns: Vec<usize>,
+    /// How many lines follow the student's: the `main` that calls theirs (and, in the fragment
+    /// stage, writes what the recorded functions returned).
+    pub epilogue_lines: usize,
+    /// Which of `RECORDED_FUNCTIONS` the fragment stage records (defined, returning `float`).
+    pub recorded: Vec<&'static str>,
+    /// The student's shader defines `main` at file scope.
+    pub has_main: bool,
 }
 
 impl Rewritten {
@@ -81,8 +99,11 @@ impl Edits {
     }
 }
 
-/// A function definition's body (token indices of its braces) and its `sampler2D` parameters.
+/// A function definition's body (token indices of its braces), its name's token, its parameter
+/// list's parentheses, and its `sampler2D` parameters.
 struct Body {
+    name_at: usize,
+    params: (usize, usize),
     open: usize,
     close: usize,
     samplers: Vec<String>,
@@ -221,6 +242,44 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
         }
     }
 
+    // `main` becomes the student's; the epilogue's `main` calls it (see `epilogue`). Without
+    // one, naga says what it finds first (unbalanced braces hide `main` too), then
+    // `translate` says `main` is missing.
+    let main = bodies.iter().find(|b| text(b.name_at) == "main");
+    if let Some(main) = main {
+        edits.replace(toks[main.name_at].start, toks[main.name_at].end, STUDENT_MAIN);
+        used[main.name_at] = true;
+    }
+
+    // The recorded functions: renamed, with a wrapper of the old name right after the body that
+    // calls it and records what it returned (on the body's last line: no line moves).
+    let mut recorded = Vec::new();
+    if stage == Stage::Fragment {
+        for (k, name) in RECORDED_FUNCTIONS.iter().enumerate() {
+            let Some(body) = bodies.iter().find(|b| text(b.name_at) == *name) else { continue };
+            let returns_float =
+                (0..body.name_at).rev().find(|&j| !is_precision(text(j))).map(text) == Some("float");
+            let Some((params, args)) =
+                wrapper_parameters(source, &toks, body.params).filter(|_| returns_float)
+            else {
+                continue;
+            };
+            let student = format!("shadowlab_student_{name}");
+            edits.replace(toks[body.name_at].start, toks[body.name_at].end, student.clone());
+            used[body.name_at] = true;
+            let after = toks[body.close].end;
+            edits.replace(
+                after,
+                after,
+                format!(
+                    " float {name}({params}) {{ shadowlab_depth += 1; float r = {student}({args}); \
+                     shadowlab_depth -= 1; return shadowlab_record({k}u, r); }}"
+                ),
+            );
+            recorded.push(*name);
+        }
+    }
+
     // Token by token: precision qualifiers, `const in`, gl_FragColor, texture2D, passing samplers.
     let mut i = 0;
     while i < toks.len() {
@@ -255,12 +314,93 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
         i += 1;
     }
 
-    let body = edits.apply(source);
+    let mut body = edits.apply(source);
+    if !body.ends_with('\n') {
+        body.push('\n');
+    }
     let prelude = prelude(stage, layout);
     let prelude_lines = prelude.lines().count();
-    let glsl = format!("{prelude}{body}");
-    debug_assert_eq!(glsl.matches('\n').count(), prelude_lines + source.matches('\n').count());
-    Ok(Rewritten { glsl, stage, prelude_lines, bindings, attributes, added_returns })
+    let epilogue = if main.is_some() { epilogue(stage) } else { String::new() };
+    let epilogue_lines = epilogue.lines().count();
+    let glsl = format!("{prelude}{body}{epilogue}");
+    debug_assert_eq!(
+        glsl.lines().count(),
+        prelude_lines + source.lines().count() + epilogue_lines,
+        "the rewrite moved a line"
+    );
+    Ok(Rewritten {
+        glsl,
+        stage,
+        prelude_lines,
+        bindings,
+        attributes,
+        added_returns,
+        epilogue_lines,
+        recorded,
+        has_main: main.is_some(),
+    })
+}
+
+/// A recorded function's wrapper: its parameter list (as the rewrite declares it: a `sampler2D`
+/// is a texture and a sampler, no precision) and the arguments that pass them on. None where a
+/// parameter has no name.
+fn wrapper_parameters(
+    source: &str,
+    toks: &[Token],
+    (open, close): (usize, usize),
+) -> Option<(String, String)> {
+    let text = |i: usize| &source[toks[i].start..toks[i].end];
+    let mut params = Vec::new();
+    let mut args = Vec::new();
+    let mut start = open + 1;
+    let mut depth = 0;
+    for j in open + 1..=close {
+        match text(j) {
+            "(" | "[" => depth += 1,
+            ")" | "]" if j < close => depth -= 1,
+            "," | ")" if depth == 0 => {
+                let words: Vec<usize> =
+                    (start..j).filter(|&w| !is_precision(text(w)) && text(w) != "const").collect();
+                start = j + 1;
+                if words.is_empty() || (words.len() == 1 && text(words[0]) == "void") {
+                    continue;
+                }
+                let name_at = words.iter().rev().find(|&&w| toks[w].kind == Kind::Ident && text(w) != "]")?;
+                let name_index = words.iter().position(|w| w == name_at)?;
+                if name_index == 0 {
+                    return None;
+                }
+                let name = text(*name_at);
+                let declared: Vec<&str> = words.iter().map(|&w| text(w)).collect();
+                if declared.contains(&"sampler2D") {
+                    params.push(format!("texture2D {name}, sampler {name}_sampler"));
+                    args.push(format!("{name}, {name}_sampler"));
+                } else {
+                    params.push(declared.join(" ").replace(" [", "[").replace("[ ", "[").replace(" ]", "]"));
+                    args.push(name.to_string());
+                }
+            }
+            _ => {}
+        }
+    }
+    Some((params.join(", "), args.join(", ")))
+}
+
+/// The lines after the student's: a `main` that calls theirs. The vertex stage's converts the
+/// framework's GL clip space to wgpu's (z from -w..w to 0..w; y flipped where the block says, so
+/// that the light pass writes its map the way WebGL lays it out); the fragment stage's writes
+/// what the recorded functions returned.
+fn epilogue(stage: Stage) -> String {
+    match stage {
+        Stage::Vertex => format!(
+            "void main() {{ {STUDENT_MAIN}(); gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5; \
+             gl_Position.y *= {CLIP_Y_SIGN}; }}\n"
+        ),
+        Stage::Fragment => format!(
+            "void main() {{ {STUDENT_MAIN}(); shadowlab_Returned = shadowlab_returned; \
+             shadowlab_Calls = uvec4(shadowlab_ran, shadowlab_visibility_function, min(shadowlab_calls, 255u), 0u); }}\n"
+        ),
+    }
 }
 
 /// The lines before the student's: the version, the uniform blocks, the colour output.
@@ -268,7 +408,7 @@ fn prelude(stage: Stage, layout: &Interface) -> String {
     let fields: Vec<String> =
         FRAMEWORK_UNIFORMS.iter().map(|f| format!("{} {};", f.glsl_type, f.name)).collect();
     let mut out = format!(
-        "#version 450\nlayout(set = 0, binding = {FRAMEWORK_BLOCK_BINDING}) uniform ShadowlabFramework {{ {} }};\n",
+        "#version 450\nlayout(set = 0, binding = {FRAMEWORK_BLOCK_BINDING}) uniform ShadowlabFramework {{ {} float {CLIP_Y_SIGN}; }};\n",
         fields.join(" ")
     );
     if !layout.extra_uniforms.is_empty() {
@@ -287,6 +427,15 @@ fn prelude(stage: Stage, layout: &Interface) -> String {
     }
     if stage == Stage::Fragment {
         out += &format!("layout(location = 0) out vec4 {FRAG_COLOR};\n");
+        out += &format!(
+            "layout(location = {RETURNED_OUTPUT}) out vec4 shadowlab_Returned; \
+             layout(location = {CALLS_OUTPUT}) out uvec4 shadowlab_Calls;\n"
+        );
+        out += "vec4 shadowlab_returned; uint shadowlab_ran; uint shadowlab_visibility_function; \
+                uint shadowlab_calls; int shadowlab_depth;\n";
+        out += "float shadowlab_record(uint k, float r) { shadowlab_ran |= 1u << k; shadowlab_calls += 1u; \
+                shadowlab_returned[k] = r; if (shadowlab_depth == 0 && k < 3u) { shadowlab_visibility_function = k + 1u; } \
+                return r; }\n";
     }
     out
 }
@@ -347,7 +496,7 @@ fn functions(source: &str, toks: &[Token], used: &mut [bool], edits: &mut Edits)
         }
         if close + 1 < toks.len() && text(close + 1) == "{" {
             let end = matching(source, toks, close + 1, "{", "}");
-            bodies.push(Body { open: close + 1, close: end, samplers });
+            bodies.push(Body { name_at: i, params: (i + 1, close), open: close + 1, close: end, samplers });
             definitions.push((text(i), i));
             i = end + 1;
         } else {

@@ -47,6 +47,14 @@ pub fn translate_rewritten(file: &str, rewritten: Rewritten) -> Result<Translate
         error(first.and_then(|e| e.location(glsl)), format!("{message}{more}"))
     })?;
 
+    if !rewritten.has_main {
+        let last_line = glsl.lines().count().saturating_sub(rewritten.prelude_lines);
+        return Err(HomeworkError::Shader {
+            file: file.to_string(),
+            line: Some(last_line.max(1)),
+            message: "no `main` function (the framework runs `void main()`)".into(),
+        });
+    }
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::default(),
