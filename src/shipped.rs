@@ -34,6 +34,18 @@ shipped_files![
     "assets/scenes/contact.toml",
     "assets/scenes/games202.toml",
     "assets/scenes/homework.toml",
+    "assets/scenes/homework_check.toml",
+    "assets/homework/README.md",
+    "assets/homework/phongFragment.glsl",
+    "assets/homework/phongFragment_light_size_world.glsl",
+    "assets/homework/phongFragment_nan_blocker.glsl",
+    "assets/homework/phongFragment_ndc_coordinates.glsl",
+    "assets/homework/phongFragment_no_bias.glsl",
+    "assets/homework/phongFragment_tiny_light.glsl",
+    "assets/homework/shadowFragment_255.glsl",
+    "assets/homework/framework/phongVertex.glsl",
+    "assets/homework/framework/shadowFragment.glsl",
+    "assets/homework/framework/shadowVertex.glsl",
     "assets/scenes/lesson_bias_cull.toml",
     "assets/scenes/lesson_pcss_sun.toml",
     "assets/scenes/multi_light.toml",
@@ -41,7 +53,8 @@ shipped_files![
 ];
 
 /// Folders whose files ship (the test that keeps [`FILES`] complete walks them).
-pub const SHIPPED_DIRS: [&str; 4] = ["lessons", "assets/meshes", "assets/scenes", "assets/textures"];
+pub const SHIPPED_DIRS: [&str; 6] =
+    ["lessons", "assets/meshes", "assets/scenes", "assets/textures", "assets/homework", "assets/homework/framework"];
 
 /// A shipped file or folder, found from any working folder: relative to the working folder
 /// first, then beside the executable (and up to three folders above it, which covers

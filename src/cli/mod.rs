@@ -8,6 +8,7 @@ mod bench_soak;
 mod bench_window;
 #[path = "export.rs"]
 mod export_cmd;
+mod homework;
 
 use crate::export;
 use crate::lessons;
@@ -61,6 +62,9 @@ pub enum Command {
     Lessons,
     /// Export lessons as slides (PNG) with an index.html that shows them in order.
     Export(ExportArgs),
+    /// Run a student's GAMES202 homework shader (phongFragment.glsl) beside shadowlab's own
+    /// technique and the ground truth; write the pictures and what the checks found.
+    Homework(homework::HomeworkArgs),
 }
 
 #[derive(Args, Debug, Clone)]
@@ -386,6 +390,7 @@ pub fn run(command: Command) -> Result<(), CliError> {
         Command::Bench(args) => bench::run(args),
         Command::Lessons => list_lessons(),
         Command::Export(args) => export_cmd::run(args),
+        Command::Homework(args) => homework::run(args),
     }
 }
 

@@ -27,13 +27,14 @@ pub const FRAMEWORK_UNIFORMS: [UniformField; 9] = [
     UniformField { name: "uKd", glsl_type: "vec3", offset_bytes: 320 },
 ];
 
-/// shadowlab's own member of the block, after the framework's: +1 in the camera pass, -1 in the
+/// shadowlab's own member of the block, after the framework's (std140 packs it into uKd's
+/// last four bytes): +1 in the camera pass, -1 in the
 /// light pass (the vertex epilogue flips clip y by it so the map's rows lie as WebGL's do).
 pub const CLIP_Y_SIGN: &str = "shadowlab_ClipYSign";
-pub const CLIP_Y_SIGN_OFFSET_BYTES: u32 = 336;
+pub const CLIP_Y_SIGN_OFFSET_BYTES: u32 = 332;
 
 /// The size of the framework's uniform block with shadowlab's member, std140.
-pub const FRAMEWORK_UNIFORMS_SIZE_BYTES: u32 = 352;
+pub const FRAMEWORK_UNIFORMS_SIZE_BYTES: u32 = 336;
 
 /// The framework's varyings, at locations 0, 1, 2, 3; a student's own follow, sorted by name.
 pub const FRAMEWORK_VARYINGS: [&str; 4] = ["vTextureCoord", "vFragPos", "vNormal", "vPositionFromLight"];

@@ -14,16 +14,24 @@
 //! [`interface`]; a student's own uniforms and varyings are gathered from both stages with
 //! [`Interface::gather`] so that the two stages agree on locations and layout.
 
+mod check;
 mod interface;
 mod lex;
+mod pass;
+mod program;
 mod rewrite;
+mod session;
 mod translate;
 
 pub use interface::{
     ATTRIBUTES, Binding, BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS,
     FRAMEWORK_UNIFORMS_SIZE_BYTES, FRAMEWORK_VARYINGS, Interface, SamplerFilter, UniformField,
 };
+pub use check::{Figures, Finding};
+pub use session::{CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, run_check};
 pub use rewrite::{CALLS_OUTPUT, RECORDED_FUNCTIONS, RETURNED_OUTPUT, Rewritten, rewrite};
+pub use pass::{FRAMEWORK_LIGHT_INTENSITY, HomeworkGpuError, HomeworkImages, HomeworkRenderer, HomeworkRequest};
+pub use program::{HomeworkFiles, HomeworkProgram, ShaderSource, TranslatedProgram};
 pub use translate::{Translated, translate, translate_rewritten};
 
 /// The two stages a homework shader can be.

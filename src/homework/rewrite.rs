@@ -36,7 +36,7 @@ pub const RECORDED_FUNCTIONS: [&str; 4] = ["useShadowMap", "PCF", "PCSS", "findB
 /// The fragment outputs the instrumentation adds: the last value each recorded function returned
 /// (`vec4`, channels in `RECORDED_FUNCTIONS` order) and what ran (`uvec4`: a bit per function that
 /// ran, the visibility function + 1 (the last of the first three called from `main`'s level),
-/// calls in all (at most 255), 0).
+/// calls in all (at most 255), 1: the shader ran here).
 pub const RETURNED_OUTPUT: u32 = 1;
 pub const CALLS_OUTPUT: u32 = 2;
 
@@ -398,7 +398,7 @@ fn epilogue(stage: Stage) -> String {
         ),
         Stage::Fragment => format!(
             "void main() {{ {STUDENT_MAIN}(); shadowlab_Returned = shadowlab_returned; \
-             shadowlab_Calls = uvec4(shadowlab_ran, shadowlab_visibility_function, min(shadowlab_calls, 255u), 0u); }}\n"
+             shadowlab_Calls = uvec4(shadowlab_ran, shadowlab_visibility_function, min(shadowlab_calls, 255u), 1u); }}\n"
         ),
     }
 }

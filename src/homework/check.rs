@@ -1,0 +1,245 @@
+//! What a homework gets wrong, found by comparing, pixel by pixel, the visibility the student's
+//! shader returned with the ground truth (hard shadows averaged over the light), with shadowlab's
+//! own technique at the same settings, and with itself over a map cleared to white.
+//!
+//! Each finding carries the figures that show it, a sentence on the likely cause and the lesson
+//! step that teaches it. The thresholds are set so that a correct solution has none on the
+//! shipped scene and each classic mistake has exactly its own (tests/homework_check.rs).
+
+use super::HomeworkImages;
+use crate::i18n::{Lang, fill};
+use serde::Serialize;
+
+/// Ground truth at or below this: the umbra; at or above `LIT`: fully lit.
+const UMBRA: f32 = 0.02;
+const LIT: f32 = 0.98;
+/// A visibility strictly between these is soft (in a penumbra).
+const SOFT: (f32, f32) = (0.05, 0.95);
+/// `nan_visibility`: more than this share of shaded pixels.
+const NAN_SHARE: f64 = 0.001;
+/// `umbra_not_dark`: the student's mean visibility over the ground truth's umbra above this.
+const UMBRA_MEAN_LIMIT: f64 = 0.25;
+/// `shadows_missing` (instead of `umbra_not_dark`): the umbra's mean visibility above this.
+const SHADOWS_MISSING_MEAN: f64 = 0.9;
+/// `no_penumbra`: the student's soft pixels fewer than this share of the ground truth's.
+const PENUMBRA_SHARE_LIMIT: f64 = 0.25;
+/// `no_penumbra` is judged where the ground truth has at least this many soft pixels.
+const PENUMBRA_PIXELS_MIN: u64 = 200;
+/// `self_shadowing`: surfaces facing the light (N.L above `FACING`) that the ground truth lights
+/// fully, darkened (visibility below 0.5) on more than this share.
+const FACING: f32 = 0.3;
+const ACNE_SHARE: f64 = 0.02;
+/// `depends_on_uncleared_map`: more than this share of shaded pixels change visibility by more
+/// than 0.1 when the map starts white.
+const UNCLEARED_SHARE: f64 = 0.005;
+
+/// One thing a check found.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Finding {
+    pub id: &'static str,
+    /// The figures that show it, by name.
+    pub figures: Vec<(&'static str, f64)>,
+    /// What was seen and its likely cause, one or two sentences.
+    pub explanation: String,
+    /// The lesson step that teaches it: the lesson's id and the step, from 1.
+    pub lesson: &'static str,
+    pub step: usize,
+}
+
+/// The comparison's figures, whatever was found.
+#[derive(Clone, Debug, Default, Serialize, PartialEq)]
+pub struct Figures {
+    /// Pixels the student's shader ran at.
+    pub shaded_pixels: u64,
+    /// Of those, pixels with a visibility (a recorded function returned one from `main`'s level).
+    pub pixels_with_visibility: u64,
+    /// Share of shaded pixels whose visibility is NaN or infinite.
+    pub nan_fraction: f64,
+    /// Mean |student - shadowlab's technique| and |student - ground truth| over the pixels with a
+    /// finite visibility.
+    pub mean_abs_difference: Option<f64>,
+    pub mean_abs_difference_to_ground_truth: Option<f64>,
+    /// The student's mean visibility where the ground truth is fully lit, and in its umbra.
+    pub lit_area_mean: Option<f64>,
+    pub umbra_mean: Option<f64>,
+    /// Soft pixels (0.05 < v < 0.95): the ground truth's and the student's.
+    pub penumbra_pixels_ground_truth: u64,
+    pub penumbra_pixels: u64,
+    /// Share of shaded pixels whose visibility changes by more than 0.1 over a white map.
+    pub uncleared_map_share: f64,
+}
+
+/// The per-pixel inputs of a check, all of one view's size, rows top first.
+pub struct CheckInputs<'a> {
+    /// The homework over the framework's map (0 where nothing was drawn) and over a white one.
+    pub student: &'a HomeworkImages,
+    pub student_white_map: &'a HomeworkImages,
+    /// shadowlab's technique at the same settings, and the ground truth, per pixel.
+    pub shadowlab: &'a [f32],
+    pub ground_truth: &'a [f32],
+    /// N.L towards the checked light per pixel (None: no surface).
+    pub facing: &'a [Option<f32>],
+    /// The function (1-based in `RECORDED_FUNCTIONS`) `main` takes its visibility from.
+    pub visibility_function: Option<usize>,
+}
+
+fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
+    let (sum, n) = values.fold((0.0, 0u64), |(s, n), v| (s + v, n + 1));
+    (n > 0).then(|| sum / n as f64)
+}
+
+/// The figures and the findings of a check, in `lang`.
+pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
+    let student = inputs.student;
+    let pixels = student.calls.len();
+    let shaded: Vec<usize> = (0..pixels).filter(|&i| student.covered(i)).collect();
+    let visible: Vec<(usize, f32)> = shaded.iter().filter_map(|&i| student.visibility(i).map(|v| (i, v))).collect();
+    let finite: Vec<(usize, f32)> = visible.iter().copied().filter(|(_, v)| v.is_finite()).collect();
+    let non_finite = visible.len() - finite.len();
+    let mut f = Figures {
+        shaded_pixels: shaded.len() as u64,
+        pixels_with_visibility: visible.len() as u64,
+        nan_fraction: if shaded.is_empty() { 0.0 } else { non_finite as f64 / shaded.len() as f64 },
+        ..Figures::default()
+    };
+    let truth = |i: usize| inputs.ground_truth[i];
+    f.mean_abs_difference = mean(finite.iter().map(|&(i, v)| f64::from((v - inputs.shadowlab[i]).abs())));
+    f.mean_abs_difference_to_ground_truth = mean(finite.iter().map(|&(i, v)| f64::from((v - truth(i)).abs())));
+    f.lit_area_mean = mean(finite.iter().filter(|&&(i, _)| truth(i) >= LIT).map(|&(_, v)| f64::from(v)));
+    f.umbra_mean = mean(finite.iter().filter(|&&(i, _)| truth(i) <= UMBRA).map(|&(_, v)| f64::from(v)));
+    let soft = |v: f32| v > SOFT.0 && v < SOFT.1;
+    f.penumbra_pixels_ground_truth = finite.iter().filter(|&&(i, _)| soft(truth(i))).count() as u64;
+    f.penumbra_pixels = finite.iter().filter(|&&(_, v)| soft(v)).count() as u64;
+    // A pixel where a recorded function returned NaN is explained by that: the checks below
+    // leave it out (NaN lookups land anywhere).
+    let sound = |i: usize| {
+        let ran = student.calls[i][0];
+        (0..4).all(|k| ran & (1 << k) == 0 || student.returned[i][k].is_finite())
+    };
+    let depends_on_clear = |i: usize| {
+        let (a, b) = (student.visibility(i), inputs.student_white_map.visibility(i));
+        match (a, b) {
+            (Some(a), Some(b)) if a.is_finite() && b.is_finite() => (a - b).abs() > 0.1,
+            (Some(a), Some(b)) => a.is_finite() != b.is_finite(),
+            (a, b) => a.is_some() != b.is_some(),
+        }
+    };
+    let changed = shaded.iter().filter(|&&i| sound(i) && depends_on_clear(i)).count();
+    f.uncleared_map_share = if shaded.is_empty() { 0.0 } else { changed as f64 / shaded.len() as f64 };
+
+    let mut findings = Vec::new();
+    let percent = |share: f64| 100.0 * share;
+    let nan_blocker = shaded.iter().filter(|&&i| student.calls[i][0] & 8 != 0 && !student.returned[i][3].is_finite()).count();
+    let nan_blocker_share = nan_blocker as f64 / shaded.len().max(1) as f64;
+    if nan_blocker_share > NAN_SHARE {
+        findings.push(Finding {
+            id: "nan_blocker_depth",
+            figures: vec![("nan_blocker_fraction", nan_blocker_share), ("nan_blocker_pixels", nan_blocker as f64)],
+            explanation: fill(
+                lang,
+                "findBlocker returned NaN or an infinite depth at {:.1}% of the shaded pixels: it divides by the number of blockers found, which is 0 where the light is not blocked. Return a \"no blocker\" value there, and have PCSS treat it as lit.",
+                &[&percent(nan_blocker_share)],
+            ),
+            lesson: "pcss",
+            step: 3,
+        });
+    }
+    if f.nan_fraction > NAN_SHARE {
+        findings.push(Finding {
+            id: "nan_visibility",
+            figures: vec![("nan_fraction", f.nan_fraction), ("nan_pixels", non_finite as f64)],
+            explanation: fill(
+                lang,
+                "{:.1}% of the shaded pixels got a visibility that is NaN or infinite. The usual cause: findBlocker divides the blockers' depth sum by their count when no blocker was found (0 / 0).",
+                &[&percent(f.nan_fraction)],
+            ),
+            lesson: "pcss",
+            step: 3,
+        });
+    }
+    let shadows_missing = f.umbra_mean.is_some_and(|m| m > SHADOWS_MISSING_MEAN);
+    if let Some(umbra) = f.umbra_mean.filter(|_| shadows_missing) {
+        findings.push(Finding {
+            id: "shadows_missing",
+            figures: vec![("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)],
+            explanation: fill(
+                lang,
+                "Where the ground truth is in full shadow, your visibility averages {:.2}: the shadows are missing. The lookups do not meet the blockers: coordinates in the wrong space (NDC in [-1, 1] where the map wants [0, 1]), depths compared in different units, or the wrong matrix.",
+                &[&umbra],
+            ),
+            lesson: "hard-shadows",
+            step: 2,
+        });
+    } else if let Some(umbra) = f.umbra_mean.filter(|m| *m > UMBRA_MEAN_LIMIT) {
+        findings.push(Finding {
+            id: "umbra_not_dark",
+            figures: vec![("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)],
+            explanation: fill(
+                lang,
+                "Where no point of the light reaches (the ground truth is 0), your visibility averages {:.2}. A filter that reaches far past the blocker does this: a light size in world units used as a size in uv (or texels).",
+                &[&umbra],
+            ),
+            lesson: "pcss",
+            step: 6,
+        });
+    }
+    let soft_share = f.penumbra_pixels as f64 / f.penumbra_pixels_ground_truth.max(1) as f64;
+    if inputs.visibility_function == Some(3)
+        && !shadows_missing
+        && f.penumbra_pixels_ground_truth >= PENUMBRA_PIXELS_MIN
+        && soft_share < PENUMBRA_SHARE_LIMIT
+    {
+        findings.push(Finding {
+            id: "no_penumbra",
+            figures: vec![
+                ("penumbra_pixels", f.penumbra_pixels as f64),
+                ("penumbra_pixels_ground_truth", f.penumbra_pixels_ground_truth as f64),
+            ],
+            explanation: fill(
+                lang,
+                "The ground truth has {} pixels in a penumbra, your shadows {}: the edges are as sharp as a hard shadow. Usually the filter is under a texel wide (a light size or filter radius far too small for the map), or the penumbra estimate is lost before filtering.",
+                &[&f.penumbra_pixels_ground_truth, &f.penumbra_pixels],
+            ),
+            lesson: "pcss",
+            step: 5,
+        });
+    }
+    let facing_lit: Vec<f32> = finite
+        .iter()
+        // Darkening the uncleared map explains is that finding's, not acne.
+        .filter(|&&(i, _)| sound(i) && !depends_on_clear(i))
+        .filter(|&&(i, _)| truth(i) >= LIT && inputs.facing[i].is_some_and(|c| c > FACING))
+        .map(|&(_, v)| v)
+        .collect();
+    let acne = facing_lit.iter().filter(|v| **v < 0.5).count() as f64 / facing_lit.len().max(1) as f64;
+    // Acne darkens lit surfaces in a picture whose shadows are otherwise right; where the umbra
+    // is wrong too, the whole lookup is, and the findings above say so.
+    let umbra_right = f.umbra_mean.is_none_or(|m| m <= UMBRA_MEAN_LIMIT);
+    if umbra_right && acne > ACNE_SHARE {
+        findings.push(Finding {
+            id: "self_shadowing",
+            figures: vec![("darkened_share", acne), ("lit_facing_pixels", facing_lit.len() as f64)],
+            explanation: fill(
+                lang,
+                "{:.1}% of the surfaces that face the light and are fully lit in the ground truth are dark in yours: shadow acne, the surface shadowing itself. Compare with a bias (the receiver's depth minus a small amount), or a larger one.",
+                &[&percent(acne)],
+            ),
+            lesson: "bias",
+            step: 1,
+        });
+    }
+    if f.uncleared_map_share > UNCLEARED_SHARE {
+        findings.push(Finding {
+            id: "depends_on_uncleared_map",
+            figures: vec![("changed_share", f.uncleared_map_share)],
+            explanation: fill(
+                lang,
+                "{:.1}% of the picture changes when the shadow map starts white instead of 0. The framework never clears its map: texels no object covers read depth 0, which counts as a blocker. Your lookups land there (outside [0, 1] uv, or far from the pixel).",
+                &[&percent(f.uncleared_map_share)],
+            ),
+            lesson: "hard-shadows",
+            step: 3,
+        });
+    }
+    (f, findings)
+}
