@@ -4,7 +4,8 @@
 //! error names the student's file and line.
 
 use shadowlab::homework::{
-    BindingKind, HomeworkError, Interface, SamplerFilter, Stage, Translated, rewrite, translate,
+    BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS, FRAMEWORK_UNIFORMS_SIZE_BYTES, HomeworkError,
+    Interface, SamplerFilter, Stage, Translated, rewrite, translate,
 };
 
 fn data(name: &str) -> String {
@@ -216,4 +217,30 @@ fn a_students_own_texture_gets_its_own_bindings() {
     assert_eq!(binding("uNoise"), Some((6, BindingKind::Texture)));
     assert_eq!(binding("uNoise_sampler"), Some((7, BindingKind::Sampler(SamplerFilter::Linear))));
     assert_wgsl_valid("phongFragment.glsl", &f.wgsl);
+}
+
+/// The framework's block as naga lays it out (std140) is where the renderer writes it: every
+/// member at the offset `FRAMEWORK_UNIFORMS` gives, shadowlab's clip sign packed after uKd.
+#[test]
+fn the_framework_block_is_laid_out_where_the_renderer_writes_it() {
+    let (v, _) = program("phongVertex.glsl", "phongFragment.glsl");
+    let module = naga::front::wgsl::parse_str(&v.wgsl).expect("WGSL");
+    let mut layouter = naga::proc::Layouter::default();
+    layouter.update(module.to_ctx()).expect("a layout");
+    let block = module
+        .global_variables
+        .iter()
+        .find(|(_, g)| g.binding.as_ref().is_some_and(|b| b.group == 0 && b.binding == 0))
+        .expect("the framework block")
+        .1;
+    let naga::TypeInner::Struct { members, .. } = &module.types[block.ty].inner else {
+        panic!("the block is a struct")
+    };
+    for field in FRAMEWORK_UNIFORMS {
+        let member = members.iter().find(|m| m.name.as_deref() == Some(field.name)).expect(field.name);
+        assert_eq!(member.offset, field.offset_bytes, "{}", field.name);
+    }
+    let sign = members.iter().find(|m| m.name.as_deref() == Some("shadowlab_ClipYSign")).expect("the sign");
+    assert_eq!(sign.offset, CLIP_Y_SIGN_OFFSET_BYTES);
+    assert_eq!(layouter[block.ty].size, FRAMEWORK_UNIFORMS_SIZE_BYTES);
 }

@@ -112,7 +112,8 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
     let (ctx, mut renderer) = super::gpu()?;
     let homework = HomeworkRenderer::new(&ctx.device, &ctx.queue, &program)
         .map_err(|e| CliError::input(format!("{}: {e}", shader.name)))?;
-    let request = HomeworkRequest { time_s: args.time, size: args.size, light: args.light, clear_map_white: false };
+    let request =
+        HomeworkRequest { time_s: args.time, size: args.size, light: args.light, clear_map_white: false };
     let outcome = run_check(&homework, &mut renderer, &shader, &scene, &request, args.lang)
         .map_err(|e| CliError { code: 1, message: format!("{}: {e}", shader.name) })?;
     // Everything encoded before the first file is written: a failure leaves no partial folder.
@@ -124,7 +125,8 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
         ("ground_truth.png", png(&outcome.visibility_picture(true))?),
         ("difference.png", png(&outcome.difference_picture())?),
     ];
-    std::fs::create_dir_all(&args.out).map_err(|e| CliError::input(format!("{}: {e}", args.out.display())))?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| CliError::input(format!("{}: {e}", args.out.display())))?;
     for (name, bytes) in &pictures {
         write(&args.out, name, bytes)?;
     }

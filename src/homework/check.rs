@@ -9,6 +9,7 @@
 use super::HomeworkImages;
 use crate::i18n::{Lang, fill};
 use serde::Serialize;
+use std::collections::BTreeMap;
 
 /// Ground truth at or below this: the umbra; at or above `LIT`: fully lit.
 const UMBRA: f32 = 0.02;
@@ -38,7 +39,7 @@ const UNCLEARED_SHARE: f64 = 0.005;
 pub struct Finding {
     pub id: &'static str,
     /// The figures that show it, by name.
-    pub figures: Vec<(&'static str, f64)>,
+    pub figures: BTreeMap<&'static str, f64>,
     /// What was seen and its likely cause, one or two sentences.
     pub explanation: String,
     /// The lesson step that teaches it: the lesson's id and the step, from 1.
@@ -93,7 +94,8 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     let student = inputs.student;
     let pixels = student.calls.len();
     let shaded: Vec<usize> = (0..pixels).filter(|&i| student.covered(i)).collect();
-    let visible: Vec<(usize, f32)> = shaded.iter().filter_map(|&i| student.visibility(i).map(|v| (i, v))).collect();
+    let visible: Vec<(usize, f32)> =
+        shaded.iter().filter_map(|&i| student.visibility(i).map(|v| (i, v))).collect();
     let finite: Vec<(usize, f32)> = visible.iter().copied().filter(|(_, v)| v.is_finite()).collect();
     let non_finite = visible.len() - finite.len();
     let mut f = Figures {
@@ -104,7 +106,8 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     };
     let truth = |i: usize| inputs.ground_truth[i];
     f.mean_abs_difference = mean(finite.iter().map(|&(i, v)| f64::from((v - inputs.shadowlab[i]).abs())));
-    f.mean_abs_difference_to_ground_truth = mean(finite.iter().map(|&(i, v)| f64::from((v - truth(i)).abs())));
+    f.mean_abs_difference_to_ground_truth =
+        mean(finite.iter().map(|&(i, v)| f64::from((v - truth(i)).abs())));
     f.lit_area_mean = mean(finite.iter().filter(|&&(i, _)| truth(i) >= LIT).map(|&(_, v)| f64::from(v)));
     f.umbra_mean = mean(finite.iter().filter(|&&(i, _)| truth(i) <= UMBRA).map(|&(_, v)| f64::from(v)));
     let soft = |v: f32| v > SOFT.0 && v < SOFT.1;
@@ -129,12 +132,15 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
 
     let mut findings = Vec::new();
     let percent = |share: f64| 100.0 * share;
-    let nan_blocker = shaded.iter().filter(|&&i| student.calls[i][0] & 8 != 0 && !student.returned[i][3].is_finite()).count();
+    let nan_blocker = shaded
+        .iter()
+        .filter(|&&i| student.calls[i][0] & 8 != 0 && !student.returned[i][3].is_finite())
+        .count();
     let nan_blocker_share = nan_blocker as f64 / shaded.len().max(1) as f64;
     if nan_blocker_share > NAN_SHARE {
         findings.push(Finding {
             id: "nan_blocker_depth",
-            figures: vec![("nan_blocker_fraction", nan_blocker_share), ("nan_blocker_pixels", nan_blocker as f64)],
+            figures: BTreeMap::from([("nan_blocker_fraction", nan_blocker_share), ("nan_blocker_pixels", nan_blocker as f64)]),
             explanation: fill(
                 lang,
                 "findBlocker returned NaN or an infinite depth at {:.1}% of the shaded pixels: it divides by the number of blockers found, which is 0 where the light is not blocked. Return a \"no blocker\" value there, and have PCSS treat it as lit.",
@@ -147,7 +153,7 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     if f.nan_fraction > NAN_SHARE {
         findings.push(Finding {
             id: "nan_visibility",
-            figures: vec![("nan_fraction", f.nan_fraction), ("nan_pixels", non_finite as f64)],
+            figures: BTreeMap::from([("nan_fraction", f.nan_fraction), ("nan_pixels", non_finite as f64)]),
             explanation: fill(
                 lang,
                 "{:.1}% of the shaded pixels got a visibility that is NaN or infinite. The usual cause: findBlocker divides the blockers' depth sum by their count when no blocker was found (0 / 0).",
@@ -161,7 +167,7 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     if let Some(umbra) = f.umbra_mean.filter(|_| shadows_missing) {
         findings.push(Finding {
             id: "shadows_missing",
-            figures: vec![("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)],
+            figures: BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]),
             explanation: fill(
                 lang,
                 "Where the ground truth is in full shadow, your visibility averages {:.2}: the shadows are missing. The lookups do not meet the blockers: coordinates in the wrong space (NDC in [-1, 1] where the map wants [0, 1]), depths compared in different units, or the wrong matrix.",
@@ -173,7 +179,7 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     } else if let Some(umbra) = f.umbra_mean.filter(|m| *m > UMBRA_MEAN_LIMIT) {
         findings.push(Finding {
             id: "umbra_not_dark",
-            figures: vec![("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)],
+            figures: BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]),
             explanation: fill(
                 lang,
                 "Where no point of the light reaches (the ground truth is 0), your visibility averages {:.2}. A filter that reaches far past the blocker does this: a light size in world units used as a size in uv (or texels).",
@@ -191,10 +197,10 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     {
         findings.push(Finding {
             id: "no_penumbra",
-            figures: vec![
+            figures: BTreeMap::from([
                 ("penumbra_pixels", f.penumbra_pixels as f64),
                 ("penumbra_pixels_ground_truth", f.penumbra_pixels_ground_truth as f64),
-            ],
+            ]),
             explanation: fill(
                 lang,
                 "The ground truth has {} pixels in a penumbra, your shadows {}: the edges are as sharp as a hard shadow. Usually the filter is under a texel wide (a light size or filter radius far too small for the map), or the penumbra estimate is lost before filtering.",
@@ -218,7 +224,7 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     if umbra_right && acne > ACNE_SHARE {
         findings.push(Finding {
             id: "self_shadowing",
-            figures: vec![("darkened_share", acne), ("lit_facing_pixels", facing_lit.len() as f64)],
+            figures: BTreeMap::from([("darkened_share", acne), ("lit_facing_pixels", facing_lit.len() as f64)]),
             explanation: fill(
                 lang,
                 "{:.1}% of the surfaces that face the light and are fully lit in the ground truth are dark in yours: shadow acne, the surface shadowing itself. Compare with a bias (the receiver's depth minus a small amount), or a larger one.",
@@ -231,7 +237,7 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     if f.uncleared_map_share > UNCLEARED_SHARE {
         findings.push(Finding {
             id: "depends_on_uncleared_map",
-            figures: vec![("changed_share", f.uncleared_map_share)],
+            figures: BTreeMap::from([("changed_share", f.uncleared_map_share)]),
             explanation: fill(
                 lang,
                 "{:.1}% of the picture changes when the shadow map starts white instead of 0. The framework never clears its map: texels no object covers read depth 0, which counts as a blocker. Your lookups land there (outside [0, 1] uv, or far from the pixel).",
@@ -242,4 +248,74 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
         });
     }
     (f, findings)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A 20x20 picture every pixel of which called PCSS (from `main`) and findBlocker.
+    fn images(visibility: impl Fn(usize) -> f32) -> HomeworkImages {
+        let n = 400;
+        HomeworkImages {
+            width: 20,
+            height: 20,
+            color: vec![[0.5, 0.5, 0.5, 1.0]; n],
+            returned: (0..n).map(|i| [0.0, 0.0, visibility(i), 0.2]).collect(),
+            calls: vec![[0b1100, 3, 2, 1]; n],
+        }
+    }
+
+    fn ids(student: &HomeworkImages, truth: &[f32]) -> Vec<&'static str> {
+        let facing = vec![Some(1.0); truth.len()];
+        let inputs = CheckInputs {
+            student,
+            student_white_map: student,
+            shadowlab: truth,
+            ground_truth: truth,
+            facing: &facing,
+            visibility_function: Some(3),
+        };
+        check(&inputs, Lang::En).1.iter().map(|f| f.id).collect()
+    }
+
+    #[test]
+    fn nan_and_infinite_visibility_are_found_and_left_out_of_the_means() {
+        let truth: Vec<f32> = (0..400).map(|i| if i < 100 { 0.0 } else { 1.0 }).collect();
+        let student = images(|i| match i {
+            100..=109 => f32::NAN,
+            110 => f32::INFINITY,
+            _ => truth[i],
+        });
+        assert_eq!(ids(&student, &truth), ["nan_visibility"]);
+        let inputs = CheckInputs {
+            student: &student,
+            student_white_map: &student,
+            shadowlab: &truth,
+            ground_truth: &truth,
+            facing: &[Some(1.0); 400],
+            visibility_function: Some(3),
+        };
+        let (figures, _) = check(&inputs, Lang::En);
+        assert!((figures.nan_fraction - 11.0 / 400.0).abs() < 1e-12);
+        assert_eq!(figures.mean_abs_difference_to_ground_truth, Some(0.0));
+    }
+
+    #[test]
+    fn a_grey_umbra_is_not_dark_and_a_white_one_is_missing() {
+        let truth: Vec<f32> = (0..400).map(|i| if i < 100 { 0.0 } else { 1.0 }).collect();
+        let grey = images(|i| if i < 100 { 0.5 } else { 1.0 });
+        assert_eq!(ids(&grey, &truth), ["umbra_not_dark"]);
+        let white = images(|_| 1.0);
+        assert_eq!(ids(&white, &truth), ["shadows_missing"]);
+        let right = images(|i| truth[i]);
+        assert_eq!(ids(&right, &truth), Vec::<&str>::new());
+    }
+
+    #[test]
+    fn lit_surfaces_darkened_where_the_shadows_are_right_are_acne() {
+        let truth: Vec<f32> = (0..400).map(|i| if i < 100 { 0.0 } else { 1.0 }).collect();
+        let acne = images(|i| if i < 100 || i % 3 == 0 { 0.0 } else { 1.0 });
+        assert_eq!(ids(&acne, &truth), ["self_shadowing"]);
+    }
 }

@@ -114,3 +114,38 @@ fn is_ident_byte(b: u8) -> bool {
 fn is_hex(number: &[u8]) -> bool {
     number.len() > 1 && number[0] == b'0' && matches!(number[1], b'x' | b'X')
 }
+
+/// The index of the token closing the bracket opened at `open` (the last token if none does).
+pub(super) fn matching(source: &str, toks: &[Token], open: usize, opening: &str, closing: &str) -> usize {
+    let mut depth = 0;
+    for (j, t) in toks.iter().enumerate().skip(open) {
+        let word = &source[t.start..t.end];
+        if word == opening {
+            depth += 1;
+        } else if word == closing {
+            depth -= 1;
+            if depth == 0 {
+                return j;
+            }
+        }
+    }
+    toks.len() - 1
+}
+
+/// The index of the `(` a `)` at `close` closes.
+pub(super) fn matching_open(source: &str, toks: &[Token], close: usize) -> usize {
+    let mut depth = 0;
+    for j in (0..=close).rev() {
+        match &source[toks[j].start..toks[j].end] {
+            ")" => depth += 1,
+            "(" => {
+                depth -= 1;
+                if depth == 0 {
+                    return j;
+                }
+            }
+            _ => {}
+        }
+    }
+    0
+}

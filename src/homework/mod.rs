@@ -15,23 +15,28 @@
 //! [`Interface::gather`] so that the two stages agree on locations and layout.
 
 mod check;
+mod instrument;
 mod interface;
 mod lex;
 mod pass;
+mod pipeline;
 mod program;
 mod rewrite;
 mod session;
 mod translate;
 
+pub use check::{Figures, Finding};
+pub use instrument::{CALLS_OUTPUT, RECORDED_FUNCTIONS, RETURNED_OUTPUT};
 pub use interface::{
     ATTRIBUTES, Binding, BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS,
     FRAMEWORK_UNIFORMS_SIZE_BYTES, FRAMEWORK_VARYINGS, Interface, SamplerFilter, UniformField,
 };
-pub use check::{Figures, Finding};
-pub use session::{CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, run_check};
-pub use rewrite::{CALLS_OUTPUT, RECORDED_FUNCTIONS, RETURNED_OUTPUT, Rewritten, rewrite};
-pub use pass::{FRAMEWORK_LIGHT_INTENSITY, HomeworkGpuError, HomeworkImages, HomeworkRenderer, HomeworkRequest};
+pub use pass::{
+    FRAMEWORK_LIGHT_INTENSITY, HomeworkGpuError, HomeworkImages, HomeworkRenderer, HomeworkRequest,
+};
 pub use program::{HomeworkFiles, HomeworkProgram, ShaderSource, TranslatedProgram};
+pub use rewrite::{FRAG_COLOR, Rewritten, rewrite};
+pub use session::{CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, run_check};
 pub use translate::{Translated, translate, translate_rewritten};
 
 /// The two stages a homework shader can be.

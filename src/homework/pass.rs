@@ -4,8 +4,9 @@
 //! and keeps, beside the colour, what their `useShadowMap` / `PCF` / `PCSS` / `findBlocker`
 //! returned at every pixel.
 
-use super::program::{HomeworkProgram, TranslatedProgram};
 use super::interface::STUDENT_BLOCK_BINDING;
+use super::pipeline::{Pass, one_line};
+use super::program::HomeworkProgram;
 use super::{BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS_SIZE_BYTES, SamplerFilter};
 use crate::render::readback;
 use crate::scene::{Object, Scene};
@@ -20,7 +21,7 @@ const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 const RETURNED_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const CALLS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Uint;
 const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
-const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+pub(super) const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// GL clip space from wgpu's: z from 0..w to -w..w (the framework's matrices are GL's; the
 /// vertex epilogue maps them back).
@@ -73,16 +74,6 @@ impl HomeworkImages {
     }
 }
 
-/// One pass's pipeline with the bindings its two stages declare.
-struct Pass {
-    pipeline: wgpu::RenderPipeline,
-    layout: wgpu::BindGroupLayout,
-    /// (binding, name, kind) of every resource either stage declares.
-    bindings: Vec<(u32, String, BindingKind)>,
-    /// Size of the block of the student's own uniforms, bytes (0: none).
-    student_block_bytes: u64,
-}
-
 /// The homework's pipelines on a device.
 pub struct HomeworkRenderer {
     device: wgpu::Device,
@@ -101,127 +92,6 @@ pub struct HomeworkGpuError(pub String);
 impl From<crate::render::RenderError> for HomeworkGpuError {
     fn from(e: crate::render::RenderError) -> Self {
         HomeworkGpuError(e.to_string())
-    }
-}
-
-/// A WGPU error on one line (its sources joined).
-fn one_line(e: &wgpu::Error) -> String {
-    let mut message = e.to_string();
-    let mut source = std::error::Error::source(e);
-    while let Some(cause) = source {
-        message += &format!(": {cause}");
-        source = cause.source();
-    }
-    message.split_whitespace().collect::<Vec<_>>().join(" ")
-}
-
-/// The size of the student's uniform block (binding 1) a WGSL stage declares, bytes.
-fn student_block_bytes(wgsl: &str) -> u64 {
-    let Ok(module) = naga::front::wgsl::parse_str(wgsl) else { return 0 };
-    let mut layouter = naga::proc::Layouter::default();
-    if layouter.update(module.to_ctx()).is_err() {
-        return 0;
-    }
-    module
-        .global_variables
-        .iter()
-        .filter(|(_, g)| g.binding.as_ref().is_some_and(|b| b.group == 0 && b.binding == STUDENT_BLOCK_BINDING))
-        .map(|(_, g)| u64::from(layouter[g.ty].size))
-        .max()
-        .unwrap_or(0)
-}
-
-impl Pass {
-    fn new(
-        device: &wgpu::Device,
-        program: &TranslatedProgram,
-        targets: &[Option<wgpu::ColorTargetState>],
-        label: &str,
-    ) -> Result<Self, HomeworkGpuError> {
-        let mut bindings: Vec<(u32, String, BindingKind)> = Vec::new();
-        for b in program.vertex.rewritten.bindings.iter().chain(&program.fragment.rewritten.bindings) {
-            if !bindings.iter().any(|(n, ..)| *n == b.binding) {
-                bindings.push((b.binding, b.name.clone(), b.kind.clone()));
-            }
-        }
-        bindings.sort_by_key(|(n, ..)| *n);
-        let visibility = wgpu::ShaderStages::VERTEX_FRAGMENT;
-        let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
-            .iter()
-            .map(|(binding, _, kind)| wgpu::BindGroupLayoutEntry {
-                binding: *binding,
-                visibility,
-                ty: match kind {
-                    BindingKind::UniformBlock => wgpu::BindingType::Buffer {
-                        ty: wgpu::BufferBindingType::Uniform,
-                        has_dynamic_offset: false,
-                        min_binding_size: None,
-                    },
-                    BindingKind::Texture => wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
-                        view_dimension: wgpu::TextureViewDimension::D2,
-                        multisampled: false,
-                    },
-                    BindingKind::Sampler(_) => wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering),
-                },
-                count: None,
-            })
-            .collect();
-        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
-        let layout =
-            device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: &entries });
-        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
-            label: Some(label),
-            bind_group_layouts: &[Some(&layout)],
-            immediate_size: 0,
-        });
-        let module = |wgsl: &str| {
-            device.create_shader_module(wgpu::ShaderModuleDescriptor {
-                label: Some(label),
-                source: wgpu::ShaderSource::Wgsl(wgsl.into()),
-            })
-        };
-        let vertex = module(&program.vertex.wgsl);
-        let fragment = module(&program.fragment.wgsl);
-        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
-        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
-            label: Some(label),
-            layout: Some(&pipeline_layout),
-            vertex: wgpu::VertexState {
-                module: &vertex,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                buffers: &[Some(wgpu::VertexBufferLayout {
-                    array_stride: std::mem::size_of::<crate::scene::mesh::Vertex>() as u64,
-                    step_mode: wgpu::VertexStepMode::Vertex,
-                    attributes: &attributes,
-                })],
-            },
-            // The framework culls nothing.
-            primitive: wgpu::PrimitiveState::default(),
-            depth_stencil: Some(wgpu::DepthStencilState {
-                format: DEPTH_FORMAT,
-                depth_write_enabled: Some(true),
-                depth_compare: Some(wgpu::CompareFunction::Less),
-                stencil: Default::default(),
-                bias: Default::default(),
-            }),
-            multisample: Default::default(),
-            fragment: Some(wgpu::FragmentState {
-                module: &fragment,
-                entry_point: Some("main"),
-                compilation_options: Default::default(),
-                targets,
-            }),
-            multiview_mask: None,
-            cache: None,
-        });
-        if let Some(e) = pollster::block_on(scope.pop()) {
-            return Err(HomeworkGpuError(format!("{label}: {}", one_line(&e))));
-        }
-        let student_block_bytes =
-            student_block_bytes(&program.vertex.wgsl).max(student_block_bytes(&program.fragment.wgsl));
-        Ok(Self { pipeline, layout, bindings, student_block_bytes })
     }
 }
 
@@ -252,8 +122,13 @@ fn framework_block(scene: &Scene, object: &Object, request: &HomeworkRequest, cl
 
 impl HomeworkRenderer {
     /// The homework's pipelines; a shader wgpu refuses is an error on one line.
-    pub fn new(device: &wgpu::Device, queue: &wgpu::Queue, program: &HomeworkProgram) -> Result<Self, HomeworkGpuError> {
-        let target = |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
+    pub fn new(
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        program: &HomeworkProgram,
+    ) -> Result<Self, HomeworkGpuError> {
+        let target =
+            |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
         let light = Pass::new(device, &program.light, &[target(MAP_FORMAT)], "homework light pass")?;
         let camera = Pass::new(
             device,
@@ -281,7 +156,13 @@ impl HomeworkRenderer {
         })
     }
 
-    fn texture(&self, label: &str, size: (u32, u32), format: wgpu::TextureFormat, usage: wgpu::TextureUsages) -> wgpu::Texture {
+    fn texture(
+        &self,
+        label: &str,
+        size: (u32, u32),
+        format: wgpu::TextureFormat,
+        usage: wgpu::TextureUsages,
+    ) -> wgpu::Texture {
         self.device.create_texture(&wgpu::TextureDescriptor {
             label: Some(label),
             size: wgpu::Extent3d { width: size.0.max(1), height: size.1.max(1), depth_or_array_layers: 1 },
@@ -366,7 +247,11 @@ impl HomeworkRenderer {
                         // The object's colour, sRGB-encoded as a texture file would hold it.
                         let linear = material.map_or(object.color, |m| m.diffuse * object.color);
                         let byte = |c: f32| (255.0 * c.clamp(0.0, 1.0).powf(1.0 / 2.2)).round() as u8;
-                        self.rgba8("homework colour", (1, 1), &[byte(linear.x), byte(linear.y), byte(linear.z), 255])
+                        self.rgba8(
+                            "homework colour",
+                            (1, 1),
+                            &[byte(linear.x), byte(linear.y), byte(linear.z), 255],
+                        )
                     }
                 };
                 let albedo = albedo.create_view(&Default::default());
@@ -380,7 +265,9 @@ impl HomeworkRenderer {
                                 student.as_entire_binding()
                             }
                             BindingKind::UniformBlock => block.as_entire_binding(),
-                            BindingKind::Texture if name == "uSampler" => wgpu::BindingResource::TextureView(&albedo),
+                            BindingKind::Texture if name == "uSampler" => {
+                                wgpu::BindingResource::TextureView(&albedo)
+                            }
                             BindingKind::Texture if name == "uShadowMap" && clip_y_sign > 0.0 => {
                                 wgpu::BindingResource::TextureView(shadow_map)
                             }
@@ -388,7 +275,9 @@ impl HomeworkRenderer {
                             BindingKind::Sampler(SamplerFilter::Nearest) => {
                                 wgpu::BindingResource::Sampler(&self.nearest)
                             }
-                            BindingKind::Sampler(SamplerFilter::Linear) => wgpu::BindingResource::Sampler(&self.linear),
+                            BindingKind::Sampler(SamplerFilter::Linear) => {
+                                wgpu::BindingResource::Sampler(&self.linear)
+                            }
                         },
                     })
                     .collect();
@@ -407,7 +296,11 @@ impl HomeworkRenderer {
 
     /// Render the homework: the light pass into a fresh map, then the camera pass; read back the
     /// camera pass's targets.
-    pub fn render(&self, scene: &Scene, request: &HomeworkRequest) -> Result<HomeworkImages, HomeworkGpuError> {
+    pub fn render(
+        &self,
+        scene: &Scene,
+        request: &HomeworkRequest,
+    ) -> Result<HomeworkImages, HomeworkGpuError> {
         let light = scene
             .lights
             .get(request.light)
@@ -415,31 +308,56 @@ impl HomeworkRenderer {
         let (w, h) = request.size;
         let map_size = (light.shadow_map_size, light.shadow_map_size);
         let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
-        let map = self.texture("homework shadow map", map_size, MAP_FORMAT, attach | wgpu::TextureUsages::TEXTURE_BINDING);
+        let map = self.texture(
+            "homework shadow map",
+            map_size,
+            MAP_FORMAT,
+            attach | wgpu::TextureUsages::TEXTURE_BINDING,
+        );
         let map_depth = self.texture("homework light depth", map_size, DEPTH_FORMAT, attach);
-        let color = self.texture("homework colour", request.size, COLOR_FORMAT, attach | wgpu::TextureUsages::COPY_SRC);
-        let returned =
-            self.texture("homework returned", request.size, RETURNED_FORMAT, attach | wgpu::TextureUsages::COPY_SRC);
-        let calls = self.texture("homework calls", request.size, CALLS_FORMAT, attach | wgpu::TextureUsages::COPY_SRC);
+        let color = self.texture(
+            "homework colour",
+            request.size,
+            COLOR_FORMAT,
+            attach | wgpu::TextureUsages::COPY_SRC,
+        );
+        let returned = self.texture(
+            "homework returned",
+            request.size,
+            RETURNED_FORMAT,
+            attach | wgpu::TextureUsages::COPY_SRC,
+        );
+        let calls = self.texture(
+            "homework calls",
+            request.size,
+            CALLS_FORMAT,
+            attach | wgpu::TextureUsages::COPY_SRC,
+        );
         let depth = self.texture("homework depth", request.size, DEPTH_FORMAT, attach);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let (map_view, color_view, returned_view, calls_view) = (view(&map), view(&color), view(&returned), view(&calls));
+        let (map_view, color_view, returned_view, calls_view) =
+            (view(&map), view(&color), view(&returned), view(&calls));
 
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut keep = Vec::new();
         let mut encoder = self.device.create_command_encoder(&Default::default());
         let (map_depth_view, depth_view) = (view(&map_depth), view(&depth));
-        let depth_ops = Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard });
+        let depth_ops =
+            Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard });
         {
             // The framework's map is never cleared: a fresh texture reads 0, as WebGL's does.
-            let map_start = if request.clear_map_white { wgpu::Color::WHITE } else { wgpu::Color::TRANSPARENT };
+            let map_start =
+                if request.clear_map_white { wgpu::Color::WHITE } else { wgpu::Color::TRANSPARENT };
             let mut render = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("homework light pass"),
                 color_attachments: &[Some(wgpu::RenderPassColorAttachment {
                     view: &map_view,
                     depth_slice: None,
                     resolve_target: None,
-                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(map_start), store: wgpu::StoreOp::Store },
+                    ops: wgpu::Operations {
+                        load: wgpu::LoadOp::Clear(map_start),
+                        store: wgpu::StoreOp::Store,
+                    },
                 })],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &map_depth_view,
@@ -451,7 +369,10 @@ impl HomeworkRenderer {
             self.draw(&self.light, &mut render, scene, request, -1.0, &map_view, &mut keep);
         }
         {
-            fn clear(view: &wgpu::TextureView, value: wgpu::Color) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+            fn clear(
+                view: &wgpu::TextureView,
+                value: wgpu::Color,
+            ) -> Option<wgpu::RenderPassColorAttachment<'_>> {
                 Some(wgpu::RenderPassColorAttachment {
                     view,
                     depth_slice: None,
@@ -480,7 +401,15 @@ impl HomeworkRenderer {
             return Err(HomeworkGpuError(format!("homework render: {}", one_line(&e))));
         }
         let read = |texture: &wgpu::Texture, bytes: u32| {
-            readback::read_texture(&self.device, &self.queue, texture, 0, (w, h), bytes, wgpu::TextureAspect::All)
+            readback::read_texture(
+                &self.device,
+                &self.queue,
+                texture,
+                0,
+                (w, h),
+                bytes,
+                wgpu::TextureAspect::All,
+            )
         };
         let color = read(&color, 8)?;
         let returned = read(&returned, 16)?;
@@ -489,8 +418,15 @@ impl HomeworkRenderer {
         Ok(HomeworkImages {
             width: w,
             height: h,
-            color: color.chunks_exact(8).map(|c| [half(&c[0..]), half(&c[2..]), half(&c[4..]), half(&c[6..])]).collect(),
-            returned: readback::f32s(&returned).collect::<Vec<_>>().chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
+            color: color
+                .chunks_exact(8)
+                .map(|c| [half(&c[0..]), half(&c[2..]), half(&c[4..]), half(&c[6..])])
+                .collect(),
+            returned: readback::f32s(&returned)
+                .collect::<Vec<_>>()
+                .chunks_exact(4)
+                .map(|c| [c[0], c[1], c[2], c[3]])
+                .collect(),
             calls: calls.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
         })
     }

@@ -28,7 +28,8 @@ impl ShaderSource {
 
     /// A shader file, read whole; a file that cannot be read is an error naming it.
     pub fn read(path: &Path) -> Result<Self, HomeworkError> {
-        let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into());
+        let name =
+            path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into());
         let bytes = std::fs::read(path).map_err(|e| HomeworkError::Shader {
             file: path.display().to_string(),
             line: None,
@@ -66,7 +67,11 @@ impl HomeworkFiles {
 
     /// Read the files: `fragment` and, where given, the student's own vertex and light-pass
     /// fragment shaders.
-    pub fn read(fragment: &Path, vertex: Option<&Path>, shadow_fragment: Option<&Path>) -> Result<Self, HomeworkError> {
+    pub fn read(
+        fragment: &Path,
+        vertex: Option<&Path>,
+        shadow_fragment: Option<&Path>,
+    ) -> Result<Self, HomeworkError> {
         let mut files = Self::with_framework(ShaderSource::read(fragment)?);
         if let Some(path) = vertex {
             files.phong_vertex = ShaderSource::read(path)?;

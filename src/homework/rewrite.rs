@@ -19,27 +19,18 @@
 //! (naga's validator refuses one that can run off its end), and a prototype nothing calls before
 //! its definition goes (naga orders a prototyped function wrongly).
 
+use super::instrument::{
+    RECORDED_FUNCTIONS, STUDENT_MAIN, epilogue, recording_prelude, wrapper, wrapper_parameters,
+};
 use super::interface::{
     Binding, BindingKind, CLIP_Y_SIGN, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface,
     STUDENT_BLOCK_BINDING, attribute_location, declarations, is_precision,
 };
-use super::lex::{Kind, Token, tokens};
+use super::lex::{Kind, Token, matching, matching_open, tokens};
 use super::{HomeworkError, Stage};
 
 /// The name the rewrite gives WebGL's `gl_FragColor`, declared at location 0 in the prelude.
 pub const FRAG_COLOR: &str = "shadowlab_FragColor";
-/// What the student's `main` is renamed to: the `main` the epilogue adds calls it.
-const STUDENT_MAIN: &str = "shadowlab_student_main";
-/// The student's functions whose results the fragment stage records at every call, in the
-/// order of the `Returned` output's channels. The first three give a visibility.
-pub const RECORDED_FUNCTIONS: [&str; 4] = ["useShadowMap", "PCF", "PCSS", "findBlocker"];
-/// The fragment outputs the instrumentation adds: the last value each recorded function returned
-/// (`vec4`, channels in `RECORDED_FUNCTIONS` order) and what ran (`uvec4`: a bit per function that
-/// ran, the visibility function + 1 (the last of the first three called from `main`'s level),
-/// calls in all (at most 255), 1: the shader ran here).
-pub const RETURNED_OUTPUT: u32 = 1;
-pub const CALLS_OUTPUT: u32 = 2;
-
 /// A student's shader rewritten to GLSL 450.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct Rewritten {
@@ -268,14 +259,7 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
             edits.replace(toks[body.name_at].start, toks[body.name_at].end, student.clone());
             used[body.name_at] = true;
             let after = toks[body.close].end;
-            edits.replace(
-                after,
-                after,
-                format!(
-                    " float {name}({params}) {{ shadowlab_depth += 1; float r = {student}({args}); \
-                     shadowlab_depth -= 1; return shadowlab_record({k}u, r); }}"
-                ),
-            );
+            edits.replace(after, after, format!(" {}", wrapper(name, k, &student, &params, &args)));
             recorded.push(*name);
         }
     }
@@ -341,68 +325,6 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
     })
 }
 
-/// A recorded function's wrapper: its parameter list (as the rewrite declares it: a `sampler2D`
-/// is a texture and a sampler, no precision) and the arguments that pass them on. None where a
-/// parameter has no name.
-fn wrapper_parameters(
-    source: &str,
-    toks: &[Token],
-    (open, close): (usize, usize),
-) -> Option<(String, String)> {
-    let text = |i: usize| &source[toks[i].start..toks[i].end];
-    let mut params = Vec::new();
-    let mut args = Vec::new();
-    let mut start = open + 1;
-    let mut depth = 0;
-    for j in open + 1..=close {
-        match text(j) {
-            "(" | "[" => depth += 1,
-            ")" | "]" if j < close => depth -= 1,
-            "," | ")" if depth == 0 => {
-                let words: Vec<usize> =
-                    (start..j).filter(|&w| !is_precision(text(w)) && text(w) != "const").collect();
-                start = j + 1;
-                if words.is_empty() || (words.len() == 1 && text(words[0]) == "void") {
-                    continue;
-                }
-                let name_at = words.iter().rev().find(|&&w| toks[w].kind == Kind::Ident && text(w) != "]")?;
-                let name_index = words.iter().position(|w| w == name_at)?;
-                if name_index == 0 {
-                    return None;
-                }
-                let name = text(*name_at);
-                let declared: Vec<&str> = words.iter().map(|&w| text(w)).collect();
-                if declared.contains(&"sampler2D") {
-                    params.push(format!("texture2D {name}, sampler {name}_sampler"));
-                    args.push(format!("{name}, {name}_sampler"));
-                } else {
-                    params.push(declared.join(" ").replace(" [", "[").replace("[ ", "[").replace(" ]", "]"));
-                    args.push(name.to_string());
-                }
-            }
-            _ => {}
-        }
-    }
-    Some((params.join(", "), args.join(", ")))
-}
-
-/// The lines after the student's: a `main` that calls theirs. The vertex stage's converts the
-/// framework's GL clip space to wgpu's (z from -w..w to 0..w; y flipped where the block says, so
-/// that the light pass writes its map the way WebGL lays it out); the fragment stage's writes
-/// what the recorded functions returned.
-fn epilogue(stage: Stage) -> String {
-    match stage {
-        Stage::Vertex => format!(
-            "void main() {{ {STUDENT_MAIN}(); gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5; \
-             gl_Position.y *= {CLIP_Y_SIGN}; }}\n"
-        ),
-        Stage::Fragment => format!(
-            "void main() {{ {STUDENT_MAIN}(); shadowlab_Returned = shadowlab_returned; \
-             shadowlab_Calls = uvec4(shadowlab_ran, shadowlab_visibility_function, min(shadowlab_calls, 255u), 1u); }}\n"
-        ),
-    }
-}
-
 /// The lines before the student's: the version, the uniform blocks, the colour output.
 fn prelude(stage: Stage, layout: &Interface) -> String {
     let fields: Vec<String> =
@@ -427,15 +349,7 @@ fn prelude(stage: Stage, layout: &Interface) -> String {
     }
     if stage == Stage::Fragment {
         out += &format!("layout(location = 0) out vec4 {FRAG_COLOR};\n");
-        out += &format!(
-            "layout(location = {RETURNED_OUTPUT}) out vec4 shadowlab_Returned; \
-             layout(location = {CALLS_OUTPUT}) out uvec4 shadowlab_Calls;\n"
-        );
-        out += "vec4 shadowlab_returned; uint shadowlab_ran; uint shadowlab_visibility_function; \
-                uint shadowlab_calls; int shadowlab_depth;\n";
-        out += "float shadowlab_record(uint k, float r) { shadowlab_ran |= 1u << k; shadowlab_calls += 1u; \
-                shadowlab_returned[k] = r; if (shadowlab_depth == 0 && k < 3u) { shadowlab_visibility_function = k + 1u; } \
-                return r; }\n";
+        out += &recording_prelude();
     }
     out
 }
@@ -519,41 +433,6 @@ fn functions(source: &str, toks: &[Token], used: &mut [bool], edits: &mut Edits)
         }
     }
     bodies
-}
-
-/// The index of the token closing the bracket opened at `open` (the last token if none does).
-fn matching(source: &str, toks: &[Token], open: usize, opening: &str, closing: &str) -> usize {
-    let mut depth = 0;
-    for (j, t) in toks.iter().enumerate().skip(open) {
-        let word = &source[t.start..t.end];
-        if word == opening {
-            depth += 1;
-        } else if word == closing {
-            depth -= 1;
-            if depth == 0 {
-                return j;
-            }
-        }
-    }
-    toks.len() - 1
-}
-
-/// The index of the `(` a `)` at `close` closes.
-fn matching_open(source: &str, toks: &[Token], close: usize) -> usize {
-    let mut depth = 0;
-    for j in (0..=close).rev() {
-        match &source[toks[j].start..toks[j].end] {
-            ")" => depth += 1,
-            "(" => {
-                depth -= 1;
-                if depth == 0 {
-                    return j;
-                }
-            }
-            _ => {}
-        }
-    }
-    0
 }
 
 /// Whether a function body's last statement at its own level is a `return`.

@@ -124,7 +124,9 @@ pub fn run_check(
     let toward_light = -scene.lights[request.light].direction_at(request.time_s);
     let facing: Vec<Option<f32>> = (0..analysis.shadow.len())
         .map(|i| {
-            analysis.hit(i).then(|| glam::Vec3::from_slice(&analysis.normal[i][..3]).normalize_or_zero().dot(toward_light))
+            analysis.hit(i).then(|| {
+                glam::Vec3::from_slice(&analysis.normal[i][..3]).normalize_or_zero().dot(toward_light)
+            })
         })
         .collect();
     let (figures, findings) = check(
@@ -200,7 +202,11 @@ impl CheckOutcome {
                 Some(v) => {
                     let d = (v - self.ground_truth[i]).clamp(-1.0, 1.0);
                     let fade = byte(1.0 - d.abs());
-                    if d < 0.0 { image::Rgba([255, fade, fade, 255]) } else { image::Rgba([fade, fade, 255, 255]) }
+                    if d < 0.0 {
+                        image::Rgba([255, fade, fade, 255])
+                    } else {
+                        image::Rgba([fade, fade, 255, 255])
+                    }
                 }
             }
         })

@@ -6,6 +6,7 @@
 //! diagram tests do the same for every label a diagram draws.
 
 mod diagrams_zh;
+mod homework_zh;
 mod slides_zh;
 mod ui_zh;
 
@@ -39,7 +40,7 @@ impl Lang {
 
 /// Every entry of every table.
 fn entries() -> impl Iterator<Item = &'static (&'static str, &'static str)> {
-    ui_zh::UI.iter().chain(diagrams_zh::DIAGRAMS).chain(slides_zh::SLIDES)
+    ui_zh::UI.iter().chain(diagrams_zh::DIAGRAMS).chain(slides_zh::SLIDES).chain(homework_zh::HOMEWORK)
 }
 
 fn table() -> &'static HashMap<&'static str, &'static str> {

@@ -1,0 +1,105 @@
+//! What the rewrite adds around a student's code so that shadowlab can run it and see into it:
+//! a `main` of its own that calls theirs (converting the framework's GL clip space in the vertex
+//! stage) and, in the fragment stage, a wrapper around each of `useShadowMap`, `PCF`, `PCSS` and
+//! `findBlocker` that records what it returned, written to two extra colour outputs.
+
+use super::Stage;
+use super::interface::{CLIP_Y_SIGN, is_precision};
+use super::lex::{Kind, Token};
+
+/// What the student's `main` is renamed to: the `main` the epilogue adds calls it.
+pub(super) const STUDENT_MAIN: &str = "shadowlab_student_main";
+/// The student's functions whose results the fragment stage records at every call, in the
+/// order of the `Returned` output's channels. The first three give a visibility.
+pub const RECORDED_FUNCTIONS: [&str; 4] = ["useShadowMap", "PCF", "PCSS", "findBlocker"];
+/// The fragment outputs the instrumentation adds: the last value each recorded function returned
+/// (`vec4`, channels in `RECORDED_FUNCTIONS` order) and what ran (`uvec4`: a bit per function that
+/// ran, the visibility function + 1 (the last of the first three called from `main`'s level),
+/// calls in all (at most 255), 1: the shader ran here).
+pub const RETURNED_OUTPUT: u32 = 1;
+pub const CALLS_OUTPUT: u32 = 2;
+
+/// A recorded function's wrapper: the student's definition renamed to `student`, called with
+/// the same arguments; the result recorded as function `k` and returned. One line.
+pub(super) fn wrapper(name: &str, k: usize, student: &str, params: &str, args: &str) -> String {
+    format!(
+        "float {name}({params}) {{ shadowlab_depth += 1; float r = {student}({args}); \
+         shadowlab_depth -= 1; return shadowlab_record({k}u, r); }}"
+    )
+}
+
+/// The fragment stage's prelude lines for the recording: the two outputs, the state, and
+/// `shadowlab_record` (the visibility is the last of the first three called at `main`'s level).
+pub(super) fn recording_prelude() -> String {
+    format!(
+        "layout(location = {RETURNED_OUTPUT}) out vec4 shadowlab_Returned; \
+         layout(location = {CALLS_OUTPUT}) out uvec4 shadowlab_Calls;\n\
+         vec4 shadowlab_returned; uint shadowlab_ran; uint shadowlab_visibility_function; \
+         uint shadowlab_calls; int shadowlab_depth;\n\
+         float shadowlab_record(uint k, float r) {{ shadowlab_ran |= 1u << k; shadowlab_calls += 1u; \
+         shadowlab_returned[k] = r; if (shadowlab_depth == 0 && k < 3u) {{ shadowlab_visibility_function = k + 1u; }} \
+         return r; }}\n"
+    )
+}
+
+/// A recorded function's wrapper: its parameter list (as the rewrite declares it: a `sampler2D`
+/// is a texture and a sampler, no precision) and the arguments that pass them on. None where a
+/// parameter has no name.
+pub(super) fn wrapper_parameters(
+    source: &str,
+    toks: &[Token],
+    (open, close): (usize, usize),
+) -> Option<(String, String)> {
+    let text = |i: usize| &source[toks[i].start..toks[i].end];
+    let mut params = Vec::new();
+    let mut args = Vec::new();
+    let mut start = open + 1;
+    let mut depth = 0;
+    for j in open + 1..=close {
+        match text(j) {
+            "(" | "[" => depth += 1,
+            ")" | "]" if j < close => depth -= 1,
+            "," | ")" if depth == 0 => {
+                let words: Vec<usize> =
+                    (start..j).filter(|&w| !is_precision(text(w)) && text(w) != "const").collect();
+                start = j + 1;
+                if words.is_empty() || (words.len() == 1 && text(words[0]) == "void") {
+                    continue;
+                }
+                let name_at = words.iter().rev().find(|&&w| toks[w].kind == Kind::Ident && text(w) != "]")?;
+                let name_index = words.iter().position(|w| w == name_at)?;
+                if name_index == 0 {
+                    return None;
+                }
+                let name = text(*name_at);
+                let declared: Vec<&str> = words.iter().map(|&w| text(w)).collect();
+                if declared.contains(&"sampler2D") {
+                    params.push(format!("texture2D {name}, sampler {name}_sampler"));
+                    args.push(format!("{name}, {name}_sampler"));
+                } else {
+                    params.push(declared.join(" ").replace(" [", "[").replace("[ ", "[").replace(" ]", "]"));
+                    args.push(name.to_string());
+                }
+            }
+            _ => {}
+        }
+    }
+    Some((params.join(", "), args.join(", ")))
+}
+
+/// The lines after the student's: a `main` that calls theirs. The vertex stage's converts the
+/// framework's GL clip space to wgpu's (z from -w..w to 0..w; y flipped where the block says, so
+/// that the light pass writes its map the way WebGL lays it out); the fragment stage's writes
+/// what the recorded functions returned.
+pub(super) fn epilogue(stage: Stage) -> String {
+    match stage {
+        Stage::Vertex => format!(
+            "void main() {{ {STUDENT_MAIN}(); gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5; \
+             gl_Position.y *= {CLIP_Y_SIGN}; }}\n"
+        ),
+        Stage::Fragment => format!(
+            "void main() {{ {STUDENT_MAIN}(); shadowlab_Returned = shadowlab_returned; \
+             shadowlab_Calls = uvec4(shadowlab_ran, shadowlab_visibility_function, min(shadowlab_calls, 255u), 1u); }}\n"
+        ),
+    }
+}

@@ -1,0 +1,145 @@
+//! A homework pass's pipeline: its bind group layout made from the bindings both stages
+//! declare, the two translated stages, the framework's vertex layout and WebGL's state (no
+//! culling, depth test LESS). A shader wgpu refuses is an error on one line, not a panic.
+
+use super::interface::STUDENT_BLOCK_BINDING;
+use super::pass::DEPTH_FORMAT;
+use super::program::TranslatedProgram;
+use super::{BindingKind, HomeworkGpuError};
+
+/// One pass's pipeline with the bindings its two stages declare.
+pub(super) struct Pass {
+    pub pipeline: wgpu::RenderPipeline,
+    pub layout: wgpu::BindGroupLayout,
+    /// (binding, name, kind) of every resource either stage declares.
+    pub bindings: Vec<(u32, String, BindingKind)>,
+    /// Size of the block of the student's own uniforms, bytes (0: none).
+    pub student_block_bytes: u64,
+}
+
+/// A WGPU error on one line (its sources joined).
+pub(super) fn one_line(e: &wgpu::Error) -> String {
+    let mut message = e.to_string();
+    let mut source = std::error::Error::source(e);
+    while let Some(cause) = source {
+        message += &format!(": {cause}");
+        source = cause.source();
+    }
+    message.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// The size of the student's uniform block (binding 1) a WGSL stage declares, bytes.
+fn student_block_bytes(wgsl: &str) -> u64 {
+    let Ok(module) = naga::front::wgsl::parse_str(wgsl) else { return 0 };
+    let mut layouter = naga::proc::Layouter::default();
+    if layouter.update(module.to_ctx()).is_err() {
+        return 0;
+    }
+    module
+        .global_variables
+        .iter()
+        .filter(|(_, g)| {
+            g.binding.as_ref().is_some_and(|b| b.group == 0 && b.binding == STUDENT_BLOCK_BINDING)
+        })
+        .map(|(_, g)| u64::from(layouter[g.ty].size))
+        .max()
+        .unwrap_or(0)
+}
+
+impl Pass {
+    pub(super) fn new(
+        device: &wgpu::Device,
+        program: &TranslatedProgram,
+        targets: &[Option<wgpu::ColorTargetState>],
+        label: &str,
+    ) -> Result<Self, HomeworkGpuError> {
+        let mut bindings: Vec<(u32, String, BindingKind)> = Vec::new();
+        for b in program.vertex.rewritten.bindings.iter().chain(&program.fragment.rewritten.bindings) {
+            if !bindings.iter().any(|(n, ..)| *n == b.binding) {
+                bindings.push((b.binding, b.name.clone(), b.kind.clone()));
+            }
+        }
+        bindings.sort_by_key(|(n, ..)| *n);
+        let visibility = wgpu::ShaderStages::VERTEX_FRAGMENT;
+        let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
+            .iter()
+            .map(|(binding, _, kind)| wgpu::BindGroupLayoutEntry {
+                binding: *binding,
+                visibility,
+                ty: match kind {
+                    BindingKind::UniformBlock => wgpu::BindingType::Buffer {
+                        ty: wgpu::BufferBindingType::Uniform,
+                        has_dynamic_offset: false,
+                        min_binding_size: None,
+                    },
+                    BindingKind::Texture => wgpu::BindingType::Texture {
+                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        view_dimension: wgpu::TextureViewDimension::D2,
+                        multisampled: false,
+                    },
+                    BindingKind::Sampler(_) => {
+                        wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)
+                    }
+                },
+                count: None,
+            })
+            .collect();
+        let scope = device.push_error_scope(wgpu::ErrorFilter::Validation);
+        let layout = device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
+            label: Some(label),
+            entries: &entries,
+        });
+        let pipeline_layout = device.create_pipeline_layout(&wgpu::PipelineLayoutDescriptor {
+            label: Some(label),
+            bind_group_layouts: &[Some(&layout)],
+            immediate_size: 0,
+        });
+        let module = |wgsl: &str| {
+            device.create_shader_module(wgpu::ShaderModuleDescriptor {
+                label: Some(label),
+                source: wgpu::ShaderSource::Wgsl(wgsl.into()),
+            })
+        };
+        let vertex = module(&program.vertex.wgsl);
+        let fragment = module(&program.fragment.wgsl);
+        let attributes = wgpu::vertex_attr_array![0 => Float32x3, 1 => Float32x3, 2 => Float32x2];
+        let pipeline = device.create_render_pipeline(&wgpu::RenderPipelineDescriptor {
+            label: Some(label),
+            layout: Some(&pipeline_layout),
+            vertex: wgpu::VertexState {
+                module: &vertex,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                buffers: &[Some(wgpu::VertexBufferLayout {
+                    array_stride: std::mem::size_of::<crate::scene::mesh::Vertex>() as u64,
+                    step_mode: wgpu::VertexStepMode::Vertex,
+                    attributes: &attributes,
+                })],
+            },
+            // The framework culls nothing.
+            primitive: wgpu::PrimitiveState::default(),
+            depth_stencil: Some(wgpu::DepthStencilState {
+                format: DEPTH_FORMAT,
+                depth_write_enabled: Some(true),
+                depth_compare: Some(wgpu::CompareFunction::Less),
+                stencil: Default::default(),
+                bias: Default::default(),
+            }),
+            multisample: Default::default(),
+            fragment: Some(wgpu::FragmentState {
+                module: &fragment,
+                entry_point: Some("main"),
+                compilation_options: Default::default(),
+                targets,
+            }),
+            multiview_mask: None,
+            cache: None,
+        });
+        if let Some(e) = pollster::block_on(scope.pop()) {
+            return Err(HomeworkGpuError(format!("{label}: {}", one_line(&e))));
+        }
+        let student_block_bytes =
+            student_block_bytes(&program.vertex.wgsl).max(student_block_bytes(&program.fragment.wgsl));
+        Ok(Self { pipeline, layout, bindings, student_block_bytes })
+    }
+}

@@ -1,0 +1,33 @@
+//! The homework check's findings in Simplified Chinese.
+
+/// English -> Chinese, for every finding's explanation.
+pub(super) const HOMEWORK: &[(&str, &str)] = &[
+    (
+        "findBlocker returned NaN or an infinite depth at {:.1}% of the shaded pixels: it divides by the number of blockers found, which is 0 where the light is not blocked. Return a \"no blocker\" value there, and have PCSS treat it as lit.",
+        "在 {:.1}% 的着色像素上，findBlocker 返回了 NaN 或无穷大的深度：它用找到的遮挡物个数去除深度之和，而光没有被挡住的地方这个个数是 0。请在那里返回一个“没有遮挡物”的值，并让 PCSS 把它当作受光。",
+    ),
+    (
+        "{:.1}% of the shaded pixels got a visibility that is NaN or infinite. The usual cause: findBlocker divides the blockers' depth sum by their count when no blocker was found (0 / 0).",
+        "{:.1}% 的着色像素得到的可见度是 NaN 或无穷大。常见原因：没有找到遮挡物时，findBlocker 仍用遮挡物个数去除深度之和（0 / 0）。",
+    ),
+    (
+        "Where the ground truth is in full shadow, your visibility averages {:.2}: the shadows are missing. The lookups do not meet the blockers: coordinates in the wrong space (NDC in [-1, 1] where the map wants [0, 1]), depths compared in different units, or the wrong matrix.",
+        "在真实结果处于全影的地方，你的可见度平均为 {:.2}：阴影不见了。查询没有碰到遮挡物：坐标用错了空间（贴图需要 [0, 1]，却给了 [-1, 1] 的 NDC）、比较的两个深度单位不同，或者用错了矩阵。",
+    ),
+    (
+        "Where no point of the light reaches (the ground truth is 0), your visibility averages {:.2}. A filter that reaches far past the blocker does this: a light size in world units used as a size in uv (or texels).",
+        "在光源上没有任何一点能照到的地方（真实结果为 0），你的可见度平均为 {:.2}。滤波范围远远超出遮挡物时就会这样：把以世界单位表示的光源大小当成了 uv（或纹素）大小。",
+    ),
+    (
+        "The ground truth has {} pixels in a penumbra, your shadows {}: the edges are as sharp as a hard shadow. Usually the filter is under a texel wide (a light size or filter radius far too small for the map), or the penumbra estimate is lost before filtering.",
+        "真实结果有 {} 个像素处于半影中，你的阴影只有 {} 个：边缘和硬阴影一样锐利。通常是滤波器不到一个纹素宽（光源大小或滤波半径相对贴图太小），或者半影估计在滤波之前就丢失了。",
+    ),
+    (
+        "{:.1}% of the surfaces that face the light and are fully lit in the ground truth are dark in yours: shadow acne, the surface shadowing itself. Compare with a bias (the receiver's depth minus a small amount), or a larger one.",
+        "在朝向光源、且在真实结果中完全受光的表面里，有 {:.1}% 在你的结果中是暗的：这是阴影失真（shadow acne），表面遮挡了自己。比较时加上偏移（接收点深度减去一个小量），或者把偏移加大。",
+    ),
+    (
+        "{:.1}% of the picture changes when the shadow map starts white instead of 0. The framework never clears its map: texels no object covers read depth 0, which counts as a blocker. Your lookups land there (outside [0, 1] uv, or far from the pixel).",
+        "把阴影贴图的初值从 0 改成白色后，画面有 {:.1}% 发生了变化。作业框架从不清空它的贴图：没有物体覆盖的纹素读出来深度是 0，会被当成遮挡物。你的查询落在了那里（uv 超出 [0, 1]，或离像素太远）。",
+    ),
+];

@@ -1,0 +1,155 @@
+//! `shadowlab homework` as a student or a grader runs it: the binary as a process, on the shipped
+//! example shaders (each gets exactly its own findings, the correct one none), on a shader that
+//! does not compile (exit 2, the student's own line) and on bad input (nothing written).
+
+mod common;
+
+use common::{Run, repo_path};
+use serde_json::Value;
+use std::path::Path;
+
+/// Small enough to be quick; the thresholds hold at this size as at 960x540.
+const SIZE: &str = "480x270";
+
+fn shadowlab<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Run {
+    common::run(common::shadowlab_command().args(args))
+}
+
+fn example(name: &str) -> String {
+    repo_path("assets/homework").join(name).display().to_string()
+}
+
+/// Run a check into `out` with `--json`; the report from stdout, which must equal report.json.
+fn check(shader: &str, extra: &[&str], out: &Path) -> Value {
+    let out_arg = out.display().to_string();
+    let mut args = vec!["homework", shader, "--size", SIZE, "--out", &out_arg, "--json"];
+    args.extend_from_slice(extra);
+    let run = shadowlab(&args);
+    assert_eq!(run.code, Some(0), "{shader}: {}", run.stderr);
+    let report: Value = serde_json::from_str(&run.stdout).expect("the report is JSON");
+    let written: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).expect("report.json"))
+            .expect("report.json is JSON");
+    assert_eq!(report, written, "{shader}: stdout and report.json differ");
+    report
+}
+
+fn finding_ids(report: &Value) -> Vec<String> {
+    report["findings"]
+        .as_array()
+        .expect("findings")
+        .iter()
+        .map(|f| f["id"].as_str().expect("an id").to_string())
+        .collect()
+}
+
+#[test]
+fn each_example_gets_exactly_its_findings_and_the_correct_one_none() {
+    let shadow_255 = example("shadowFragment_255.glsl");
+    let cases: [(&str, Vec<&str>, &[&str]); 6] = [
+        ("phongFragment.glsl", vec![], &[]),
+        ("phongFragment_light_size_world.glsl", vec![], &["umbra_not_dark", "depends_on_uncleared_map"]),
+        ("phongFragment_tiny_light.glsl", vec![], &["no_penumbra"]),
+        ("phongFragment_nan_blocker.glsl", vec![], &["nan_blocker_depth"]),
+        ("phongFragment_ndc_coordinates.glsl", vec![], &["shadows_missing"]),
+        ("phongFragment_no_bias.glsl", vec!["--shadow-shader", &shadow_255], &["self_shadowing"]),
+    ];
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    for (name, extra, expected) in cases {
+        let out = scratch.path().join(name.trim_end_matches(".glsl"));
+        let report = check(&example(name), &extra, &out);
+        assert_eq!(report["compiled"], true, "{name}");
+        assert_eq!(finding_ids(&report), expected, "{name}: {report:#}");
+        assert_eq!(report["visibility_function"], "PCSS", "{name}");
+        assert_eq!(report["compared_with"], "pcss", "{name}");
+        assert!(report["calls"].as_array().is_some_and(|c| c.contains(&Value::from("PCSS"))), "{name}");
+        for finding in report["findings"].as_array().expect("findings") {
+            assert!(finding["explanation"].as_str().is_some_and(|e| e.len() > 40), "{name}: {finding}");
+            assert!(finding["figures"].as_object().is_some_and(|f| !f.is_empty()), "{name}: {finding}");
+            assert!(finding["step"].as_u64().is_some_and(|s| s >= 1), "{name}: {finding}");
+        }
+        for picture in
+            ["student.png", "reference.png", "visibility.png", "ground_truth.png", "difference.png"]
+        {
+            let image = image::open(out.join(picture)).unwrap_or_else(|e| panic!("{name}: {picture}: {e}"));
+            assert_eq!((image.width(), image.height()), (480, 270), "{name}: {picture}");
+        }
+        let figure =
+            |key: &str| report[key].as_f64().unwrap_or_else(|| panic!("{name}: {key} in {report:#}"));
+        assert!(figure("shaded_pixels") > 50_000.0, "{name}");
+        if name == "phongFragment.glsl" {
+            // A correct solution agrees with the ground truth and with shadowlab's PCSS.
+            assert!(figure("mean_abs_difference_to_ground_truth") < 0.02, "{report:#}");
+            assert!(figure("mean_abs_difference") < 0.02, "{report:#}");
+            assert!(figure("lit_area_mean") > 0.99 && figure("umbra_mean") < 0.1, "{report:#}");
+            assert_eq!(figure("nan_fraction"), 0.0);
+        }
+    }
+}
+
+#[test]
+fn a_hard_shadow_is_compared_with_shadowlabs_hard_shadow_and_has_no_penumbra_to_miss() {
+    let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
+    let hard = source.replace(
+        "  visibility = PCSS(uShadowMap, vec4(shadowCoord, 1.0));",
+        "  visibility = useShadowMap(uShadowMap, vec4(shadowCoord, 1.0));",
+    );
+    assert_ne!(hard, source);
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let shader = scratch.path().join("phongFragment.glsl");
+    std::fs::write(&shader, hard).expect("write the shader");
+    let report = check(&shader.display().to_string(), &[], &scratch.path().join("out"));
+    assert_eq!(report["calls"], serde_json::json!(["useShadowMap"]));
+    assert_eq!(report["compared_with"], "hard");
+    assert_eq!(finding_ids(&report), Vec::<String>::new(), "{report:#}");
+    assert!(report["mean_abs_difference"].as_f64().is_some_and(|d| d < 0.01), "{report:#}");
+}
+
+#[test]
+fn a_shader_that_does_not_compile_exits_2_on_the_students_own_line() {
+    let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
+    let mut lines: Vec<&str> = source.lines().collect();
+    let line = lines.iter().position(|l| l.contains("float depthSum = 0.0;")).expect("the line") + 1;
+    lines[line - 1] = "  float depthSum = 0.0 +;";
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let shader = scratch.path().join("phongFragment.glsl");
+    std::fs::write(&shader, lines.join("\n")).expect("write the shader");
+    let out = scratch.path().join("out");
+    let run = shadowlab(&["homework", &shader.display().to_string(), "--out", &out.display().to_string()]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    assert_eq!(run.stderr.lines().count(), 1, "{}", run.stderr);
+    assert!(run.stderr.starts_with(&format!("shadowlab: phongFragment.glsl:{line}: ")), "{}", run.stderr);
+    let report: Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("report.json")).expect("report.json"))
+            .expect("JSON");
+    assert_eq!(report["compiled"], false);
+    assert_eq!(report["error"]["line"], line);
+    assert_eq!(report["findings"], serde_json::json!([]));
+    assert!(!out.join("student.png").exists(), "no picture for a shader that did not compile");
+}
+
+#[test]
+fn bad_input_is_one_line_exit_2_and_nothing_written() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let out = scratch.path().join("out");
+    let out_arg = out.display().to_string();
+    let correct = example("phongFragment.glsl");
+    let missing = scratch.path().join("nope.glsl").display().to_string();
+    let cases: [(Vec<&str>, &str); 4] = [
+        (vec!["homework", &missing, "--out", &out_arg], "nope.glsl"),
+        (vec!["homework", &correct, "--out", &out_arg, "--set", "light.0.nonsense=1"], "nonsense"),
+        (vec!["homework", &correct, "--out", &out_arg, "--light", "3"], "--light 3"),
+        (vec!["homework", &correct, "--out", "/no/such/folder/out"], "/no/such/folder"),
+    ];
+    for (args, named) in cases {
+        let run = shadowlab(&args);
+        assert_eq!(run.code, Some(2), "{args:?}: {}", run.stderr);
+        assert_eq!(run.stderr.lines().count(), 1, "{args:?}: {}", run.stderr);
+        assert!(
+            run.stderr.starts_with("shadowlab: ") && run.stderr.contains(named),
+            "{args:?}: {}",
+            run.stderr
+        );
+        assert!(!out.exists(), "{args:?}: wrote {}", out.display());
+    }
+}
