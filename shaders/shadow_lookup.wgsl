@@ -229,8 +229,9 @@ fn outside_frustum(coord: ShadowCoord) -> bool {
 // The GAMES202 framework's RGBA8 depth: `pack` splits the depth over the four 8-bit channels of
 // a colour target, which keeps each as round(255 v) / 255 like any RGBA8 target, and `unpack`
 // sums them back. Without three.js's 256/255 correction the round trip is off by up to about
-// 1/255: too far below half the depth range, too near above it. Texels nothing was drawn to hold
-// the clear colour, white: unpack(1, 1, 1, 1).
+// 1/255: too far below half the depth range, too near above it. shadowlab clears its map to white
+// (unpack(1, 1, 1, 1), beyond the far plane) before every frame; the framework never clears its
+// own, so there texels nothing was drawn to read 0 (src/homework runs a student's shader so).
 fn rgba8_round_trip(depth_ndc: f32) -> f32 {
     if depth_ndc >= 1.0 {
         return ((1.0 + 1.0 / 256.0) + 1.0 / 65536.0) + 1.0 / 16777216.0;
