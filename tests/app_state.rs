@@ -123,3 +123,64 @@ fn a_launch_opens_the_lesson_step_in_the_language_asked_for() {
     assert_eq!((lesson.id.as_str(), step), ("pcss", 2));
     assert!(launch::resolve(None, Some("pcss"), Some(99), None).is_err(), "no step 99");
 }
+
+/// A student's shader opens on the homework scene from the path box, a drop or the command line;
+/// an edit on disk is read again (the last version that compiled stays while one does not), and
+/// opening a scene closes it.
+#[test]
+fn a_homework_shader_opens_reloads_on_change_and_keeps_its_last_good_version() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let shader = scratch.path().join("phongFragment.glsl");
+    let correct = std::fs::read_to_string(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/homework/phongFragment.glsl"),
+    )
+    .expect("the example");
+    std::fs::write(&shader, &correct).expect("write");
+    let launch =
+        launch::resolve(Some(&shader.display().to_string()), None, None, None).expect("a shader opens");
+    let mut state = fresh();
+    state.apply_launch(launch);
+    assert!(state.error.is_none(), "{:?}", state.error);
+    assert!(
+        matches!(&state.source, Source::Scene(p) if p.ends_with("homework_check.toml")),
+        "{:?}",
+        state.source
+    );
+    let homework = state.homework.as_ref().expect("the homework is open");
+    assert!(homework.error.is_none(), "{:?}", homework.error);
+    assert!(homework.program.is_some());
+    let first = homework.generation;
+
+    // Nothing changed on disk: nothing read again.
+    assert!(!state.reload_homework_if_changed());
+    // The student saves a broken version: its error, on their own line; the program stays.
+    let broken = correct.replacen("  float depthSum = 0.0;", "  float depthSum = 0.0 +;", 1);
+    let line = broken.lines().position(|l| l.contains("0.0 +;")).expect("the line") + 1;
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    std::fs::write(&shader, &broken).expect("write");
+    assert!(state.reload_homework_if_changed());
+    let homework = state.homework.as_ref().expect("still open");
+    let error = homework.error.as_ref().expect("the error");
+    assert_eq!(error.line(), Some(line), "{error}");
+    assert!(error.to_string().starts_with(&format!("phongFragment.glsl:{line}: ")), "{error}");
+    assert_eq!(homework.generation, first, "the last good program stays");
+    assert!(homework.program.is_some());
+    // Fixed again: a new program.
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    std::fs::write(&shader, &correct).expect("write");
+    assert!(state.reload_homework_if_changed());
+    let homework = state.homework.as_ref().expect("still open");
+    assert!(homework.error.is_none());
+    assert_eq!(homework.generation, first + 1);
+    assert_eq!(homework.reloads, 2);
+
+    // A scene closes it.
+    state.open(&Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/contact.toml"));
+    assert!(state.homework.is_none());
+    // A shader path typed into the path box opens it again.
+    state.open_any(&shader);
+    assert!(state.homework.is_some());
+    // A missing one says so and keeps what is open.
+    state.open_any(&scratch.path().join("missing.glsl"));
+    assert!(state.homework.is_some());
+}

@@ -15,6 +15,8 @@ pub enum Opening {
     Model(PathBuf),
     /// A lesson (shipped, or a lesson file of one's own) at a step, from 0.
     Lesson { lesson: Box<Lesson>, step: usize },
+    /// A student's homework shader (`phongFragment.glsl`), checked on the homework scene.
+    Homework(PathBuf),
 }
 
 /// The command line's wishes for the app; `None`s keep what was saved from the last session.
@@ -77,6 +79,11 @@ fn open_file(file: &str, step: Option<u32>) -> Result<Opening, String> {
         None => Ok(()),
     };
     match extension.as_deref() {
+        _ if super::homework::is_shader_file(path) => {
+            not_lesson(step)?;
+            crate::files::check_regular_file(path).map_err(|e| format!("{file}: {e}"))?;
+            Ok(Opening::Homework(path.to_path_buf()))
+        }
         Some("obj") => {
             not_lesson(step)?;
             super::scene_for_obj(path)?;
@@ -91,7 +98,9 @@ fn open_file(file: &str, step: Option<u32>) -> Result<Opening, String> {
             crate::scene::load_scene(path, &[]).map_err(|e| e.to_string())?;
             Ok(Opening::Scene(path.to_path_buf()))
         }
-        _ => Err(format!("{file}: not a scene or lesson (.toml) or a model (.obj)")),
+        _ => {
+            Err(format!("{file}: not a scene or lesson (.toml), a model (.obj) or a homework shader (.glsl)"))
+        }
     }
 }
 
@@ -115,6 +124,10 @@ impl super::AppState {
             None => {}
             Some(Opening::Scene(path) | Opening::Model(path)) => {
                 self.open(&path);
+                self.show_lesson_list = false;
+            }
+            Some(Opening::Homework(path)) => {
+                self.open_homework(&path);
                 self.show_lesson_list = false;
             }
             Some(Opening::Lesson { lesson, step }) => {

@@ -4,6 +4,7 @@
 //! into these actions; tests and tools drive it directly; renders are asked for through a
 //! [`scheduler::RenderScheduler`].
 
+pub mod homework;
 pub mod launch;
 mod obj_scene;
 pub mod scheduler;
@@ -86,6 +87,8 @@ pub struct AppState {
     /// The ground truth at the probe, per light asked for: (light, samples averaged, samples in
     /// all). Asked for and not started yet counts as 0 done.
     pub probe_truth_progress: Vec<(usize, u32, u32)>,
+    /// A student's homework shader open beside the scene (`open_homework`).
+    pub homework: Option<homework::HomeworkState>,
 }
 
 const DEFAULT_SCENE: &str = "assets/scenes/games202.toml";
@@ -142,6 +145,7 @@ impl AppState {
             reference: None,
             mean_abs_error: None,
             probe_truth_progress: Vec::new(),
+            homework: None,
         };
         if let Some((id, step)) = state.settings.last_lesson.clone()
             && let Some(index) = state.lessons.iter().position(|l| l.id == id)
@@ -160,6 +164,7 @@ impl AppState {
             Ok(scene) => {
                 // A scene that shows nothing says so (the CLI prints the same warnings).
                 let warnings = scene.warnings(0.0, 16.0 / 9.0);
+                self.homework = None;
                 self.set_scene(scene, Source::Scene(path.to_path_buf()));
                 // A new scene starts clean: nothing of the last one's probe, overlays, view or zoom.
                 self.probe_at = None;
@@ -219,6 +224,7 @@ impl AppState {
         let id = l.id.clone();
         match s.scene() {
             Ok(scene) => {
+                self.homework = None;
                 self.set_scene(scene, Source::Lesson { lesson, step });
                 self.time_s = s.time_s;
                 self.playing = s.play;
@@ -399,6 +405,9 @@ impl AppState {
     pub fn open_any(&mut self, path: &Path) {
         // Scenes and models through `open` (loaded once, the old scene kept if this one fails);
         // lesson files and lesson ids as the command line takes them.
+        if path.exists() && homework::is_shader_file(path) {
+            return self.open_homework(path);
+        }
         if path.exists() && !launch::is_lesson_file(path) {
             return self.open(path);
         }
@@ -406,6 +415,50 @@ impl AppState {
             Ok(launch) => self.apply_launch(launch),
             Err(e) => self.error = Some(AppError::new("could not open the scene", e)),
         }
+    }
+
+    /// Open a student's homework shader (their `phongFragment.glsl`) on the homework scene: the
+    /// camera view shows their picture, the homework panel what the check found. A shader that
+    /// does not compile opens too, with its error, and shows once it does.
+    pub fn open_homework(&mut self, path: &Path) {
+        if !path.is_file() {
+            let detail = format!("{}: no such file", path.display());
+            self.error = Some(AppError::new("could not open the shader", detail));
+            return;
+        }
+        let scene_path = shipped_path(homework::HOMEWORK_SCENE);
+        if self.source != Source::Scene(scene_path.clone()) || self.homework.is_none() {
+            match load_scene(&scene_path, &[]) {
+                Ok(scene) => {
+                    self.set_scene(scene, Source::Scene(scene_path));
+                    self.probe_at = None;
+                    self.overlays.clear();
+                    self.view = View::Final;
+                    self.ab = None;
+                    self.scenes_opened += 1;
+                }
+                Err(e) => {
+                    self.error = Some(AppError::new("could not open the scene", e));
+                    return;
+                }
+            }
+        }
+        let state = homework::HomeworkState::open(path, None, None);
+        self.status = format!("{} {}", crate::i18n::tr(self.lang, "opened"), path.display());
+        self.settings.remember_file(path);
+        self.homework = Some(state);
+        self.error = None;
+        self.mark_dirty();
+    }
+
+    /// Read the homework's files again where one changed on disk (the student saved in their
+    /// editor); camera, probe and view stay. True where they were read again.
+    pub fn reload_homework_if_changed(&mut self) -> bool {
+        let changed = self.homework.as_mut().is_some_and(homework::HomeworkState::reload_if_changed);
+        if changed {
+            self.mark_dirty();
+        }
+        changed
     }
 
     /// The ground truth at the probe for `light` as it accumulates: (samples averaged, samples in

@@ -1,4 +1,4 @@
-//! The homework check's findings in Simplified Chinese.
+//! The homework check's findings and panel in Simplified Chinese.
 
 /// English -> Chinese, for every finding's explanation.
 pub(super) const HOMEWORK: &[(&str, &str)] = &[
@@ -30,4 +30,29 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "{:.1}% of the picture changes when the shadow map starts white instead of 0. The framework never clears its map: texels no object covers read depth 0, which counts as a blocker. Your lookups land there (outside [0, 1] uv, or far from the pixel).",
         "把阴影贴图的初值从 0 改成白色后，画面有 {:.1}% 发生了变化。作业框架从不清空它的贴图：没有物体覆盖的纹素读出来深度是 0，会被当成遮挡物。你的查询落在了那里（uv 超出 [0, 1]，或离像素太远）。",
     ),
+    ("Your homework", "你的作业"),
+    (
+        "watching the file: save it in your editor and the check runs again ({} reloads)",
+        "正在监视这个文件：在编辑器里保存后会重新检查（已重新载入 {} 次）",
+    ),
+    ("does not compile", "无法编译"),
+    ("the picture is the last version that compiled", "画面是最后一个能编译的版本"),
+    ("the camera view shows", "相机视图显示"),
+    ("your shader", "你的着色器"),
+    ("shadowlab's", "shadowlab 的"),
+    ("your visibility", "你的可见度"),
+    ("difference", "差异"),
+    ("checking…", "检查中…"),
+    ("checking the new version…", "正在检查新版本…"),
+    ("functions that ran", "运行过的函数"),
+    ("visibility from", "可见度来自"),
+    ("compared with shadowlab's", "对比的 shadowlab 技术"),
+    ("mean |difference| to shadowlab's", "与 shadowlab 的平均绝对差"),
+    ("mean |difference| to the ground truth", "与真实结果的平均绝对差"),
+    ("NaN or infinite visibility", "NaN 或无穷大的可见度"),
+    ("mean visibility where fully lit", "完全受光处的平均可见度"),
+    ("mean visibility in the umbra", "本影中的平均可见度"),
+    ("penumbra pixels (ground truth)", "半影像素数（真实结果）"),
+    ("No findings: your shadows match the ground truth.", "没有发现问题：你的阴影与真实结果一致。"),
+    ("could not open the shader", "无法打开着色器"),
 ];

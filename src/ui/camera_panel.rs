@@ -44,6 +44,15 @@ pub(super) fn mark_texel(painter: &egui::Painter, square: Rect, uv: [f32; 2]) ->
     p
 }
 
+/// The homework picture the camera view shows in place of shadowlab's final picture, once the
+/// check of what is open has come (the last version that compiled stays while an edit does not).
+fn homework_picture(app: &mut ShadowlabApp, ctx: &egui::Context) -> Option<egui::TextureId> {
+    let homework = app.state.homework.as_ref()?;
+    let outcome = homework.outcome.clone()?;
+    let picture = homework.picture;
+    Some(app.homework_textures.get(ctx, &outcome, picture))
+}
+
 pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let response = ui.interact(rect, ui.scope_id().with("camera view"), Sense::click_and_drag());
     super::set_landmark(ui.ctx(), super::LANDMARK_CAMERA_VIEW, rect);
@@ -80,7 +89,9 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             }
         }
         (View::Final, ..) | (View::ShadowMap, _, None) | (_, None, _) => {
-            if let Some(texture) = &app.shown.camera {
+            if let Some(id) = homework_picture(app, ui.ctx()) {
+                painter.image(id, rect, uv, Color32::WHITE);
+            } else if let Some(texture) = &app.shown.camera {
                 painter.image(texture.id(), rect, uv, Color32::WHITE);
             }
         }

@@ -4,6 +4,8 @@
 mod bars;
 mod camera_panel;
 mod dialog;
+mod homework_panel;
+mod homework_view;
 mod inspector;
 mod lesson_panel;
 mod map_panel;
@@ -67,6 +69,9 @@ pub struct ShadowlabApp {
     focus_path_box: bool,
     screenshot: Arc<Mutex<Option<Arc<egui::ColorImage>>>>,
     screenshot_pending: bool,
+    homework_textures: homework_view::HomeworkTextures,
+    /// When the homework's files were last looked at (they are watched a few times a second).
+    homework_watched: Option<std::time::Instant>,
 }
 
 impl std::ops::Deref for ShadowlabApp {
@@ -122,6 +127,8 @@ impl ShadowlabApp {
             focus_path_box: false,
             screenshot: Arc::new(Mutex::new(None)),
             screenshot_pending: false,
+            homework_textures: Default::default(),
+            homework_watched: None,
         }
     }
 
@@ -307,6 +314,7 @@ impl eframe::App for ShadowlabApp {
         self.poll_open_dialog();
         self.save_screenshot_if_ready();
         self.advance_time(std::time::Instant::now());
+        self.watch_homework(&ctx);
         self.receive_renders(&ctx);
         // Dragging a slider (or anything else) asks for previews until it is let go.
         self.interacting = ctx.dragged_id().is_some();
@@ -336,6 +344,15 @@ impl eframe::App for ShadowlabApp {
                     egui::ScrollArea::vertical().show(ui, |ui| inspector::show(&mut self.state, ui));
                 });
             self.state.settings.inspector_width = inspector.response.rect.width();
+        }
+        if self.state.current_step().is_none() && self.state.homework.is_some() && !self.state.present {
+            egui::Panel::right("homework")
+                .resizable(true)
+                .default_size(340.0)
+                .max_size((screen.width() * 0.35).max(260.0))
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| homework_panel::show(&mut self.state, ui));
+                });
         }
         if self.state.current_step().is_some() {
             let panel = if self.state.present {

@@ -3,7 +3,7 @@
 //! previews (half resolution or less, PCSS with fewer taps) and refine once it is let go.
 
 use super::{ProbeAt, ShadowlabApp};
-use crate::app::scheduler::{ProbeSpot, RenderEvent, RenderJob, RenderOutput};
+use crate::app::scheduler::{HomeworkJob, ProbeSpot, RenderEvent, RenderJob, RenderOutput};
 use crate::render::{FrameRequest, PassTimes};
 use crate::scene::Technique;
 use crate::shadow::{LightGpu, ShadowParamsGpu};
@@ -57,7 +57,26 @@ pub struct Submitted {
     pub size: (u32, u32),
 }
 
+/// How often the homework's files are looked at for changes.
+const HOMEWORK_WATCH_EVERY: std::time::Duration = std::time::Duration::from_millis(300);
+
 impl ShadowlabApp {
+    /// Look at the homework's files a few times a second; one saved in the student's editor is
+    /// read again (and checked again with the next render). The camera, probe and view stay.
+    pub(super) fn watch_homework(&mut self, ctx: &egui::Context) {
+        if self.state.homework.is_none() {
+            return;
+        }
+        let now = std::time::Instant::now();
+        if self.homework_watched.is_some_and(|t| now - t < HOMEWORK_WATCH_EVERY) {
+            ctx.request_repaint_after(HOMEWORK_WATCH_EVERY);
+            return;
+        }
+        self.homework_watched = Some(now);
+        self.state.reload_homework_if_changed();
+        ctx.request_repaint_after(HOMEWORK_WATCH_EVERY);
+    }
+
     /// Take what the worker has finished; called once per UI frame.
     pub(super) fn receive_renders(&mut self, ctx: &egui::Context) {
         let Some(worker) = self.worker.as_mut() else { return };
@@ -88,6 +107,18 @@ impl ShadowlabApp {
                 RenderEvent::ProbeReference { job, light, done, total, value } => {
                     if job == self.submitted.job && self.shown.probe_job == Some(job) {
                         self.show_probe_reference(light, done, total, value);
+                    }
+                }
+                RenderEvent::Homework { job: _, generation, outcome } => {
+                    if let Some(homework) = self.state.homework.as_mut() {
+                        match outcome {
+                            Ok(outcome) => {
+                                homework.outcome = Some(outcome);
+                                homework.outcome_generation = generation;
+                                homework.gpu_error = None;
+                            }
+                            Err(message) => homework.gpu_error = Some(message),
+                        }
                     }
                 }
                 RenderEvent::Failed { job, message } => {
@@ -298,6 +329,10 @@ impl ShadowlabApp {
             bleeding: analysis && self.state.overlays.contains(&Overlay::Bleeding),
             technique_b: self.state.ab.as_ref().map(|ab| ab.b),
             thumbnails: full_detail,
+            homework: self.state.homework.as_ref().filter(|_| full_detail).and_then(|h| {
+                let program = h.program.clone()?;
+                Some(HomeworkJob { program, generation: h.generation, lang: self.state.lang })
+            }),
             preview,
             map_texels: if self.view_state.zoomed() { MAP_PICTURE_TEXELS_ZOOMED } else { MAP_PICTURE_TEXELS },
         };

@@ -11,10 +11,12 @@
 //! kept: a job whose ground truth depends on nothing that changed gets it again at once.
 
 mod frame;
+mod homework;
 mod renderers;
 mod thread;
 
 pub use frame::FrameDriven;
+pub use homework::HomeworkJob;
 pub use thread::WorkerThread;
 
 use crate::probe::ProbeReport;
@@ -69,6 +71,8 @@ pub struct RenderJob {
     pub preview: bool,
     /// Texels per side of the shadow-map picture at most (the map is subsampled beyond).
     pub map_texels: u32,
+    /// A student's homework to check beside the frame (full-quality renders only).
+    pub homework: Option<HomeworkJob>,
 }
 
 /// A pixel to probe, in a frame of its own size: the view's, or a lesson's own frame.
@@ -149,6 +153,12 @@ pub enum RenderEvent {
         done: u32,
         total: u32,
         value: f32,
+    },
+    /// The homework check of `generation` (of the program the job carried), or why it failed.
+    Homework {
+        job: u64,
+        generation: u64,
+        outcome: Result<std::sync::Arc<crate::homework::CheckOutcome>, String>,
     },
     Failed {
         job: u64,

@@ -27,6 +27,8 @@ pub(super) enum Stage {
     Details,
     /// The ground truth at the probe (right after the probe's frame).
     ProbeReference,
+    /// The homework check, where the job carries one.
+    Homework,
     /// The view's ground truth.
     ViewReference,
     Done,
@@ -45,6 +47,7 @@ pub(super) struct Renderers {
     probe_truths: Vec<(ReferenceKey, f32, u32)>,
     /// The view's last finished ground truth.
     view_truth: Option<(ReferenceKey, Vec<f32>, u32)>,
+    homework: super::homework::HomeworkRunner,
 }
 
 /// Probes' ground truths kept.
@@ -146,7 +149,16 @@ pub(super) fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
     }))
     .map_err(|e| RenderError::Device(e.to_string()))?;
     let a = Renderer::new(&device, &queue)?;
-    Ok(Renderers { device, queue, a, b: None, last_map: None, probe_truths: Vec::new(), view_truth: None })
+    Ok(Renderers {
+        device,
+        queue,
+        a,
+        b: None,
+        last_map: None,
+        probe_truths: Vec::new(),
+        view_truth: None,
+        homework: Default::default(),
+    })
 }
 
 impl Renderers {
@@ -345,6 +357,12 @@ impl Renderers {
 }
 
 impl RenderJob {
+    /// The stage after the probe's: the homework check where there is one, then the view's
+    /// ground truth.
+    fn after_probe(&self) -> Stage {
+        if self.homework.is_some() { Stage::Homework } else { Stage::ViewReference }
+    }
+
     /// A probe or overlays to work out after the image.
     fn wants_details(&self) -> bool {
         !self.scene.lights.is_empty() && (self.probe.is_some() || self.analysis)
@@ -396,7 +414,7 @@ impl Renderers {
                         return failed(send, e);
                     }
                 }
-                if job.wants_details() { Stage::Details } else { Stage::ViewReference }
+                if job.wants_details() { Stage::Details } else { job.after_probe() }
             }
             Stage::Details => {
                 // A newer request makes these details moot: it brings its own.
@@ -415,7 +433,7 @@ impl Renderers {
                         if probe_hit && !job.probe_reference.is_empty() {
                             Stage::ProbeReference
                         } else {
-                            Stage::ViewReference
+                            job.after_probe()
                         }
                     }
                     Err(e) => failed(send, e),
@@ -431,9 +449,22 @@ impl Renderers {
                     !cancelled()
                 });
                 match result {
-                    Ok(()) => Stage::ViewReference,
+                    Ok(()) => job.after_probe(),
                     Err(e) => failed(send, e),
                 }
+            }
+            // On renderers of its own: the view's keeps its frame for the view's ground truth.
+            Stage::Homework => {
+                if cancelled() {
+                    return Stage::Done;
+                }
+                if let Some(homework) = &job.homework {
+                    let (size, time_s) = (job.request.size, job.request.time_s);
+                    let outcome =
+                        self.homework.run(&self.device, &self.queue, homework, &job.scene, size, time_s);
+                    send(RenderEvent::Homework { job: id, generation: homework.generation, outcome });
+                }
+                Stage::ViewReference
             }
             Stage::ViewReference => {
                 if !(job.reference && job.analysis) || cancelled() {

@@ -1,0 +1,152 @@
+//! A student's homework open in the app: their files (watched: an edit in their editor reloads
+//! it), the last program that compiled (its picture stays while a newer edit does not compile),
+//! the current error on the student's own line, and the last check's outcome.
+
+use crate::homework::{CheckOutcome, HomeworkError, HomeworkFiles, HomeworkProgram};
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::time::SystemTime;
+
+/// The scene a homework is checked on in the app (as on the command line).
+pub const HOMEWORK_SCENE: &str = "assets/scenes/homework_check.toml";
+
+/// What the camera view shows while a homework is open.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum HomeworkPicture {
+    /// The student's picture, as their shader drew it.
+    #[default]
+    Student,
+    /// shadowlab's own technique at the same settings.
+    Shadowlab,
+    /// The student's visibility alone (white = lit).
+    Visibility,
+    /// The ground truth's visibility.
+    GroundTruth,
+    /// Student minus ground truth: red where the student's is darker, blue where lighter.
+    Difference,
+}
+
+impl HomeworkPicture {
+    pub const ALL: [HomeworkPicture; 5] = [
+        HomeworkPicture::Student,
+        HomeworkPicture::Shadowlab,
+        HomeworkPicture::Visibility,
+        HomeworkPicture::GroundTruth,
+        HomeworkPicture::Difference,
+    ];
+
+    /// The label (English; the i18n table has the Chinese).
+    pub fn label(self) -> &'static str {
+        match self {
+            HomeworkPicture::Student => "your shader",
+            HomeworkPicture::Shadowlab => "shadowlab's",
+            HomeworkPicture::Visibility => "your visibility",
+            HomeworkPicture::GroundTruth => "ground truth",
+            HomeworkPicture::Difference => "difference",
+        }
+    }
+}
+
+/// A homework open in the app.
+pub struct HomeworkState {
+    /// The student's phongFragment.glsl, and their shadowFragment / phongVertex where given.
+    pub fragment: PathBuf,
+    pub shadow_fragment: Option<PathBuf>,
+    pub vertex: Option<PathBuf>,
+    /// Each file's modification time when last read (None: could not be read).
+    modified: Vec<Option<SystemTime>>,
+    /// The last program that compiled; a newer edit that does not keeps it on screen.
+    pub program: Option<Arc<HomeworkProgram>>,
+    /// Bumped each time `program` changes (the renderer rebuilds its pipelines for a new one).
+    pub generation: u64,
+    /// Why the files as they are now do not compile (the student's file and line).
+    pub error: Option<HomeworkError>,
+    /// Why the check of the program that compiled failed on the GPU (a pipeline wgpu refused).
+    pub gpu_error: Option<String>,
+    /// The last check of `program`: pictures, figures and findings.
+    pub outcome: Option<Arc<CheckOutcome>>,
+    /// The generation `outcome` was worked out for.
+    pub outcome_generation: u64,
+    pub picture: HomeworkPicture,
+    /// Times the files were read again after a change on disk.
+    pub reloads: u64,
+}
+
+fn modified(path: &Path) -> Option<SystemTime> {
+    std::fs::metadata(path).and_then(|m| m.modified()).ok()
+}
+
+impl HomeworkState {
+    /// Read and translate the student's files. A shader that does not compile still opens (with
+    /// its error shown), so the student can fix it and see it reload.
+    pub fn open(fragment: &Path, shadow_fragment: Option<&Path>, vertex: Option<&Path>) -> Self {
+        let mut state = Self {
+            fragment: fragment.to_path_buf(),
+            shadow_fragment: shadow_fragment.map(Path::to_path_buf),
+            vertex: vertex.map(Path::to_path_buf),
+            modified: Vec::new(),
+            program: None,
+            generation: 0,
+            error: None,
+            gpu_error: None,
+            outcome: None,
+            outcome_generation: 0,
+            picture: HomeworkPicture::default(),
+            reloads: 0,
+        };
+        state.read();
+        state
+    }
+
+    fn paths(&self) -> Vec<&Path> {
+        std::iter::once(self.fragment.as_path())
+            .chain(self.shadow_fragment.as_deref())
+            .chain(self.vertex.as_deref())
+            .collect()
+    }
+
+    fn read(&mut self) {
+        self.modified = self.paths().into_iter().map(modified).collect();
+        let translated =
+            HomeworkFiles::read(&self.fragment, self.vertex.as_deref(), self.shadow_fragment.as_deref())
+                .and_then(HomeworkProgram::translate);
+        match translated {
+            Ok(program) => {
+                self.program = Some(Arc::new(program));
+                self.generation += 1;
+                self.error = None;
+            }
+            Err(e) => self.error = Some(e),
+        }
+    }
+
+    /// Read the files again where one changed on disk since the last read; true where it did.
+    pub fn reload_if_changed(&mut self) -> bool {
+        let now: Vec<Option<SystemTime>> = self.paths().into_iter().map(modified).collect();
+        if now == self.modified {
+            return false;
+        }
+        self.reloads += 1;
+        self.read();
+        true
+    }
+
+    /// The file name errors and the panel show.
+    pub fn name(&self) -> String {
+        self.fragment
+            .file_name()
+            .map_or_else(|| self.fragment.display().to_string(), |n| n.to_string_lossy().into())
+    }
+
+    /// A check of the current program is on screen.
+    pub fn checked(&self) -> bool {
+        self.outcome.is_some() && self.outcome_generation == self.generation
+    }
+}
+
+/// A path that names a homework shader (`.glsl`, `.frag`, `.fs`).
+pub fn is_shader_file(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| ["glsl", "frag", "fs"].contains(&e.to_ascii_lowercase().as_str()))
+}

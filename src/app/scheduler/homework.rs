@@ -1,0 +1,91 @@
+//! The homework check as a scheduler runs it: the student's pipelines built once per program
+//! (a reload makes a new one), shadowlab's comparison on a renderer of its own (the view's keeps
+//! its frame for the probe and the ground truths), and the last outcome kept while nothing it
+//! depends on changes.
+
+use crate::homework::{
+    CheckOutcome, HomeworkProgram, HomeworkRenderer, HomeworkRequest, ShaderSource, run_check,
+};
+use crate::i18n::Lang;
+use crate::render::Renderer;
+use crate::scene::{Camera, Light, Scene, ShadowSettings};
+use std::sync::Arc;
+
+/// A homework to check with a job: the program and its generation (which changes on a reload).
+#[derive(Clone)]
+pub struct HomeworkJob {
+    pub program: Arc<HomeworkProgram>,
+    pub generation: u64,
+    /// The language of the findings' explanations.
+    pub lang: Lang,
+}
+
+/// What a check's outcome depends on.
+#[derive(Clone, Debug, PartialEq)]
+struct CheckKey {
+    generation: u64,
+    lang: Lang,
+    camera: Camera,
+    lights: Vec<Light>,
+    settings: ShadowSettings,
+    objects: usize,
+    size: (u32, u32),
+    time_bits: u32,
+}
+
+/// The homework's GPU side in a scheduler.
+#[derive(Default)]
+pub(super) struct HomeworkRunner {
+    /// The pipelines of the program of this generation.
+    pipelines: Option<(u64, HomeworkRenderer)>,
+    /// shadowlab's side of the comparison (made on first use).
+    comparison: Option<Renderer>,
+    last: Option<(CheckKey, Arc<CheckOutcome>)>,
+}
+
+impl HomeworkRunner {
+    /// The check of `job` at `size` and `time_s` (the last one again where nothing it depends on
+    /// changed). Errors are one line: a pipeline wgpu refuses, a failed render.
+    pub(super) fn run(
+        &mut self,
+        device: &wgpu::Device,
+        queue: &wgpu::Queue,
+        job: &HomeworkJob,
+        scene: &Scene,
+        size: (u32, u32),
+        time_s: f32,
+    ) -> Result<Arc<CheckOutcome>, String> {
+        let key = CheckKey {
+            generation: job.generation,
+            lang: job.lang,
+            camera: scene.camera,
+            lights: scene.lights.clone(),
+            settings: scene.shadow.clone(),
+            objects: scene.objects.len(),
+            size,
+            time_bits: time_s.to_bits(),
+        };
+        if let Some((_, outcome)) = self.last.as_ref().filter(|(k, _)| *k == key) {
+            return Ok(outcome.clone());
+        }
+        let homework = match &mut self.pipelines {
+            Some((generation, renderer)) if *generation == job.generation => renderer,
+            slot => {
+                let renderer =
+                    HomeworkRenderer::new(device, queue, &job.program).map_err(|e| e.to_string())?;
+                &mut slot.insert((job.generation, renderer)).1
+            }
+        };
+        let comparison = match self.comparison.as_mut() {
+            Some(r) => r,
+            None => self.comparison.insert(Renderer::new(device, queue).map_err(|e| e.to_string())?),
+        };
+        let request = HomeworkRequest { time_s, size, light: 0, clear_map_white: false };
+        let shader: &ShaderSource = &job.program.files.phong_fragment;
+        let outcome =
+            run_check(homework, comparison, shader, scene, &request, job.lang).map_err(|e| e.to_string())?;
+        let outcome = Arc::new(outcome);
+        self.last = Some((key, outcome.clone()));
+        Ok(outcome)
+    }
+}

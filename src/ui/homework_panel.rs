@@ -1,0 +1,116 @@
+//! The homework panel: the student's shader (watched for changes), its error on their own line,
+//! which picture the camera view shows, the comparison's figures and what the checks found, each
+//! with a way to the lesson step that teaches it.
+
+use super::AppState;
+use crate::app::homework::HomeworkPicture;
+use crate::i18n::{Lang, fill, tr};
+use egui::{Color32, RichText, Ui};
+
+/// A figure to three decimals, or "…" while it is worked out.
+fn figure(value: Option<f64>) -> String {
+    value.map_or_else(|| "…".to_string(), |v| format!("{v:.3}"))
+}
+
+/// The lesson step a finding points at, as "lesson title, step N" in `lang`.
+fn lesson_link(state: &AppState, lesson: &str, step: usize, lang: Lang) -> Option<(usize, String)> {
+    let index = state.lessons.iter().position(|l| l.id == lesson)?;
+    let l = &state.lessons[index];
+    let step_title = l.steps.get(step.checked_sub(1)?)?.title.get(lang);
+    Some((index, format!("{} · {} {step}: {step_title}", l.title.get(lang), tr(lang, "step"))))
+}
+
+pub fn show(state: &mut AppState, ui: &mut Ui) {
+    let lang = state.lang;
+    let Some(homework) = state.homework.as_ref() else { return };
+    ui.heading(RichText::new(tr(lang, "Your homework")).size(20.0));
+    ui.label(RichText::new(homework.fragment.display().to_string()).monospace().weak());
+    ui.label(
+        RichText::new(fill(
+            lang,
+            "watching the file: save it in your editor and the check runs again ({} reloads)",
+            &[&homework.reloads],
+        ))
+        .weak(),
+    );
+    if let Some(error) = &homework.error {
+        ui.add_space(6.0);
+        ui.label(
+            RichText::new(tr(lang, "does not compile")).strong().color(Color32::from_rgb(255, 120, 110)),
+        );
+        ui.label(RichText::new(error.to_string()).monospace().color(Color32::from_rgb(255, 170, 160)));
+        if homework.program.is_some() {
+            ui.label(RichText::new(tr(lang, "the picture is the last version that compiled")).weak());
+        }
+    }
+    if let Some(message) = &homework.gpu_error {
+        ui.label(RichText::new(message).monospace().color(Color32::from_rgb(255, 170, 160)));
+    }
+    ui.add_space(6.0);
+    ui.label(RichText::new(tr(lang, "the camera view shows")).strong());
+    let mut picture = homework.picture;
+    ui.horizontal_wrapped(|ui| {
+        for p in HomeworkPicture::ALL {
+            ui.selectable_value(&mut picture, p, tr(lang, p.label()));
+        }
+    });
+    let outcome = homework.outcome.clone();
+    let checked = homework.checked();
+    if let Some(h) = state.homework.as_mut() {
+        h.picture = picture;
+    }
+    let Some(outcome) = outcome else {
+        if state.homework.as_ref().is_some_and(|h| h.program.is_some()) {
+            ui.label(RichText::new(tr(lang, "checking…")).weak());
+        }
+        return;
+    };
+    if !checked {
+        ui.label(RichText::new(tr(lang, "checking the new version…")).weak());
+    }
+    let report = &outcome.report;
+    ui.add_space(6.0);
+    egui::Grid::new("homework figures").num_columns(2).striped(true).show(ui, |ui| {
+        let mut row = |name: &'static str, value: String| {
+            ui.label(tr(lang, name));
+            ui.label(RichText::new(value).monospace());
+            ui.end_row();
+        };
+        row("functions that ran", if report.calls.is_empty() { "-".into() } else { report.calls.join(", ") });
+        row("visibility from", report.visibility_function.unwrap_or("-").to_string());
+        row("compared with shadowlab's", report.compared_with.unwrap_or("-").to_string());
+        if let Some(f) = &report.figures {
+            row("mean |difference| to shadowlab's", figure(f.mean_abs_difference));
+            row("mean |difference| to the ground truth", figure(f.mean_abs_difference_to_ground_truth));
+            row("NaN or infinite visibility", format!("{:.2}%", 100.0 * f.nan_fraction));
+            row("mean visibility where fully lit", figure(f.lit_area_mean));
+            row("mean visibility in the umbra", figure(f.umbra_mean));
+            row(
+                "penumbra pixels (ground truth)",
+                format!("{} ({})", f.penumbra_pixels, f.penumbra_pixels_ground_truth),
+            );
+        }
+    });
+    ui.add_space(8.0);
+    if report.findings.is_empty() {
+        ui.label(
+            RichText::new(tr(lang, "No findings: your shadows match the ground truth."))
+                .color(Color32::from_rgb(140, 220, 140)),
+        );
+    }
+    let mut open_step = None;
+    for finding in &report.findings {
+        ui.group(|ui| {
+            ui.label(RichText::new(finding.id).monospace().strong().color(Color32::from_rgb(255, 200, 90)));
+            ui.label(&finding.explanation);
+            if let Some((index, label)) = lesson_link(state, finding.lesson, finding.step, lang)
+                && ui.link(format!("→ {label}")).clicked()
+            {
+                open_step = Some((index, finding.step - 1));
+            }
+        });
+    }
+    if let Some((lesson, step)) = open_step {
+        state.go_to_step(lesson, step);
+    }
+}

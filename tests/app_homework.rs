@@ -1,0 +1,123 @@
+//! Checking a homework in the app, as a student does: the shader's path typed into the path box
+//! and opened, its picture in the camera view and the findings in the homework panel; an edit
+//! saved in their editor checked again; in Chinese, the findings in Chinese.
+
+use egui_kittest::Harness;
+use egui_kittest::kittest::Queryable;
+use shadowlab::i18n::Lang;
+use shadowlab::ui::{Settings, ShadowlabApp, app_for_test};
+use std::path::Path;
+
+fn harness() -> Harness<'static, ShadowlabApp> {
+    let mut setup = egui_kittest::wgpu::default_wgpu_setup();
+    if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
+        setup = eframe::egui_wgpu::WgpuSetup::CreateNew(shadowlab::ui::configure_wgpu(create));
+    }
+    let settings = Settings { show_timings: false, ..Settings::default() };
+    Harness::builder()
+        .with_size([1600.0, 900.0])
+        .wgpu_setup(setup)
+        .build_eframe(move |cc| app_for_test(cc, settings.clone()))
+}
+
+/// Step frames until the homework's check of its current program is in.
+fn settle_check(h: &mut Harness<'_, ShadowlabApp>) {
+    let start = std::time::Instant::now();
+    loop {
+        h.step();
+        let checked = h.state().homework.as_ref().is_some_and(|hw| hw.checked());
+        if checked && !h.state().render_pending() {
+            h.run_steps(2);
+            return;
+        }
+        let problem = h.state().homework.as_ref().and_then(|hw| hw.gpu_error.clone());
+        assert!(problem.is_none(), "the check failed: {problem:?}");
+        assert!(start.elapsed() < std::time::Duration::from_secs(300), "the check did not come");
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+}
+
+fn finding_ids(h: &Harness<'_, ShadowlabApp>) -> Vec<&'static str> {
+    let homework = h.state().homework.as_ref().expect("a homework");
+    homework.outcome.as_ref().expect("a check").report.findings.iter().map(|f| f.id).collect()
+}
+
+fn example(name: &str) -> String {
+    std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/homework").join(name))
+        .expect("the example")
+}
+
+#[test]
+fn a_shader_typed_into_the_path_box_shows_its_findings_and_an_edit_is_checked_again() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let shader = scratch.path().join("phongFragment.glsl");
+    std::fs::write(&shader, example("phongFragment_nan_blocker.glsl")).expect("write");
+    let mut h = harness();
+    h.get_by_label("file").click();
+    h.run_steps(1);
+    h.get_by_label("file").type_text(&shader.display().to_string());
+    h.run_steps(1);
+    h.get_by_label("Open").click();
+    settle_check(&mut h);
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert_eq!(finding_ids(&h), ["nan_blocker_depth"]);
+    // The panel names the finding and links its lesson step.
+    h.get_by_label("nan_blocker_depth");
+    // The student fixes it in their editor; the app notices and checks again, camera kept.
+    let camera = h.state().scene.camera;
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    std::fs::write(&shader, example("phongFragment.glsl")).expect("write");
+    let start = std::time::Instant::now();
+    while h.state().homework.as_ref().is_some_and(|hw| hw.reloads == 0) {
+        h.step();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        assert!(start.elapsed() < std::time::Duration::from_secs(30), "the edit was not noticed");
+    }
+    settle_check(&mut h);
+    assert_eq!(finding_ids(&h), Vec::<&str>::new());
+    assert_eq!(h.state().scene.camera, camera);
+    h.get_by_label("No findings: your shadows match the ground truth.");
+    // Each picture the selector offers can be shown.
+    for label in ["difference", "ground truth", "your visibility", "shadowlab's", "your shader"] {
+        h.get_by_label(label).click();
+        h.run_steps(2);
+    }
+    assert_eq!(
+        h.state().homework.as_ref().map(|hw| hw.picture),
+        Some(shadowlab::app::homework::HomeworkPicture::Student)
+    );
+    // A finding's link opens the lesson step that teaches it.
+    std::fs::write(&shader, example("phongFragment_tiny_light.glsl")).expect("write");
+    let start = std::time::Instant::now();
+    while h.state().homework.as_ref().is_some_and(|hw| hw.reloads < 2) {
+        h.step();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        assert!(start.elapsed() < std::time::Duration::from_secs(30), "the edit was not noticed");
+    }
+    settle_check(&mut h);
+    assert_eq!(finding_ids(&h), ["no_penumbra"]);
+    let link =
+        h.get_all_by(|n| n.label().is_some_and(|l| l.starts_with("→ "))).next().expect("a lesson link");
+    link.click();
+    h.run_steps(2);
+    let (lesson, _, step) = h.state().current_step().expect("a lesson step");
+    assert_eq!((lesson.id.as_str(), step + 1), ("pcss", 5));
+}
+
+#[test]
+fn in_chinese_the_findings_are_explained_in_chinese() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let shader = scratch.path().join("phongFragment.glsl");
+    std::fs::write(&shader, example("phongFragment_light_size_world.glsl")).expect("write");
+    let mut h = harness();
+    h.state_mut().lang = Lang::Zh;
+    h.state_mut().open_any(&shader);
+    settle_check(&mut h);
+    let homework = h.state().homework.as_ref().expect("a homework");
+    let report = &homework.outcome.as_ref().expect("a check").report;
+    assert_eq!(report.findings.len(), 2);
+    for f in &report.findings {
+        assert!(f.explanation.chars().any(|c| ('\u{4e00}'..='\u{9fff}').contains(&c)), "{}", f.explanation);
+    }
+    h.get_by_label("你的作业");
+}
