@@ -2,7 +2,11 @@
 //! it), the last program that compiled (its picture stays while a newer edit does not compile),
 //! the current error on the student's own line, and the last check's outcome.
 
+use super::{AppError, AppState, Source};
 use crate::homework::{CheckOutcome, HomeworkError, HomeworkFiles, HomeworkProgram};
+use crate::scene::load_scene;
+use crate::shipped_path;
+use crate::views::View;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::SystemTime;
@@ -149,4 +153,50 @@ pub fn is_shader_file(path: &Path) -> bool {
     path.extension()
         .and_then(|e| e.to_str())
         .is_some_and(|e| ["glsl", "frag", "fs"].contains(&e.to_ascii_lowercase().as_str()))
+}
+
+impl AppState {
+    /// Open a student's homework shader (their `phongFragment.glsl`) on the homework scene: the
+    /// camera view shows their picture, the homework panel what the check found. A shader that
+    /// does not compile opens too, with its error, and shows once it does.
+    pub fn open_homework(&mut self, path: &Path) {
+        if !path.is_file() {
+            let detail = format!("{}: no such file", path.display());
+            self.error = Some(AppError::new("could not open the shader", detail));
+            return;
+        }
+        let scene_path = shipped_path(HOMEWORK_SCENE);
+        if self.source != Source::Scene(scene_path.clone()) || self.homework.is_none() {
+            match load_scene(&scene_path, &[]) {
+                Ok(scene) => {
+                    self.set_scene(scene, Source::Scene(scene_path));
+                    self.probe_at = None;
+                    self.overlays.clear();
+                    self.view = View::Final;
+                    self.ab = None;
+                    self.scenes_opened += 1;
+                }
+                Err(e) => {
+                    self.error = Some(AppError::new("could not open the scene", e));
+                    return;
+                }
+            }
+        }
+        let state = HomeworkState::open(path, None, None);
+        self.status = format!("{} {}", crate::i18n::tr(self.lang, "opened"), path.display());
+        self.settings.remember_file(path);
+        self.homework = Some(state);
+        self.error = None;
+        self.mark_dirty();
+    }
+
+    /// Read the homework's files again where one changed on disk (the student saved in their
+    /// editor); camera, probe and view stay. True where they were read again.
+    pub fn reload_homework_if_changed(&mut self) -> bool {
+        let changed = self.homework.as_mut().is_some_and(HomeworkState::reload_if_changed);
+        if changed {
+            self.mark_dirty();
+        }
+        changed
+    }
 }

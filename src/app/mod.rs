@@ -417,50 +417,6 @@ impl AppState {
         }
     }
 
-    /// Open a student's homework shader (their `phongFragment.glsl`) on the homework scene: the
-    /// camera view shows their picture, the homework panel what the check found. A shader that
-    /// does not compile opens too, with its error, and shows once it does.
-    pub fn open_homework(&mut self, path: &Path) {
-        if !path.is_file() {
-            let detail = format!("{}: no such file", path.display());
-            self.error = Some(AppError::new("could not open the shader", detail));
-            return;
-        }
-        let scene_path = shipped_path(homework::HOMEWORK_SCENE);
-        if self.source != Source::Scene(scene_path.clone()) || self.homework.is_none() {
-            match load_scene(&scene_path, &[]) {
-                Ok(scene) => {
-                    self.set_scene(scene, Source::Scene(scene_path));
-                    self.probe_at = None;
-                    self.overlays.clear();
-                    self.view = View::Final;
-                    self.ab = None;
-                    self.scenes_opened += 1;
-                }
-                Err(e) => {
-                    self.error = Some(AppError::new("could not open the scene", e));
-                    return;
-                }
-            }
-        }
-        let state = homework::HomeworkState::open(path, None, None);
-        self.status = format!("{} {}", crate::i18n::tr(self.lang, "opened"), path.display());
-        self.settings.remember_file(path);
-        self.homework = Some(state);
-        self.error = None;
-        self.mark_dirty();
-    }
-
-    /// Read the homework's files again where one changed on disk (the student saved in their
-    /// editor); camera, probe and view stay. True where they were read again.
-    pub fn reload_homework_if_changed(&mut self) -> bool {
-        let changed = self.homework.as_mut().is_some_and(homework::HomeworkState::reload_if_changed);
-        if changed {
-            self.mark_dirty();
-        }
-        changed
-    }
-
     /// The ground truth at the probe for `light` as it accumulates: (samples averaged, samples in
     /// all); None where it was not asked for.
     pub fn probe_reference_progress(&self, light: usize) -> Option<(u32, u32)> {

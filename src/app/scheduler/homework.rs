@@ -60,7 +60,7 @@ impl HomeworkRunner {
             lang: job.lang,
             camera: scene.camera,
             lights: scene.lights.clone(),
-            settings: scene.shadow.clone(),
+            settings: scene.shadow,
             objects: scene.objects.len(),
             size,
             time_bits: time_s.to_bits(),
