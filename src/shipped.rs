@@ -25,6 +25,7 @@ shipped_files![
     "lessons/04_pcss.toml",
     "lessons/05_multi_light.toml",
     "lessons/06_vsm.toml",
+    "lessons/07_homework.toml",
     "assets/README.md",
     "assets/meshes/bunny.obj",
     "assets/meshes/floor.mtl",

@@ -617,9 +617,13 @@ fn allowed_in_chinese(word: &str) -> bool {
         "Resize",
         "panel",
     ];
+    // A student's shader's function names (findBlocker, useShadowMap): code, named as written.
+    let camel_case = word.chars().next().is_some_and(|c| c.is_ascii_lowercase())
+        && word.chars().any(|c| c.is_ascii_uppercase());
     fixed.contains(&word)
         // Identifiers and file names: `light.0.width`, games202.toml, blocker-radius.
         || word.contains(['_', '-', '.']) || word.chars().any(|c| c.is_ascii_digit())
+        || camel_case
 }
 
 #[test]

@@ -27,12 +27,12 @@ fn check_text(text: &Text, what: &str) {
 #[test]
 fn every_lesson_loads_with_unique_ids_and_orders() {
     let lessons = shipped();
-    assert_eq!(lessons.len(), 6, "expected 6 lessons, found {}", lessons.len());
+    assert_eq!(lessons.len(), 7, "expected 7 lessons, found {}", lessons.len());
     let ids: HashSet<&str> = lessons.iter().map(|l| l.id.as_str()).collect();
     assert_eq!(ids.len(), lessons.len(), "lesson ids must be unique");
     let orders: Vec<u32> = lessons.iter().map(|l| l.order).collect();
-    assert_eq!(orders, vec![1, 2, 3, 4, 5, 6], "lessons must be ordered 1..6");
-    let expected = ["hard-shadows", "bias", "pcf", "pcss", "multi-light", "vsm"];
+    assert_eq!(orders, vec![1, 2, 3, 4, 5, 6, 7], "lessons must be ordered 1..7");
+    let expected = ["hard-shadows", "bias", "pcf", "pcss", "multi-light", "vsm", "homework"];
     let found: Vec<&str> = lessons.iter().map(|l| l.id.as_str()).collect();
     assert_eq!(found, expected);
 }

@@ -148,6 +148,51 @@ impl HomeworkState {
     }
 }
 
+/// What the student's functions returned at one pixel, beside shadowlab's side.
+#[derive(Clone, Debug, PartialEq)]
+pub struct HomeworkProbe {
+    pub pixel: (u32, u32),
+    /// The student's shader ran here (a surface is under the pixel).
+    pub covered: bool,
+    /// What each of `RECORDED_FUNCTIONS` returned last here; None where it did not run.
+    pub returned: [Option<f32>; 4],
+    /// The visibility `main` used, and which function gave it.
+    pub visibility: Option<(f32, &'static str)>,
+    pub shadowlab: f32,
+    pub ground_truth: f32,
+}
+
+impl HomeworkState {
+    /// The check's values at the probe (`at`, as the views place it), once a check is in.
+    pub fn probe(&self, at: super::ProbeAt) -> Option<HomeworkProbe> {
+        let outcome = self.outcome.as_ref()?;
+        let images = &outcome.student;
+        let (fx, fy) = match at {
+            super::ProbeAt::View(fx, fy) => (fx, fy),
+            super::ProbeAt::LessonFrame(x, y) => {
+                let (w, h) = crate::lessons::PROBE_FRAME;
+                ((x as f32 + 0.5) / w as f32, (y as f32 + 0.5) / h as f32)
+            }
+        };
+        let x = ((fx * images.width as f32) as u32).min(images.width.checked_sub(1)?);
+        let y = ((fy * images.height as f32) as u32).min(images.height.checked_sub(1)?);
+        let i = (y * images.width + x) as usize;
+        let ran = images.calls[i][0];
+        let returned = std::array::from_fn(|k| (ran & (1 << k) != 0).then_some(images.returned[i][k]));
+        let function = images.calls[i][1] as usize;
+        let visibility =
+            images.visibility(i).map(|v| (v, crate::homework::RECORDED_FUNCTIONS[function.clamp(1, 3) - 1]));
+        Some(HomeworkProbe {
+            pixel: (x, y),
+            covered: images.covered(i),
+            returned,
+            visibility,
+            shadowlab: outcome.shadowlab_visibility[i],
+            ground_truth: outcome.ground_truth[i],
+        })
+    }
+}
+
 /// A path that names a homework shader (`.glsl`, `.frag`, `.fs`).
 pub fn is_shader_file(path: &Path) -> bool {
     path.extension()

@@ -237,6 +237,14 @@ impl AppState {
                 }
                 self.settings.last_lesson = Some((id, step));
                 self.applied_try_this = None;
+                // A step that checks a homework opens it as a student's shader would be.
+                if let Some(hw) = &s.homework {
+                    self.homework = Some(homework::HomeworkState::open(
+                        &hw.fragment,
+                        hw.shadow_fragment.as_deref(),
+                        None,
+                    ));
+                }
                 // However the lesson was opened (list, picker, arrow keys), the start list is done.
                 self.show_lesson_list = false;
                 self.error = None;

@@ -55,4 +55,6 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
     ("penumbra pixels (ground truth)", "半影像素数（真实结果）"),
     ("No findings: your shadows match the ground truth.", "没有发现问题：你的阴影与真实结果一致。"),
     ("could not open the shader", "无法打开着色器"),
+    ("at the probe (pixel {}, {})", "探针处（像素 {}, {}）"),
+    ("not called", "未调用"),
 ];

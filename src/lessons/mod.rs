@@ -113,6 +113,17 @@ struct StepFile {
     light: usize,
     /// What the probe must find on the step's light, where the text claims it.
     expect: Option<live::Verdict>,
+    /// A homework shader (a `phongFragment.glsl`) the step checks beside its scene, and the light
+    /// pass's fragment shader it runs with (default: the framework's).
+    homework: Option<Spanned<String>>,
+    homework_shadow_shader: Option<Spanned<String>>,
+}
+
+/// A step's homework shader and the light pass's, where the step names its own.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StepHomework {
+    pub fragment: PathBuf,
+    pub shadow_fragment: Option<PathBuf>,
 }
 
 /// A "Try this" prompt: text naming the app's controls, and the change its Apply button makes
@@ -153,6 +164,8 @@ pub struct Step {
     pub light: usize,
     /// The verdict the text claims for the probe on `light` (the tests hold the probe to it).
     pub expect: Option<live::Verdict>,
+    /// The homework shader the step checks (lesson 7), opened as a student's would be.
+    pub homework: Option<StepHomework>,
 }
 
 impl Step {
@@ -334,6 +347,17 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
                 source
             }
         };
+        // A homework the step checks: its files must be there (named at the key's line).
+        let shader = |key: &Option<Spanned<String>>| -> Result<Option<PathBuf>, LessonError> {
+            let Some(key) = key else { return Ok(None) };
+            let path = base.join(key.get_ref());
+            crate::files::check_regular_file(&path)
+                .map_err(|e| error(key.span(), format!("homework shader {}: {e}", path.display())))?;
+            Ok(Some(path))
+        };
+        let homework_shadow = shader(&s.homework_shadow_shader)?;
+        let homework =
+            shader(&s.homework)?.map(|fragment| StepHomework { fragment, shadow_fragment: homework_shadow });
         let step = Step {
             title: s.title,
             text: s.text,
@@ -350,6 +374,7 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
             view,
             light: s.light,
             expect: s.expect,
+            homework,
         };
         // Live numbers: every `{probe.NAME}` and `{frame.NAME}` must name a value, in both
         // languages.

@@ -24,7 +24,8 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
     let lang = state.lang;
     let Some(homework) = state.homework.as_ref() else { return };
     ui.heading(RichText::new(tr(lang, "Your homework")).size(20.0));
-    ui.label(RichText::new(homework.fragment.display().to_string()).monospace().weak());
+    ui.label(RichText::new(homework.name()).monospace().strong())
+        .on_hover_text(homework.fragment.display().to_string());
     ui.label(
         RichText::new(fill(
             lang,
@@ -78,7 +79,8 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
         };
         row("functions that ran", if report.calls.is_empty() { "-".into() } else { report.calls.join(", ") });
         row("visibility from", report.visibility_function.unwrap_or("-").to_string());
-        row("compared with shadowlab's", report.compared_with.unwrap_or("-").to_string());
+        let technique = report.compared_with.and_then(crate::scene::Technique::from_name);
+        row("compared with shadowlab's", technique.map_or("-", |t| t.label(lang)).to_string());
         if let Some(f) = &report.figures {
             row("mean |difference| to shadowlab's", figure(f.mean_abs_difference));
             row("mean |difference| to the ground truth", figure(f.mean_abs_difference_to_ground_truth));
@@ -91,6 +93,33 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
             );
         }
     });
+    if let Some(probe) = state.probe_at.and_then(|at| state.homework.as_ref()?.probe(at)) {
+        ui.add_space(6.0);
+        ui.label(
+            RichText::new(fill(lang, "at the probe (pixel {}, {})", &[&probe.pixel.0, &probe.pixel.1]))
+                .strong(),
+        );
+        let value = |v: f32| if v.is_finite() { format!("{v:.4}") } else { format!("{v}") };
+        egui::Grid::new("homework probe").num_columns(2).striped(true).show(ui, |ui| {
+            for (name, returned) in crate::homework::RECORDED_FUNCTIONS.iter().zip(probe.returned) {
+                ui.label(RichText::new(*name).monospace());
+                ui.label(
+                    RichText::new(returned.map_or_else(|| tr(lang, "not called").to_string(), value))
+                        .monospace(),
+                );
+                ui.end_row();
+            }
+            ui.label(tr(lang, "your visibility"));
+            ui.label(RichText::new(probe.visibility.map_or("-".to_string(), |(v, _)| value(v))).monospace());
+            ui.end_row();
+            ui.label(tr(lang, "shadowlab's"));
+            ui.label(RichText::new(value(probe.shadowlab)).monospace());
+            ui.end_row();
+            ui.label(tr(lang, "ground truth"));
+            ui.label(RichText::new(value(probe.ground_truth)).monospace());
+            ui.end_row();
+        });
+    }
     ui.add_space(8.0);
     if report.findings.is_empty() {
         ui.label(

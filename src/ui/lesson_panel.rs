@@ -103,6 +103,13 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
             }
         });
     }
+    // A step that checks a homework: what the check found, right under the text.
+    if state.homework.is_some() {
+        ui.add_space(8.0);
+        ui.separator();
+        super::homework_panel::show(state, ui);
+        ui.separator();
+    }
     if !tries.is_empty() {
         ui.add_space(8.0);
         ui.strong(tr("Try this"));
