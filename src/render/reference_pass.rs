@@ -3,8 +3,9 @@
 
 use super::gpu_types::{DYNAMIC_STRIDE, ReferenceInfoGpu, ShadowViewGpu};
 use super::pipelines::ShadowPipelineKey;
+use super::readback::{self, Readback};
 use super::targets::ShadowMaps;
-use super::{RenderError, Renderer, readback, shadow_view_group};
+use super::{RenderError, Renderer, shadow_view_group};
 use crate::reference;
 use crate::scene::Scene;
 use crate::shadow::{LightGpu, ShadowParamsGpu};
@@ -150,16 +151,7 @@ impl Renderer {
         let scene_gpu =
             self.scene_gpu.as_ref().ok_or_else(|| RenderError::Usage("no scene uploaded".into()))?;
 
-        let readback = device.create_buffer(&wgpu::BufferDescriptor {
-            label: Some("reference readback"),
-            size: pixels * 4,
-            usage: wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            mapped_at_creation: false,
-        });
-        let hit: Vec<bool> = {
-            let analysis = self.read_analysis()?;
-            (0..analysis.position.len()).map(|i| analysis.hit(i)).collect()
-        };
+        let hit: Vec<bool> = self.hits_readback()?.wait(&device)?;
         // Sums hold weight 1/N per sample: after k of N samples the average is sum * N / k.
         let finish = |sums: &[f32], done: usize| -> Vec<f32> {
             let scale = samples.len() as f32 / done.max(1) as f32;
@@ -169,10 +161,10 @@ impl Renderer {
                 .collect()
         };
         let read_sums = |encoder: wgpu::CommandEncoder| -> Result<Vec<f32>, RenderError> {
-            let mut encoder = encoder;
-            encoder.copy_buffer_to_buffer(&accumulated, 0, &readback, 0, pixels * 4);
-            self.queue.submit([encoder.finish()]);
-            Ok(readback::f32s_from_bytes(&readback::read_buffer(&device, &readback, pixels * 4)?))
+            let sums = Readback::buffer(&device, &self.queue, encoder, &accumulated, pixels * 4, |mapped| {
+                Ok(mapped.rows().flat_map(readback::f32s).collect())
+            });
+            sums.wait(&device)
         };
 
         if let Some(tick) = self.reference_ticker.as_mut() {
