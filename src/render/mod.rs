@@ -23,6 +23,7 @@ pub use context::{GpuContext, describe_adapter, headless_adapter, optional_featu
 pub use frame::{Frame, FrameRequest};
 pub use pipelines::{COLOR_FORMAT, pipelines_built};
 pub use readback::{GpuWait, Readback};
+pub use reference_pass::{Batches, GroundTruth, GroundTruthProgress};
 pub use timing::PassTimes;
 
 use crate::scene::{MAX_LIGHTS, Scene, ShadowSettings, Technique};
