@@ -353,10 +353,7 @@ impl Renderer {
 
     /// Wait until the GPU has finished everything submitted.
     pub fn wait_idle(&self) -> Result<(), RenderError> {
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| RenderError::Readback(e.to_string()))
+        GpuWait::Block.poll(&self.device)
     }
 
     /// The camera view's colour texture (Rgba8Unorm holding sRGB-encoded bytes).

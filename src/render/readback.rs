@@ -4,6 +4,7 @@
 //! Every read-back goes through it; the blocking ones are `Readback::wait`.
 
 use super::RenderError;
+use std::cell::Cell;
 use std::sync::{Arc, OnceLock};
 
 /// How to ask after work submitted to the GPU.
@@ -16,14 +17,28 @@ pub enum GpuWait {
 }
 
 impl GpuWait {
-    /// Ask the device: finished work fires its callbacks (the mappings asked for) here.
+    /// Ask the device: finished work fires its callbacks (the mappings asked for) here. Every
+    /// wait for the GPU goes through this.
     pub fn poll(self, device: &wgpu::Device) -> Result<(), RenderError> {
         let poll = match self {
             GpuWait::Poll => wgpu::PollType::Poll,
-            GpuWait::Block => wgpu::PollType::wait_indefinitely(),
+            GpuWait::Block => {
+                BLOCKING_WAITS.set(BLOCKING_WAITS.get() + 1);
+                wgpu::PollType::wait_indefinitely()
+            }
         };
         device.poll(poll).map(|_| ()).map_err(|e| RenderError::Readback(e.to_string()))
     }
+}
+
+thread_local! {
+    static BLOCKING_WAITS: Cell<u64> = const { Cell::new(0) };
+}
+
+/// How many times this thread has blocked waiting for the GPU (`GpuWait::Block`): what must
+/// never block (a page's frames) is held to it.
+pub fn blocking_waits_on_this_thread() -> u64 {
+    BLOCKING_WAITS.get()
 }
 
 /// Which texels of a texture to read.
