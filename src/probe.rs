@@ -1,8 +1,9 @@
 //! The pixel probe: everything about the surface under one camera pixel, per light — from the
 //! GPU's analysis pass, the CPU twin (every intermediate value and tap) and the ground truth.
 
-use crate::render::{FrameRequest, RenderError, Renderer};
+use crate::render::{AnalysisPixel, Frame, FrameRequest, GpuWait, Readback, RenderError, Renderer};
 use crate::scene::{BiasMode, DepthStorage, Scene, Technique};
+use crate::shadow::DepthImage;
 use crate::shadow::{TapKind, Twin, kernels};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
@@ -121,7 +122,8 @@ pub struct ProbeReport {
     pub lights: Vec<LightProbe>,
 }
 
-/// Probe `pixel` of the frame described by `request` (which is rendered here, once per light).
+/// Probe `pixel` of the frame described by `request` (which is rendered here, once per light);
+/// with `with_reference`, each light's ground truth at the pixel too.
 pub fn probe(
     renderer: &mut Renderer,
     scene: &Scene,
@@ -129,143 +131,237 @@ pub fn probe(
     pixel: (u32, u32),
     with_reference: bool,
 ) -> Result<ProbeReport, RenderError> {
-    let (w, h) = request.size;
-    if pixel.0 >= w || pixel.1 >= h {
-        return Err(RenderError::Usage(format!(
-            "pixel {},{} is outside the {w}x{h} image",
-            pixel.0, pixel.1
-        )));
-    }
-    let mut report = ProbeReport {
-        pixel: [pixel.0, pixel.1],
-        size: [w, h],
-        time_s: request.time_s,
-        technique: scene.shadow.technique,
-        hit: false,
-        object: None,
-        world_position: None,
-        normal: None,
-        lights: Vec::new(),
-    };
-    for light_index in 0..scene.lights.len().max(1) {
-        // The analysis pass at this one pixel: what the GPU computed there, nothing else shaded.
-        let frame = FrameRequest {
-            selected_light: light_index,
-            final_color: false,
-            analysis: true,
-            only_pixel: Some(pixel),
-            ..*request
+    let mut probing = Probing::start(renderer, scene, request, pixel)?;
+    probing.with_reference = with_reference;
+    loop {
+        probing = match probing.advance(renderer, scene, GpuWait::Block)? {
+            Probed::Waiting(probing) => *probing,
+            Probed::Done(report) => return Ok(report),
         };
-        let rendered = renderer.render(scene, &frame)?;
-        let here = renderer.read_analysis_pixel(pixel.0, pixel.1)?;
+    }
+}
+
+/// A probe on its way, a light at a time: each light's frame (the analysis pass at the one pixel)
+/// is rendered and its read-backs submitted, and the twin works on them once they are there, so
+/// that a caller which cannot wait for the GPU returns between lights.
+pub struct Probing {
+    request: FrameRequest,
+    pixel: (u32, u32),
+    /// Work out each light's ground truth at the pixel too (waiting for the GPU).
+    with_reference: bool,
+    report: ProbeReport,
+    /// The light rendered last, its frame, and the pixel's analysis and its map on their way.
+    light: usize,
+    frame: Frame,
+    coming: LightReadbacks,
+}
+
+/// The probed pixel's analysis and the light's map (None without lights), on their way.
+type LightReadbacks = Readback<(AnalysisPixel, Option<DepthImage>)>;
+
+/// Where a probe is after `Probing::advance`.
+pub enum Probed {
+    /// Read-backs are on their way: advance again later.
+    Waiting(Box<Probing>),
+    Done(ProbeReport),
+}
+
+impl Probing {
+    /// Check the pixel, render the first light's frame and submit its read-backs.
+    pub fn start(
+        renderer: &mut Renderer,
+        scene: &Scene,
+        request: &FrameRequest,
+        pixel: (u32, u32),
+    ) -> Result<Self, RenderError> {
+        let (w, h) = request.size;
+        if pixel.0 >= w || pixel.1 >= h {
+            return Err(RenderError::Usage(format!(
+                "pixel {},{} is outside the {w}x{h} image",
+                pixel.0, pixel.1
+            )));
+        }
+        let report = ProbeReport {
+            pixel: [pixel.0, pixel.1],
+            size: [w, h],
+            time_s: request.time_s,
+            technique: scene.shadow.technique,
+            hit: false,
+            object: None,
+            world_position: None,
+            normal: None,
+            lights: Vec::new(),
+        };
+        let (frame, coming) = submit_light(renderer, scene, request, pixel, 0)?;
+        Ok(Self { request: *request, pixel, with_reference: false, report, light: 0, frame, coming })
+    }
+
+    /// Once the read-backs of the light rendered last are there (asking as `wait` says): its
+    /// numbers, then the next light's frame is rendered and its read-backs submitted.
+    pub fn advance(
+        self,
+        renderer: &mut Renderer,
+        scene: &Scene,
+        wait: GpuWait,
+    ) -> Result<Probed, RenderError> {
+        if !self.coming.arrived(renderer.device(), wait)? {
+            return Ok(Probed::Waiting(Box::new(self)));
+        }
+        let Self { request, pixel, with_reference, mut report, light, frame, coming } = self;
+        let (here, map) = coming.finish()?;
         if here.position[3] <= 0.5 {
-            return Ok(report);
+            return Ok(Probed::Done(report));
         }
-        let position = Vec3::from_slice(&here.position[..3]);
-        let normal = Vec3::from_slice(&here.normal[..3]);
         report.hit = true;
-        report.world_position = Some(position.to_array());
-        report.normal = Some(normal.to_array());
+        report.world_position = Some([here.position[0], here.position[1], here.position[2]]);
+        report.normal = Some([here.normal[0], here.normal[1], here.normal[2]]);
         report.object = scene.objects.get(here.normal[3] as usize).map(|o| o.name.clone());
-        if scene.lights.is_empty() {
-            break;
-        }
-        let map = renderer.read_shadow_map(light_index)?;
-        let light_gpu = rendered.lights[light_index];
-        let params = rendered.params;
-        let mut twin = Twin::new(&light_gpu, &params, &map);
-        twin.trace = Some(Vec::new());
-        let (coord, result) = twin.analysis_at(pixel, position, normal);
-        let penumbra = (result.search.found > 0).then_some(&result.penumbra);
-        let filter_radius_texels = crate::shadow::filter_radius_texels(&params, penumbra);
-        let map_size = light_gpu.map_size_texels;
-        let stored = twin.stored_depth_ndc(coord.uv);
-        let taps = twin.trace.take().unwrap_or_default();
-        let vssm = (scene.shadow.technique == Technique::Vssm && result.search.found > 0)
-            .then(|| vssm_probe(&mut twin, &coord, &result, pixel));
+        // Without lights there is only the surface to report.
+        let Some(map) = map else { return Ok(Probed::Done(report)) };
+        // The ground truth starts from the light's own frame, the last one rendered.
         let reference = if with_reference {
-            let i = (pixel.1 * w + pixel.0) as usize;
-            Some(renderer.render_reference(scene, light_index)?[i])
+            let i = (pixel.1 * request.size.0 + pixel.0) as usize;
+            Some(renderer.render_reference(scene, light)?[i])
         } else {
             None
         };
-        report.lights.push(LightProbe {
-            light: light_index,
-            shadow_map_uv: coord.uv.to_array(),
-            shadow_map_texel: [
-                (coord.uv.x * map_size).floor() as i32,
-                (coord.uv.y * map_size).floor() as i32,
-            ],
-            inside_light_frustum: !crate::shadow::outside_frustum(&coord),
-            n_dot_l: coord.n_dot_l,
-            receiver_depth_ndc: coord.depth_ndc,
-            receiver_depth_linear: coord.depth_linear,
-            stored_depth_ndc: stored,
-            stored_depth_linear: crate::shadow::depth_linear_from_ndc(&light_gpu, stored),
-            bias_ndc: twin.receiver_bias_ndc(&coord, filter_radius_texels),
-            vsm: match scene.shadow.technique {
-                Technique::Vsm => {
-                    Some(vsm_probe(&twin, &coord, (position, normal), scene.shadow.radius_texels))
-                }
-                Technique::Vssm if result.search.found > 0 => {
-                    Some(vsm_probe(&twin, &coord, (position, normal), result.penumbra.filter_radius_texels))
-                }
-                _ => None,
-            },
-            vssm,
-            stored_depth_rgba8_error_ndc: (scene.shadow.depth_storage == DepthStorage::Rgba8)
-                .then(|| stored - twin.stored_depth_float_ndc(coord.uv)),
-            receiver_plane_depth_per_texel_world: (scene.shadow.bias_mode == BiasMode::ReceiverPlane).then(
-                || {
-                    coord.depth_gradient.length()
-                        / map_size
-                        / crate::shadow::ndc_per_world(&light_gpu, coord.depth_linear)
-                },
-            ),
-            blocker_search_radius_uv: result.search.radius_texels / map_size,
-            blocker_search_radius_texels: result.search.radius_texels,
-            blockers_found: result.search.found,
-            // Only PCSS searches, with the search's own pattern.
-            blocker_samples: match scene.shadow.technique {
-                Technique::Pcss => kernels::filter_taps(
-                    crate::shadow::search_kernel(scene.shadow.pcf_kernel),
-                    scene.shadow.blocker_samples,
-                ),
-                _ => 0,
-            },
-            avg_blocker_depth_linear: (result.search.found > 0).then_some(result.search.avg_depth_linear),
-            penumbra_width_world: result.penumbra.width_world,
-            filter_radius_uv: filter_radius_texels / map_size,
-            filter_radius_texels,
-            // Taps the filter really took: PCSS skips it where no blocker was found.
-            filter_samples: match scene.shadow.technique {
-                Technique::None => 0,
-                Technique::Hard => 1,
-                // Four moments texels on each of two levels, interpolated.
-                Technique::Vsm => 8,
-                Technique::Vssm if result.search.found == 0 => 0,
-                Technique::Vssm => 8,
-                Technique::Pcss if result.search.found == 0 => 0,
-                _ => scene.shadow.effective_samples(),
-            },
-            visibility_gpu: here.shadow[0],
-            visibility_twin: result.visibility,
-            visibility_reference: reference,
-            taps: taps
-                .iter()
-                .map(|t| TapReport {
-                    kind: match t.kind {
-                        TapKind::BlockerSearch => "blocker-search",
-                        TapKind::Filter => "filter",
-                    }
-                    .into(),
-                    uv: t.uv.to_array(),
-                    value: t.value,
-                })
-                .collect(),
-        });
+        report.lights.push(light_probe(scene, pixel, (light, &frame), &here, &map, reference));
+        let next = light + 1;
+        if next >= scene.lights.len() {
+            return Ok(Probed::Done(report));
+        }
+        let (frame, coming) = submit_light(renderer, scene, &request, pixel, next)?;
+        Ok(Probed::Waiting(Box::new(Self {
+            request,
+            pixel,
+            with_reference,
+            report,
+            light: next,
+            frame,
+            coming,
+        })))
     }
-    Ok(report)
+}
+
+/// Render light `light`'s frame of the probe (the analysis pass at `pixel`, nothing else shaded)
+/// and submit the read-backs of the pixel's analysis and of the light's map.
+fn submit_light(
+    renderer: &mut Renderer,
+    scene: &Scene,
+    request: &FrameRequest,
+    pixel: (u32, u32),
+    light: usize,
+) -> Result<(Frame, LightReadbacks), RenderError> {
+    let frame = FrameRequest {
+        selected_light: light,
+        final_color: false,
+        analysis: true,
+        only_pixel: Some(pixel),
+        ..*request
+    };
+    let rendered = renderer.render(scene, &frame)?;
+    let here = renderer.analysis_pixel_readback(pixel.0, pixel.1)?;
+    let map = match scene.lights.is_empty() {
+        true => Readback::ready(None),
+        false => renderer.shadow_map_readback(light)?.map(|map| Ok(Some(map))),
+    };
+    Ok((rendered, here.zip(map)))
+}
+
+/// Everything about light `light` at the probed pixel, from its frame's lights and parameters,
+/// the pixel's analysis and the light's map.
+fn light_probe(
+    scene: &Scene,
+    pixel: (u32, u32),
+    (light_index, rendered): (usize, &Frame),
+    here: &AnalysisPixel,
+    map: &DepthImage,
+    reference: Option<f32>,
+) -> LightProbe {
+    let position = Vec3::from_slice(&here.position[..3]);
+    let normal = Vec3::from_slice(&here.normal[..3]);
+    let light_gpu = rendered.lights[light_index];
+    let params = rendered.params;
+    let mut twin = Twin::new(&light_gpu, &params, map);
+    twin.trace = Some(Vec::new());
+    let (coord, result) = twin.analysis_at(pixel, position, normal);
+    let penumbra = (result.search.found > 0).then_some(&result.penumbra);
+    let filter_radius_texels = crate::shadow::filter_radius_texels(&params, penumbra);
+    let map_size = light_gpu.map_size_texels;
+    let stored = twin.stored_depth_ndc(coord.uv);
+    let taps = twin.trace.take().unwrap_or_default();
+    let vssm = (scene.shadow.technique == Technique::Vssm && result.search.found > 0)
+        .then(|| vssm_probe(&mut twin, &coord, &result, pixel));
+    LightProbe {
+        light: light_index,
+        shadow_map_uv: coord.uv.to_array(),
+        shadow_map_texel: [(coord.uv.x * map_size).floor() as i32, (coord.uv.y * map_size).floor() as i32],
+        inside_light_frustum: !crate::shadow::outside_frustum(&coord),
+        n_dot_l: coord.n_dot_l,
+        receiver_depth_ndc: coord.depth_ndc,
+        receiver_depth_linear: coord.depth_linear,
+        stored_depth_ndc: stored,
+        stored_depth_linear: crate::shadow::depth_linear_from_ndc(&light_gpu, stored),
+        bias_ndc: twin.receiver_bias_ndc(&coord, filter_radius_texels),
+        vsm: match scene.shadow.technique {
+            Technique::Vsm => Some(vsm_probe(&twin, &coord, (position, normal), scene.shadow.radius_texels)),
+            Technique::Vssm if result.search.found > 0 => {
+                Some(vsm_probe(&twin, &coord, (position, normal), result.penumbra.filter_radius_texels))
+            }
+            _ => None,
+        },
+        vssm,
+        stored_depth_rgba8_error_ndc: (scene.shadow.depth_storage == DepthStorage::Rgba8)
+            .then(|| stored - twin.stored_depth_float_ndc(coord.uv)),
+        receiver_plane_depth_per_texel_world: (scene.shadow.bias_mode == BiasMode::ReceiverPlane).then(
+            || {
+                coord.depth_gradient.length()
+                    / map_size
+                    / crate::shadow::ndc_per_world(&light_gpu, coord.depth_linear)
+            },
+        ),
+        blocker_search_radius_uv: result.search.radius_texels / map_size,
+        blocker_search_radius_texels: result.search.radius_texels,
+        blockers_found: result.search.found,
+        // Only PCSS searches, with the search's own pattern.
+        blocker_samples: match scene.shadow.technique {
+            Technique::Pcss => kernels::filter_taps(
+                crate::shadow::search_kernel(scene.shadow.pcf_kernel),
+                scene.shadow.blocker_samples,
+            ),
+            _ => 0,
+        },
+        avg_blocker_depth_linear: (result.search.found > 0).then_some(result.search.avg_depth_linear),
+        penumbra_width_world: result.penumbra.width_world,
+        filter_radius_uv: filter_radius_texels / map_size,
+        filter_radius_texels,
+        // Taps the filter really took: PCSS skips it where no blocker was found.
+        filter_samples: match scene.shadow.technique {
+            Technique::None => 0,
+            Technique::Hard => 1,
+            // Four moments texels on each of two levels, interpolated.
+            Technique::Vsm => 8,
+            Technique::Vssm if result.search.found == 0 => 0,
+            Technique::Vssm => 8,
+            Technique::Pcss if result.search.found == 0 => 0,
+            _ => scene.shadow.effective_samples(),
+        },
+        visibility_gpu: here.shadow[0],
+        visibility_twin: result.visibility,
+        visibility_reference: reference,
+        taps: taps
+            .iter()
+            .map(|t| TapReport {
+                kind: match t.kind {
+                    TapKind::BlockerSearch => "blocker-search",
+                    TapKind::Filter => "filter",
+                }
+                .into(),
+                uv: t.uv.to_array(),
+                value: t.value,
+            })
+            .collect(),
+    }
 }
 
 fn vsm_probe(

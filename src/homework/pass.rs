@@ -400,20 +400,13 @@ impl HomeworkRenderer {
         if let Some(e) = pollster::block_on(scope.pop()) {
             return Err(HomeworkGpuError(format!("homework render: {}", one_line(&e))));
         }
+        // The three targets come back together (one wait for all).
         let read = |texture: &wgpu::Texture, bytes: u32| {
-            readback::read_texture(
-                &self.device,
-                &self.queue,
-                texture,
-                0,
-                (w, h),
-                bytes,
-                wgpu::TextureAspect::All,
-            )
+            let region = readback::Region::whole(0, (w, h), bytes, wgpu::TextureAspect::All);
+            readback::Readback::texture(&self.device, &self.queue, texture, region, |m| Ok(m.to_vec()))
         };
-        let color = read(&color, 8)?;
-        let returned = read(&returned, 16)?;
-        let calls = read(&calls, 4)?;
+        let ((color, returned), calls) =
+            read(&color, 8).zip(read(&returned, 16)).zip(read(&calls, 4)).wait(&self.device)?;
         let half = |b: &[u8]| half::f16::from_bits(u16::from_le_bytes([b[0], b[1]])).to_f32();
         Ok(HomeworkImages {
             width: w,

@@ -22,6 +22,8 @@ pub use analysis::{Analysis, AnalysisPixel, MomentsLevel};
 pub use context::{GpuContext, describe_adapter, headless_adapter, optional_features};
 pub use frame::{Frame, FrameRequest};
 pub use pipelines::{COLOR_FORMAT, pipelines_built};
+pub use readback::{GpuWait, Readback};
+pub use reference_pass::{Batches, GroundTruth, GroundTruthProgress};
 pub use timing::PassTimes;
 
 use crate::scene::{MAX_LIGHTS, Scene, ShadowSettings, Technique};
@@ -334,22 +336,24 @@ impl Renderer {
     /// GPU time of the shadow passes and the camera passes of the last frame rendered with
     /// `timestamps: true` (None where the adapter has no timestamp queries).
     pub fn last_pass_times(&self) -> Result<Option<PassTimes>, RenderError> {
+        self.pass_times_readback().wait(&self.device)
+    }
+
+    /// `last_pass_times`, on its way back.
+    pub fn pass_times_readback(&self) -> Readback<Option<PassTimes>> {
         let kept = self.last_frame.as_ref().is_some_and(|f| f.shadow_maps_kept && !f.moments_built);
         match &self.timer {
             // Kept maps cost nothing this frame (and wrote no timestamps).
-            Some(t) => t.read(&self.device, &self.queue).map(|times| {
-                Some(PassTimes { shadow_ms: if kept { 0.0 } else { times.shadow_ms }, ..times })
+            Some(t) => t.readback(&self.device, &self.queue).map(move |times| {
+                Ok(Some(PassTimes { shadow_ms: if kept { 0.0 } else { times.shadow_ms }, ..times }))
             }),
-            None => Ok(None),
+            None => Readback::ready(None),
         }
     }
 
     /// Wait until the GPU has finished everything submitted.
     pub fn wait_idle(&self) -> Result<(), RenderError> {
-        self.device
-            .poll(wgpu::PollType::wait_indefinitely())
-            .map(|_| ())
-            .map_err(|e| RenderError::Readback(e.to_string()))
+        GpuWait::Block.poll(&self.device)
     }
 
     /// The camera view's colour texture (Rgba8Unorm holding sRGB-encoded bytes).
@@ -363,23 +367,27 @@ impl Renderer {
 
     /// The camera view as sRGB RGBA8.
     pub fn read_color(&self) -> Result<image::RgbaImage, RenderError> {
+        self.color_readback()?.wait(&self.device)
+    }
+
+    /// `read_color`, on its way back.
+    pub fn color_readback(&self) -> Result<Readback<image::RgbaImage>, RenderError> {
         let targets = self.targets()?;
         let (w, h) = targets.size;
-        let bytes = readback::read_texture(
-            &self.device,
-            &self.queue,
-            &targets.color,
-            0,
-            targets.size,
-            4,
-            wgpu::TextureAspect::All,
-        )?;
-        image::RgbaImage::from_raw(w, h, bytes)
-            .ok_or_else(|| RenderError::Readback("colour buffer has the wrong size".into()))
+        let region = readback::Region::whole(0, targets.size, 4, wgpu::TextureAspect::All);
+        Ok(Readback::texture(&self.device, &self.queue, &targets.color, region, move |mapped| {
+            image::RgbaImage::from_raw(w, h, mapped.to_vec())
+                .ok_or_else(|| RenderError::Readback("colour buffer has the wrong size".into()))
+        }))
     }
 
     /// The shadow map of light `index` as rendered in the last frame.
     pub fn read_shadow_map(&self, index: usize) -> Result<DepthImage, RenderError> {
+        self.shadow_map_readback(index)?.wait(&self.device)
+    }
+
+    /// `read_shadow_map`, on its way back.
+    pub fn shadow_map_readback(&self, index: usize) -> Result<Readback<DepthImage>, RenderError> {
         let maps =
             self.shadow_maps.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
         let lights = self.last_frame.as_ref().map_or(&[][..], |f| &f.lights[..]);
@@ -390,23 +398,14 @@ impl Renderer {
         // copied whole (wgpu allows no partial depth copy), the corner is kept.
         let size = light.map_size_texels as u32;
         let atlas = maps.atlas_size;
-        let region = readback::Region {
-            layer: index as u32,
-            mip_level: 0,
-            origin: (0, 0),
-            size: (atlas, atlas),
-            bytes_per_texel: 4,
-            aspect: wgpu::TextureAspect::DepthOnly,
-        };
-        let mut depth_ndc = Vec::with_capacity((size * size) as usize);
-        let mut rows_left = size;
-        readback::for_each_row(&self.device, &self.queue, &maps.texture, region, |row| {
-            if rows_left > 0 {
-                rows_left -= 1;
+        let region = readback::Region::whole(index as u32, (atlas, atlas), 4, wgpu::TextureAspect::DepthOnly);
+        Ok(Readback::texture(&self.device, &self.queue, &maps.texture, region, move |mapped| {
+            let mut depth_ndc = Vec::with_capacity((size * size) as usize);
+            for row in mapped.rows().take(size as usize) {
                 depth_ndc.extend(readback::f32s(&row[..4 * size as usize]));
             }
-        })?;
-        Ok(DepthImage { size, depth_ndc })
+            Ok(DepthImage { size, depth_ndc })
+        }))
     }
 }
 

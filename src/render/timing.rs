@@ -1,7 +1,6 @@
 //! GPU timestamps around the shadow passes and the camera passes (for `shadowlab bench`).
 
-use super::RenderError;
-use super::readback::read_buffer;
+use super::readback::Readback;
 
 /// Milliseconds of GPU time.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -13,7 +12,6 @@ pub struct PassTimes {
 pub struct Timer {
     queries: wgpu::QuerySet,
     resolve: wgpu::Buffer,
-    readback: wgpu::Buffer,
     period_ns: f32,
 }
 
@@ -23,25 +21,18 @@ const BYTES: u64 = QUERY_COUNT as u64 * 8;
 
 impl Timer {
     pub fn new(device: &wgpu::Device, queue: &wgpu::Queue) -> Self {
-        let buffer = |label, usage| {
-            device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some(label),
-                size: BYTES,
-                usage,
-                mapped_at_creation: false,
-            })
-        };
         Self {
             queries: device.create_query_set(&wgpu::QuerySetDescriptor {
                 label: Some("pass times"),
                 ty: wgpu::QueryType::Timestamp,
                 count: QUERY_COUNT,
             }),
-            resolve: buffer("timestamps", wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC),
-            readback: buffer(
-                "timestamps readback",
-                wgpu::BufferUsages::COPY_DST | wgpu::BufferUsages::MAP_READ,
-            ),
+            resolve: device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("timestamps"),
+                size: BYTES,
+                usage: wgpu::BufferUsages::QUERY_RESOLVE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            }),
             period_ns: queue.get_timestamp_period(),
         }
     }
@@ -76,16 +67,22 @@ impl Timer {
 
     pub fn resolve(&self, encoder: &mut wgpu::CommandEncoder) {
         encoder.resolve_query_set(&self.queries, 0..QUERY_COUNT, &self.resolve, 0);
-        encoder.copy_buffer_to_buffer(&self.resolve, 0, &self.readback, 0, BYTES);
     }
 
-    pub fn read(&self, device: &wgpu::Device, _queue: &wgpu::Queue) -> Result<PassTimes, RenderError> {
-        let bytes = read_buffer(device, &self.readback, BYTES)?;
-        let ticks: Vec<u64> = bytes
-            .chunks_exact(8)
-            .map(|c| u64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
-            .collect();
-        let ms = |a: u64, b: u64| b.saturating_sub(a) as f64 * f64::from(self.period_ns) / 1e6;
-        Ok(PassTimes { shadow_ms: ms(ticks[0], ticks[1]), camera_ms: ms(ticks[2], ticks[3]) })
+    /// The times the last `resolve` recorded, on their way back (a buffer of their own each
+    /// time: one still being mapped cannot be written by the next frame).
+    pub fn readback(&self, device: &wgpu::Device, queue: &wgpu::Queue) -> Readback<PassTimes> {
+        let encoder =
+            device.create_command_encoder(&wgpu::CommandEncoderDescriptor { label: Some("timestamps") });
+        let period_ns = self.period_ns;
+        Readback::buffer(device, queue, encoder, &self.resolve, BYTES, move |mapped| {
+            let bytes = mapped.to_vec();
+            let ticks: Vec<u64> = bytes
+                .chunks_exact(8)
+                .map(|c| u64::from_le_bytes([c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7]]))
+                .collect();
+            let ms = |a: u64, b: u64| b.saturating_sub(a) as f64 * f64::from(period_ns) / 1e6;
+            Ok(PassTimes { shadow_ms: ms(ticks[0], ticks[1]), camera_ms: ms(ticks[2], ticks[3]) })
+        })
     }
 }

@@ -3,7 +3,7 @@
 //! ground truth. Each comes with a legend line. The app and the slides draw the same ones.
 
 use crate::i18n::{Lang, fill, tr};
-use crate::render::Analysis;
+use crate::render::{Analysis, Readback, RenderError, Renderer};
 use crate::shadow::project_to_light;
 use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
 use crate::views::heat_color;
@@ -203,17 +203,43 @@ pub fn light_bleeding(analysis: &Analysis, bleeding: &[f32]) -> Bleeding {
 /// The light bleeding of the renderer's last frame, for its analysis `analysis` of light
 /// `light`: None unless that frame used VSM or VSSM.
 pub fn bleeding_of_last_frame(
-    renderer: &crate::render::Renderer,
+    renderer: &Renderer,
     analysis: &Analysis,
     light: usize,
-) -> Result<Option<Vec<f32>>, crate::render::RenderError> {
-    let Some(frame) = renderer.last_frame() else { return Ok(None) };
+) -> Result<Option<Vec<f32>>, RenderError> {
+    let inputs = bleeding_inputs_readback(renderer, light)?.wait(renderer.device())?;
+    Ok(inputs.map(|inputs| inputs.bleeding(analysis)))
+}
+
+/// What the light bleeding of a frame needs beside its analysis: the light's map and the light
+/// and the shadow parameters as the GPU had them.
+pub struct BleedingInputs {
+    pub map: DepthImage,
+    pub light: LightGpu,
+    pub params: ShadowParamsGpu,
+}
+
+impl BleedingInputs {
+    /// The bleeding per pixel of `analysis` (`vsm_light_bleeding`).
+    pub fn bleeding(&self, analysis: &Analysis) -> Vec<f32> {
+        vsm_light_bleeding(analysis, &self.map, &self.light, &self.params)
+    }
+}
+
+/// The inputs of light `light`'s bleeding in the renderer's last frame, its map on its way
+/// back: None unless that frame used VSM or VSSM.
+pub fn bleeding_inputs_readback(
+    renderer: &Renderer,
+    light: usize,
+) -> Result<Readback<Option<BleedingInputs>>, RenderError> {
+    let Some(frame) = renderer.last_frame() else { return Ok(Readback::ready(None)) };
     let Some(light_gpu) = frame.lights.get(light).copied().filter(|_| frame.params.uses_moments()) else {
-        return Ok(None);
+        return Ok(Readback::ready(None));
     };
     let params = frame.params;
-    let map = renderer.read_shadow_map(light)?;
-    Ok(Some(vsm_light_bleeding(analysis, &map, &light_gpu, &params)))
+    Ok(renderer
+        .shadow_map_readback(light)?
+        .map(move |map| Ok(Some(BleedingInputs { map, light: light_gpu, params }))))
 }
 
 /// Light bleeding per pixel of `analysis` (`Twin::vsm_light_bleeding_at`): VSM's or VSSM's

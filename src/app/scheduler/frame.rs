@@ -1,23 +1,33 @@
 //! The scheduler for a page without threads: the renderers live on the caller's thread and each
-//! `poll` (once per UI frame) runs the next stage of the newest job: the image and maps in one
-//! frame, the probe and the overlays' analysis in the next, then the ground truths. A newer job
-//! replaces the one in progress between stages. Read-backs still wait for the GPU within a stage,
-//! and a ground truth is worked out whole in its stage (the web build will need both to resume
-//! across frames instead).
+//! `poll` (once per UI frame) runs one step of the newest job without waiting for the GPU. A step
+//! collects what has arrived of the work under way (or returns at once where it has not), sends
+//! what that finishes and submits the next piece: the image, then the maps one picture at a time,
+//! the overlays' analysis and the probe a light at a time, then the ground truths a batch at a
+//! time. What is submitted in a poll is collected on a later one (a browser maps a buffer only
+//! after the frame returns). A newer job replaces the one in progress between polls.
 
 use super::renderers::{Renderers, Stage, open};
 use super::{JobBook, RenderEvent, RenderJob, RenderScheduler};
+use crate::render::{GpuWait, RenderError};
 use std::time::{Duration, Instant};
 
 pub struct FrameDriven {
     /// None until the device opens (on the first poll), and where it failed.
     renderers: Option<Renderers>,
     adapter: Option<wgpu::Adapter>,
-    /// The job in progress: (id, job, the stage to run next, when it started).
-    current: Option<(u64, RenderJob, Stage, Instant)>,
+    current: Option<CurrentJob>,
     /// Events to hand out on the next poll (the device's readiness).
     pending: Vec<RenderEvent>,
     book: JobBook,
+}
+
+/// The job in progress.
+struct CurrentJob {
+    id: u64,
+    job: RenderJob,
+    /// The step to run next, with the work it has under way.
+    stage: Stage,
+    started: Instant,
 }
 
 impl FrameDriven {
@@ -31,14 +41,21 @@ impl FrameDriven {
             book: JobBook::default(),
         }
     }
+
+    /// Block until the GPU has done all the work submitted so far, so that the next poll finds
+    /// its read-backs there: for a caller with nothing else to do between polls (a test, a
+    /// command-line run), never for a page's frames.
+    pub fn wait_for_gpu(&self) -> Result<(), RenderError> {
+        self.renderers.as_ref().map_or(Ok(()), Renderers::wait_for_gpu)
+    }
 }
 
 impl RenderScheduler for FrameDriven {
     fn submit(&mut self, job: RenderJob) -> u64 {
         let id = self.book.latest + 1;
         self.book.submitted(id);
-        // Newest request wins: whatever stage the last one was at.
-        self.current = Some((id, job, Stage::Image, Instant::now()));
+        // Newest request wins, whatever step the last one was at (its work under way is dropped).
+        self.current = Some(CurrentJob { id, job, stage: Stage::Image, started: Instant::now() });
         id
     }
 
@@ -53,16 +70,22 @@ impl RenderScheduler for FrameDriven {
                 Err(e) => events.push(RenderEvent::Ready(Err(e.to_string()))),
             }
         }
-        let (Some(renderers), Some((id, job, stage, started))) =
-            (self.renderers.as_mut(), self.current.as_mut())
-        else {
+        let (Some(renderers), Some(current)) = (self.renderers.as_mut(), self.current.as_mut()) else {
             self.book.heard(&events);
             return events;
         };
-        // Nothing newer can arrive during a stage here: only between polls.
-        let next = renderers.run_stage(*id, job, *stage, *started, &mut |e| events.push(e), &|| false);
-        *stage = next;
-        if next == Stage::Done {
+        let stage = std::mem::replace(&mut current.stage, Stage::Done);
+        // Nothing newer can arrive during a step here: only between polls.
+        current.stage = renderers.run_stage(
+            current.id,
+            &current.job,
+            stage,
+            current.started,
+            &mut |e| events.push(e),
+            &|| false,
+            GpuWait::Poll,
+        );
+        if current.stage.is_done() {
             self.current = None;
         }
         self.book.heard(&events);

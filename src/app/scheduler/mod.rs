@@ -1,8 +1,11 @@
 //! Render scheduling: the app asks for frames (`RenderJob`s) and hears back (`RenderEvent`s)
 //! through a [`RenderScheduler`], which knows nothing of egui. Two of them: [`WorkerThread`]
 //! renders on a thread and device of its own, so that a slow render never holds up the window
-//! (native); [`FrameDriven`] renders on the caller's thread a stage at a time, from the UI's frame
-//! callback (what a browser, which has no threads to give, needs; tested natively too).
+//! (native); [`FrameDriven`] renders on the caller's thread a step at a time, from the UI's frame
+//! callback, and never waits for the GPU (what a browser, which has no threads to give and maps a
+//! buffer only between frames, needs; tested natively too). Both run the same stages
+//! (`renderers.rs`): each submits its work and collects its read-backs on a later call, waiting
+//! for them on the thread, asking after them in the frames.
 //!
 //! Newest request wins: requests still waiting when a render ends are dropped, all but the last;
 //! a ground truth in progress stops at its next batch when a newer request arrives, and reports
@@ -10,10 +13,14 @@
 //! the probe comes first (the probe panel and the lesson text quote it), then the view's. Both are
 //! kept: a job whose ground truth depends on nothing that changed gets it again at once.
 
+mod details;
 mod frame;
 mod homework;
+mod keys;
+mod maps;
 mod renderers;
 mod thread;
+mod truths;
 
 pub use frame::FrameDriven;
 pub use homework::HomeworkJob;

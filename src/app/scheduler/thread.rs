@@ -4,6 +4,7 @@
 
 use super::renderers::{Stage, open};
 use super::{JobBook, RenderEvent, RenderJob, RenderScheduler};
+use crate::render::GpuWait;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc;
@@ -64,8 +65,10 @@ impl WorkerThread {
                 let (id, job) = next;
                 let cancelled = || latest_in_thread.load(Ordering::Acquire) > id;
                 let (started, mut stage) = (Instant::now(), Stage::Image);
-                while stage != Stage::Done {
-                    stage = renderers.run_stage(id, &job, stage, started, &mut send, &cancelled);
+                // A thread may wait: the call after a submission waits for its read-backs.
+                while !stage.is_done() {
+                    stage =
+                        renderers.run_stage(id, &job, stage, started, &mut send, &cancelled, GpuWait::Block);
                 }
             }
         });

@@ -1,0 +1,142 @@
+//! The maps stage: the selected light's map picture (unless it is the one sent last) and the
+//! thumbnails, read back one after another (a depth map of 8192 texels a side is 256 MB).
+
+use super::keys::MapKey;
+use super::renderers::{Renderers, Stage};
+use super::{MapView, Maps, RenderEvent, RenderJob};
+use crate::render::{GpuWait, Readback, RenderError};
+use crate::shadow::{DepthImage, LightGpu};
+use crate::views;
+use std::collections::VecDeque;
+
+/// While dragging the map picture is built at this size at most.
+const MAP_PREVIEW_TEXELS: u32 = 512;
+/// Texels per side of a light's thumbnail.
+const THUMBNAIL_TEXELS: u32 = 96;
+
+/// A picture made of one light's map.
+#[derive(Clone, Copy)]
+enum Picture {
+    /// The selected light's, at most this many texels a side.
+    Selected {
+        texels: u32,
+    },
+    Thumbnail,
+}
+
+/// A picture made, once its map is back.
+enum Made {
+    Selected(MapView),
+    Thumbnail(image::RgbaImage),
+}
+
+/// The maps stage under way.
+pub(super) struct MapsComing {
+    /// What is sent once every picture is there.
+    maps: Maps,
+    /// The pictures still to read: the light and which picture.
+    to_read: VecDeque<(usize, LightGpu, Picture)>,
+    /// The one being read.
+    reading: Option<Readback<Made>>,
+    /// What the selected light's picture is drawn from: the views have it once it is sent.
+    map_key: Option<MapKey>,
+}
+
+impl Renderers {
+    /// The pictures the frame `submit_image` just rendered needs: the selected light's map
+    /// (unless it is the one sent last) and the thumbnails.
+    pub(super) fn maps_to_read(&mut self, id: u64, job: &RenderJob) -> MapsComing {
+        let lights = self.a.last_frame().map(|f| f.lights.clone()).unwrap_or_default();
+        let texels = if job.preview { MAP_PREVIEW_TEXELS.min(job.map_texels) } else { job.map_texels };
+        let selected = job.request.selected_light;
+        let map_key = lights.get(selected).map(|l| MapKey::new(&job.scene, l, job.request.time_s, texels));
+        let map_unchanged = map_key.is_some() && map_key == self.last_map;
+        let mut to_read = VecDeque::new();
+        if let Some(light) = lights.get(selected).filter(|_| !map_unchanged) {
+            to_read.push_back((selected, *light, Picture::Selected { texels }));
+        }
+        if job.thumbnails && lights.len() > 1 {
+            to_read.extend(lights.iter().enumerate().map(|(i, light)| (i, *light, Picture::Thumbnail)));
+        }
+        let maps = Maps { job: id, map: None, thumbnails: Vec::new() };
+        MapsComing { maps, to_read, reading: None, map_key }
+    }
+
+    /// Take the picture being read once it is there, then submit the next read-back; once all
+    /// are there, send the maps.
+    pub(super) fn maps_step(
+        &mut self,
+        job: &RenderJob,
+        mut coming: MapsComing,
+        send: &mut dyn FnMut(RenderEvent),
+        wait: GpuWait,
+    ) -> Result<Stage, RenderError> {
+        if let Some(reading) = coming.reading.take() {
+            if !reading.arrived(&self.device, wait)? {
+                coming.reading = Some(reading);
+                return Ok(Stage::Maps(Box::new(coming)));
+            }
+            match reading.finish()? {
+                Made::Selected(view) => coming.maps.map = Some(view),
+                Made::Thumbnail(image) => coming.maps.thumbnails.push(image),
+            }
+        }
+        if let Some((index, light, picture)) = coming.to_read.pop_front() {
+            let made = self.a.shadow_map_readback(index)?.map(move |depth| Ok(make(depth, light, picture)));
+            coming.reading = Some(made);
+            return Ok(Stage::Maps(Box::new(coming)));
+        }
+        // Not before: a newer job may replace this one before its maps are sent.
+        self.last_map = coming.map_key;
+        send(RenderEvent::Maps(Box::new(coming.maps)));
+        Ok(if job.wants_details() { Stage::Details } else { job.after_probe() })
+    }
+}
+
+fn make(depth: DepthImage, light: LightGpu, picture: Picture) -> Made {
+    match picture {
+        Picture::Selected { texels } => {
+            let (image, legend) = views::shadow_map_image(&subsample(&depth, texels), &light);
+            Made::Selected(MapView { depth, light, image, range: (legend.min, legend.max) })
+        }
+        Picture::Thumbnail => {
+            let (image, _) = views::shadow_map_image(&subsample(&depth, 4 * THUMBNAIL_TEXELS), &light);
+            Made::Thumbnail(image::imageops::resize(
+                &image,
+                THUMBNAIL_TEXELS,
+                THUMBNAIL_TEXELS,
+                image::imageops::FilterType::Triangle,
+            ))
+        }
+    }
+}
+
+/// Every `step`-th texel of a map, so that its picture is at most `limit` texels a side.
+fn subsample(map: &DepthImage, limit: u32) -> DepthImage {
+    let step = map.size.div_ceil(limit.max(1)).max(1);
+    if step == 1 {
+        return map.clone();
+    }
+    let size = map.size / step;
+    let mut depth_ndc = Vec::with_capacity((size * size) as usize);
+    for y in 0..size {
+        let row = (y * step * map.size) as usize;
+        depth_ndc.extend((0..size).map(|x| map.depth_ndc[row + (x * step) as usize]));
+    }
+    DepthImage { size, depth_ndc }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn subsampling_keeps_every_nth_texel() {
+        let map = DepthImage { size: 8, depth_ndc: (0..64).map(|i| i as f32).collect() };
+        let small = subsample(&map, 4);
+        assert_eq!(small.size, 4);
+        assert_eq!(small.depth_ndc[..4], [0.0, 2.0, 4.0, 6.0]);
+        assert_eq!(small.depth_ndc[4], 16.0);
+        assert_eq!(subsample(&map, 8).depth_ndc, map.depth_ndc);
+    }
+}
