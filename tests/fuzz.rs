@@ -40,6 +40,9 @@ struct Budget {
     mtls: u32,
     textures: u32,
     cli: u32,
+    /// Homework shaders through the rewrite and naga, and through `shadowlab homework`.
+    shaders: u32,
+    cli_homework: u32,
     /// Mixed into every target's seed: the long run explores other cases than the default one.
     seed: u64,
 }
@@ -51,6 +54,8 @@ const DEFAULT: Budget = Budget {
     mtls: 3000,
     textures: 6000,
     cli: 70,
+    shaders: 3000,
+    cli_homework: 8,
     seed: 0x5EED_0001,
 };
 const LONG: Budget = Budget {
@@ -60,6 +65,8 @@ const LONG: Budget = Budget {
     mtls: 18_000,
     textures: 36_000,
     cli: 420,
+    shaders: 18_000,
+    cli_homework: 48,
     seed: 0x5EED_0002,
 };
 
@@ -1775,6 +1782,197 @@ fn cli_render() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Homework shaders: the shipped examples and the test samples, mutated byte by byte and line by
+// line, rewritten and translated (every error one line naming the student's file), and a few run
+// whole by `shadowlab homework`.
+
+/// A line-level or number-level edit of a shader.
+#[derive(Clone, Debug)]
+enum ShaderOp {
+    Byte(ByteOp),
+    DeleteLine(Index),
+    DuplicateLine(Index),
+    SwapLines(Index, Index),
+    /// Replace a number in the text by another.
+    Number(Index, &'static str),
+}
+
+const SHADER_NUMBERS: [&str; 12] =
+    ["0", "0.0", "-1.0", "1e-9", "1e30", "100000", "4096", "2", "0.5", "-0.0", "255.0", "65536"];
+
+fn shader_op() -> impl Strategy<Value = ShaderOp> {
+    prop_oneof![
+        3 => byte_op().prop_map(ShaderOp::Byte),
+        1 => any::<Index>().prop_map(ShaderOp::DeleteLine),
+        1 => any::<Index>().prop_map(ShaderOp::DuplicateLine),
+        1 => (any::<Index>(), any::<Index>()).prop_map(|(a, b)| ShaderOp::SwapLines(a, b)),
+        3 => (any::<Index>(), select(&SHADER_NUMBERS[..])).prop_map(|(at, n)| ShaderOp::Number(at, n)),
+    ]
+}
+
+/// The byte ranges of the number literals in `text`.
+fn numbers(text: &str) -> Vec<Range<usize>> {
+    let bytes = text.as_bytes();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < bytes.len() {
+        let starts = bytes[i].is_ascii_digit()
+            && (i == 0 || !(bytes[i - 1].is_ascii_alphanumeric() || bytes[i - 1] == b'_'));
+        if starts {
+            let start = i;
+            while i < bytes.len() && (bytes[i].is_ascii_digit() || bytes[i] == b'.') {
+                i += 1;
+            }
+            out.push(start..i);
+        } else {
+            i += 1;
+        }
+    }
+    out
+}
+
+fn mutate_shader(seed: &[u8], ops: &[ShaderOp], donors: &[Vec<u8>]) -> Vec<u8> {
+    let mut bytes = seed.to_vec();
+    for op in ops {
+        let text = String::from_utf8_lossy(&bytes).into_owned();
+        let mut lines: Vec<&str> = text.split('\n').collect();
+        let n = lines.len();
+        match op {
+            ShaderOp::Byte(op) => apply_byte_op(&mut bytes, op, donors),
+            ShaderOp::DeleteLine(at) => {
+                lines.remove(at.index(n));
+                bytes = lines.join("\n").into_bytes();
+            }
+            ShaderOp::DuplicateLine(at) => {
+                let at = at.index(n);
+                lines.insert(at, lines[at]);
+                bytes = lines.join("\n").into_bytes();
+            }
+            ShaderOp::SwapLines(a, b) => {
+                lines.swap(a.index(n), b.index(n));
+                bytes = lines.join("\n").into_bytes();
+            }
+            ShaderOp::Number(at, number) => {
+                let found = numbers(&text);
+                if !found.is_empty() {
+                    let range = found[at.index(found.len())].clone();
+                    let mut edited = text.clone();
+                    edited.replace_range(range, number);
+                    bytes = edited.into_bytes();
+                }
+            }
+        }
+    }
+    bytes
+}
+
+fn shader_seeds() -> Vec<Vec<u8>> {
+    let mut seeds = Vec::new();
+    for dir in ["assets/homework", "tests/data/homework"] {
+        let mut paths: Vec<PathBuf> = std::fs::read_dir(repo_path(dir))
+            .expect("a shader folder")
+            .flatten()
+            .map(|e| e.path())
+            .filter(|p| p.file_name().is_some_and(|n| n.to_string_lossy().starts_with("phongFragment")))
+            .collect();
+        paths.sort();
+        seeds.extend(paths.iter().map(|p| std::fs::read(p).expect("a shader")));
+    }
+    seeds
+}
+
+fn fuzz_shaders(budget: Budget) {
+    use shadowlab::homework::{HomeworkFiles, HomeworkProgram, ShaderSource};
+    let seeds = shader_seeds();
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let path = dir.path().join("fuzz.glsl");
+    let strategy = (any::<Index>(), prop::collection::vec(shader_op(), 1..=3));
+    fuzz("shaders", budget.shaders, budget, strategy, |(seed, ops), tally| {
+        let seed: &Vec<u8> = seed.get(&seeds);
+        let bytes = mutate_shader(seed, &ops, &seeds);
+        std::fs::write(&path, &bytes).map_err(|e| fail(format!("write: {e}")))?;
+        let read_from = path.clone();
+        let result = guarded(tally, &bytes, move || {
+            let source = ShaderSource::read(&read_from)?;
+            HomeworkProgram::translate(HomeworkFiles::with_framework(source))
+                .map(|p| p.camera.fragment.wgsl.len())
+        })?;
+        match result {
+            Ok(_) => tally.count(true),
+            Err(e) => {
+                tally.count(false);
+                let message = e.to_string();
+                // An error names the student's file (a framework stage's own errors would be ours).
+                if !message.starts_with("fuzz.glsl") && !message.contains("fuzz.glsl:") {
+                    return Err(fail(format!(
+                        "the error does not name the file: {message}\n--- input\n{}",
+                        shown(&bytes)
+                    )));
+                }
+                check_message(&message, &["fuzz.glsl"], &bytes)?;
+            }
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn homework_shaders() {
+    fuzz_shaders(DEFAULT);
+}
+
+fn fuzz_cli_homework(budget: Budget) {
+    let seeds: Vec<Vec<u8>> = shader_seeds().into_iter().take(2).collect();
+    let dir = tempfile::tempdir().expect("a scratch folder");
+    let count = AtomicUsize::new(0);
+    // Numbers replaced, mostly: most cases compile and run.
+    let op = prop_oneof![
+        5 => (any::<Index>(), select(&SHADER_NUMBERS[..])).prop_map(|(at, n)| ShaderOp::Number(at, n)),
+        1 => any::<Index>().prop_map(ShaderOp::DeleteLine),
+    ];
+    let strategy = (any::<Index>(), prop::collection::vec(op, 1..=2));
+    fuzz("cli homework", budget.cli_homework, budget, strategy, |(seed, ops), tally| {
+        let seed: &Vec<u8> = seed.get(&seeds);
+        let bytes = mutate_shader(seed, &ops, &seeds);
+        let case = count.fetch_add(1, Ordering::Relaxed);
+        let shader = dir.path().join(format!("fuzz-{case}.glsl"));
+        std::fs::write(&shader, &bytes).map_err(|e| fail(format!("write: {e}")))?;
+        let out = dir.path().join(format!("out-{case}"));
+        let mut command = common::shadowlab_command();
+        command.args(["homework", "--size", "64x36"]).arg(&shader).arg("--out").arg(&out);
+        let run = run_bounded(&mut command, PROCESS_LIMIT)?;
+        let context = || format!("{run}\n--- shader\n{}", shown(&bytes));
+        match run.code {
+            Some(0) => {
+                tally.count(true);
+                if !out.join("report.json").is_file() || !out.join("student.png").is_file() {
+                    return Err(fail(format!("a check writes report.json and the pictures\n{}", context())));
+                }
+            }
+            Some(2) => {
+                tally.count(false);
+                if run.stderr.lines().count() != 1 || !run.stderr.starts_with("shadowlab: ") {
+                    return Err(fail(format!(
+                        "a refusal is one `shadowlab: ` line on stderr\n{}",
+                        context()
+                    )));
+                }
+                if out.join("student.png").exists() {
+                    return Err(fail(format!("a shader that did not compile got a picture\n{}", context())));
+                }
+            }
+            _ => return Err(fail(format!("exit code must be 0 or 2\n{}", context()))),
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn cli_homework() {
+    fuzz_cli_homework(DEFAULT);
+}
+
+// ---------------------------------------------------------------------------------------------
 // The long run.
 
 #[test]
@@ -1811,4 +2009,16 @@ fn long_run_textures() {
 #[ignore = "long run: cargo test --release --test fuzz -- --ignored"]
 fn long_run_cli_render() {
     fuzz_cli(LONG);
+}
+
+#[test]
+#[ignore = "long run: cargo test --release --test fuzz -- --ignored"]
+fn long_run_homework_shaders() {
+    fuzz_shaders(LONG);
+}
+
+#[test]
+#[ignore = "long run: cargo test --release --test fuzz -- --ignored"]
+fn long_run_cli_homework() {
+    fuzz_cli_homework(LONG);
 }

@@ -153,3 +153,74 @@ fn bad_input_is_one_line_exit_2_and_nothing_written() {
         assert!(!out.exists(), "{args:?}: wrote {}", out.display());
     }
 }
+
+/// Bad shaders are bad input: each a clear one-line error on the student's own line (exit 2, no
+/// picture), or, for an endless loop, a check that ends (wgpu bounds every loop).
+#[test]
+fn bad_shaders_are_one_line_errors_on_their_line_and_an_endless_loop_ends() {
+    let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
+    let line_of = |text: &str, needle: &str| text.lines().position(|l| l.contains(needle)).expect(needle) + 1;
+    let deep = format!("  float lit = {}0.0{};", "(".repeat(500), ")".repeat(500));
+    let cases: Vec<(&str, String, &str, &str)> = vec![
+        (
+            "syntax error",
+            source.replacen("float depthSum = 0.0;", "float depthSum = 0.0 +;", 1),
+            "0.0 +;",
+            "",
+        ),
+        (
+            "unknown function",
+            source.replacen("blinnPhong();", "blinnPhongg();", 1),
+            "blinnPhongg",
+            "blinnPhongg",
+        ),
+        ("no main", source.replacen("void main(void) {", "void notMain(void) {", 1), "", "main"),
+        (
+            "a sample count of 100000",
+            source.replacen("#define NUM_SAMPLES 32", "#define NUM_SAMPLES 100000", 1),
+            "vec2 poissonDisk[NUM_SAMPLES];",
+            "100000",
+        ),
+        (
+            "NaN everywhere",
+            source.replacen("vec4(phongColor * visibility, 1.0)", "vec4(phongColor * (0.0 / 0.0), 1.0)", 1),
+            "(0.0 / 0.0)",
+            "NaN",
+        ),
+        ("nested too deep", source.replacen("  float lit = 0.0;", &deep, 1), "float lit = ((", "nested"),
+    ];
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    for (what, text, at, says) in cases {
+        let shader = scratch.path().join("phongFragment.glsl");
+        std::fs::write(&shader, &text).expect("write");
+        let out = scratch.path().join(what.replace(' ', "_"));
+        let run = shadowlab(&[
+            "homework",
+            &shader.display().to_string(),
+            "--size",
+            "64x36",
+            "--out",
+            &out.display().to_string(),
+        ]);
+        assert_eq!(run.code, Some(2), "{what}: {}", run.stderr);
+        assert_eq!(run.stderr.lines().count(), 1, "{what}: {}", run.stderr);
+        let line = if at.is_empty() { text.lines().count() } else { line_of(&text, at) };
+        assert!(
+            run.stderr.starts_with(&format!("shadowlab: phongFragment.glsl:{line}: ")),
+            "{what}: {}",
+            run.stderr
+        );
+        assert!(run.stderr.contains(says), "{what}: {}", run.stderr);
+        assert!(!out.join("student.png").exists(), "{what}");
+    }
+    // An endless loop in findBlocker: the check still ends and reports.
+    let endless = source.replacen(
+        "  float depthSum = 0.0;",
+        "  float depthSum = 0.0;\n  for (int k = 0; k >= 0; k += 0) { depthSum += 1.0; }",
+        1,
+    );
+    let shader = scratch.path().join("phongFragment.glsl");
+    std::fs::write(&shader, endless).expect("write");
+    let report = check(&shader.display().to_string(), &[], &scratch.path().join("endless"));
+    assert_eq!(report["compiled"], true);
+}

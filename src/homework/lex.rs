@@ -149,3 +149,38 @@ pub(super) fn matching_open(source: &str, toks: &[Token], close: usize) -> usize
     }
     0
 }
+
+/// Most bytes a shader may have (a homework shader is 5 to 20 KB).
+pub const MAX_SHADER_BYTES: usize = 1 << 20;
+/// Most brackets open at once, and most tokens in one statement: a homework shader stays under
+/// 20 and 200; naga's parser and validator recurse on both, and a machine-made shader beyond
+/// them could overflow a stack.
+pub const MAX_NESTING: usize = 128;
+pub const MAX_STATEMENT_TOKENS: usize = 4096;
+
+/// A shader too big for the rewrite and naga, refused on the line where it goes too far.
+pub(super) fn check_size(source: &str, toks: &[Token]) -> Result<(), super::HomeworkError> {
+    if source.len() > MAX_SHADER_BYTES {
+        let message = format!("{} bytes: a shader may have {MAX_SHADER_BYTES} at most", source.len());
+        return Err(super::HomeworkError::Rewrite { line: 1, message });
+    }
+    let (mut depth, mut statement) = (0usize, 0usize);
+    for t in toks {
+        let word = &source[t.start..t.end];
+        match word {
+            "(" | "[" | "{" => depth += 1,
+            ")" | "]" | "}" => depth = depth.saturating_sub(1),
+            _ => {}
+        }
+        statement = if matches!(word, ";" | "{" | "}") { 0 } else { statement + 1 };
+        if depth > MAX_NESTING {
+            let message = format!("brackets nested more than {MAX_NESTING} deep");
+            return Err(super::HomeworkError::Rewrite { line: t.line, message });
+        }
+        if statement > MAX_STATEMENT_TOKENS {
+            let message = format!("a statement of more than {MAX_STATEMENT_TOKENS} tokens");
+            return Err(super::HomeworkError::Rewrite { line: t.line, message });
+        }
+    }
+    Ok(())
+}

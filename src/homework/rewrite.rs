@@ -26,7 +26,7 @@ use super::interface::{
     Binding, BindingKind, CLIP_Y_SIGN, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface,
     STUDENT_BLOCK_BINDING, attribute_location, declarations, is_precision,
 };
-use super::lex::{Kind, Token, matching, matching_open, tokens};
+use super::lex::{Kind, Token, check_size, matching, matching_open, tokens};
 use super::{HomeworkError, Stage};
 
 /// The name the rewrite gives WebGL's `gl_FragColor`, declared at location 0 in the prelude.
@@ -104,6 +104,7 @@ struct Body {
 /// documentation for what changes and why the lines stay where they were).
 pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritten, HomeworkError> {
     let toks = tokens(source);
+    check_size(source, &toks)?;
     let text = |i: usize| &source[toks[i].start..toks[i].end];
     let mut used = vec![false; toks.len()];
     let mut edits = Edits::default();

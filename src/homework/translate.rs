@@ -20,7 +20,27 @@ pub fn translate(
     layout: &Interface,
 ) -> Result<Translated, HomeworkError> {
     let rewritten = rewrite(source, stage, layout).map_err(|e| e.in_file(file))?;
-    translate_rewritten(file, rewritten)
+    with_deep_stack(file, || translate_rewritten(file, rewritten))
+}
+
+/// Stack for naga's work: its parser, validator and writer recurse on nested expressions.
+const NAGA_STACK_BYTES: usize = 256 << 20;
+
+/// Run `work` on a thread with a stack of `NAGA_STACK_BYTES` (a shader nested within the
+/// rewrite's limits still recurses deep in naga), or here where threads cannot be had.
+fn with_deep_stack<T: Send>(
+    file: &str,
+    work: impl FnOnce() -> Result<T, HomeworkError> + Send,
+) -> Result<T, HomeworkError> {
+    let failed =
+        |message: &str| HomeworkError::Shader { file: file.to_string(), line: None, message: message.into() };
+    std::thread::scope(|scope| {
+        let thread = std::thread::Builder::new().name("naga".into()).stack_size(NAGA_STACK_BYTES);
+        match thread.spawn_scoped(scope, work) {
+            Ok(handle) => handle.join().unwrap_or_else(|_| Err(failed("naga could not read this shader"))),
+            Err(_) => Err(failed("no thread for naga to read the shader on")),
+        }
+    })
 }
 
 /// Translate an already rewritten shader to validated WGSL.
@@ -44,16 +64,24 @@ pub fn translate_rewritten(file: &str, rewritten: Rewritten) -> Result<Translate
             n => format!(" (and {} more)", n - 1),
         };
         let message = first.map_or_else(|| "cannot parse".to_string(), |e| e.kind.to_string());
+        if !rewritten.has_main && message.contains("Missing entry point") {
+            return no_main(file, glsl, rewritten.prelude_lines);
+        }
         error(first.and_then(|e| e.location(glsl)), format!("{message}{more}"))
     })?;
+    // An array that big per pixel would run for minutes on a software rasteriser, if at all.
+    if let Some((name, n, span)) = oversized_array(&module) {
+        return Err(error(
+            span.location(glsl).into(),
+            format!(
+                "{name}: an array of {n} elements for every pixel; shadowlab runs at most {MAX_ARRAY_ELEMENTS} \
+                 (the framework's template uses 20 to 100 samples)"
+            ),
+        ));
+    }
 
     if !rewritten.has_main {
-        let last_line = glsl.lines().count().saturating_sub(rewritten.prelude_lines);
-        return Err(HomeworkError::Shader {
-            file: file.to_string(),
-            line: Some(last_line.max(1)),
-            message: "no `main` function (the framework runs `void main()`)".into(),
-        });
+        return Err(no_main(file, glsl, rewritten.prelude_lines));
     }
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
@@ -76,6 +104,41 @@ pub fn translate_rewritten(file: &str, rewritten: Rewritten) -> Result<Translate
     let wgsl = naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty())
         .map_err(|e| error(None, format!("cannot write WGSL: {e}")))?;
     Ok(Translated { wgsl, rewritten })
+}
+
+/// Most elements an array of a student's shader may have (a sample array is 20 to 100).
+pub const MAX_ARRAY_ELEMENTS: u32 = 4096;
+
+/// The first variable (global, or local to a function) that is an array of more than
+/// `MAX_ARRAY_ELEMENTS`: its name, size and where it is declared.
+fn oversized_array(module: &naga::Module) -> Option<(String, u32, naga::Span)> {
+    let too_big = |ty: naga::Handle<naga::Type>| match module.types[ty].inner {
+        naga::TypeInner::Array { size: naga::ArraySize::Constant(n), .. } if n.get() > MAX_ARRAY_ELEMENTS => {
+            Some(n.get())
+        }
+        _ => None,
+    };
+    let globals = module.global_variables.iter().filter_map(|(h, v)| {
+        too_big(v.ty).map(|n| (v.name.clone().unwrap_or_default(), n, module.global_variables.get_span(h)))
+    });
+    let functions =
+        module.functions.iter().map(|(_, f)| f).chain(module.entry_points.iter().map(|e| &e.function));
+    let locals = functions.flat_map(|f| {
+        f.local_variables.iter().filter_map(move |(h, v)| {
+            too_big(v.ty).map(|n| (v.name.clone().unwrap_or_default(), n, f.local_variables.get_span(h)))
+        })
+    });
+    globals.chain(locals).next()
+}
+
+/// The error of a shader without `main`, on its last line.
+fn no_main(file: &str, glsl: &str, prelude_lines: usize) -> HomeworkError {
+    let last_line = glsl.lines().count().saturating_sub(prelude_lines);
+    HomeworkError::Shader {
+        file: file.to_string(),
+        line: Some(last_line.max(1)),
+        message: "no `main` function (the framework runs `void main()`)".into(),
+    }
 }
 
 /// A message on one line, its runs of whitespace made single spaces.
