@@ -63,6 +63,9 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let shown_view = app.camera_panel_view();
     let probe_uv = app.probe_map_uv();
     let mut probe_texel = Vec::new();
+    // While a homework is checked the final picture is the homework's (the A/B split then puts
+    // shadowlab's technique beside it).
+    let mut homework_shown = None;
     match (shown_view, &app.view_state.view_image, &app.view_state.map) {
         (View::ShadowMap, _, Some((texture, ..))) => {
             // The light's map, square, in the middle of the panel.
@@ -91,6 +94,7 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         (View::Final, ..) | (View::ShadowMap, _, None) | (_, None, _) => {
             if let Some(id) = homework_picture(app, ui.ctx()) {
                 painter.image(id, rect, uv, Color32::WHITE);
+                homework_shown = app.state.homework.as_ref().map(|h| h.picture);
             } else if let Some(texture) = &app.shown.camera {
                 painter.image(texture.id(), rect, uv, Color32::WHITE);
             }
@@ -118,11 +122,11 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             painter.galley(r.min + vec2(3.0, 3.0), galley, Color32::WHITE);
             ab_labels.push(r);
         };
-        label(
-            app.state.scene.shadow.technique.label(app.state.lang),
-            pos2(x - 8.0, y),
-            egui::Align2::RIGHT_TOP,
-        );
+        let left = match homework_shown {
+            Some(picture) => tr(app.state.lang, picture.label()),
+            None => app.state.scene.shadow.technique.label(app.state.lang),
+        };
+        label(left, pos2(x - 8.0, y), egui::Align2::RIGHT_TOP);
         label(ab.b.label(app.state.lang), pos2(x + 8.0, y), egui::Align2::LEFT_TOP);
     }
     // Camera-space marks belong on the camera's picture, never on a view of the light's map.
