@@ -224,3 +224,34 @@ fn bad_shaders_are_one_line_errors_on_their_line_and_an_endless_loop_ends() {
     let report = check(&shader.display().to_string(), &[], &scratch.path().join("endless"));
     assert_eq!(report["compiled"], true);
 }
+
+/// A lesson 7 step renders the student's picture (as the app shows it), the one `shadowlab
+/// homework` writes for the same shader.
+#[test]
+fn a_lesson_step_that_checks_a_homework_renders_the_students_picture() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let step = scratch.path().join("step.png");
+    let run = shadowlab(&[
+        "render",
+        "--lesson",
+        "homework",
+        "--step",
+        "4",
+        "--size",
+        SIZE,
+        "--out",
+        &step.display().to_string(),
+    ]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    let out = scratch.path().join("check");
+    check(&example("phongFragment_nan_blocker.glsl"), &[], &out);
+    let a = image::open(&step).expect("the step").to_rgba8();
+    let b = image::open(out.join("student.png")).expect("the student's picture").to_rgba8();
+    assert_eq!(a.dimensions(), b.dimensions());
+    let differing = a
+        .pixels()
+        .zip(b.pixels())
+        .filter(|(p, q)| p.0.iter().zip(q.0).any(|(x, y)| x.abs_diff(y) > 2))
+        .count();
+    assert!(differing * 1000 <= (a.width() * a.height()) as usize, "{differing} pixels differ");
+}

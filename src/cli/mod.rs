@@ -9,6 +9,10 @@ mod bench_window;
 #[path = "export.rs"]
 mod export_cmd;
 mod homework;
+mod parse;
+
+pub use parse::MAX_TIME_S;
+use parse::{parse_key_value, parse_pixel, parse_size, parse_time, parse_view};
 
 use crate::export;
 use crate::lessons;
@@ -232,48 +236,6 @@ impl From<export::ExportError> for CliError {
     }
 }
 
-fn parse_key_value(s: &str) -> Result<(String, String), String> {
-    let (k, v) = s.split_once('=').ok_or_else(|| format!("`{s}` is not KEY=VALUE"))?;
-    if k.trim().is_empty() {
-        return Err(format!("`{s}` has an empty key"));
-    }
-    Ok((k.trim().to_string(), v.trim().to_string()))
-}
-
-fn parse_size(s: &str) -> Result<(u32, u32), String> {
-    let (w, h) = s.split_once(['x', 'X']).ok_or_else(|| format!("`{s}` is not WIDTHxHEIGHT"))?;
-    let parse = |v: &str| v.trim().parse::<u32>().ok().filter(|&n| (1..=16384).contains(&n));
-    match (parse(w), parse(h)) {
-        (Some(w), Some(h)) => Ok((w, h)),
-        _ => Err(format!("`{s}` is not WIDTHxHEIGHT with sides 1..=16384")),
-    }
-}
-
-fn parse_pixel(s: &str) -> Result<(u32, u32), String> {
-    let (x, y) = s.split_once(',').ok_or_else(|| format!("`{s}` is not X,Y"))?;
-    match (x.trim().parse(), y.trim().parse()) {
-        (Ok(x), Ok(y)) => Ok((x, y)),
-        _ => Err(format!("`{s}` is not X,Y with whole non-negative numbers")),
-    }
-}
-
-/// Longest scene time accepted, seconds (a day: beyond it f32 time loses sub-frame precision).
-pub const MAX_TIME_S: f32 = 86_400.0;
-
-fn parse_time(s: &str) -> Result<f32, String> {
-    match s.parse::<f32>() {
-        Ok(t) if t.is_finite() && t.abs() <= MAX_TIME_S => Ok(t),
-        _ => Err(format!("`{s}` is not a number of seconds in -{MAX_TIME_S}..={MAX_TIME_S}")),
-    }
-}
-
-fn parse_view(s: &str) -> Result<View, String> {
-    View::from_name(s).ok_or_else(|| {
-        let names: Vec<_> = View::ALL.iter().map(|v| v.name()).collect();
-        format!("unknown view `{s}` (expected one of {})", names.join(", "))
-    })
-}
-
 /// What a frame's arguments resolve to: the scene, a label for messages, and the defaults a
 /// lesson step gives.
 struct Resolved {
@@ -284,6 +246,8 @@ struct Resolved {
     light: usize,
     /// The lesson step's probe pixel (in `lessons::PROBE_FRAME`).
     probe: Option<(u32, u32)>,
+    /// The homework the lesson step checks (its final view is the student's picture).
+    homework: Option<lessons::StepHomework>,
 }
 
 /// The checks every command makes before touching the GPU.
@@ -309,6 +273,7 @@ fn load(frame: &FrameArgs) -> Result<Resolved, CliError> {
             view: step.view,
             light: step.light,
             probe: step.probe.map(|[x, y]| (x, y)),
+            homework: step.homework.clone(),
         });
     }
     let path = frame.scene.as_deref().ok_or_else(|| CliError::input("give --scene FILE or --lesson ID"))?;
@@ -319,6 +284,7 @@ fn load(frame: &FrameArgs) -> Result<Resolved, CliError> {
         view: View::Final,
         light: 0,
         probe: None,
+        homework: None,
     })
 }
 
@@ -427,7 +393,7 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
     }
     let (_ctx, mut renderer) = gpu()?;
     show_ground_truth_progress(&mut renderer);
-    let (image, summary) = views::render_view(
+    let (mut image, summary) = views::render_view(
         &mut renderer,
         &scene,
         view,
@@ -436,6 +402,19 @@ fn render(args: RenderArgs) -> Result<(), CliError> {
         args.frame.size,
         crate::i18n::Lang::En,
     )?;
+    // A lesson step that checks a homework shows the student's picture, as the app does.
+    if let Some(hw) = resolved.homework.as_ref().filter(|_| view == View::Final) {
+        let (fragment, shadow) = (&hw.fragment, hw.shadow_fragment.as_deref());
+        image = crate::homework::homework_picture(
+            &renderer,
+            fragment,
+            shadow,
+            &scene,
+            args.frame.size,
+            resolved.time_s,
+        )
+        .map_err(CliError::input)?;
+    }
     export::write_png(&args.out, &image)?;
     println!(
         "wrote {} ({}x{}, view {}, light {light})",

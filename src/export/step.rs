@@ -157,6 +157,18 @@ pub fn render_step(
 
     let rendered = views::render_view_measured(renderer, scene, view, light, time_s, size, lang)?;
     let (mut camera, mut camera_summary) = (rendered.image, rendered.summary);
+    // A step that checks a homework shows the student's picture, as the app does.
+    if let Some(hw) = step.homework.as_ref().filter(|_| view == View::Final) {
+        camera = crate::homework::homework_picture(
+            renderer,
+            &hw.fragment,
+            hw.shadow_fragment.as_deref(),
+            scene,
+            size,
+            time_s,
+        )
+        .map_err(RenderError::Usage)?;
+    }
     let mut frame = FrameValues { mean_abs_error: rendered.mean_abs_error };
     // The step's overlays, as the app draws them over the view (legends in the caption).
     let overlays: Vec<Overlay> =

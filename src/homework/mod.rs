@@ -36,7 +36,7 @@ pub use pass::{
 };
 pub use program::{HomeworkFiles, HomeworkProgram, ShaderSource, TranslatedProgram};
 pub use rewrite::{FRAG_COLOR, Rewritten, rewrite};
-pub use session::{CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, run_check};
+pub use session::{CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, homework_picture, run_check};
 pub use translate::{Translated, translate, translate_rewritten};
 
 /// The two stages a homework shader can be.

@@ -153,6 +153,40 @@ pub fn run_check(
     Ok(CheckOutcome { report, student, shadowlab_picture, shadowlab_visibility, ground_truth })
 }
 
+/// The student's picture of a homework (`fragment`, with `shadow_fragment` for the light pass or
+/// the framework's) as the framework draws it at `size`, on `renderer`'s device: what a lesson
+/// step that checks a homework shows in its camera view. A shader that does not compile is an
+/// error naming its file and line.
+pub fn homework_picture(
+    renderer: &Renderer,
+    fragment: &std::path::Path,
+    shadow_fragment: Option<&std::path::Path>,
+    scene: &Scene,
+    size: (u32, u32),
+    time_s: f32,
+) -> Result<image::RgbaImage, String> {
+    let files = super::HomeworkFiles::read(fragment, None, shadow_fragment).map_err(|e| e.to_string())?;
+    let program = super::HomeworkProgram::translate(files).map_err(|e| e.to_string())?;
+    let homework =
+        HomeworkRenderer::new(renderer.device(), renderer.queue(), &program).map_err(|e| e.to_string())?;
+    let request = HomeworkRequest { time_s, size, light: 0, clear_map_white: false };
+    let images = homework.render(scene, &request).map_err(|e| e.to_string())?;
+    Ok(student_picture(&images))
+}
+
+/// What a student's shader wrote, as a picture (its colours are already gamma-encoded); NaN and
+/// infinite pixels in `NAN_COLOR`.
+fn student_picture(s: &HomeworkImages) -> image::RgbaImage {
+    image::RgbaImage::from_fn(s.width, s.height, |x, y| {
+        let c = s.color[(y * s.width + x) as usize];
+        if c[..3].iter().any(|v| !v.is_finite()) {
+            image::Rgba(NAN_COLOR)
+        } else {
+            image::Rgba([byte(c[0]), byte(c[1]), byte(c[2]), 255])
+        }
+    })
+}
+
 /// Not-a-number and infinite pixels: their own colour in every picture.
 pub const NAN_COLOR: [u8; 4] = [255, 0, 255, 255];
 
@@ -163,15 +197,7 @@ fn byte(v: f32) -> u8 {
 impl CheckOutcome {
     /// The student's picture as their shader wrote it (its colours are already gamma-encoded).
     pub fn student_picture(&self) -> image::RgbaImage {
-        let s = &self.student;
-        image::RgbaImage::from_fn(s.width, s.height, |x, y| {
-            let c = s.color[(y * s.width + x) as usize];
-            if c[..3].iter().any(|v| !v.is_finite()) {
-                image::Rgba(NAN_COLOR)
-            } else {
-                image::Rgba([byte(c[0]), byte(c[1]), byte(c[2]), 255])
-            }
-        })
+        student_picture(&self.student)
     }
 
     /// The student's visibility in grey beside the ground truth's: where no visibility was

@@ -168,6 +168,10 @@ impl Renderer {
         &self.device
     }
 
+    pub fn queue(&self) -> &wgpu::Queue {
+        &self.queue
+    }
+
     pub fn has_timestamps(&self) -> bool {
         self.timer.is_some()
     }
