@@ -255,3 +255,20 @@ fn a_lesson_step_that_checks_a_homework_renders_the_students_picture() {
         .count();
     assert!(differing * 1000 <= (a.width() * a.height()) as usize, "{differing} pixels differ");
 }
+
+/// A student's own vertex shader (with varyings and uniforms of their own) runs with their
+/// fragment shader: `--vertex` as the framework would link them.
+#[test]
+fn a_students_own_vertex_shader_runs_with_their_fragment_shader() {
+    let data = |name: &str| repo_path("tests/data/homework").join(name).display().to_string();
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let vertex = data("phongVertex_additions.glsl");
+    let report =
+        check(&data("phongFragment_additions.glsl"), &["--vertex", &vertex], &scratch.path().join("out"));
+    assert_eq!(report["compiled"], true);
+    assert!(
+        report["calls"].as_array().is_some_and(|c| c.contains(&Value::from("useShadowMap"))),
+        "{report:#}"
+    );
+    assert!(report["mean_abs_difference_to_ground_truth"].as_f64().is_some_and(|d| d < 0.05), "{report:#}");
+}
