@@ -160,6 +160,9 @@ pub struct HomeworkProbe {
     pub visibility: Option<(f32, &'static str)>,
     pub shadowlab: f32,
     pub ground_truth: f32,
+    /// The penumbra's width here, world units: the student's and the ground truth's (where
+    /// the ground truth has an edge at the probe).
+    pub penumbra_widths: Option<(f32, f32)>,
 }
 
 impl HomeworkState {
@@ -189,6 +192,7 @@ impl HomeworkState {
             visibility,
             shadowlab: outcome.shadowlab_visibility[i],
             ground_truth: outcome.ground_truth[i],
+            penumbra_widths: outcome.penumbra_widths((x, y)),
         })
     }
 }

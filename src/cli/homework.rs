@@ -157,6 +157,11 @@ fn print_summary(report: &HomeworkReport, out: &Path) {
             f.penumbra_pixels,
             f.penumbra_pixels_ground_truth
         );
+        if let (Some((x, y)), Some(theirs), Some(truth)) =
+            (f.penumbra_pixel, f.penumbra_width_world, f.penumbra_width_world_ground_truth)
+        {
+            println!("  penumbra width at pixel {x}, {y}: {theirs:.2} world units (ground truth {truth:.2})");
+        }
     }
     if report.findings.is_empty() {
         println!("  no findings");

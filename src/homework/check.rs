@@ -68,6 +68,11 @@ pub struct Figures {
     pub penumbra_pixels: u64,
     /// Share of shaded pixels whose visibility changes by more than 0.1 over a white map.
     pub uncleared_map_share: f64,
+    /// The penumbra's width across the shadow's edge at `penumbra_pixel` (the ground truth's soft
+    /// pixel nearest the picture's centre), world units: the student's and the ground truth's.
+    pub penumbra_pixel: Option<(u32, u32)>,
+    pub penumbra_width_world: Option<f32>,
+    pub penumbra_width_world_ground_truth: Option<f32>,
 }
 
 /// The per-pixel inputs of a check, all of one view's size, rows top first.
@@ -82,6 +87,21 @@ pub struct CheckInputs<'a> {
     pub facing: &'a [Option<f32>],
     /// The function (1-based in `RECORDED_FUNCTIONS`) `main` takes its visibility from.
     pub visibility_function: Option<usize>,
+    /// The world position under each pixel (None: no surface).
+    pub positions: &'a [Option<glam::Vec3>],
+}
+
+/// The penumbra's width at `pixel` (the student's, the ground truth's), world units, across the
+/// ground truth's edge there; None where the ground truth has no edge at that pixel.
+pub fn penumbra_widths(inputs: &CheckInputs<'_>, pixel: (u32, u32)) -> Option<(f32, f32)> {
+    let student = inputs.student;
+    let field =
+        super::penumbra::Field { width: student.width, height: student.height, positions: inputs.positions };
+    let truth = |i: usize| student.covered(i).then(|| inputs.ground_truth[i]);
+    let theirs = |i: usize| student.visibility(i);
+    let dir = field.across(&truth, pixel)?;
+    let truth_width = field.width_along(&truth, pixel, dir, 3);
+    Some((field.width_along(&theirs, pixel, dir, 20), truth_width))
 }
 
 fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
@@ -129,6 +149,12 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     };
     let changed = shaded.iter().filter(|&&i| sound(i) && depends_on_clear(i)).count();
     f.uncleared_map_share = if shaded.is_empty() { 0.0 } else { changed as f64 / shaded.len() as f64 };
+    let field =
+        super::penumbra::Field { width: student.width, height: student.height, positions: inputs.positions };
+    f.penumbra_pixel = super::penumbra::default_pixel(&field, &|i| student.covered(i).then(|| truth(i)));
+    if let Some((theirs, truth_width)) = f.penumbra_pixel.and_then(|p| penumbra_widths(inputs, p)) {
+        (f.penumbra_width_world, f.penumbra_width_world_ground_truth) = (Some(theirs), Some(truth_width));
+    }
 
     let mut findings = Vec::new();
     let percent = |share: f64| 100.0 * share;
@@ -275,6 +301,7 @@ mod tests {
             ground_truth: truth,
             facing: &facing,
             visibility_function: Some(3),
+            positions: &[],
         };
         check(&inputs, Lang::En).1.iter().map(|f| f.id).collect()
     }
@@ -295,6 +322,7 @@ mod tests {
             ground_truth: &truth,
             facing: &[Some(1.0); 400],
             visibility_function: Some(3),
+            positions: &[],
         };
         let (figures, _) = check(&inputs, Lang::En);
         assert!((figures.nan_fraction - 11.0 / 400.0).abs() < 1e-12);

@@ -19,6 +19,7 @@ mod instrument;
 mod interface;
 mod lex;
 mod pass;
+mod penumbra;
 mod pipeline;
 mod program;
 mod rewrite;

@@ -73,6 +73,8 @@ pub struct CheckOutcome {
     pub shadowlab_picture: image::RgbaImage,
     pub shadowlab_visibility: Vec<f32>,
     pub ground_truth: Vec<f32>,
+    /// The world position under each pixel (None: no surface).
+    pub positions: Vec<Option<glam::Vec3>>,
 }
 
 /// shadowlab's technique for the function a student's `main` takes its visibility from.
@@ -121,6 +123,9 @@ pub fn run_check(
     let analysis = renderer.read_analysis()?;
     let ground_truth = renderer.render_reference(&compared, request.light)?;
     let shadowlab_visibility: Vec<f32> = analysis.shadow.iter().map(|s| s[0]).collect();
+    let positions: Vec<Option<glam::Vec3>> = (0..analysis.position.len())
+        .map(|i| analysis.hit(i).then(|| glam::Vec3::from_slice(&analysis.position[i][..3])))
+        .collect();
     let toward_light = -scene.lights[request.light].direction_at(request.time_s);
     let facing: Vec<Option<f32>> = (0..analysis.shadow.len())
         .map(|i| {
@@ -137,6 +142,7 @@ pub fn run_check(
             ground_truth: &ground_truth,
             facing: &facing,
             visibility_function: function,
+            positions: &positions,
         },
         lang,
     );
@@ -150,7 +156,7 @@ pub fn run_check(
         figures: Some(figures),
         findings,
     };
-    Ok(CheckOutcome { report, student, shadowlab_picture, shadowlab_visibility, ground_truth })
+    Ok(CheckOutcome { report, student, shadowlab_picture, shadowlab_visibility, ground_truth, positions })
 }
 
 /// The student's picture of a homework (`fragment`, with `shadow_fragment` for the light pass or
@@ -195,6 +201,22 @@ fn byte(v: f32) -> u8 {
 }
 
 impl CheckOutcome {
+    /// The penumbra's width at `pixel`, world units: the student's and the ground truth's
+    /// (None where the ground truth has no edge there).
+    pub fn penumbra_widths(&self, pixel: (u32, u32)) -> Option<(f32, f32)> {
+        let facing = Vec::new();
+        let inputs = CheckInputs {
+            student: &self.student,
+            student_white_map: &self.student,
+            shadowlab: &self.shadowlab_visibility,
+            ground_truth: &self.ground_truth,
+            facing: &facing,
+            visibility_function: None,
+            positions: &self.positions,
+        };
+        super::check::penumbra_widths(&inputs, pixel)
+    }
+
     /// The student's picture as their shader wrote it (its colours are already gamma-encoded).
     pub fn student_picture(&self) -> image::RgbaImage {
         student_picture(&self.student)

@@ -57,4 +57,6 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
     ("could not open the shader", "无法打开着色器"),
     ("at the probe (pixel {}, {})", "探针处（像素 {}, {}）"),
     ("not called", "未调用"),
+    ("penumbra width (world units)", "半影宽度（世界单位）"),
+    ("{:.2}, ground truth {:.2}", "{:.2}，真实结果 {:.2}"),
 ];

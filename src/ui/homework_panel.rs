@@ -118,6 +118,13 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
             ui.label(tr(lang, "ground truth"));
             ui.label(RichText::new(value(probe.ground_truth)).monospace());
             ui.end_row();
+            if let Some((theirs, truth)) = probe.penumbra_widths {
+                ui.label(tr(lang, "penumbra width (world units)"));
+                ui.label(
+                    RichText::new(fill(lang, "{:.2}, ground truth {:.2}", &[&theirs, &truth])).monospace(),
+                );
+                ui.end_row();
+            }
         });
     }
     ui.add_space(8.0);
