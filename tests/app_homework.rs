@@ -78,7 +78,14 @@ fn a_shader_typed_into_the_path_box_shows_its_findings_and_an_edit_is_checked_ag
     assert_eq!(h.state().scene.camera, camera);
     h.get_by_label("No findings: your shadows match the ground truth.");
     // Each picture the selector offers can be shown.
-    for label in ["difference", "ground truth", "your visibility", "shadowlab's", "your shader"] {
+    for label in [
+        "your shader, map cleared to white",
+        "difference",
+        "ground truth",
+        "your visibility",
+        "shadowlab's",
+        "your shader",
+    ] {
         h.get_by_label(label).click();
         h.run_steps(2);
     }

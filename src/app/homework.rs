@@ -20,6 +20,8 @@ pub enum HomeworkPicture {
     /// The student's picture, as their shader drew it.
     #[default]
     Student,
+    /// The same over a map cleared to white instead of the framework's 0s.
+    WhiteMap,
     /// shadowlab's own technique at the same settings.
     Shadowlab,
     /// The student's visibility alone (white = lit).
@@ -31,8 +33,9 @@ pub enum HomeworkPicture {
 }
 
 impl HomeworkPicture {
-    pub const ALL: [HomeworkPicture; 5] = [
+    pub const ALL: [HomeworkPicture; 6] = [
         HomeworkPicture::Student,
+        HomeworkPicture::WhiteMap,
         HomeworkPicture::Shadowlab,
         HomeworkPicture::Visibility,
         HomeworkPicture::GroundTruth,
@@ -43,6 +46,7 @@ impl HomeworkPicture {
     pub fn label(self) -> &'static str {
         match self {
             HomeworkPicture::Student => "your shader",
+            HomeworkPicture::WhiteMap => "your shader, map cleared to white",
             HomeworkPicture::Shadowlab => "shadowlab's",
             HomeworkPicture::Visibility => "your visibility",
             HomeworkPicture::GroundTruth => "ground truth",

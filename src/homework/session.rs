@@ -69,6 +69,8 @@ impl HomeworkReport {
 pub struct CheckOutcome {
     pub report: HomeworkReport,
     pub student: HomeworkImages,
+    /// The same shader over a map cleared to white (what depends on the framework's 0s).
+    pub student_white_map: HomeworkImages,
     /// shadowlab's final picture with the technique compared with.
     pub shadowlab_picture: image::RgbaImage,
     pub shadowlab_visibility: Vec<f32>,
@@ -156,7 +158,15 @@ pub fn run_check(
         figures: Some(figures),
         findings,
     };
-    Ok(CheckOutcome { report, student, shadowlab_picture, shadowlab_visibility, ground_truth, positions })
+    Ok(CheckOutcome {
+        report,
+        student,
+        student_white_map: white,
+        shadowlab_picture,
+        shadowlab_visibility,
+        ground_truth,
+        positions,
+    })
 }
 
 /// The student's picture of a homework (`fragment`, with `shadow_fragment` for the light pass or
@@ -220,6 +230,11 @@ impl CheckOutcome {
     /// The student's picture as their shader wrote it (its colours are already gamma-encoded).
     pub fn student_picture(&self) -> image::RgbaImage {
         student_picture(&self.student)
+    }
+
+    /// The student's picture over a shadow map cleared to white.
+    pub fn student_picture_white_map(&self) -> image::RgbaImage {
+        student_picture(&self.student_white_map)
     }
 
     /// The student's visibility in grey beside the ground truth's: where no visibility was

@@ -59,4 +59,5 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
     ("not called", "未调用"),
     ("penumbra width (world units)", "半影宽度（世界单位）"),
     ("{:.2}, ground truth {:.2}", "{:.2}，真实结果 {:.2}"),
+    ("your shader, map cleared to white", "你的着色器（贴图清成白色）"),
 ];

@@ -7,8 +7,8 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("recent", "最近打开"),
     ("Browse…", "浏览…"),
     (
-        "the desktop's Open dialog: a scene or lesson (.toml) or a model (.obj)",
-        "桌面的打开对话框：场景或课程（.toml）或模型（.obj）",
+        "the desktop's Open dialog: a scene or lesson (.toml), a model (.obj) or a homework shader (.glsl)",
+        "桌面的打开对话框：场景或课程（.toml）、模型（.obj）或作业着色器（.glsl）",
     ),
     (
         "no file dialog on this desktop (no xdg-desktop-portal): type a path in the box, or drop a file on the window",
@@ -20,7 +20,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("Scenes", "场景"),
     ("Lessons", "课程"),
     ("file", "文件"),
-    ("scene, lesson or .obj path", "场景、课程或 .obj 路径"),
+    ("scene, lesson, .obj or .glsl path", "场景、课程、.obj 或 .glsl 路径"),
     ("Open", "打开"),
     ("Play", "播放"),
     ("Pause", "暂停"),

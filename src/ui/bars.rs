@@ -23,7 +23,7 @@ impl ShadowlabApp {
             let field = ui
                 .add(
                     egui::TextEdit::singleline(&mut self.open_path)
-                        .hint_text(tr("scene, lesson or .obj path"))
+                        .hint_text(tr("scene, lesson, .obj or .glsl path"))
                         .desired_width(150.0),
                 )
                 .labelled_by(file_label.id);
@@ -37,7 +37,7 @@ impl ShadowlabApp {
             }
             let browse = ui
                 .add_enabled(!self.browsing(), egui::Button::new(tr("Browse…")))
-                .on_hover_text(tr("the desktop's Open dialog: a scene or lesson (.toml) or a model (.obj)"));
+                .on_hover_text(tr("the desktop's Open dialog: a scene or lesson (.toml), a model (.obj) or a homework shader (.glsl)"));
             if browse.clicked() {
                 self.browse(ui.ctx());
             }

@@ -31,7 +31,8 @@ pub fn portal_available() -> bool {
 }
 
 impl OpenDialog {
-    /// Ask for a scene or lesson (.toml) or a model (.obj), starting in `folder`; `wake` is
+    /// Ask for a scene or lesson (.toml), a model (.obj) or a homework shader (.glsl), starting in
+    /// `folder`; `wake` is
     /// called when the answer is in.
     pub fn open(folder: PathBuf, wake: impl Fn() + Send + 'static) -> Self {
         let (send, answer) = channel();
@@ -40,8 +41,11 @@ impl OpenDialog {
                 DialogOutcome::Unavailable
             } else {
                 match rfd::FileDialog::new()
-                    .set_title("shadowlab: open a scene, lesson or model")
-                    .add_filter("scene or lesson (.toml), model (.obj)", &["toml", "obj"])
+                    .set_title("shadowlab: open a scene, lesson, model or homework shader")
+                    .add_filter(
+                        "scene or lesson (.toml), model (.obj), homework shader (.glsl)",
+                        &["toml", "obj", "glsl", "frag", "fs"],
+                    )
                     .set_directory(folder)
                     .pick_file()
                 {

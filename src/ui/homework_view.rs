@@ -15,6 +15,7 @@ pub struct HomeworkTextures {
 fn image_of(outcome: &CheckOutcome, picture: HomeworkPicture) -> image::RgbaImage {
     match picture {
         HomeworkPicture::Student => outcome.student_picture(),
+        HomeworkPicture::WhiteMap => outcome.student_picture_white_map(),
         HomeworkPicture::Shadowlab => outcome.shadowlab_picture.clone(),
         HomeworkPicture::Visibility => outcome.visibility_picture(false),
         HomeworkPicture::GroundTruth => outcome.visibility_picture(true),
