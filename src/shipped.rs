@@ -15,8 +15,12 @@ pub use crate::built_in::{FILES, SHIPPED_DIRS};
 /// A shipped file or folder, found from any working folder: relative to the working folder
 /// first, then beside the executable (and up to three folders above it, which covers
 /// `target/release/`), then in the source tree it was built from, then in the unpacked built-in
-/// copy.
+/// copy. In a page, `relative` itself: the built-in copy's name for it.
 pub fn shipped_path(relative: &str) -> PathBuf {
+    // A page has no disk: its files are the copy built in, by their relative paths (`files.rs`).
+    if cfg!(target_arch = "wasm32") {
+        return PathBuf::from(relative);
+    }
     let source_tree = Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
     if !use_built_in() {
         let beside_exe: Vec<PathBuf> = std::env::current_exe()
