@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Build the page into dist/: index.html, shadowlab.js and shadowlab_bg.wasm (eframe's web layout).
+# Build the page into dist/: index.html, shadowlab.js and shadowlab_bg.wasm (eframe's web layout),
+# with Cargo.toml's `web` profile (optimised for size, fat LTO).
 # Serve dist/ over http (127.0.0.1 or https: WebGPU needs a secure context), e.g.
 #   python3 -m http.server 8080 --bind 127.0.0.1 --directory dist
 # Needs the wasm32-unknown-unknown target (rustup target add wasm32-unknown-unknown; or Debian's
@@ -21,7 +22,7 @@ if ! command -v wasm-bindgen >/dev/null || [ "$(wasm-bindgen --version | awk '{p
     exit 2
 fi
 
-build=(rustc --lib --release --target "$target" --crate-type cdylib)
+build=(rustc --lib --profile web --target "$target" --crate-type cdylib)
 if command -v rustup >/dev/null && rustup target list --installed 2>/dev/null | grep -qx "$target"; then
     say "building with rustup's $target target"
     cargo "${build[@]}"
@@ -39,7 +40,7 @@ fi
 rm -rf "$dist"
 mkdir -p "$dist"
 wasm-bindgen --target web --no-typescript --out-dir "$dist" --out-name shadowlab \
-    "$CARGO_TARGET_DIR/$target/release/shadowlab.wasm"
+    "$CARGO_TARGET_DIR/$target/web/shadowlab.wasm"
 cp web/index.html "$dist/index.html"
 
 wasm="$dist/shadowlab_bg.wasm"
