@@ -1,13 +1,19 @@
 //! Files written whole or not at all: a temporary file in the same folder, then a rename, so a
-//! failure or a crash never leaves a half-written file behind.
+//! failure or a crash never leaves a half-written file behind. Files read with limits, and the
+//! one way the app looks at files: on the desktop the disk; in a page, which has no file system,
+//! the copy of the shipped files built into the binary, by their paths relative to the checkout
+//! (which `crate::shipped_path` gives there).
 
 use std::io::Write;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::time::{SystemTime, UNIX_EPOCH};
 
 /// Write `bytes` to `path` atomically; the error says why, without the path (callers name it).
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), String> {
+    if IN_PAGE {
+        return Err("a page has no folders to write to".into());
+    }
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -49,8 +55,11 @@ pub const MAX_MESH_FILE_BYTES: u64 = 2 << 30;
 pub fn read_input(path: &Path, max_bytes: u64) -> Result<Vec<u8>, String> {
     use std::io::Read;
     let too_big = || format!("larger than the {} MiB a file may have here", max_bytes >> 20);
-    if check_regular_file(path)?.len() > max_bytes {
+    if check_regular_file(path)? > max_bytes {
         return Err(too_big());
+    }
+    if let Some(bytes) = built_in(path) {
+        return Ok(bytes.to_vec());
     }
     let mut bytes = Vec::new();
     std::fs::File::open(path)
@@ -62,17 +71,84 @@ pub fn read_input(path: &Path, max_bytes: u64) -> Result<Vec<u8>, String> {
     Ok(bytes)
 }
 
-/// `path` names a regular file (following symbolic links); the error says what it is instead.
-pub fn check_regular_file(path: &Path) -> Result<std::fs::Metadata, String> {
+/// `path` names a regular file (following symbolic links), of this many bytes; the error says what
+/// it is instead.
+pub fn check_regular_file(path: &Path) -> Result<u64, String> {
+    if IN_PAGE {
+        return match built_in(path) {
+            Some(bytes) => Ok(bytes.len() as u64),
+            None if crate::built_in::is_folder(path) => Err("is a folder, not a file".into()),
+            None => Err("not among the files built into the page".into()),
+        };
+    }
     let metadata = std::fs::metadata(path).map_err(|e| e.to_string())?;
     if metadata.is_dir() {
         Err("is a folder, not a file".into())
     } else if !metadata.is_file() {
         Err("is not a regular file (a device or a pipe?)".into())
     } else {
-        Ok(metadata)
+        Ok(metadata.len())
     }
 }
+
+/// Files are the copy built into the binary (a page), not the disk.
+const IN_PAGE: bool = cfg!(target_arch = "wasm32");
+
+/// The built-in bytes of `path`, in a page.
+fn built_in(path: &Path) -> Option<&'static [u8]> {
+    if IN_PAGE { crate::built_in::file(path) } else { None }
+}
+
+/// `path` is there (a file or a folder).
+pub fn exists(path: &Path) -> bool {
+    if IN_PAGE { built_in(path).is_some() || crate::built_in::is_folder(path) } else { path.exists() }
+}
+
+/// `path` is a file (following symbolic links).
+pub fn is_file(path: &Path) -> bool {
+    if IN_PAGE { built_in(path).is_some() } else { path.is_file() }
+}
+
+/// The paths of what is in the folder `dir`, in no particular order.
+pub fn folder_entries(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    if IN_PAGE {
+        return match crate::built_in::is_folder(dir) {
+            true => Ok(crate::built_in::files_in(dir)),
+            false => Err(std::io::Error::new(
+                std::io::ErrorKind::NotFound,
+                "no such folder among the files built into the page",
+            )),
+        };
+    }
+    Ok(std::fs::read_dir(dir)?.filter_map(|e| e.ok().map(|e| e.path())).collect())
+}
+
+/// A file opened to be read in pieces (a decoder reading a header first): buffered from the disk,
+/// or the built-in bytes in a page.
+pub fn open_input(path: &Path) -> std::io::Result<Box<dyn ReadSeek>> {
+    match built_in(path) {
+        Some(bytes) => Ok(Box::new(std::io::Cursor::new(bytes))),
+        None if IN_PAGE => {
+            Err(std::io::Error::new(std::io::ErrorKind::NotFound, "not among the files built into the page"))
+        }
+        None => Ok(Box::new(std::io::BufReader::new(std::fs::File::open(path)?))),
+    }
+}
+
+/// A file's bytes, whole (what the caller limits itself).
+pub fn read(path: &Path) -> std::io::Result<Vec<u8>> {
+    match built_in(path) {
+        Some(bytes) => Ok(bytes.to_vec()),
+        None if IN_PAGE => {
+            Err(std::io::Error::new(std::io::ErrorKind::NotFound, "not among the files built into the page"))
+        }
+        None => std::fs::read(path),
+    }
+}
+
+/// What [`open_input`] gives.
+pub trait ReadSeek: std::io::BufRead + std::io::Seek {}
+impl<T: std::io::BufRead + std::io::Seek> ReadSeek for T {}
 
 /// [`read_input`] as UTF-8 text; the error names the first byte that is not.
 pub fn read_input_text(path: &Path, max_bytes: u64) -> Result<String, String> {

@@ -2,6 +2,8 @@
 //! of every shader function and a ground truth to compare against.
 
 pub mod app;
+pub mod built_in;
+#[cfg(not(target_arch = "wasm32"))]
 pub mod cli;
 pub mod diagrams;
 pub mod export;
@@ -17,5 +19,7 @@ pub mod shadow;
 pub mod shipped;
 pub mod ui;
 pub mod views;
+#[cfg(target_arch = "wasm32")]
+mod web;
 
 pub use shipped::shipped_path;

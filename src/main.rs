@@ -1,7 +1,10 @@
-use clap::Parser;
-use shadowlab::cli::{Cli, run};
+//! The desktop app and the command line. (The page starts from the library: `src/web.rs`.)
 
+#[cfg(not(target_arch = "wasm32"))]
 fn main() {
+    use clap::Parser;
+    use shadowlab::cli::{Cli, run};
+
     let cli = Cli::parse();
     let Some(command) = cli.command else {
         // No command: the interactive app, on what the arguments name (checked before a window).
@@ -24,3 +27,6 @@ fn main() {
         std::process::exit(e.code);
     }
 }
+
+#[cfg(target_arch = "wasm32")]
+fn main() {}

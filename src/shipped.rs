@@ -10,64 +10,17 @@ use std::sync::OnceLock;
 /// Set to 1 to use the copy built into the binary even where files are found on disk.
 pub const BUILT_IN_ENV: &str = "SHADOWLAB_BUILT_IN_DATA";
 
-macro_rules! shipped_files {
-    ($($path:literal),* $(,)?) => {
-        /// Every shipped file, by its path relative to the checkout, with its bytes.
-        pub const FILES: &[(&str, &[u8])] =
-            &[$(($path, include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $path)))),*];
-    };
-}
-
-shipped_files![
-    "lessons/01_hard_shadows.toml",
-    "lessons/02_bias.toml",
-    "lessons/03_pcf.toml",
-    "lessons/04_pcss.toml",
-    "lessons/05_multi_light.toml",
-    "lessons/06_vsm.toml",
-    "lessons/07_homework.toml",
-    "assets/README.md",
-    "assets/meshes/bunny.obj",
-    "assets/meshes/floor.mtl",
-    "assets/meshes/floor.obj",
-    "assets/scenes/acne.toml",
-    "assets/scenes/bleeding.toml",
-    "assets/scenes/contact.toml",
-    "assets/scenes/games202.toml",
-    "assets/scenes/homework.toml",
-    "assets/scenes/homework_check.toml",
-    "assets/homework/README.md",
-    "assets/homework/phongFragment.glsl",
-    "assets/homework/phongFragment_light_size_world.glsl",
-    "assets/homework/phongFragment_nan_blocker.glsl",
-    "assets/homework/phongFragment_ndc_coordinates.glsl",
-    "assets/homework/phongFragment_no_bias.glsl",
-    "assets/homework/phongFragment_tiny_light.glsl",
-    "assets/homework/shadowFragment_255.glsl",
-    "assets/homework/framework/phongVertex.glsl",
-    "assets/homework/framework/shadowFragment.glsl",
-    "assets/homework/framework/shadowVertex.glsl",
-    "assets/scenes/lesson_bias_cull.toml",
-    "assets/scenes/lesson_pcss_sun.toml",
-    "assets/scenes/multi_light.toml",
-    "assets/textures/checker.png",
-];
-
-/// Folders whose files ship (the test that keeps [`FILES`] complete walks them).
-pub const SHIPPED_DIRS: [&str; 6] = [
-    "lessons",
-    "assets/meshes",
-    "assets/scenes",
-    "assets/textures",
-    "assets/homework",
-    "assets/homework/framework",
-];
+pub use crate::built_in::{FILES, SHIPPED_DIRS};
 
 /// A shipped file or folder, found from any working folder: relative to the working folder
 /// first, then beside the executable (and up to three folders above it, which covers
 /// `target/release/`), then in the source tree it was built from, then in the unpacked built-in
-/// copy.
+/// copy. In a page, `relative` itself: the built-in copy's name for it.
 pub fn shipped_path(relative: &str) -> PathBuf {
+    // A page has no disk: its files are the copy built in, by their relative paths (`files.rs`).
+    if cfg!(target_arch = "wasm32") {
+        return PathBuf::from(relative);
+    }
     let source_tree = Path::new(env!("CARGO_MANIFEST_DIR")).join(relative);
     if !use_built_in() {
         let beside_exe: Vec<PathBuf> = std::env::current_exe()

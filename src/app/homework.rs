@@ -213,7 +213,7 @@ impl AppState {
     /// camera view shows their picture, the homework panel what the check found. A shader that
     /// does not compile opens too, with its error, and shows once it does.
     pub fn open_homework(&mut self, path: &Path) {
-        if !path.is_file() {
+        if !crate::files::is_file(path) {
             let detail = format!("{}: no such file", path.display());
             self.error = Some(AppError::new("could not open the shader", detail));
             return;

@@ -62,7 +62,7 @@ fn at_step(lesson: Lesson, step: Option<u32>) -> Result<Opening, String> {
 
 fn open_file(file: &str, step: Option<u32>) -> Result<Opening, String> {
     let path = Path::new(file);
-    if !path.exists() {
+    if !crate::files::exists(path) {
         // Not a file: a shipped lesson's id or number, or a typo worth naming.
         let all = lessons::load_all(&lessons::default_dir()).map_err(|e| e.to_string())?;
         return match lessons::find(&all, file) {
@@ -107,7 +107,7 @@ fn open_file(file: &str, step: Option<u32>) -> Result<Opening, String> {
 /// A lesson file has `[[step]]` tables; a scene file has none (unreadable files are left to the
 /// scene loader, which names the problem).
 pub fn is_lesson_file(path: &Path) -> bool {
-    std::fs::read_to_string(path)
+    crate::files::read_input_text(path, crate::files::MAX_TEXT_FILE_BYTES)
         .ok()
         .and_then(|text| text.parse::<toml::Table>().ok())
         .is_some_and(|table| table.contains_key("step"))

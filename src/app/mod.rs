@@ -413,10 +413,10 @@ impl AppState {
     pub fn open_any(&mut self, path: &Path) {
         // Scenes and models through `open` (loaded once, the old scene kept if this one fails);
         // lesson files and lesson ids as the command line takes them.
-        if path.exists() && homework::is_shader_file(path) {
+        if crate::files::exists(path) && homework::is_shader_file(path) {
             return self.open_homework(path);
         }
-        if path.exists() && !launch::is_lesson_file(path) {
+        if crate::files::exists(path) && !launch::is_lesson_file(path) {
             return self.open(path);
         }
         match launch::resolve(Some(&path.to_string_lossy()), None, None, None) {

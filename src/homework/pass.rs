@@ -397,7 +397,7 @@ impl HomeworkRenderer {
             self.draw(&self.camera, &mut render, scene, request, 1.0, &map_view, &mut keep);
         }
         self.queue.submit([encoder.finish()]);
-        if let Some(e) = pollster::block_on(scope.pop()) {
+        if let Some(e) = crate::render::scope_error(scope.pop()) {
             return Err(HomeworkGpuError(format!("homework render: {}", one_line(&e))));
         }
         // The three targets come back together (one wait for all).

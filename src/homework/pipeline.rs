@@ -135,7 +135,7 @@ impl Pass {
             multiview_mask: None,
             cache: None,
         });
-        if let Some(e) = pollster::block_on(scope.pop()) {
+        if let Some(e) = crate::render::scope_error(scope.pop()) {
             return Err(HomeworkGpuError(format!("{label}: {}", one_line(&e))));
         }
         let student_block_bytes =

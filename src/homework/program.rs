@@ -30,7 +30,7 @@ impl ShaderSource {
     pub fn read(path: &Path) -> Result<Self, HomeworkError> {
         let name =
             path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into());
-        let bytes = std::fs::read(path).map_err(|e| HomeworkError::Shader {
+        let bytes = crate::files::read(path).map_err(|e| HomeworkError::Shader {
             file: path.display().to_string(),
             line: None,
             message: format!("cannot read it: {e}"),

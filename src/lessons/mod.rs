@@ -434,12 +434,10 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
 
 /// Every `*.toml` lesson in `dir`, in their `order`.
 pub fn load_all(dir: &Path) -> Result<Vec<Lesson>, LessonError> {
-    let entries = std::fs::read_dir(dir)
+    let entries = crate::files::folder_entries(dir)
         .map_err(|e| LessonError::Io { path: dir.display().to_string(), reason: e.to_string() })?;
-    let mut paths: Vec<PathBuf> = entries
-        .filter_map(|e| e.ok().map(|e| e.path()))
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
+    let mut paths: Vec<PathBuf> =
+        entries.into_iter().filter(|p| p.extension().is_some_and(|x| x == "toml")).collect();
     paths.sort();
     let mut lessons = paths.iter().map(|p| load_lesson(p)).collect::<Result<Vec<_>, _>>()?;
     let mut ids: Vec<&str> = lessons.iter().map(|l| l.id.as_str()).collect();

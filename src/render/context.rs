@@ -1,7 +1,10 @@
 //! Adapter and device for headless use (CLI, tests). The app gets its device from eframe.
+//! What an error scope caught, asked in a way a page can too.
 
+#[cfg(not(target_arch = "wasm32"))]
 use super::RenderError;
 
+#[cfg(not(target_arch = "wasm32"))]
 pub struct GpuContext {
     pub device: wgpu::Device,
     pub queue: wgpu::Queue,
@@ -13,6 +16,7 @@ pub fn optional_features() -> wgpu::Features {
     wgpu::Features::TIMESTAMP_QUERY
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 impl GpuContext {
     /// A device on the adapter `headless_adapter` picks.
     pub fn new_headless() -> Result<Self, RenderError> {
@@ -43,8 +47,37 @@ pub fn describe_adapter(info: &wgpu::AdapterInfo) -> String {
     format!("{} via {:?} ({:?})", info.name, info.backend, info.device_type)
 }
 
+/// What an error scope caught (`popped`: its `pop()`). The desktop waits for the answer. A page
+/// cannot wait: where the browser answers later (WebGPU) the error goes to the browser's console
+/// when it comes, and this returns None.
+pub(crate) fn scope_error(
+    popped: impl Future<Output = Option<wgpu::Error>> + 'static,
+) -> Option<wgpu::Error> {
+    #[cfg(not(target_arch = "wasm32"))]
+    {
+        pollster::block_on(popped)
+    }
+    #[cfg(target_arch = "wasm32")]
+    {
+        let mut popped = Box::pin(popped);
+        let mut cx = std::task::Context::from_waker(std::task::Waker::noop());
+        match popped.as_mut().poll(&mut cx) {
+            std::task::Poll::Ready(error) => error,
+            std::task::Poll::Pending => {
+                wasm_bindgen_futures::spawn_local(async move {
+                    if let Some(e) = popped.await {
+                        log::error!("GPU error: {e}");
+                    }
+                });
+                None
+            }
+        }
+    }
+}
+
 /// An adapter on the backends named by `WGPU_BACKEND` (`vulkan`, `gl`, ...); by default Vulkan,
 /// and OpenGL only where Vulkan has none (GL probing prints noise on headless machines).
+#[cfg(not(target_arch = "wasm32"))]
 pub fn headless_adapter() -> Result<wgpu::Adapter, RenderError> {
     let attempts = match wgpu::Backends::from_env() {
         Some(backends) => vec![backends],

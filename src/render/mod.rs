@@ -19,7 +19,10 @@ mod timing;
 
 use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
 pub use analysis::{Analysis, AnalysisPixel, MomentsLevel};
-pub use context::{GpuContext, describe_adapter, headless_adapter, optional_features};
+pub(crate) use context::scope_error;
+#[cfg(not(target_arch = "wasm32"))]
+pub use context::{GpuContext, headless_adapter};
+pub use context::{describe_adapter, optional_features};
 pub use frame::{Frame, FrameRequest};
 pub use pipelines::{COLOR_FORMAT, pipelines_built};
 pub use readback::{GpuWait, Readback};
@@ -108,7 +111,7 @@ impl Renderer {
         let validation = device.push_error_scope(wgpu::ErrorFilter::Validation);
         let layouts = Layouts::new(device);
         let pipelines = Pipelines::new(device, &layouts);
-        let error = pollster::block_on(validation.pop()).or(pollster::block_on(internal.pop()));
+        let error = scope_error(validation.pop()).or(scope_error(internal.pop()));
         if let Some(e) = error {
             return Err(RenderError::Device(format!(
                 "this adapter cannot build shadowlab's pipelines: {}",
@@ -200,9 +203,9 @@ impl Renderer {
         let internal = self.device.push_error_scope(wgpu::ErrorFilter::Internal);
         let validation = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let result = work(self);
-        let validation_error = pollster::block_on(validation.pop());
-        let internal_error = pollster::block_on(internal.pop());
-        let memory_error = pollster::block_on(memory.pop());
+        let validation_error = scope_error(validation.pop());
+        let internal_error = scope_error(internal.pop());
+        let memory_error = scope_error(memory.pop());
         match (validation_error.or(internal_error).or(memory_error), result) {
             (Some(e), _) => Err(RenderError::Device(
                 e.to_string().lines().next().unwrap_or("GPU error").to_string() + " " + &first_cause(&e),

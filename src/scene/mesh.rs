@@ -325,7 +325,7 @@ fn load_texture(
         return Ok(texture.clone());
     }
     let (path, name) = (mtl_path.to_owned(), name.to_owned());
-    if !resolved.exists() {
+    if !crate::files::exists(&resolved) {
         return Err(MeshError::TextureNotFound { path, name, resolved });
     }
     // A folder, a device or a FIFO (whose open would block) is refused before it is opened.
@@ -333,8 +333,15 @@ fn load_texture(
         return Err(MeshError::Texture { path, name, resolved, reason });
     }
     let reader = || {
-        image::ImageReader::open(&resolved)
-            .and_then(|reader| reader.with_guessed_format())
+        crate::files::open_input(&resolved)
+            .and_then(|input| {
+                // The format the name says, unless the bytes say otherwise.
+                let mut reader = image::ImageReader::new(input);
+                if let Ok(format) = image::ImageFormat::from_path(&resolved) {
+                    reader.set_format(format);
+                }
+                reader.with_guessed_format()
+            })
             .map_err(|e| e.to_string())
     };
     // The size first, from the header: a texture no GPU can hold is refused before it is decoded.

@@ -143,9 +143,7 @@ impl ShadowlabApp {
         let combo =
             // Tall enough for the shipped scenes and the recent files without scrolling.
             egui::ComboBox::from_id_salt("source").selected_text(current).width(130.0).height(520.0).show_ui(ui, |ui| {
-                let mut scenes: Vec<PathBuf> = std::fs::read_dir(shipped_path("assets/scenes"))
-                    .map(|d| d.filter_map(|e| e.ok().map(|e| e.path())).collect())
-                    .unwrap_or_default();
+                let mut scenes: Vec<PathBuf> = crate::files::folder_entries(&shipped_path("assets/scenes")).unwrap_or_default();
                 scenes.retain(|p| p.extension().is_some_and(|e| e == "toml"));
                 scenes.sort();
                 for path in scenes {
@@ -155,7 +153,7 @@ impl ShadowlabApp {
                     }
                 }
                 // Files opened from elsewhere (those since moved or deleted are left out).
-                let recent: Vec<&PathBuf> = self.state.settings.recent_files.iter().filter(|p| p.exists()).collect();
+                let recent: Vec<&PathBuf> = self.state.settings.recent_files.iter().filter(|p| crate::files::exists(p)).collect();
                 let current = match &self.state.source {
                     Source::Scene(p) => std::fs::canonicalize(p).ok(),
                     Source::Lesson { .. } => None,

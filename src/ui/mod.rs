@@ -9,6 +9,8 @@ mod homework_view;
 mod inspector;
 mod lesson_panel;
 mod map_panel;
+#[cfg(target_arch = "wasm32")]
+mod page;
 mod panels;
 mod probe_panel;
 mod rendering;
@@ -22,12 +24,13 @@ pub use crate::app::{
 };
 pub use inspector::{control_label, value_label};
 pub use panels::DIAGRAM_MIN_TEXT_PT;
-pub use window::{
-    clear_paints_panels, configure_wgpu, display_available, run, ui_painter, window_options,
-    window_render_options,
-};
+pub use window::{clear_paints_panels, configure_wgpu, window_render_options};
+#[cfg(not(target_arch = "wasm32"))]
+pub use window::{display_available, run, ui_painter, window_options};
 
-use crate::app::scheduler::{FrameDriven, RenderScheduler, WorkerThread};
+#[cfg(not(target_arch = "wasm32"))]
+use crate::app::scheduler::WorkerThread;
+use crate::app::scheduler::{FrameDriven, RenderScheduler};
 use crate::lessons;
 use crate::render::Analysis;
 use crate::shipped_path;
@@ -49,7 +52,7 @@ pub struct ShadowlabApp {
     shown_job: u64,
     frames_shown: u64,
     /// Wall-clock time of the last UI frame (playback advances by it).
-    last_tick: Option<std::time::Instant>,
+    last_tick: Option<web_time::Instant>,
     /// Why there is no GPU view (shown in place of the views).
     gpu_error: Option<String>,
     /// Point the camera at the probe's surface point once the probe is computed (double-click).
@@ -71,7 +74,7 @@ pub struct ShadowlabApp {
     screenshot_pending: bool,
     homework_textures: homework_view::HomeworkTextures,
     /// When the homework's files were last looked at (they are watched a few times a second).
-    homework_watched: Option<std::time::Instant>,
+    homework_watched: Option<web_time::Instant>,
 }
 
 impl std::ops::Deref for ShadowlabApp {
@@ -95,7 +98,9 @@ impl ShadowlabApp {
             .unwrap_or_default();
         install_cjk_font(&cc.egui_ctx);
         cc.egui_ctx.set_visuals(egui::Visuals::dark());
-        let (worker, gpu_error) = spawn_worker(cc, SchedulerKind::Thread);
+        let kind =
+            if cfg!(target_arch = "wasm32") { SchedulerKind::FrameDriven } else { SchedulerKind::Thread };
+        let (worker, gpu_error) = spawn_worker(cc, kind);
         let mut app = Self::with_settings(worker, gpu_error, settings);
         // A first start (or one that ended outside a lesson) offers the lessons.
         app.state.show_lesson_list = app.state.current_step().is_none();
@@ -207,7 +212,13 @@ impl ShadowlabApp {
     fn handle_dropped_files(&mut self, ctx: &egui::Context) {
         let dropped: Vec<PathBuf> =
             ctx.input(|i| i.raw.dropped_files.iter().map(|f| f.path().to_path_buf()).collect());
-        if let Some(path) = dropped.last() {
+        if dropped.is_empty() {
+        } else if cfg!(target_arch = "wasm32") {
+            // A page gets a dropped file's bytes, not a path to open.
+            let why =
+                "the page cannot open dropped files yet: the built-in scenes and lessons are in the menus";
+            self.state.status = crate::i18n::tr(self.state.lang, why).into();
+        } else if let Some(path) = dropped.last() {
             self.state.open_any(path);
         }
     }
@@ -230,11 +241,12 @@ impl ShadowlabApp {
             dialog::DialogOutcome::Picked(path) => self.state.open_any(&path),
             dialog::DialogOutcome::Cancelled => {}
             dialog::DialogOutcome::Unavailable => {
-                self.state.status = crate::i18n::tr(
-                    self.state.lang,
-                    "no file dialog on this desktop (no xdg-desktop-portal): type a path in the box, or drop a file on the window",
-                )
-                .into();
+                let why = if cfg!(target_arch = "wasm32") {
+                    "the page has no file dialog yet: the built-in scenes and lessons are in the menus"
+                } else {
+                    "no file dialog on this desktop (no xdg-desktop-portal): type a path in the box, or drop a file on the window"
+                };
+                self.state.status = crate::i18n::tr(self.state.lang, why).into();
                 self.focus_path_box = true;
             }
         }
@@ -248,6 +260,7 @@ impl ShadowlabApp {
 
 /// The render worker, waking egui whenever it has news: on a device of eframe's adapter where
 /// the window paints with wgpu, on one of its own where it paints with OpenGL.
+#[cfg(not(target_arch = "wasm32"))]
 fn spawn_worker(
     cc: &eframe::CreationContext<'_>,
     kind: SchedulerKind,
@@ -267,6 +280,22 @@ fn spawn_worker(
             (Some(scheduler), None)
         }
         Err(e) => (None, Some(e)),
+    }
+}
+
+/// A page's renderer: the frame-driven scheduler on eframe's own device (a browser's adapter gives
+/// one device; there is no thread to give a worker).
+#[cfg(target_arch = "wasm32")]
+fn spawn_worker(
+    cc: &eframe::CreationContext<'_>,
+    _kind: SchedulerKind,
+) -> (Option<Box<dyn RenderScheduler>>, Option<String>) {
+    match cc.wgpu_render_state.as_ref() {
+        Some(rs) => {
+            let scheduler = FrameDriven::on_device(rs.adapter.clone(), rs.device.clone(), rs.queue.clone());
+            (Some(Box::new(scheduler)), None)
+        }
+        None => (None, Some("this browser gave the page no WebGPU or WebGL2 device".into())),
     }
 }
 
@@ -313,9 +342,11 @@ impl eframe::App for ShadowlabApp {
         self.handle_dropped_files(&ctx);
         self.poll_open_dialog();
         self.save_screenshot_if_ready();
-        self.advance_time(std::time::Instant::now());
+        self.advance_time(web_time::Instant::now());
         self.watch_homework(&ctx);
         self.receive_renders(&ctx);
+        #[cfg(target_arch = "wasm32")]
+        page::publish(self.frames_shown);
         // Dragging a slider (or anything else) asks for previews until it is let go.
         self.interacting = ctx.dragged_id().is_some();
         if self.state.playing || self.worker.as_ref().is_some_and(|w| w.needs_polling()) {

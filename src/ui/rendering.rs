@@ -9,7 +9,8 @@ use crate::scene::Technique;
 use crate::shadow::{LightGpu, ShadowParamsGpu};
 use crate::views::View;
 use crate::views::overlays::Overlay;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 /// Show "rendering..." over a view that has waited this long for its frame.
 pub const SLOW_RENDER: Duration = Duration::from_millis(150);
@@ -67,7 +68,7 @@ impl ShadowlabApp {
         if self.state.homework.is_none() {
             return;
         }
-        let now = std::time::Instant::now();
+        let now = web_time::Instant::now();
         if self.homework_watched.is_some_and(|t| now - t < HOMEWORK_WATCH_EVERY) {
             ctx.request_repaint_after(HOMEWORK_WATCH_EVERY);
             return;

@@ -1,5 +1,6 @@
 //! The window: which painter draws it, the wgpu device eframe makes, and opening it.
 
+#[cfg(not(target_arch = "wasm32"))]
 use super::ShadowlabApp;
 use std::sync::Arc;
 
@@ -24,6 +25,7 @@ pub fn window_render_options() -> eframe::egui_wgpu::RendererOptions {
     eframe::egui_wgpu::RendererOptions { msaa_samples: 1, ..Default::default() }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// What paints the window: `SHADOWLAB_UI_PAINTER=glow|wgpu`, or by default OpenGL where the
 /// GPU is a software rasteriser and wgpu elsewhere. On Mesa's llvmpipe egui's OpenGL shader costs
 /// about a sixth of its wgpu shader per pixel (a 1600x900 window: ~25 ms a frame against ~140 ms),
@@ -41,12 +43,14 @@ pub fn ui_painter() -> eframe::Renderer {
     }
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// Whether a window can be opened here (on Linux: an X11 or Wayland display is named).
 pub fn display_available() -> bool {
     !cfg!(target_os = "linux")
         || ["DISPLAY", "WAYLAND_DISPLAY"].iter().any(|v| std::env::var_os(v).is_some_and(|s| !s.is_empty()))
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// Open the app on what `launch` asks for. Returns a one-line reason where no window can be
 /// opened.
 pub fn run(launch: super::launch::Launch) -> Result<(), String> {
@@ -73,6 +77,7 @@ pub fn run(launch: super::launch::Launch) -> Result<(), String> {
     })
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 fn open_window(painter: eframe::Renderer, launch: super::launch::Launch) -> Result<(), String> {
     eframe::run_native(
         "shadowlab",
@@ -100,6 +105,7 @@ pub fn clear_paints_panels(ctx: &egui::Context) {
     ctx.all_styles_mut(|style| style.visuals.panel_fill = egui::Color32::TRANSPARENT);
 }
 
+#[cfg(not(target_arch = "wasm32"))]
 /// The window the app opens, painted by `painter`.
 pub fn window_options(painter: eframe::Renderer) -> eframe::NativeOptions {
     eframe::NativeOptions {

@@ -8,7 +8,7 @@ use super::{Details, ProbeOutcome, RenderEvent, RenderJob};
 use crate::probe::{Probed, Probing};
 use crate::render::{Analysis, FrameRequest, GpuWait, Readback, RenderError};
 use crate::views::overlays::bleeding_inputs_readback;
-use std::time::Instant;
+use web_time::Instant;
 
 /// The details under way.
 pub(super) struct DetailsComing {

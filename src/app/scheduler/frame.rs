@@ -6,15 +6,18 @@
 //! time. What is submitted in a poll is collected on a later one (a browser maps a buffer only
 //! after the frame returns). A newer job replaces the one in progress between polls.
 
-use super::renderers::{Renderers, Stage, open};
+use super::renderers::{Renderers, Stage};
 use super::{JobBook, RenderEvent, RenderJob, RenderScheduler};
 use crate::render::{GpuWait, RenderError};
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 pub struct FrameDriven {
     /// None until the device opens (on the first poll), and where it failed.
     renderers: Option<Renderers>,
     adapter: Option<wgpu::Adapter>,
+    /// A device to render on, already open (else one of the adapter's is opened).
+    device: Option<(wgpu::Device, wgpu::Queue)>,
     current: Option<CurrentJob>,
     /// Events to hand out on the next poll (the device's readiness).
     pending: Vec<RenderEvent>,
@@ -32,10 +35,25 @@ struct CurrentJob {
 
 impl FrameDriven {
     /// A scheduler that opens a device of `adapter` on its first poll.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn new(adapter: wgpu::Adapter) -> Self {
         Self {
             renderers: None,
             adapter: Some(adapter),
+            device: None,
+            current: None,
+            pending: Vec::new(),
+            book: JobBook::default(),
+        }
+    }
+
+    /// A scheduler that renders on `device`, of `adapter`, from its first poll (a page's: its
+    /// adapter gives one device, which the window paints with too).
+    pub fn on_device(adapter: wgpu::Adapter, device: wgpu::Device, queue: wgpu::Queue) -> Self {
+        Self {
+            renderers: None,
+            adapter: Some(adapter),
+            device: Some((device, queue)),
             current: None,
             pending: Vec::new(),
             book: JobBook::default(),
@@ -62,7 +80,14 @@ impl RenderScheduler for FrameDriven {
     fn poll(&mut self) -> Vec<RenderEvent> {
         let mut events = std::mem::take(&mut self.pending);
         if let Some(adapter) = self.adapter.take() {
-            match open(&adapter) {
+            let opened = match self.device.take() {
+                Some((device, queue)) => super::renderers::open_on(device, queue),
+                #[cfg(not(target_arch = "wasm32"))]
+                None => super::renderers::open(&adapter),
+                #[cfg(target_arch = "wasm32")]
+                None => Err(RenderError::Device("no device to render on".into())),
+            };
+            match opened {
                 Ok(r) => {
                     self.renderers = Some(r);
                     events.push(RenderEvent::Ready(Ok(crate::render::describe_adapter(&adapter.get_info()))));

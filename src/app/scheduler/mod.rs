@@ -19,11 +19,13 @@ mod homework;
 mod keys;
 mod maps;
 mod renderers;
+#[cfg(not(target_arch = "wasm32"))]
 mod thread;
 mod truths;
 
 pub use frame::FrameDriven;
 pub use homework::HomeworkJob;
+#[cfg(not(target_arch = "wasm32"))]
 pub use thread::WorkerThread;
 
 use crate::probe::ProbeReport;
@@ -179,13 +181,13 @@ pub enum RenderEvent {
 struct JobBook {
     latest: u64,
     finished: u64,
-    submitted_at: Option<std::time::Instant>,
+    submitted_at: Option<web_time::Instant>,
 }
 
 impl JobBook {
     fn submitted(&mut self, id: u64) {
         self.latest = id;
-        self.submitted_at.get_or_insert_with(std::time::Instant::now);
+        self.submitted_at.get_or_insert_with(web_time::Instant::now);
     }
 
     /// Note what `events` finish.
@@ -193,7 +195,7 @@ impl JobBook {
         for event in events {
             match event {
                 // A frame arrived: the views are waiting only for the newer ones from now on.
-                RenderEvent::Frame(_) => self.submitted_at = Some(std::time::Instant::now()),
+                RenderEvent::Frame(_) => self.submitted_at = Some(web_time::Instant::now()),
                 // The maps complete a job (its details, if any, follow).
                 RenderEvent::Maps(maps) => self.finished = self.finished.max(maps.job),
                 RenderEvent::Details(details) => self.finished = self.finished.max(details.job),

@@ -9,7 +9,7 @@ use super::maps::MapsComing;
 use super::truths::{ProbeTruths, ViewTruth};
 use super::{RenderEvent, RenderJob, RenderOutput};
 use crate::render::{Frame, FrameRequest, GpuWait, PassTimes, Readback, RenderError, Renderer};
-use std::time::Instant;
+use web_time::Instant;
 
 /// Where a job is: the stage to run next, with the work it has under way.
 pub(super) enum Stage {
@@ -58,6 +58,8 @@ pub(super) struct Renderers {
     homework: super::homework::HomeworkRunner,
 }
 
+/// Renderers on a device of their own (the desktop: the device opens at once).
+#[cfg(not(target_arch = "wasm32"))]
 pub(super) fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
     let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
         label: Some("shadowlab render worker"),
@@ -66,6 +68,11 @@ pub(super) fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
         ..Default::default()
     }))
     .map_err(|e| RenderError::Device(e.to_string()))?;
+    open_on(device, queue)
+}
+
+/// Renderers on a device already open (a page's: a browser's adapter gives one device).
+pub(super) fn open_on(device: wgpu::Device, queue: wgpu::Queue) -> Result<Renderers, RenderError> {
     let a = Renderer::new(&device, &queue)?;
     Ok(Renderers {
         device,
@@ -126,8 +133,12 @@ impl Renderers {
             Stage::Homework => {
                 if let Some(homework) = &job.homework {
                     let (size, time_s) = (job.request.size, job.request.time_s);
-                    let outcome =
-                        self.homework.run(&self.device, &self.queue, homework, &job.scene, size, time_s);
+                    // The check waits for its read-backs, which a page's frames cannot.
+                    let outcome = if cfg!(target_arch = "wasm32") {
+                        Err("the homework check does not run in the page yet (it waits for the GPU)".into())
+                    } else {
+                        self.homework.run(&self.device, &self.queue, homework, &job.scene, size, time_s)
+                    };
                     send(RenderEvent::Homework { job: id, generation: homework.generation, outcome });
                 }
                 Ok(Stage::ViewReference)

@@ -8,7 +8,8 @@ use crate::render::GpuWait;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc;
-use std::time::{Duration, Instant};
+use std::time::Duration;
+use web_time::Instant;
 
 pub struct WorkerThread {
     jobs: mpsc::Sender<(u64, RenderJob)>,
