@@ -37,6 +37,8 @@ try {
     polling: 500,
   });
   frames = Number(await page.evaluate(() => document.body.dataset.frames));
+  const where = await page.evaluate(() => ({ ...document.body.dataset }));
+  log.push(`body: ${JSON.stringify(where)}`);
 } catch (e) {
   log.push(`no finished render within ${timeoutS} s`);
 }

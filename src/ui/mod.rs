@@ -346,7 +346,7 @@ impl eframe::App for ShadowlabApp {
         self.watch_homework(&ctx);
         self.receive_renders(&ctx);
         #[cfg(target_arch = "wasm32")]
-        page::publish(self.frames_shown);
+        page::publish(self.frames_shown, &self.state);
         // Dragging a slider (or anything else) asks for previews until it is let go.
         self.interacting = ctx.dragged_id().is_some();
         if self.state.playing || self.worker.as_ref().is_some_and(|w| w.needs_polling()) {
