@@ -6,7 +6,6 @@ use super::{AppError, AppState, Source};
 use crate::homework::{CheckOutcome, HomeworkError, HomeworkFiles, HomeworkProgram};
 use crate::scene::load_scene;
 use crate::shipped_path;
-use crate::views::View;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 use std::time::SystemTime;
@@ -222,12 +221,8 @@ impl AppState {
         if self.source != Source::Scene(scene_path.clone()) || self.homework.is_none() {
             match load_scene(&scene_path, &[]) {
                 Ok(scene) => {
-                    self.set_scene(scene, Source::Scene(scene_path));
-                    self.probe_at = None;
-                    self.overlays.clear();
-                    self.view = View::Final;
+                    self.set_fresh_scene(scene, Source::Scene(scene_path));
                     self.ab = None;
-                    self.scenes_opened += 1;
                 }
                 Err(e) => {
                     self.error = Some(AppError::new("could not open the scene", e));

@@ -165,12 +165,7 @@ impl AppState {
                 // A scene that shows nothing says so (the CLI prints the same warnings).
                 let warnings = scene.warnings(0.0, 16.0 / 9.0);
                 self.homework = None;
-                self.set_scene(scene, Source::Scene(path.to_path_buf()));
-                // A new scene starts clean: nothing of the last one's probe, overlays, view or zoom.
-                self.probe_at = None;
-                self.overlays.clear();
-                self.view = View::Final;
-                self.scenes_opened += 1;
+                self.set_fresh_scene(scene, Source::Scene(path.to_path_buf()));
                 self.settings.last_scene = (!is_obj).then(|| path.to_path_buf());
                 self.settings.last_lesson = None;
                 // The shipped scenes are listed anyway; anything else is a recent file.
@@ -188,6 +183,15 @@ impl AppState {
             }
             Err(e) => self.error = Some(AppError::new("could not open the scene", e)),
         }
+    }
+
+    /// A scene opened anew starts clean: nothing of the last one's probe, overlays, view or zoom.
+    fn set_fresh_scene(&mut self, scene: Scene, source: Source) {
+        self.set_scene(scene, source);
+        self.probe_at = None;
+        self.overlays.clear();
+        self.view = View::Final;
+        self.scenes_opened += 1;
     }
 
     fn set_scene(&mut self, scene: Scene, source: Source) {

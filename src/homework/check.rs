@@ -93,11 +93,14 @@ pub struct CheckInputs<'a> {
 
 /// The penumbra's width at `pixel` (the student's, the ground truth's), world units, across the
 /// ground truth's edge there; None where the ground truth has no edge at that pixel.
-pub fn penumbra_widths(inputs: &CheckInputs<'_>, pixel: (u32, u32)) -> Option<(f32, f32)> {
-    let student = inputs.student;
-    let field =
-        super::penumbra::Field { width: student.width, height: student.height, positions: inputs.positions };
-    let truth = |i: usize| student.covered(i).then(|| inputs.ground_truth[i]);
+pub fn penumbra_widths(
+    student: &HomeworkImages,
+    ground_truth: &[f32],
+    positions: &[Option<glam::Vec3>],
+    pixel: (u32, u32),
+) -> Option<(f32, f32)> {
+    let field = super::penumbra::Field { width: student.width, height: student.height, positions };
+    let truth = |i: usize| student.covered(i).then(|| ground_truth[i]);
     let theirs = |i: usize| student.visibility(i);
     let dir = field.across(&truth, pixel)?;
     let truth_width = field.width_along(&truth, pixel, dir, 3);
@@ -152,7 +155,8 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     let field =
         super::penumbra::Field { width: student.width, height: student.height, positions: inputs.positions };
     f.penumbra_pixel = super::penumbra::default_pixel(&field, &|i| student.covered(i).then(|| truth(i)));
-    if let Some((theirs, truth_width)) = f.penumbra_pixel.and_then(|p| penumbra_widths(inputs, p)) {
+    let widths = |p| penumbra_widths(student, inputs.ground_truth, inputs.positions, p);
+    if let Some((theirs, truth_width)) = f.penumbra_pixel.and_then(widths) {
         (f.penumbra_width_world, f.penumbra_width_world_ground_truth) = (Some(theirs), Some(truth_width));
     }
 

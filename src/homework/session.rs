@@ -214,17 +214,7 @@ impl CheckOutcome {
     /// The penumbra's width at `pixel`, world units: the student's and the ground truth's
     /// (None where the ground truth has no edge there).
     pub fn penumbra_widths(&self, pixel: (u32, u32)) -> Option<(f32, f32)> {
-        let facing = Vec::new();
-        let inputs = CheckInputs {
-            student: &self.student,
-            student_white_map: &self.student,
-            shadowlab: &self.shadowlab_visibility,
-            ground_truth: &self.ground_truth,
-            facing: &facing,
-            visibility_function: None,
-            positions: &self.positions,
-        };
-        super::check::penumbra_widths(&inputs, pixel)
+        super::check::penumbra_widths(&self.student, &self.ground_truth, &self.positions, pixel)
     }
 
     /// The student's picture as their shader wrote it (its colours are already gamma-encoded).
