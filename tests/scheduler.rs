@@ -9,6 +9,7 @@ use egui_kittest::Harness;
 use shadowlab::app::scheduler::{
     FrameDriven, ProbeSpot, RenderEvent, RenderJob, RenderScheduler, WorkerThread,
 };
+use shadowlab::i18n::Lang;
 use shadowlab::render::FrameRequest;
 use shadowlab::render::readback::blocking_waits_on_this_thread;
 use shadowlab::scene::Technique;
@@ -301,4 +302,71 @@ fn a_newer_job_drops_the_frame_driven_ground_truth_under_way() {
     assert!(events.iter().filter_map(job).all(|j| j == second), "job {first} went on after job {second}");
     let done: Vec<u32> = told(&events).view_truths.iter().map(|t| t.0).collect();
     assert_eq!(done, [4, 12, 28, 40], "the newer job's ground truth, from its first batch");
+}
+
+/// A homework check as a page runs it: the student's two pictures, shadowlab's frame and the
+/// ground truth a piece per poll, never waiting for the GPU within one, with the findings and
+/// figures of the check that waits (the command line's).
+#[test]
+fn the_frame_driven_scheduler_checks_a_homework_without_waiting() {
+    use shadowlab::app::scheduler::HomeworkJob;
+    use shadowlab::homework::{HomeworkFiles, HomeworkProgram, HomeworkRenderer, HomeworkRequest};
+    let shader = common::repo_path("assets/homework/phongFragment_tiny_light.glsl");
+    let files = HomeworkFiles::read(&shader, None, None).expect("the example reads");
+    let program = std::sync::Arc::new(HomeworkProgram::translate(files).expect("the example compiles"));
+    let scene = common::scene("homework_check", &[]);
+    // The size the homework tests use, where the examples' findings are what they are at 960x540.
+    let size = (480, 270);
+    let job = RenderJob {
+        scene: scene.clone(),
+        request: FrameRequest { size, selected_light: 0, ..Default::default() },
+        probe: None,
+        analysis: false,
+        reference: false,
+        probe_reference: Vec::new(),
+        bleeding: false,
+        moments: false,
+        technique_b: None,
+        thumbnails: false,
+        preview: false,
+        map_texels: 256,
+        homework: Some(HomeworkJob { program: program.clone(), generation: 1, lang: Lang::En }),
+    };
+    let mut driven = FrameDriven::new(shadowlab::render::headless_adapter().expect("an adapter"));
+    driven.submit(job);
+    let polls = poll_through(&mut driven);
+    let checked: Vec<usize> = polls
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.iter().any(|e| matches!(e, RenderEvent::Homework { .. })))
+        .map(|(i, _)| i)
+        .collect();
+    let outcome = match polls.iter().flatten().find(|e| matches!(e, RenderEvent::Homework { .. })) {
+        Some(RenderEvent::Homework { outcome, generation: 1, .. }) => {
+            outcome.as_ref().expect("the check ran").clone()
+        }
+        other => panic!("no homework event: {}", other.is_some()),
+    };
+    assert_eq!(checked.len(), 1, "one outcome");
+    // Student pictures, shadowlab's frame, the ground truth: at least a poll each after the image.
+    let frame = polls.iter().position(|p| p.iter().any(|e| matches!(e, RenderEvent::Frame(_))));
+    assert!(checked[0] >= frame.expect("a frame") + 3, "the check came in poll {}", checked[0]);
+
+    let (_gpu, mut renderer) = common::gpu();
+    let homework =
+        HomeworkRenderer::new(renderer.device(), renderer.queue(), &program).expect("the pipelines");
+    let request = HomeworkRequest { time_s: 0.0, size, light: 0, clear_map_white: false };
+    let waited = shadowlab::homework::run_check(
+        &homework,
+        &mut renderer,
+        &program.files.phong_fragment,
+        &scene,
+        &request,
+        Lang::En,
+    )
+    .expect("the check runs");
+    let ids = |r: &shadowlab::homework::HomeworkReport| r.findings.iter().map(|f| f.id).collect::<Vec<_>>();
+    assert_eq!(ids(&outcome.report), ["no_penumbra"], "the tiny light's finding");
+    assert_eq!(outcome.report, waited.report, "the polled check and the waited one differ");
+    assert_eq!(outcome.ground_truth, waited.ground_truth);
 }

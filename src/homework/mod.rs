@@ -23,6 +23,7 @@ mod penumbra;
 mod pipeline;
 mod program;
 mod rewrite;
+mod run;
 mod session;
 mod translate;
 
@@ -37,6 +38,7 @@ pub use pass::{
 };
 pub use program::{HomeworkFiles, HomeworkProgram, ShaderSource, TranslatedProgram};
 pub use rewrite::{FRAG_COLOR, Rewritten, rewrite};
+pub use run::CheckRun;
 pub use session::{CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, homework_picture, run_check};
 pub use translate::{Translated, translate, translate_rewritten};
 

@@ -295,12 +295,21 @@ impl HomeworkRenderer {
     }
 
     /// Render the homework: the light pass into a fresh map, then the camera pass; read back the
-    /// camera pass's targets.
+    /// camera pass's targets (waiting for them).
     pub fn render(
         &self,
         scene: &Scene,
         request: &HomeworkRequest,
     ) -> Result<HomeworkImages, HomeworkGpuError> {
+        Ok(self.submit(scene, request)?.wait(&self.device)?)
+    }
+
+    /// `render`'s passes submitted, their read-back on its way (for a caller that cannot wait).
+    pub fn submit(
+        &self,
+        scene: &Scene,
+        request: &HomeworkRequest,
+    ) -> Result<readback::Readback<HomeworkImages>, HomeworkGpuError> {
         let light = scene
             .lights
             .get(request.light)
@@ -405,22 +414,26 @@ impl HomeworkRenderer {
             let region = readback::Region::whole(0, (w, h), bytes, wgpu::TextureAspect::All);
             readback::Readback::texture(&self.device, &self.queue, texture, region, |m| Ok(m.to_vec()))
         };
-        let ((color, returned), calls) =
-            read(&color, 8).zip(read(&returned, 16)).zip(read(&calls, 4)).wait(&self.device)?;
-        let half = |b: &[u8]| half::f16::from_bits(u16::from_le_bytes([b[0], b[1]])).to_f32();
-        Ok(HomeworkImages {
-            width: w,
-            height: h,
-            color: color
-                .chunks_exact(8)
-                .map(|c| [half(&c[0..]), half(&c[2..]), half(&c[4..]), half(&c[6..])])
-                .collect(),
-            returned: readback::f32s(&returned)
-                .collect::<Vec<_>>()
-                .chunks_exact(4)
-                .map(|c| [c[0], c[1], c[2], c[3]])
-                .collect(),
-            calls: calls.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
-        })
+        let targets = read(&color, 8).zip(read(&returned, 16)).zip(read(&calls, 4));
+        Ok(targets.map(move |((color, returned), calls)| Ok(decode(w, h, &color, &returned, &calls))))
+    }
+}
+
+/// The camera pass's targets as read back: half-float colour, f32 returns, u8 calls.
+fn decode(w: u32, h: u32, color: &[u8], returned: &[u8], calls: &[u8]) -> HomeworkImages {
+    let half = |b: &[u8]| half::f16::from_bits(u16::from_le_bytes([b[0], b[1]])).to_f32();
+    HomeworkImages {
+        width: w,
+        height: h,
+        color: color
+            .chunks_exact(8)
+            .map(|c| [half(&c[0..]), half(&c[2..]), half(&c[4..]), half(&c[6..])])
+            .collect(),
+        returned: readback::f32s(returned)
+            .collect::<Vec<_>>()
+            .chunks_exact(4)
+            .map(|c| [c[0], c[1], c[2], c[3]])
+            .collect(),
+        calls: calls.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
     }
 }

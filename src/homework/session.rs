@@ -2,12 +2,14 @@
 //! shadowlab's own technique at the same settings and the ground truth, compared; and the
 //! pictures that show it.
 
-use super::check::{CheckInputs, Figures, Finding, check};
-use super::{HomeworkError, HomeworkGpuError, HomeworkImages, HomeworkRenderer, HomeworkRequest};
-use super::{RECORDED_FUNCTIONS, ShaderSource};
+use super::check::{Figures, Finding};
+use super::run::CheckRun;
+use super::{
+    HomeworkError, HomeworkGpuError, HomeworkImages, HomeworkRenderer, HomeworkRequest, ShaderSource,
+};
 use crate::i18n::Lang;
-use crate::render::{FrameRequest, Renderer};
-use crate::scene::{Scene, Technique};
+use crate::render::{GpuWait, Renderer};
+use crate::scene::Scene;
 use serde::Serialize;
 
 /// Where a shader that did not compile is wrong.
@@ -79,17 +81,8 @@ pub struct CheckOutcome {
     pub positions: Vec<Option<glam::Vec3>>,
 }
 
-/// shadowlab's technique for the function a student's `main` takes its visibility from.
-fn technique_for(function: usize) -> Technique {
-    match function {
-        1 => Technique::Hard,
-        2 => Technique::Pcf,
-        _ => Technique::Pcss,
-    }
-}
-
-/// Run a compiled homework and compare it (see the module documentation). `renderer` renders
-/// shadowlab's side on the same device.
+/// Run a compiled homework and compare it (see the module documentation), waiting for the GPU.
+/// `renderer` renders shadowlab's side on the same device.
 pub fn run_check(
     homework: &HomeworkRenderer,
     renderer: &mut Renderer,
@@ -98,75 +91,12 @@ pub fn run_check(
     request: &HomeworkRequest,
     lang: Lang,
 ) -> Result<CheckOutcome, HomeworkGpuError> {
-    let student = homework.render(scene, request)?;
-    let white = homework.render(scene, &HomeworkRequest { clear_map_white: true, ..*request })?;
-    let ran = student.ran_anywhere();
-    let calls: Vec<&'static str> =
-        RECORDED_FUNCTIONS.iter().enumerate().filter(|(k, _)| ran & (1 << k) != 0).map(|(_, n)| *n).collect();
-    let mut votes = [0u64; 4];
-    for c in &student.calls {
-        votes[(c[1] as usize).min(3)] += u64::from(c[3] != 0 && c[1] != 0);
+    let mut run = CheckRun::start(homework, &shader.name, scene, request, lang)?;
+    loop {
+        if let Some(outcome) = run.step(renderer, GpuWait::Block)? {
+            return Ok(outcome);
+        }
     }
-    let function = (1..=3).max_by_key(|&k| votes[k]).filter(|&k| votes[k] > 0);
-
-    let mut compared = scene.clone();
-    compared.shadow.technique = technique_for(function.unwrap_or(3));
-    let frame = FrameRequest {
-        time_s: request.time_s,
-        size: request.size,
-        selected_light: request.light,
-        final_color: true,
-        analysis: true,
-        timestamps: false,
-        only_pixel: None,
-    };
-    renderer.render(&compared, &frame)?;
-    let shadowlab_picture = renderer.read_color()?;
-    let analysis = renderer.read_analysis()?;
-    let ground_truth = renderer.render_reference(&compared, request.light)?;
-    let shadowlab_visibility: Vec<f32> = analysis.shadow.iter().map(|s| s[0]).collect();
-    let positions: Vec<Option<glam::Vec3>> = (0..analysis.position.len())
-        .map(|i| analysis.hit(i).then(|| glam::Vec3::from_slice(&analysis.position[i][..3])))
-        .collect();
-    let toward_light = -scene.lights[request.light].direction_at(request.time_s);
-    let facing: Vec<Option<f32>> = (0..analysis.shadow.len())
-        .map(|i| {
-            analysis.hit(i).then(|| {
-                glam::Vec3::from_slice(&analysis.normal[i][..3]).normalize_or_zero().dot(toward_light)
-            })
-        })
-        .collect();
-    let (figures, findings) = check(
-        &CheckInputs {
-            student: &student,
-            student_white_map: &white,
-            shadowlab: &shadowlab_visibility,
-            ground_truth: &ground_truth,
-            facing: &facing,
-            visibility_function: function,
-            positions: &positions,
-        },
-        lang,
-    );
-    let report = HomeworkReport {
-        shader: shader.name.clone(),
-        compiled: true,
-        error: None,
-        calls,
-        visibility_function: function.map(|k| RECORDED_FUNCTIONS[k - 1]),
-        compared_with: Some(compared.shadow.technique.name()),
-        figures: Some(figures),
-        findings,
-    };
-    Ok(CheckOutcome {
-        report,
-        student,
-        student_white_map: white,
-        shadowlab_picture,
-        shadowlab_visibility,
-        ground_truth,
-        positions,
-    })
 }
 
 /// The student's picture of a homework (`fragment`, with `shadow_fragment` for the light pass or

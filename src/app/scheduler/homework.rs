@@ -1,13 +1,13 @@
 //! The homework check as a scheduler runs it: the student's pipelines built once per program
 //! (a reload makes a new one), shadowlab's comparison on a renderer of its own (the view's keeps
-//! its frame for the probe and the ground truths), and the last outcome kept while nothing it
-//! depends on changes.
+//! its frame for the probe and the ground truths), a piece at a time without waiting where the
+//! scheduler polls, and the last outcome kept while nothing it depends on changes.
 
 use crate::homework::{
-    CheckOutcome, HomeworkProgram, HomeworkRenderer, HomeworkRequest, ShaderSource, run_check,
+    CheckOutcome, CheckRun, HomeworkProgram, HomeworkRenderer, HomeworkRequest, ShaderSource,
 };
 use crate::i18n::Lang;
-use crate::render::Renderer;
+use crate::render::{GpuWait, Renderer};
 use crate::scene::{Camera, Light, Scene, ShadowSettings};
 use std::sync::Arc;
 
@@ -40,13 +40,18 @@ pub(super) struct HomeworkRunner {
     pipelines: Option<(u64, HomeworkRenderer)>,
     /// shadowlab's side of the comparison (made on first use).
     comparison: Option<Renderer>,
+    /// The check under way, and what it depends on.
+    running: Option<(CheckKey, CheckRun)>,
     last: Option<(CheckKey, Arc<CheckOutcome>)>,
 }
 
 impl HomeworkRunner {
-    /// The check of `job` at `size` and `time_s` (the last one again where nothing it depends on
-    /// changed). Errors are one line: a pipeline wgpu refuses, a failed render.
-    pub(super) fn run(
+    /// Go on with the check of `job` at `size` and `time_s`: its outcome once there (the last
+    /// one again where nothing it depends on changed), None while it is under way. A check of
+    /// other settings under way is dropped. Errors are one line: a pipeline wgpu refuses, a
+    /// failed render.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn step(
         &mut self,
         device: &wgpu::Device,
         queue: &wgpu::Queue,
@@ -54,7 +59,8 @@ impl HomeworkRunner {
         scene: &Scene,
         size: (u32, u32),
         time_s: f32,
-    ) -> Result<Arc<CheckOutcome>, String> {
+        wait: GpuWait,
+    ) -> Result<Option<Arc<CheckOutcome>>, String> {
         let key = CheckKey {
             generation: job.generation,
             lang: job.lang,
@@ -66,26 +72,43 @@ impl HomeworkRunner {
             time_bits: time_s.to_bits(),
         };
         if let Some((_, outcome)) = self.last.as_ref().filter(|(k, _)| *k == key) {
-            return Ok(outcome.clone());
+            return Ok(Some(outcome.clone()));
         }
-        let homework = match &mut self.pipelines {
-            Some((generation, renderer)) if *generation == job.generation => renderer,
-            slot => {
-                let renderer =
-                    HomeworkRenderer::new(device, queue, &job.program).map_err(|e| e.to_string())?;
-                &mut slot.insert((job.generation, renderer)).1
-            }
-        };
         let comparison = match self.comparison.as_mut() {
             Some(r) => r,
             None => self.comparison.insert(Renderer::new(device, queue).map_err(|e| e.to_string())?),
         };
-        let request = HomeworkRequest { time_s, size, light: 0, clear_map_white: false };
-        let shader: &ShaderSource = &job.program.files.phong_fragment;
-        let outcome =
-            run_check(homework, comparison, shader, scene, &request, job.lang).map_err(|e| e.to_string())?;
-        let outcome = Arc::new(outcome);
-        self.last = Some((key, outcome.clone()));
-        Ok(outcome)
+        let run = match &mut self.running {
+            Some((k, run)) if *k == key => run,
+            slot => {
+                let homework = match &mut self.pipelines {
+                    Some((generation, renderer)) if *generation == job.generation => renderer,
+                    pipelines => {
+                        let renderer =
+                            HomeworkRenderer::new(device, queue, &job.program).map_err(|e| e.to_string())?;
+                        &mut pipelines.insert((job.generation, renderer)).1
+                    }
+                };
+                let request = HomeworkRequest { time_s, size, light: 0, clear_map_white: false };
+                let shader: &ShaderSource = &job.program.files.phong_fragment;
+                let run = CheckRun::start(homework, &shader.name, scene, &request, job.lang)
+                    .map_err(|e| e.to_string())?;
+                &mut slot.insert((key.clone(), run)).1
+            }
+        };
+        let stepped = run.step(comparison, wait).map_err(|e| e.to_string());
+        match stepped {
+            Ok(None) => Ok(None),
+            Ok(Some(outcome)) => {
+                self.running = None;
+                let outcome = Arc::new(outcome);
+                self.last = Some((key, outcome.clone()));
+                Ok(Some(outcome))
+            }
+            Err(e) => {
+                self.running = None;
+                Err(e)
+            }
+        }
     }
 }

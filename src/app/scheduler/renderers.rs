@@ -26,8 +26,7 @@ pub(super) enum Stage {
     /// The ground truths at the probe (from the probe's frame, the last one rendered).
     ProbeReference(Box<ProbeTruths>),
     /// The homework check, where the job carries one (on renderers of its own, so the view's
-    /// keeps its frame for the view's ground truth). It waits for its read-backs within the
-    /// stage: in a page without threads it would hold up one frame.
+    /// keeps its frame for the view's ground truth), a piece at a time.
     Homework,
     /// The view's ground truth, to start.
     ViewReference,
@@ -131,17 +130,17 @@ impl Renderers {
             Stage::ProbeReference(truths) => self.probe_truths_step(id, job, *truths, send, cancelled, wait),
             Stage::Homework if cancelled() => Ok(Stage::Done),
             Stage::Homework => {
-                if let Some(homework) = &job.homework {
-                    let (size, time_s) = (job.request.size, job.request.time_s);
-                    // The check waits for its read-backs, which a page's frames cannot.
-                    let outcome = if cfg!(target_arch = "wasm32") {
-                        Err("the homework check does not run in the page yet (it waits for the GPU)".into())
-                    } else {
-                        self.homework.run(&self.device, &self.queue, homework, &job.scene, size, time_s)
-                    };
-                    send(RenderEvent::Homework { job: id, generation: homework.generation, outcome });
+                let Some(homework) = &job.homework else { return Stage::ViewReference };
+                let (size, time_s) = (job.request.size, job.request.time_s);
+                let stepped =
+                    self.homework.step(&self.device, &self.queue, homework, &job.scene, size, time_s, wait);
+                match stepped.transpose() {
+                    None => Ok(Stage::Homework),
+                    Some(outcome) => {
+                        send(RenderEvent::Homework { job: id, generation: homework.generation, outcome });
+                        Ok(Stage::ViewReference)
+                    }
                 }
-                Ok(Stage::ViewReference)
             }
             Stage::ViewReference if !(job.reference && job.analysis) || cancelled() => Ok(Stage::Done),
             Stage::ViewReference => self.start_view_truth(id, job, send),
