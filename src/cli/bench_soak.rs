@@ -1,5 +1,6 @@
 //! `shadowlab bench --app --window --soak SECONDS`: a class hour in the real window. The PCSS and
-//! multi-light lessons play in turn with a probe pinned and overlays on; every few seconds the
+//! multi-light lessons are first toured (each shown once in every view), then play in turn with a
+//! probe pinned and overlays on; every few seconds the
 //! playback pauses until the full-detail frame is in (probe, overlays, read-backs), the view
 //! changes, and playback goes on. It reports how much was rendered, how far scene time went, and
 //! the process's memory a minute in and at the end, and fails where the scene stopped moving.
@@ -21,13 +22,17 @@ const OVERLAYS: [Overlay; 3] = [Overlay::Penumbra, Overlay::OutsideFrustum, Over
 /// The views gone through, one per cycle.
 const VIEWS: [View; 5] =
     [View::Final, View::Visibility, View::Penumbra, View::ShadowMap, View::BlockerRadius];
+/// The tour's stops: every lesson in every view, each played a moment then paused for its
+/// full detail (the soak's own cycle, shorter).
+const TOUR: usize = LESSONS.len() * VIEWS.len();
+/// Playback at a stop of the tour.
+const TOUR_PLAY: Duration = Duration::from_secs(1);
 /// Playback between two pauses, seconds of wall-clock time.
 const PLAY: Duration = Duration::from_secs(4);
 /// Cycles (play, pause for the full detail, switch the view) per lesson before the next one.
 const CYCLES_PER_LESSON: u32 = 5;
-/// Memory is first read this far in at the earliest, and not before a third of the soak (see
-/// `advance`): on lavapipe the first minutes still build pipelines (one per technique, kernel,
-/// bias mode and light count met) and fill the allocator's pools.
+/// Memory is first read this far in at the earliest (after the tour): what the session's caches
+/// hold by then, they hold for the rest of the hour.
 const EARLY: Duration = Duration::from_secs(60);
 /// Memory is judged on soaks at least this long (shorter ones are all start-up).
 const JUDGE_MEMORY_FROM: Duration = Duration::from_secs(120);
@@ -45,13 +50,14 @@ pub struct SoakReport {
     pub scene_time_advanced_s: f64,
     pub view_switches: u32,
     pub lesson_switches: u32,
+    /// When the tour through every lesson in every view ended, seconds in (playing starts then).
+    pub tour_s: f64,
     /// Resident memory a minute in, MB, and the growth from there to the end: what is left of
     /// start-up by then, reported beside the judged figures.
     pub rss_at_60_s_mb: Option<f64>,
     pub rss_growth_from_60_s: Option<f64>,
-    /// Resident memory of the process, MB: `rss_early_at_s` in (a third of the soak, a minute at
-    /// the least, once every lesson
-    /// was shown in every view), and at the end.
+    /// Resident memory of the process, MB: `rss_early_at_s` in (a minute, or the end of the tour
+    /// where that is later), and at the end.
     pub rss_early_at_s: f64,
     pub rss_early_mb: Option<f64>,
     pub rss_end_mb: Option<f64>,
@@ -75,6 +81,15 @@ pub struct SoakReport {
 
 enum Stage {
     Starting,
+    /// Before the soak proper: every lesson once in every view (`index` counts them), played a
+    /// moment and paused, so what the session's caches (pipelines, the drivers' compiled shaders,
+    /// the allocator's pools) will hold is built in the first minute, as a teacher's walk
+    /// through the lessons would build it.
+    Touring {
+        index: usize,
+        since: Instant,
+        frames_before: u64,
+    },
     Playing {
         since: Instant,
         time_before: f32,
@@ -121,6 +136,16 @@ impl Soak {
         Ok(())
     }
 
+    /// Start the tour's `index`th stop: a lesson in a view, playing.
+    fn tour(&mut self, index: usize) -> Result<(), String> {
+        self.open_lesson(index / VIEWS.len())?;
+        self.app.view = VIEWS[index % VIEWS.len()];
+        self.app.playing = true;
+        let frames_before = self.app.frames_shown();
+        self.stage = Stage::Touring { index, since: Instant::now(), frames_before };
+        Ok(())
+    }
+
     fn play(&mut self) {
         self.app.playing = true;
         self.last_time = self.app.time_s;
@@ -141,12 +166,10 @@ impl Soak {
 
     fn advance(&mut self) -> Result<(), String> {
         let elapsed = self.started.elapsed();
-        // The first reading comes once every lesson has been shown in every view (what the
-        // caches hold by then, they hold for the rest of the hour), a minute in at the earliest;
-        // on a soak too short to judge memory by, at half of it.
-        let warm = self.cycle >= LESSONS.len() as u32 * CYCLES_PER_LESSON
-            && elapsed >= EARLY
-            && elapsed >= self.length / 3;
+        // The first reading comes a minute in, once the tour has shown every lesson in every
+        // view (later on a machine too slow to finish it by then); on a soak too short to judge
+        // memory by, at half of it.
+        let warm = self.report.tour_s > 0.0 && elapsed >= EARLY;
         if self.report.rss_at_60_s_mb.is_none() && elapsed >= EARLY {
             self.report.rss_at_60_s_mb = rss_mb();
         }
@@ -168,9 +191,31 @@ impl Soak {
         match self.stage {
             Stage::Starting => {
                 if self.app.camera_image().is_some() && !self.app.render_pending() {
-                    self.play();
+                    self.tour(0)?;
                 } else if elapsed > SETTLE_LIMIT {
                     return Err(self.app.gpu_problem().unwrap_or_else(|| "no first frame".into()));
+                }
+            }
+            Stage::Touring { index, since, frames_before } => {
+                // Each stop is a short cycle: play, pause until the full-detail frame is in.
+                if self.app.playing {
+                    if since.elapsed() >= TOUR_PLAY && self.app.frames_shown() > frames_before {
+                        self.app.playing = false;
+                        self.app.mark_dirty();
+                        self.stage = Stage::Touring { index, since: Instant::now(), frames_before };
+                    }
+                } else if since.elapsed() > Duration::from_millis(50) && !self.app.render_pending() {
+                    if index + 1 < TOUR {
+                        self.tour(index + 1)?;
+                    } else {
+                        self.report.tour_s = elapsed.as_secs_f64();
+                        self.open_lesson(0)?;
+                        self.app.view = VIEWS[0];
+                        self.play();
+                    }
+                }
+                if since.elapsed() > SETTLE_LIMIT {
+                    return Err("the app did not settle on the tour through the lessons".into());
                 }
             }
             Stage::Playing { since, time_before, frames_before } => {
