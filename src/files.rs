@@ -59,7 +59,7 @@ pub fn read_input(path: &Path, max_bytes: u64) -> Result<Vec<u8>, String> {
         return Err(too_big());
     }
     if let Some(bytes) = built_in(path) {
-        return Ok(bytes.to_vec());
+        return Ok(bytes.into_owned());
     }
     let mut bytes = Vec::new();
     std::fs::File::open(path)
@@ -74,6 +74,9 @@ pub fn read_input(path: &Path, max_bytes: u64) -> Result<Vec<u8>, String> {
 /// `path` names a regular file (following symbolic links), of this many bytes; the error says what
 /// it is instead.
 pub fn check_regular_file(path: &Path) -> Result<u64, String> {
+    if let Some(bytes) = handed(path) {
+        return Ok(bytes.len() as u64);
+    }
     if IN_PAGE {
         return match built_in(path) {
             Some(bytes) => Ok(bytes.len() as u64),
@@ -94,19 +97,64 @@ pub fn check_regular_file(path: &Path) -> Result<u64, String> {
 /// Files are the copy built into the binary (a page), not the disk.
 const IN_PAGE: bool = cfg!(target_arch = "wasm32");
 
-/// The built-in bytes of `path`, in a page.
-fn built_in(path: &Path) -> Option<&'static [u8]> {
-    if IN_PAGE { crate::built_in::file(path) } else { None }
+/// The folder files handed over as bytes open under (see [`hand_over`]).
+pub const HANDED_OVER: &str = "handed-over";
+/// Files handed over kept at once (the oldest go first): a student's shader, or a model with its
+/// material and textures.
+const HANDED_OVER_KEPT: usize = 16;
+
+/// Files handed to the app as bytes, not paths (what a page is given when a file is dropped on
+/// it or picked in its file dialog), by the path they open under. They are read before the disk
+/// and the built-in copy, so everything that opens a path opens them, and a model finds the
+/// material and textures dropped with it.
+static HANDED: std::sync::Mutex<Vec<(PathBuf, std::sync::Arc<[u8]>)>> = std::sync::Mutex::new(Vec::new());
+
+/// Keep `bytes` as the file `name` (its last path component, after `/` or `\\`) and give the path it opens under,
+/// `handed-over/NAME`. A file of the same name handed over before is replaced.
+pub fn hand_over(name: &str, bytes: &[u8]) -> PathBuf {
+    // The last component, whichever system's separator the sender used.
+    let name = name.rsplit(['/', '\\']).next().filter(|n| !n.is_empty() && *n != "." && *n != "..");
+    let path = Path::new(HANDED_OVER).join(name.unwrap_or("file"));
+    if let Ok(mut handed) = HANDED.lock() {
+        handed.retain(|(p, _)| *p != path);
+        if handed.len() >= HANDED_OVER_KEPT {
+            handed.remove(0);
+        }
+        handed.push((path.clone(), bytes.into()));
+    }
+    path
+}
+
+/// `path` names a file handed over as bytes.
+pub fn is_handed_over(path: &Path) -> bool {
+    handed(path).is_some()
+}
+
+fn handed(path: &Path) -> Option<std::sync::Arc<[u8]>> {
+    let handed = HANDED.lock().ok()?;
+    handed.iter().find(|(p, _)| p == path).map(|(_, bytes)| bytes.clone())
+}
+
+/// The bytes of `path` where they are not on the disk: handed over, or built into a page.
+fn built_in(path: &Path) -> Option<std::borrow::Cow<'static, [u8]>> {
+    if let Some(bytes) = handed(path) {
+        return Some(std::borrow::Cow::Owned(bytes.to_vec()));
+    }
+    if IN_PAGE { crate::built_in::file(path).map(std::borrow::Cow::Borrowed) } else { None }
 }
 
 /// `path` is there (a file or a folder).
 pub fn exists(path: &Path) -> bool {
-    if IN_PAGE { built_in(path).is_some() || crate::built_in::is_folder(path) } else { path.exists() }
+    if IN_PAGE {
+        built_in(path).is_some() || crate::built_in::is_folder(path)
+    } else {
+        is_handed_over(path) || path.exists()
+    }
 }
 
 /// `path` is a file (following symbolic links).
 pub fn is_file(path: &Path) -> bool {
-    if IN_PAGE { built_in(path).is_some() } else { path.is_file() }
+    if IN_PAGE { built_in(path).is_some() } else { is_handed_over(path) || path.is_file() }
 }
 
 /// The paths of what is in the folder `dir`, in no particular order.
@@ -138,7 +186,7 @@ pub fn open_input(path: &Path) -> std::io::Result<Box<dyn ReadSeek>> {
 /// A file's bytes, whole (what the caller limits itself).
 pub fn read(path: &Path) -> std::io::Result<Vec<u8>> {
     match built_in(path) {
-        Some(bytes) => Ok(bytes.to_vec()),
+        Some(bytes) => Ok(bytes.into_owned()),
         None if IN_PAGE => {
             Err(std::io::Error::new(std::io::ErrorKind::NotFound, "not among the files built into the page"))
         }

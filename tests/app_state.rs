@@ -184,3 +184,109 @@ fn a_homework_shader_opens_reloads_on_change_and_keeps_its_last_good_version() {
     state.open_any(&scratch.path().join("missing.glsl"));
     assert!(state.homework.is_some());
 }
+
+#[test]
+fn a_link_opens_its_lesson_step_in_its_language_and_the_address_follows_the_student() {
+    use shadowlab::app::link;
+    let mut state = fresh();
+    state.show_lesson_list = true;
+    let (wanted, problems) = link::parse("?lesson=pcss&step=3&lang=zh");
+    assert!(problems.is_empty(), "{problems:?}");
+    state.follow_link(&wanted, problems);
+    assert!(state.error.is_none(), "{:?}", state.error);
+    let (lesson, _, step) = state.current_step().expect("in a lesson");
+    assert_eq!((lesson.id.as_str(), step), ("pcss", 2));
+    assert_eq!(state.lang, Lang::Zh);
+    assert!(!state.show_lesson_list, "a link opens its place, not the list");
+    assert_eq!(state.link(), "lesson=pcss&step=3&lang=zh");
+
+    // The student walks on and changes the technique: the address says so.
+    state.step_lesson(1);
+    state.scene.shadow.technique = Technique::Pcf;
+    assert_eq!(state.link(), "lesson=pcss&step=4&technique=pcf&lang=zh");
+    // A lesson by number, a scene with a technique; each round-trips.
+    for query in ["lesson=2&step=1&lang=en", "scene=contact&technique=pcf&lang=en"] {
+        let mut other = fresh();
+        let (wanted, problems) = link::parse(query);
+        other.follow_link(&wanted, problems);
+        assert!(other.error.is_none(), "{query}: {:?}", other.error);
+        let expected = query.replace("lesson=2", "lesson=bias");
+        assert_eq!(other.link(), expected, "{query}");
+    }
+    let mut scene = fresh();
+    let (wanted, _) = link::parse("scene=contact&technique=pcf");
+    scene.follow_link(&wanted, Vec::new());
+    assert!(matches!(&scene.source, Source::Scene(p) if p.ends_with("contact.toml")), "{:?}", scene.source);
+    assert_eq!(scene.scene.shadow.technique, Technique::Pcf);
+}
+
+#[test]
+fn a_bad_link_says_what_it_could_not_follow_in_one_line_and_applies_the_rest() {
+    use shadowlab::app::link;
+    let cases: [(&str, &str); 7] = [
+        ("lesson=nope", "no lesson `nope`"),
+        ("lesson=pcss&step=99", "has steps 1 to"),
+        ("scene=../../etc/passwd", "no scene `../../etc/passwd` (scenes: acne, "),
+        ("technique=fancy", "no technique `fancy` (techniques: "),
+        ("lang=fr", "no language `fr`"),
+        ("step=2", "`step` needs a lesson"),
+        ("colour=red", "unknown part `colour`"),
+    ];
+    for (query, said) in cases {
+        let mut state = fresh();
+        let before = state.scene.clone();
+        let (wanted, problems) = link::parse(&format!("?{query}&lang=zh"));
+        state.follow_link(&wanted, problems);
+        let error = state.error.as_ref().map(|e| e.to_string()).unwrap_or_default();
+        assert!(error.contains(said), "{query}: {error}");
+        assert!(!error.contains('\n'), "{query}: one line: {error}");
+        assert_eq!(state.lang, Lang::Zh, "{query}: the language still applies");
+        if !query.starts_with("lesson") {
+            assert_eq!(state.scene.objects.len(), before.objects.len(), "{query}: the scene stays");
+        }
+    }
+    // Escapes are read as a browser writes them; the page's backend is kept, not a problem.
+    let (wanted, problems) = link::parse("?lesson=multi%2Dlight&backend=webgl2&lang=z%68");
+    assert!(problems.is_empty(), "{problems:?}");
+    assert_eq!((wanted.lesson.as_deref(), wanted.lang), (Some("multi-light"), Some(Lang::Zh)));
+    assert_eq!(link::kept_parts("?lesson=pcss&backend=webgl2"), "&backend=webgl2");
+}
+
+#[test]
+fn files_handed_over_as_bytes_open_as_a_page_opens_them_and_are_not_remembered() {
+    use shadowlab::files::hand_over;
+    // A student drops their shader with the light pass's and a stray texture: the camera pass's
+    // shader is the one opened.
+    let shader =
+        std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/homework/phongFragment.glsl"))
+            .expect("the example");
+    let dropped = vec![
+        hand_over("shadowFragment.glsl", b"void main() {}"),
+        hand_over("C:\\Users\\me\\Desktop\\phongFragment.glsl", &shader),
+        hand_over("wood.png", &[0u8; 4]),
+    ];
+    let main = shadowlab::app::main_file(&dropped).expect("one to open");
+    assert_eq!(main, Path::new("handed-over/phongFragment.glsl"), "named by the file, not the sender's path");
+    let mut state = fresh();
+    state.open_any(&main);
+    let homework = state.homework.as_ref().expect("the homework opened");
+    assert!(homework.error.is_none(), "{:?}", homework.error);
+    assert!(homework.program.is_some(), "it compiled from the bytes handed over");
+    assert!(state.settings.recent_files.is_empty(), "{:?}", state.settings.recent_files);
+    // Nothing to watch: the bytes do not change on a disk.
+    assert!(!state.reload_homework_if_changed());
+
+    // A scene handed over opens; a broken one keeps the last good scene and names the file.
+    let scene = std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/contact.toml"))
+        .expect("a scene");
+    let path = hand_over("my scene.toml", &scene);
+    state.open_any(&path);
+    assert!(state.error.is_none(), "{:?}", state.error);
+    assert_eq!(state.source, Source::Scene(path.clone()));
+    assert!(state.settings.last_scene.is_none(), "a handed-over scene is not reopened next time");
+    let broken = hand_over("broken.toml", b"[camera\nfov = ");
+    state.open_any(&broken);
+    let error = state.error.as_ref().map(|e| e.to_string()).unwrap_or_default();
+    assert!(error.contains("broken.toml"), "{error}");
+    assert_eq!(state.source, Source::Scene(path), "the last good scene stays");
+}

@@ -43,6 +43,8 @@ struct Budget {
     /// Homework shaders through the rewrite and naga, and through `shadowlab homework`.
     shaders: u32,
     cli_homework: u32,
+    /// Page addresses' queries through the app's link reader.
+    links: u32,
     /// Mixed into every target's seed: the long run explores other cases than the default one.
     seed: u64,
 }
@@ -56,6 +58,7 @@ const DEFAULT: Budget = Budget {
     cli: 70,
     shaders: 3000,
     cli_homework: 8,
+    links: 300,
     seed: 0x5EED_0001,
 };
 const LONG: Budget = Budget {
@@ -67,6 +70,7 @@ const LONG: Budget = Budget {
     cli: 420,
     shaders: 18_000,
     cli_homework: 48,
+    links: 1800,
     seed: 0x5EED_0002,
 };
 
@@ -2021,4 +2025,121 @@ fn long_run_homework_shaders() {
 #[ignore = "long run: cargo test --release --test fuzz -- --ignored"]
 fn long_run_cli_homework() {
     fuzz_cli_homework(LONG);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Page addresses: a link's query (`?lesson=pcss&step=3&lang=zh`) as a teacher, a student or a
+// mangled copy-paste writes it.
+
+const LINK_SEEDS: [&str; 6] = [
+    "?lesson=pcss&step=3&lang=zh",
+    "?scene=contact&technique=pcf",
+    "?lesson=2&step=1&lang=en",
+    "?backend=webgl2&lesson=multi-light&step=4",
+    "?scene=games202&technique=pcss&lang=zh",
+    "lesson=homework&step=6",
+];
+/// Values spliced in for a value: real names, numbers at the edges, escapes, other scripts.
+const LINK_VALUES: [&str; 16] = [
+    "pcss",
+    "7",
+    "0",
+    "-1",
+    "4294967296",
+    "99999999999999999999",
+    "%41",
+    "%",
+    "%zz",
+    "%E4%B8%AD",
+    "中文",
+    "",
+    "../../etc/passwd",
+    "contact%00",
+    "vsm",
+    "+",
+];
+
+#[derive(Clone, Debug)]
+enum LinkOp {
+    Byte(ByteOp),
+    /// Replace the value of the `n`th pair.
+    Value(Index, &'static str),
+    /// Repeat the query (many pairs, the same keys twice).
+    Repeat(u8),
+}
+
+fn link_op() -> impl Strategy<Value = LinkOp> {
+    prop_oneof![
+        2 => byte_op().prop_map(LinkOp::Byte),
+        4 => (any::<Index>(), select(&LINK_VALUES[..])).prop_map(|(at, v)| LinkOp::Value(at, v)),
+        1 => (1u8..=200).prop_map(LinkOp::Repeat),
+    ]
+}
+
+fn mutate_link(seed: &str, ops: &[LinkOp]) -> String {
+    let donors: Vec<Vec<u8>> = LINK_SEEDS.iter().map(|s| s.as_bytes().to_vec()).collect();
+    let mut query = seed.to_string();
+    for op in ops {
+        match op {
+            LinkOp::Byte(op) => {
+                let mut bytes = query.into_bytes();
+                apply_byte_op(&mut bytes, op, &donors);
+                query = String::from_utf8_lossy(&bytes).into_owned();
+            }
+            LinkOp::Value(at, value) => {
+                let mut pairs: Vec<String> = query.split('&').map(str::to_owned).collect();
+                let i = at.index(pairs.len());
+                let key = pairs[i].split('=').next().unwrap_or_default().to_owned();
+                pairs[i] = format!("{key}={value}");
+                query = pairs.join("&");
+            }
+            LinkOp::Repeat(n) => query = vec![query.as_str(); usize::from(*n)].join("&"),
+        }
+    }
+    query
+}
+
+fn fuzz_links(budget: Budget) {
+    use shadowlab::app::{AppState, Settings, link};
+    let strategy = (select(&LINK_SEEDS[..]), prop::collection::vec(link_op(), 1..=2));
+    fuzz("links", budget.links, budget, strategy, |(seed, ops), tally| {
+        let query = mutate_link(seed, &ops);
+        let mut state = AppState::new(Settings::default());
+        let (wanted, problems) = link::parse(&query);
+        state.follow_link(&wanted, problems);
+        let error = state.error.as_ref().map(|e| e.to_string());
+        tally.count(error.is_none());
+        if let Some(error) = &error
+            && error.contains('\n')
+        {
+            return Err(fail(format!("not one line: {error}\n--- query\n{query}")));
+        }
+        // Wherever it went, the address the page then shows leads back to the same place.
+        let address = state.link();
+        let (again, problems) = link::parse(&address);
+        if !problems.is_empty() {
+            return Err(fail(format!("{query} led to {address}, which reads with {problems:?}")));
+        }
+        let mut followed = AppState::new(Settings::default());
+        followed.follow_link(&again, problems);
+        if followed.link() != address || followed.error.is_some() {
+            return Err(fail(format!(
+                "{query} led to {address}; following that gives {} ({:?})",
+                followed.link(),
+                followed.error.as_ref().map(|e| e.to_string())
+            )));
+        }
+        Ok(())
+    });
+}
+
+#[test]
+fn links() {
+    fuzz_links(DEFAULT);
+}
+
+#[test]
+#[ignore = "long run: cargo test --release --test fuzz -- --ignored"]
+fn long_run_links() {
+    fuzz_links(LONG);
 }

@@ -114,6 +114,23 @@ pub fn is_lesson_file(path: &Path) -> bool {
 }
 
 impl super::AppState {
+    /// Open what the path box, a drop or the dialog names: a scene or lesson (.toml), a model
+    /// (.obj), or a shipped lesson's id. A bad path keeps what is shown and says why.
+    pub fn open_any(&mut self, path: &Path) {
+        // Scenes and models through `open` (loaded once, the old scene kept if this one fails);
+        // lesson files and lesson ids as the command line takes them.
+        if crate::files::exists(path) && super::homework::is_shader_file(path) {
+            return self.open_homework(path);
+        }
+        if crate::files::exists(path) && !is_lesson_file(path) {
+            return self.open(path);
+        }
+        match resolve(Some(&path.to_string_lossy()), None, None, None) {
+            Ok(launch) => self.apply_launch(launch),
+            Err(e) => self.error = Some(super::AppError::new("could not open the scene", e)),
+        }
+    }
+
     /// Show what the command line asked for (after the saved settings are restored).
     pub fn apply_launch(&mut self, launch: Launch) {
         if let Some(lang) = launch.lang {
@@ -148,4 +165,21 @@ impl super::AppState {
             }
         }
     }
+}
+
+/// Of several files dropped or picked at once, the one to open: a homework shader (the camera
+/// pass's, `phongFragment`, before a light pass's), a scene or lesson, a model; else the last.
+/// The others (a model's material and textures) are found by the one opened.
+pub fn main_file(paths: &[PathBuf]) -> Option<PathBuf> {
+    let extension = |p: &PathBuf| p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let rank = |p: &PathBuf| match extension(p).as_deref() {
+        _ if super::homework::is_shader_file(p) => {
+            let name = p.file_name().map(|n| n.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+            if name.starts_with("shadow") { 1 } else { 0 }
+        }
+        Some("toml") => 2,
+        Some("obj") => 3,
+        _ => 4,
+    };
+    paths.iter().enumerate().min_by_key(|(i, p)| (rank(p), usize::MAX - i)).map(|(_, p)| p.clone())
 }

@@ -6,10 +6,12 @@
 
 pub mod homework;
 pub mod launch;
+pub mod link;
 mod obj_scene;
 pub mod scheduler;
 pub mod settings;
 
+pub use launch::main_file;
 pub use obj_scene::scene_for_obj;
 pub use settings::Settings;
 
@@ -166,7 +168,8 @@ impl AppState {
                 let warnings = scene.warnings(0.0, 16.0 / 9.0);
                 self.homework = None;
                 self.set_fresh_scene(scene, Source::Scene(path.to_path_buf()));
-                self.settings.last_scene = (!is_obj).then(|| path.to_path_buf());
+                self.settings.last_scene =
+                    (!is_obj && !crate::files::is_handed_over(path)).then(|| path.to_path_buf());
                 self.settings.last_lesson = None;
                 // The shipped scenes are listed anyway; anything else is a recent file.
                 let shipped = std::fs::canonicalize(shipped_path("assets/scenes")).ok();
@@ -410,23 +413,6 @@ impl AppState {
 
     pub fn camera(&self) -> &Camera {
         &self.scene.camera
-    }
-
-    /// Open what the path box, a drop or the dialog names: a scene or lesson (.toml), a model
-    /// (.obj), or a shipped lesson's id. A bad path keeps what is shown and says why.
-    pub fn open_any(&mut self, path: &Path) {
-        // Scenes and models through `open` (loaded once, the old scene kept if this one fails);
-        // lesson files and lesson ids as the command line takes them.
-        if crate::files::exists(path) && homework::is_shader_file(path) {
-            return self.open_homework(path);
-        }
-        if crate::files::exists(path) && !launch::is_lesson_file(path) {
-            return self.open(path);
-        }
-        match launch::resolve(Some(&path.to_string_lossy()), None, None, None) {
-            Ok(launch) => self.apply_launch(launch),
-            Err(e) => self.error = Some(AppError::new("could not open the scene", e)),
-        }
     }
 
     /// The ground truth at the probe for `light` as it accumulates: (samples averaged, samples in

@@ -52,6 +52,10 @@ impl Settings {
     /// Put `path` first among the recent files (once, at most `RECENT_FILES` kept), kept as a
     /// canonical path, so it opens from any folder and is never listed twice.
     pub fn remember_file(&mut self, path: &std::path::Path) {
+        // Bytes handed over (a page's dropped file) do not outlive the session.
+        if crate::files::is_handed_over(path) {
+            return;
+        }
         let path = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
         self.recent_files.retain(|p| *p != path);
         self.recent_files.insert(0, path);

@@ -14,14 +14,6 @@ pub(super) const UI: &[(&str, &str)] = &[
         "no file dialog on this desktop (no xdg-desktop-portal): type a path in the box, or drop a file on the window",
         "这个桌面没有文件对话框（没有 xdg-desktop-portal）：请在输入框里输入路径，或把文件拖到窗口上",
     ),
-    (
-        "the page has no file dialog yet: the built-in scenes and lessons are in the menus",
-        "网页版还没有文件对话框：内置的场景和课程在菜单里",
-    ),
-    (
-        "the page cannot open dropped files yet: the built-in scenes and lessons are in the menus",
-        "网页版还不能打开拖进来的文件：内置的场景和课程在菜单里",
-    ),
     ("lesson", "课程"),
     ("(none: explore freely)", "（无：自由探索）"),
     ("Explore freely (no lesson)", "自由探索（不选课程）"),

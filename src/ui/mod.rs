@@ -11,6 +11,8 @@ mod lesson_panel;
 mod map_panel;
 #[cfg(target_arch = "wasm32")]
 mod page;
+#[cfg(target_arch = "wasm32")]
+mod page_files;
 mod panels;
 mod probe_panel;
 mod rendering;
@@ -35,7 +37,6 @@ use crate::lessons;
 use crate::render::Analysis;
 use crate::shipped_path;
 use rendering::{Shown, Submitted};
-use std::path::PathBuf;
 use std::sync::{Arc, Mutex};
 
 /// The window: the app's state (`state`, which field access reads through to) and what only
@@ -104,6 +105,8 @@ impl ShadowlabApp {
         let mut app = Self::with_settings(worker, gpu_error, settings);
         // A first start (or one that ended outside a lesson) offers the lessons.
         app.state.show_lesson_list = app.state.current_step().is_none();
+        #[cfg(target_arch = "wasm32")]
+        page::open_link(&mut app.state);
         app
     }
 
@@ -210,27 +213,34 @@ impl ShadowlabApp {
     }
 
     fn handle_dropped_files(&mut self, ctx: &egui::Context) {
-        let dropped: Vec<PathBuf> =
-            ctx.input(|i| i.raw.dropped_files.iter().map(|f| f.path().to_path_buf()).collect());
-        if dropped.is_empty() {
-        } else if cfg!(target_arch = "wasm32") {
-            // A page gets a dropped file's bytes, not a path to open.
-            let why =
-                "the page cannot open dropped files yet: the built-in scenes and lessons are in the menus";
-            self.state.status = crate::i18n::tr(self.state.lang, why).into();
-        } else if let Some(path) = dropped.last() {
-            self.state.open_any(path);
+        let dropped: Vec<egui::DroppedFileHandle> = ctx.input(|i| i.raw.dropped_files.clone());
+        // A desktop drop gives paths; a page's gives bytes, read as they come and handed over.
+        #[cfg(target_arch = "wasm32")]
+        let arrived = {
+            page_files::read(dropped, ctx.clone());
+            page_files::take_arrived()
+        };
+        #[cfg(not(target_arch = "wasm32"))]
+        let arrived =
+            vec![dropped.iter().map(|f| f.path().to_path_buf()).collect::<Vec<std::path::PathBuf>>()];
+        for files in arrived {
+            if let Some(path) = crate::app::main_file(&files) {
+                self.state.open_any(&path);
+            }
         }
     }
 
     /// Show the desktop's Open dialog; without one, point at the path box.
     pub fn browse(&mut self, ctx: &egui::Context) {
-        if self.open_dialog.is_some() {
-            return;
+        // A page has the browser's own dialog (what is picked arrives with the dropped files).
+        #[cfg(target_arch = "wasm32")]
+        page_files::pick(ctx);
+        #[cfg(not(target_arch = "wasm32"))]
+        if self.open_dialog.is_none() {
+            let folder = std::path::absolute(shipped_path("assets/scenes")).unwrap_or_default();
+            let ctx = ctx.clone();
+            self.open_dialog = Some(dialog::OpenDialog::open(folder, move || ctx.request_repaint()));
         }
-        let folder = std::path::absolute(shipped_path("assets/scenes")).unwrap_or_default();
-        let ctx = ctx.clone();
-        self.open_dialog = Some(dialog::OpenDialog::open(folder, move || ctx.request_repaint()));
     }
 
     /// Act on the dialog's answer once it is in.
@@ -241,11 +251,7 @@ impl ShadowlabApp {
             dialog::DialogOutcome::Picked(path) => self.state.open_any(&path),
             dialog::DialogOutcome::Cancelled => {}
             dialog::DialogOutcome::Unavailable => {
-                let why = if cfg!(target_arch = "wasm32") {
-                    "the page has no file dialog yet: the built-in scenes and lessons are in the menus"
-                } else {
-                    "no file dialog on this desktop (no xdg-desktop-portal): type a path in the box, or drop a file on the window"
-                };
+                let why = "no file dialog on this desktop (no xdg-desktop-portal): type a path in the box, or drop a file on the window";
                 self.state.status = crate::i18n::tr(self.state.lang, why).into();
                 self.focus_path_box = true;
             }
@@ -346,7 +352,10 @@ impl eframe::App for ShadowlabApp {
         self.watch_homework(&ctx);
         self.receive_renders(&ctx);
         #[cfg(target_arch = "wasm32")]
-        page::publish(self.frames_shown, &self.state);
+        {
+            page::publish(self.frames_shown, &self.state);
+            page::follow(&self.state);
+        }
         // Dragging a slider (or anything else) asks for previews until it is let go.
         self.interacting = ctx.dragged_id().is_some();
         if self.state.playing || self.worker.as_ref().is_some_and(|w| w.needs_polling()) {
