@@ -11,8 +11,9 @@
 //! A function's `sampler2D p` parameter becomes `texture2D p, sampler p_sampler`, and wherever a
 //! texture is passed to a function (`PCF(uShadowMap, c)`, `findBlocker(p, uv, z)`), its sampler
 //! is passed after it (`PCF(uShadowMap, uShadowMap_sampler, c)`). `texture2D(t, uv)` becomes
-//! `texture(sampler2D(t, t_sampler), uv)`, so a parameter's texture is sampled with the sampler
-//! its caller passed: the shadow map keeps its nearest filter inside `findBlocker` too.
+//! `textureLod(sampler2D(t, t_sampler), uv, 0.0)`, so a parameter's texture is sampled with the
+//! sampler its caller passed (the shadow map keeps its nearest filter inside `findBlocker` too),
+//! and at level 0 explicitly (WGSL samples at an implicit level only in uniform control flow).
 //!
 //! Also: precision statements and qualifiers go, `const in` parameters become `in`, a non-void
 //! function whose last statement is not a `return` gets `return <zero>;` before its closing brace
@@ -287,6 +288,22 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
             && toks[i + 2].kind == Kind::Ident
         {
             let tex = text(i + 2);
+            // At level 0, explicitly: every texture here has one level, so the picture is the
+            // same, and WGSL (unlike GLSL) allows implicit-level sampling only in uniform control
+            // flow, which a lookup in findBlocker's loop is not (a browser refuses the shader).
+            let close = matching(source, &toks, i + 1, "(", ")");
+            let arguments = 1
+                + (i + 2..close)
+                    .filter(|&k| text(k) == "," && depth_in(source, &toks, i + 1, k) == 1)
+                    .count();
+            let call = match (call, arguments, text(close)) {
+                ("texture", 2, ")") => "textureLod",
+                ("textureProj", 2, ")") => "textureProjLod",
+                (call, ..) => call,
+            };
+            if call != texture_call(word).unwrap_or_default() {
+                edits.replace(toks[close].start, toks[close].start, ", 0.0");
+            }
             edits.replace(t.start, toks[i + 2].end, format!("{call}(sampler2D({tex}, {tex}_sampler)"));
             i += 3;
             continue;
@@ -353,6 +370,15 @@ fn prelude(stage: Stage, layout: &Interface) -> String {
         out += &recording_prelude();
     }
     out
+}
+
+/// How deep in parentheses token `at` is, counted from the `(` at `open`.
+fn depth_in(source: &str, toks: &[Token], open: usize, at: usize) -> i32 {
+    (open..at).fold(0, |depth, k| match &source[toks[k].start..toks[k].end] {
+        "(" => depth + 1,
+        ")" => depth - 1,
+        _ => depth,
+    })
 }
 
 /// GLSL 450's name for a WebGL texture lookup.
