@@ -156,6 +156,20 @@ impl HomeworkRenderer {
         })
     }
 
+    /// Both passes' pipelines were taken (Ready(Ok)), one was refused (Ready(Err)), or a page's
+    /// browser has not answered yet: render only once they are taken.
+    pub fn ready(&mut self) -> std::task::Poll<Result<(), HomeworkGpuError>> {
+        match (self.light.ready(), self.camera.ready()) {
+            (std::task::Poll::Ready(Err(e)), _) | (_, std::task::Poll::Ready(Err(e))) => {
+                std::task::Poll::Ready(Err(e))
+            }
+            (std::task::Poll::Ready(Ok(())), std::task::Poll::Ready(Ok(()))) => {
+                std::task::Poll::Ready(Ok(()))
+            }
+            _ => std::task::Poll::Pending,
+        }
+    }
+
     fn texture(
         &self,
         label: &str,

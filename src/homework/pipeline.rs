@@ -15,17 +15,25 @@ pub(super) struct Pass {
     pub bindings: Vec<(u32, String, BindingKind)>,
     /// Size of the block of the student's own uniforms, bytes (0: none).
     pub student_block_bytes: u64,
+    /// Whether wgpu took the pipeline (a page's browser answers on a later frame).
+    answer: crate::render::ScopeAnswer,
+    label: String,
+}
+
+impl Pass {
+    /// The pipeline is valid (Ready(Ok)), refused (Ready(Err), one line), or the browser has
+    /// not answered yet.
+    pub(super) fn ready(&mut self) -> std::task::Poll<Result<(), HomeworkGpuError>> {
+        self.answer.poll().map(|error| match error {
+            None => Ok(()),
+            Some(e) => Err(HomeworkGpuError(format!("{}: {e}", self.label))),
+        })
+    }
 }
 
 /// A WGPU error on one line (its sources joined).
 pub(super) fn one_line(e: &wgpu::Error) -> String {
-    let mut message = e.to_string();
-    let mut source = std::error::Error::source(e);
-    while let Some(cause) = source {
-        message += &format!(": {cause}");
-        source = cause.source();
-    }
-    message.split_whitespace().collect::<Vec<_>>().join(" ")
+    crate::render::error_line(e)
 }
 
 /// The size of the student's uniform block (binding 1) a WGSL stage declares, bytes.
@@ -135,11 +143,12 @@ impl Pass {
             multiview_mask: None,
             cache: None,
         });
-        if let Some(e) = crate::render::scope_error(scope.pop()) {
-            return Err(HomeworkGpuError(format!("{label}: {}", one_line(&e))));
+        let mut answer = crate::render::ScopeAnswer::new(scope.pop());
+        if let std::task::Poll::Ready(Some(e)) = answer.poll() {
+            return Err(HomeworkGpuError(format!("{label}: {e}")));
         }
         let student_block_bytes =
             student_block_bytes(&program.vertex.wgsl).max(student_block_bytes(&program.fragment.wgsl));
-        Ok(Self { pipeline, layout, bindings, student_block_bytes })
+        Ok(Self { pipeline, layout, bindings, student_block_bytes, answer, label: label.to_owned() })
     }
 }

@@ -75,6 +75,58 @@ pub(crate) fn scope_error(
     }
 }
 
+/// A wgpu error on one line, its sources joined.
+pub fn error_line(e: &wgpu::Error) -> String {
+    let mut message = e.to_string();
+    let mut source = std::error::Error::source(e);
+    while let Some(cause) = source {
+        message += &format!(": {cause}");
+        source = cause.source();
+    }
+    message.split_whitespace().collect::<Vec<_>>().join(" ")
+}
+
+/// An error scope's answer asked for without waiting (`popped`: its `pop()`): the desktop has
+/// it at once; a page's browser answers on a later frame, and `poll` says so until it has.
+pub struct ScopeAnswer(ScopeState);
+
+enum ScopeState {
+    Known(Option<String>),
+    #[cfg(target_arch = "wasm32")]
+    Coming(std::pin::Pin<Box<dyn Future<Output = Option<wgpu::Error>>>>),
+}
+
+impl ScopeAnswer {
+    pub fn new(popped: impl Future<Output = Option<wgpu::Error>> + 'static) -> Self {
+        #[cfg(not(target_arch = "wasm32"))]
+        return Self(ScopeState::Known(pollster::block_on(popped).map(|e| error_line(&e))));
+        #[cfg(target_arch = "wasm32")]
+        {
+            let mut answer = Self(ScopeState::Coming(Box::pin(popped)));
+            let _ = answer.poll();
+            answer
+        }
+    }
+
+    /// The error the scope caught (None: none), once the answer is in.
+    pub fn poll(&mut self) -> std::task::Poll<Option<String>> {
+        #[cfg(target_arch = "wasm32")]
+        if let ScopeState::Coming(popped) = &mut self.0 {
+            // A browser's promise keeps its result until asked again: no waker is needed.
+            let mut cx = std::task::Context::from_waker(std::task::Waker::noop());
+            match popped.as_mut().poll(&mut cx) {
+                std::task::Poll::Ready(error) => self.0 = ScopeState::Known(error.map(|e| error_line(&e))),
+                std::task::Poll::Pending => return std::task::Poll::Pending,
+            }
+        }
+        match &self.0 {
+            ScopeState::Known(error) => std::task::Poll::Ready(error.clone()),
+            #[cfg(target_arch = "wasm32")]
+            ScopeState::Coming(_) => std::task::Poll::Pending,
+        }
+    }
+}
+
 /// An adapter on the backends named by `WGPU_BACKEND` (`vulkan`, `gl`, ...); by default Vulkan,
 /// and OpenGL only where Vulkan has none (GL probing prints noise on headless machines).
 #[cfg(not(target_arch = "wasm32"))]

@@ -22,6 +22,7 @@ pub use analysis::{Analysis, AnalysisPixel, MomentsLevel};
 pub(crate) use context::scope_error;
 #[cfg(not(target_arch = "wasm32"))]
 pub use context::{GpuContext, headless_adapter};
+pub use context::{ScopeAnswer, error_line};
 pub use context::{describe_adapter, optional_features};
 pub use frame::{Frame, FrameRequest};
 pub use pipelines::{COLOR_FORMAT, pipelines_built};

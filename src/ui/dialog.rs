@@ -1,15 +1,13 @@
 //! The native Open dialog: the desktop's file chooser through xdg-desktop-portal (rfd), asked
 //! for on a thread of its own so the window keeps drawing. Where no portal answers (a bare X
-//! server, a container, CI) the app says so and hands the path box the keyboard instead. A page
-//! has no such dialog here yet: it answers `Unavailable` at once.
+//! server, a container, CI) the app says so and hands the path box the keyboard instead. (A page
+//! uses the browser's own dialog: `page_files`.)
 
 use std::path::PathBuf;
 use std::sync::mpsc::{Receiver, channel};
 
 /// What came back from the dialog.
 pub enum DialogOutcome {
-    // (A page's dialog answers `Unavailable` only.)
-    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
     Picked(PathBuf),
     Cancelled,
     /// No file-chooser service on this desktop.
@@ -21,10 +19,8 @@ pub struct OpenDialog {
     answer: Receiver<DialogOutcome>,
 }
 
-#[cfg(not(target_arch = "wasm32"))]
 const PORTAL: &str = "org.freedesktop.portal.Desktop";
 
-#[cfg(not(target_arch = "wasm32"))]
 /// Whether a file chooser answers on the session bus: the portal is running, or D-Bus can start
 /// it on demand.
 pub fn portal_available() -> bool {
@@ -41,12 +37,6 @@ impl OpenDialog {
     /// called when the answer is in.
     pub fn open(folder: PathBuf, wake: impl Fn() + Send + 'static) -> Self {
         let (send, answer) = channel();
-        if cfg!(target_arch = "wasm32") {
-            let _ = (send.send(DialogOutcome::Unavailable), folder);
-            wake();
-            return Self { answer };
-        }
-        #[cfg(not(target_arch = "wasm32"))]
         std::thread::spawn(move || {
             let outcome = if !portal_available() {
                 DialogOutcome::Unavailable

@@ -3,6 +3,7 @@
 
 mod bars;
 mod camera_panel;
+#[cfg(not(target_arch = "wasm32"))]
 mod dialog;
 mod homework_panel;
 mod homework_view;
@@ -35,6 +36,7 @@ use crate::app::scheduler::WorkerThread;
 use crate::app::scheduler::{FrameDriven, RenderScheduler};
 use crate::lessons;
 use crate::render::Analysis;
+#[cfg(not(target_arch = "wasm32"))]
 use crate::shipped_path;
 use rendering::{Shown, Submitted};
 use std::sync::{Arc, Mutex};
@@ -68,6 +70,7 @@ pub struct ShadowlabApp {
     diagram_panel: panels::DiagramPanel,
     open_path: String,
     /// The Open dialog, while it is up.
+    #[cfg(not(target_arch = "wasm32"))]
     open_dialog: Option<dialog::OpenDialog>,
     /// Give the path box the keyboard on the next frame (no dialog here).
     focus_path_box: bool,
@@ -131,6 +134,7 @@ impl ShadowlabApp {
             view_state: Default::default(),
             diagram_panel: Default::default(),
             open_path: String::new(),
+            #[cfg(not(target_arch = "wasm32"))]
             open_dialog: None,
             focus_path_box: false,
             screenshot: Arc::new(Mutex::new(None)),
@@ -244,6 +248,7 @@ impl ShadowlabApp {
     }
 
     /// Act on the dialog's answer once it is in.
+    #[cfg(not(target_arch = "wasm32"))]
     fn poll_open_dialog(&mut self) {
         let Some(outcome) = self.open_dialog.as_ref().and_then(dialog::OpenDialog::poll) else { return };
         self.open_dialog = None;
@@ -258,8 +263,11 @@ impl ShadowlabApp {
         }
     }
 
-    /// The Open dialog is up.
+    /// The Open dialog is up (a page's is the browser's, not tracked).
     pub fn browsing(&self) -> bool {
+        #[cfg(target_arch = "wasm32")]
+        return false;
+        #[cfg(not(target_arch = "wasm32"))]
         self.open_dialog.is_some()
     }
 }
@@ -346,6 +354,7 @@ impl eframe::App for ShadowlabApp {
         let ctx = ui.ctx().clone();
         self.handle_keys(&ctx);
         self.handle_dropped_files(&ctx);
+        #[cfg(not(target_arch = "wasm32"))]
         self.poll_open_dialog();
         self.save_screenshot_if_ready();
         self.advance_time(web_time::Instant::now());
