@@ -1,5 +1,6 @@
 //! What the page needs from its browser beyond the canvas: why it got no WebGPU (the views need
-//! it; WebGL2 has no storage buffers or compute shaders).
+//! it; WebGL2 has no storage buffers or compute shaders), and files handed to the user as
+//! downloads (a page has no folder to write to).
 
 /// Why a page runs on WebGL2 instead of WebGPU.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -55,6 +56,38 @@ impl NoWebGpu {
             NoWebGpu::NoAdapter => "webgl2-no-adapter",
         }
     }
+}
+
+/// Hand `bytes` to the user as a download named `name` (the browser saves it where it saves
+/// downloads, or asks).
+#[cfg(target_arch = "wasm32")]
+pub fn download(name: &str, mime: &str, bytes: &[u8]) -> Result<(), String> {
+    use wasm_bindgen::JsCast;
+    let describe = |e: wasm_bindgen::JsValue| format!("{name}: the browser refused the download ({e:?})");
+    let document = web_sys::window().and_then(|w| w.document()).ok_or("this page has no document")?;
+    let parts = js_sys::Array::of1(&js_sys::Uint8Array::from(bytes));
+    let options = web_sys::BlobPropertyBag::new();
+    options.set_type(mime);
+    let blob = web_sys::Blob::new_with_u8_array_sequence_and_options(&parts, &options).map_err(describe)?;
+    let url = web_sys::Url::create_object_url_with_blob(&blob).map_err(describe)?;
+    let link = document
+        .create_element("a")
+        .map_err(describe)?
+        .dyn_into::<web_sys::HtmlAnchorElement>()
+        .map_err(|_| format!("{name}: no link element to download with"))?;
+    link.set_href(&url);
+    link.set_download(name);
+    link.click();
+    // The bytes' address is let go once the download has surely read them (revoked at once,
+    // some browsers cancel it).
+    let revoke = wasm_bindgen::closure::Closure::once_into_js(move || {
+        let _ = web_sys::Url::revoke_object_url(&url);
+    });
+    let window = web_sys::window().ok_or("this page has no window")?;
+    window
+        .set_timeout_with_callback_and_timeout_and_arguments_0(revoke.unchecked_ref(), 60_000)
+        .map(drop)
+        .map_err(describe)
 }
 
 #[cfg(test)]

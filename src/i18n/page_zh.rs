@@ -1,4 +1,4 @@
-//! What only the page says (no WebGPU) in Simplified Chinese.
+//! What only the page says (no WebGPU, downloads) in Simplified Chinese.
 
 /// English -> Chinese.
 pub(super) const PAGE: &[(&str, &str)] = &[
@@ -20,5 +20,10 @@ pub(super) const PAGE: &[(&str, &str)] = &[
     (
         "For the views, open this page in a browser with WebGPU: Chrome or Edge 113 or later, Safari 26 or later, Firefox 141 or later on Windows.",
         "要看视图，请用支持 WebGPU 的浏览器打开本页：Chrome 或 Edge 113 及以上、Safari 26 及以上、Windows 上的 Firefox 141 及以上。",
+    ),
+    ("downloaded", "已下载"),
+    (
+        "in the page, screenshots are downloads (PNG files in the browser's download folder)",
+        "在网页里，截图以下载的方式保存（PNG 文件，在浏览器的下载文件夹里）",
     ),
 ];
