@@ -111,7 +111,13 @@ const checks = [
         after = countNear(await look(page, decoder, "probe-after"), at, 12, markerYellow);
       }
       expect(before < 5 && after >= 20, `the probe's marker at ${at}: ${before} yellow pixels before the click, ${after} after`);
-      return `marker at ${at}: ${after} yellow pixels (${before} before)`;
+      // Where the page names the probed pixel (<body data-probe="x,y">), it names one.
+      let named = "";
+      if ("probe" in (await body(page))) {
+        await waitForBody(page, () => /^\d+,\d+$/.test(document.body.dataset.probe));
+        named = `, data-probe=${(await body(page)).probe}`;
+      }
+      return `marker at ${at}: ${after} yellow pixels (${before} before)${named}`;
     },
   },
   {
@@ -206,10 +212,11 @@ const checks = [
       for (const type of ["dragenter", "dragover", "drop"]) {
         await page.dispatchEvent("#shadowlab_canvas", type, { dataTransfer: drop });
       }
-      await waitForBody(page, () => document.body.dataset.homework === "checked");
+      await waitForBody(page, () => ["checked", "error"].includes(document.body.dataset.homework));
       await look(page, decoder, "homework-drop");
       const where = await body(page);
-      return `data-homework=${where.homework}`;
+      expect(where.homework === "checked", `the check ended with data-homework=${where.homework}`);
+      return `data-homework=${where.homework}, findings: ${where.findings || "none"}`;
     },
   },
 ];
