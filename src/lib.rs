@@ -2,6 +2,7 @@
 //! of every shader function and a ground truth to compare against.
 
 pub mod app;
+pub mod browser;
 pub mod built_in;
 #[cfg(not(target_arch = "wasm32"))]
 pub mod cli;

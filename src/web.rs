@@ -1,6 +1,7 @@
 //! The page: eframe's web runner on index.html's canvas `shadowlab_canvas`, the app rendering
-//! with the frame-driven scheduler on the page's own device (WebGPU where the browser has it,
-//! else WebGL2; `?backend=webgl2` asks for WebGL2). What cannot start is said on the page.
+//! with the frame-driven scheduler on the page's own device (WebGPU where the browser has it).
+//! On WebGL2 (no WebGPU, or `?backend=webgl2`) the app runs without its views and says why, in
+//! its own window and on `<body data-views>`; what cannot start at all is said on the page.
 
 use wasm_bindgen::JsCast;
 use wasm_bindgen::prelude::wasm_bindgen;
@@ -23,8 +24,19 @@ pub fn start() {
                 canvas,
                 web_options(),
                 Box::new(|cc| {
-                    let app = crate::ui::ShadowlabApp::new(cc);
+                    let mut app = crate::ui::ShadowlabApp::new(cc);
                     crate::ui::clear_paints_panels(&cc.egui_ctx);
+                    let backend = cc.wgpu_render_state.as_ref().map(|rs| rs.adapter.get_info().backend);
+                    let views = match backend {
+                        Some(wgpu::Backend::Gl) => {
+                            let why = no_webgpu_reason();
+                            app.without_webgpu(why);
+                            why.code()
+                        }
+                        Some(_) => "webgpu",
+                        None => "none",
+                    };
+                    mark_body("data-views", views);
                     Ok(Box::new(app))
                 }),
             )
@@ -35,7 +47,10 @@ pub fn start() {
                     loading.remove();
                 }
             }
-            Err(e) => say(&document, &format!("shadowlab could not start: {e:?}")),
+            Err(e) => {
+                mark_body("data-views", "failed");
+                say(&document, &format!("{CANNOT_START}\n\n({e:?})"));
+            }
         }
         // The runner lives as long as the page.
         std::mem::forget(runner);
@@ -71,6 +86,31 @@ fn backend_asked() -> Option<String> {
         .trim_start_matches('?')
         .split('&')
         .find_map(|pair| pair.strip_prefix("backend=").map(str::to_owned))
+}
+
+/// Where neither WebGPU nor WebGL2 gave the page a device, in both languages (the app, which
+/// would follow the reader's choice, is not there to ask).
+const CANNOT_START: &str = "shadowlab could not start: this browser gave the page neither WebGPU nor WebGL2. \
+    Open it in a browser with WebGPU: Chrome or Edge 113 or later, Safari 26 or later, Firefox 141 or later on Windows.\n\n\
+    shadowlab 无法启动：这个浏览器既不给网页 WebGPU，也不给 WebGL2。\
+    请用支持 WebGPU 的浏览器打开本页：Chrome 或 Edge 113 及以上、Safari 26 及以上、Windows 上的 Firefox 141 及以上。";
+
+/// Why the device eframe opened is WebGL2's.
+fn no_webgpu_reason() -> crate::browser::NoWebGpu {
+    let window = web_sys::window();
+    let secure = window.as_ref().is_some_and(|w| w.is_secure_context());
+    let has_webgpu_api = window.is_some_and(|w| {
+        js_sys::Reflect::get(&w.navigator(), &"gpu".into())
+            .is_ok_and(|gpu| !gpu.is_undefined() && !gpu.is_null())
+    });
+    crate::browser::NoWebGpu::diagnose(backend_asked().as_deref() == Some("webgl2"), secure, has_webgpu_api)
+}
+
+/// Set an attribute on `<body>` for scripts and tests to read.
+fn mark_body(name: &str, value: &str) {
+    if let Some(body) = web_sys::window().and_then(|w| w.document()).and_then(|d| d.body()) {
+        let _ = body.set_attribute(name, value);
+    }
 }
 
 /// Put `message` where the loading text was.

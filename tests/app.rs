@@ -1371,3 +1371,29 @@ fn walk_every_step_to_pictures() {
         }
     }
 }
+
+#[test]
+fn a_page_without_webgpu_says_why_in_place_of_the_views_in_both_languages() {
+    use shadowlab::browser::NoWebGpu;
+    let mut h = harness();
+    h.state_mut().without_webgpu(NoWebGpu::Missing);
+    h.run_steps(2);
+    h.get_by_label_contains("need WebGPU");
+    h.get_by_label(NoWebGpu::Missing.reason());
+    h.get_by_label_contains(
+        "Chrome or Edge 113 or later, Safari 26 or later, Firefox 141 or later on Windows",
+    );
+    assert!(!h.state().render_pending(), "nothing is rendered without a renderer");
+    h.state_mut().lang = Lang::Zh;
+    h.run_steps(2);
+    h.get_by_label("相机视图和阴影贴图需要 WebGPU");
+    h.get_by_label("这个浏览器没有 WebGPU，或者把它关掉了。");
+    assert!(h.query_by_label_contains("need WebGPU").is_none(), "English left on screen");
+    // The lessons still open and show their text.
+    let lesson = h.state().lessons.iter().position(|l| l.id == "pcss").expect("the PCSS lesson");
+    h.state_mut().go_to_step(lesson, 0);
+    h.run_steps(2);
+    h.get_by_label_contains("相机视图和阴影贴图需要 WebGPU");
+    let title = h.state().lessons[lesson].steps[0].title.zh.clone();
+    h.get_by_label_contains(&title);
+}

@@ -300,3 +300,25 @@ fn a_slide_fills_the_ground_truth_and_the_mean_error_it_shows() {
     // A probe alone leaves the frame's number pending.
     assert!(step.text_filled(Lang::En, pictures.probe.as_ref()).contains(live::NO_VALUE));
 }
+
+#[test]
+fn chinese_text_no_font_holds_is_refused_naming_the_characters() {
+    let tmp = tempfile::tempdir().expect("temporary folder");
+    let lessons = tmp.path().join("lessons");
+    std::fs::create_dir(&lessons).expect("mkdir");
+    let scene = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/games202.toml");
+    // Tibetan: neither the UI fonts nor a CJK font (system or built in) has it.
+    let lesson = format!(
+        "id = \"tibetan\"\norder = 1\ntitle = {{ en = \"T\", zh = \"阴影 ཀཁ\" }}\n\
+         summary = {{ en = \"s\", zh = \"s\" }}\n\
+         [[step]]\ntitle = {{ en = \"t\", zh = \"t\" }}\ntext = {{ en = \"x\", zh = \"x\" }}\nscene = '{}'\n",
+        scene.display()
+    );
+    std::fs::write(lessons.join("01_tibetan.toml"), lesson).expect("write");
+    let out = tmp.path().join("slides");
+    let (dir_arg, out_arg) = (lessons.display().to_string(), out.display().to_string());
+    let run = shadowlab(&["export", "--lessons-dir", &dir_arg, "--lang", "zh", "--out", &out_arg]);
+    assert_bad_input(&run, &["ཀཁ", "fonts-noto-cjk"]);
+    assert!(!run.stderr.contains('阴'), "only what no font has is named:\n{run}");
+    assert!(!out.exists(), "nothing may be written");
+}

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Build the page into dist/: index.html, shadowlab.js and shadowlab_bg.wasm (eframe's web layout),
-# with Cargo.toml's `web` profile (optimised for size, fat LTO).
+# with Cargo.toml's `web` profile (optimised for size, fat LTO; SHADOWLAB_WEB_PROFILE=web-test
+# builds the faster one web/test.sh tests with).
 # Serve dist/ over http (127.0.0.1 or https: WebGPU needs a secure context), e.g.
 #   python3 -m http.server 8080 --bind 127.0.0.1 --directory dist
 # Needs the wasm32-unknown-unknown target (rustup target add wasm32-unknown-unknown; or Debian's
@@ -13,6 +14,7 @@ cd "$root"
 target=wasm32-unknown-unknown
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$root/target-web}"
 dist="$root/dist"
+profile="${SHADOWLAB_WEB_PROFILE:-web}"
 
 say() { printf 'web/build.sh: %s\n' "$*" >&2; }
 
@@ -22,7 +24,7 @@ if ! command -v wasm-bindgen >/dev/null || [ "$(wasm-bindgen --version | awk '{p
     exit 2
 fi
 
-build=(rustc --lib --profile web --target "$target" --crate-type cdylib)
+build=(rustc --lib --profile "$profile" --target "$target" --crate-type cdylib)
 if command -v rustup >/dev/null && rustup target list --installed 2>/dev/null | grep -qx "$target"; then
     say "building with rustup's $target target"
     cargo "${build[@]}"
@@ -40,13 +42,15 @@ fi
 rm -rf "$dist"
 mkdir -p "$dist"
 wasm-bindgen --target web --no-typescript --out-dir "$dist" --out-name shadowlab \
-    "$CARGO_TARGET_DIR/$target/web/shadowlab.wasm"
+    "$CARGO_TARGET_DIR/$target/$profile/shadowlab.wasm"
 cp web/index.html "$dist/index.html"
 
 wasm="$dist/shadowlab_bg.wasm"
 wasm_opt="$(command -v wasm-opt || true)"
 [ -z "$wasm_opt" ] && [ -x web/node_modules/.bin/wasm-opt ] && wasm_opt=web/node_modules/.bin/wasm-opt
-if [ "${SHADOWLAB_WASM_OPT:-1}" != 0 ] && [ -n "$wasm_opt" ]; then
+if [ "${SHADOWLAB_WASM_OPT:-1}" = 0 ]; then
+    say "wasm-opt skipped (SHADOWLAB_WASM_OPT=0): the wasm is unshrunk"
+elif [ -n "$wasm_opt" ]; then
     say "shrinking the wasm with $wasm_opt -Oz"
     "$wasm_opt" -Oz --enable-bulk-memory --enable-nontrapping-float-to-int --enable-sign-ext \
         --enable-mutable-globals --enable-reference-types --enable-multivalue "$wasm" -o "$wasm.opt"

@@ -1,29 +1,14 @@
 // Load the built page in headless Chromium and wait for its first finished render.
 //   node web/check.mjs [--url http://127.0.0.1:8080/] [--out screenshots/web.png] [--timeout 300]
-// Serve dist/ first (python3 -m http.server 8080 --bind 127.0.0.1 --directory dist). Chromium's
-// path: $CHROMIUM, else Debian's /usr/lib/chromium/chromium. The flags give WebGPU (and WebGL2)
-// on SwiftShader, a CPU rasteriser, so any machine can run this; screenshots include the canvas.
-import { chromium } from "playwright-core";
+// Serve dist/ first (python3 -m http.server 8080 --bind 127.0.0.1 --directory dist). Chromium:
+// see browser.mjs. `node web/test.mjs` runs the page's tests.
+import { arg, launchChromium } from "./browser.mjs";
 
-const arg = (name, fallback) => {
-  const i = process.argv.indexOf(`--${name}`);
-  return i > 0 ? process.argv[i + 1] : fallback;
-};
 const url = arg("url", "http://127.0.0.1:8080/");
 const out = arg("out", "screenshots/web.png");
 const timeoutS = Number(arg("timeout", "300"));
 
-const browser = await chromium.launch({
-  executablePath: process.env.CHROMIUM || "/usr/lib/chromium/chromium",
-  args: [
-    "--no-sandbox",
-    "--enable-unsafe-webgpu",
-    "--enable-features=Vulkan",
-    "--use-vulkan=swiftshader",
-    "--use-angle=swiftshader",
-    "--use-webgpu-adapter=swiftshader",
-  ],
-});
+const browser = await launchChromium();
 const page = await browser.newPage({ viewport: { width: 1280, height: 800 } });
 const log = [];
 page.on("console", (m) => log.push(`${m.type()}: ${m.text()}`));

@@ -33,6 +33,33 @@ fn check_id(lesson: &Lesson) -> Result<(), CliError> {
     }
 }
 
+/// Every character of the lessons' Chinese text has a glyph. The CJK font built in holds
+/// shadowlab's own text only: a lesson of one's own may need the system's (a font check, not a
+/// translation).
+fn check_font_covers(lessons: &[&Lesson]) -> Result<(), CliError> {
+    let mut chars = std::collections::BTreeSet::new();
+    for lesson in lessons {
+        let steps = lesson
+            .steps
+            .iter()
+            .flat_map(|s| [&s.title.zh, &s.text.zh].into_iter().chain(s.try_this.iter().map(|t| &t.text.zh)));
+        for text in [&lesson.title.zh, &lesson.summary.zh].into_iter().chain(steps) {
+            chars.extend(text.chars().filter(|c| !c.is_whitespace() && !c.is_control()));
+        }
+    }
+    let renderer = TextRenderer::shared();
+    let missing: Vec<char> = chars.into_iter().filter(|c| !renderer.covers(*c)).collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    let shown: String = missing.iter().take(12).collect();
+    let more = if missing.len() > 12 { "..." } else { "" };
+    Err(CliError::input(format!(
+        "no font has {shown}{more} (the Chinese font built in holds only shadowlab's own text): \
+         install fonts-noto-cjk (apt-get install fonts-noto-cjk)"
+    )))
+}
+
 /// Export progress: a bar with the rate and the time left on a terminal, one line per step
 /// otherwise (logs, CI).
 enum Progress {
@@ -109,12 +136,8 @@ pub fn run(args: ExportArgs) -> Result<(), CliError> {
     for lesson in &selected {
         check_id(lesson)?;
     }
-    // A font check, not a translation.
-    if args.lang == Lang::Zh && !TextRenderer::shared().covers('中') {
-        return Err(CliError::input(
-            "Chinese slides need a CJK font and none is installed: \
-             install fonts-noto-cjk (apt-get install fonts-noto-cjk)",
-        ));
+    if args.lang == Lang::Zh {
+        check_font_covers(&selected)?;
     }
     if args.out.exists() && !args.out.is_dir() {
         return Err(CliError::input(format!("{}: is a file, not a folder", args.out.display())));

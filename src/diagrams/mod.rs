@@ -6,6 +6,7 @@
 mod acne_bias;
 mod canvas;
 mod chebyshev;
+mod cjk_font;
 pub mod live;
 mod multi_light;
 mod pcf_kernel;
@@ -21,9 +22,10 @@ mod tests;
 use crate::i18n::Lang;
 use crate::scene::Technique;
 pub use canvas::{Canvas, MAX_TEXT_GROWTH};
-pub use text::{
-    CJK_FONT_PATHS, CjkFont, FontBytes, TextMetrics, TextRenderer, TextStyle, is_cjk, system_cjk_font,
+pub use cjk_font::{
+    BUILT_IN_CJK_FONT, CJK_FONT_PATHS, CjkFont, FontBytes, built_in_cjk_font, cjk_font, system_cjk_font,
 };
+pub use text::{TextMetrics, TextRenderer, TextStyle, is_cjk};
 
 /// Largest accepted width or height, in pixels.
 pub const MAX_SIDE_PX: u32 = 8192;

@@ -13,66 +13,7 @@ use cosmic_text::{
 use tiny_skia::{Color, Pixmap, PixmapPaint, PremultipliedColorU8, Transform};
 
 use super::DiagramError;
-
-/// Usual Debian/Ubuntu locations of CJK fonts (fonts-noto-cjk, fonts-wqy-*, fonts-arphic-*, ...).
-pub const CJK_FONT_PATHS: [&str; 12] = [
-    "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc",
-    "/usr/share/fonts/opentype/noto/NotoSansCJKsc-Regular.otf",
-    "/usr/share/fonts/opentype/noto/NotoSerifCJK-Regular.ttc",
-    "/usr/share/fonts/truetype/noto/NotoSansCJK-Regular.ttc",
-    "/usr/share/fonts/noto-cjk/NotoSansCJK-Regular.ttc",
-    "/usr/share/fonts/google-noto-cjk/NotoSansCJK-Regular.ttc",
-    "/usr/share/fonts/truetype/wqy/wqy-microhei.ttc",
-    "/usr/share/fonts/truetype/wqy/wqy-zenhei.ttc",
-    "/usr/share/fonts/wqy-microhei/wqy-microhei.ttc",
-    "/usr/share/fonts/truetype/arphic/uming.ttc",
-    "/usr/share/fonts/truetype/arphic/ukai.ttc",
-    "/usr/share/fonts/truetype/droid/DroidSansFallbackFull.ttf",
-];
-
-/// The bytes of a font file, shared rather than copied (a CJK collection is about 20 MB).
-pub type FontBytes = Arc<dyn AsRef<[u8]> + Send + Sync>;
-
-/// A CJK font file and the face in it meant for Simplified Chinese (a `.ttc` such as Noto Sans
-/// CJK holds the Japanese, Korean and Chinese forms of the same characters as separate faces).
-pub struct CjkFont {
-    pub bytes: Arc<Vec<u8>>,
-    pub face_index: u32,
-}
-
-impl std::fmt::Debug for CjkFont {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("CjkFont")
-            .field("bytes", &self.bytes.len())
-            .field("face_index", &self.face_index)
-            .finish()
-    }
-}
-
-/// The first CJK font found in [`CJK_FONT_PATHS`], with its Simplified Chinese face, read once
-/// per process for the diagrams, the slides and the app's panels alike; `None` when none is
-/// installed (on Debian: `apt-get install fonts-noto-cjk`).
-pub fn system_cjk_font() -> Option<&'static CjkFont> {
-    static CJK: OnceLock<Option<CjkFont>> = OnceLock::new();
-    CJK.get_or_init(|| {
-        CJK_FONT_PATHS.iter().find_map(|path| {
-            let bytes = Arc::new(std::fs::read(path).ok()?);
-            let face_index = simplified_chinese_face(&bytes)?;
-            Some(CjkFont { bytes, face_index })
-        })
-    })
-    .as_ref()
-}
-
-/// Index of the face named "... SC" (Simplified Chinese), else of the first face; `None` when
-/// the data holds no font.
-fn simplified_chinese_face(bytes: &Arc<Vec<u8>>) -> Option<u32> {
-    let mut db = fontdb::Database::new();
-    db.load_font_source(fontdb::Source::Binary(Arc::clone(bytes) as FontBytes));
-    let faces: Vec<_> =
-        db.faces().map(|f| (f.index, f.families.iter().any(|(n, _)| n.ends_with(" SC")))).collect();
-    faces.iter().find(|(_, sc)| *sc).or(faces.first()).map(|(i, _)| *i)
-}
+use super::cjk_font::{FontBytes, cjk_font};
 
 /// Han ideographs, kana, CJK punctuation and full-width forms: written without spaces between
 /// them (lines of a Chinese paragraph join without one).
@@ -196,12 +137,13 @@ impl Default for TextRenderer {
 }
 
 impl TextRenderer {
-    /// Ubuntu Light, then Hack (maths symbols), then a system CJK font when one is installed.
+    /// Ubuntu Light, then Hack (maths symbols), then the CJK font ([`cjk_font`]).
     pub fn new() -> Self {
         let builtin = [epaint_default_fonts::UBUNTU_LIGHT, epaint_default_fonts::HACK_REGULAR]
             .map(|bytes| (Arc::new(bytes) as FontBytes, 0));
-        let cjk = system_cjk_font().map(|f| (Arc::clone(&f.bytes) as FontBytes, f.face_index));
-        match Self::from_faces(builtin.into_iter().chain(cjk).collect()) {
+        let cjk = cjk_font();
+        let cjk = (Arc::clone(&cjk.bytes), cjk.face_index);
+        match Self::from_faces(builtin.into_iter().chain([cjk]).collect()) {
             Ok(renderer) => renderer,
             // The built-in fonts ship inside egui and always parse.
             Err(e) => panic!("the built-in UI fonts must load: {e}"),

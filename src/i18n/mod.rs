@@ -7,6 +7,7 @@
 
 mod diagrams_zh;
 mod homework_zh;
+mod page_zh;
 mod slides_zh;
 mod ui_zh;
 
@@ -40,7 +41,12 @@ impl Lang {
 
 /// Every entry of every table.
 fn entries() -> impl Iterator<Item = &'static (&'static str, &'static str)> {
-    ui_zh::UI.iter().chain(diagrams_zh::DIAGRAMS).chain(slides_zh::SLIDES).chain(homework_zh::HOMEWORK)
+    ui_zh::UI
+        .iter()
+        .chain(diagrams_zh::DIAGRAMS)
+        .chain(slides_zh::SLIDES)
+        .chain(homework_zh::HOMEWORK)
+        .chain(page_zh::PAGE)
 }
 
 fn table() -> &'static HashMap<&'static str, &'static str> {

@@ -264,13 +264,18 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
     if ui.button(tr("Reset to scene/lesson values")).clicked() {
         state.reset();
     }
-    ui.horizontal(|ui| {
-        let label = ui.label(tr("screenshot folder"));
-        let mut folder = state.settings.screenshot_dir.display().to_string();
-        if ui.text_edit_singleline(&mut folder).labelled_by(label.id).changed() {
-            state.settings.screenshot_dir = folder.into();
-        }
-    });
+    if cfg!(target_arch = "wasm32") {
+        // A page has no folder to write to.
+        ui.label(tr("in the page, screenshots are downloads (PNG files in the browser's download folder)"));
+    } else {
+        ui.horizontal(|ui| {
+            let label = ui.label(tr("screenshot folder"));
+            let mut folder = state.settings.screenshot_dir.display().to_string();
+            if ui.text_edit_singleline(&mut folder).labelled_by(label.id).changed() {
+                state.settings.screenshot_dir = folder.into();
+            }
+        });
+    }
     ui.separator();
     super::probe_panel::probe_values(state, ui);
     if changed {

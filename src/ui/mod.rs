@@ -337,10 +337,11 @@ pub fn landmark(ctx: &egui::Context, name: &'static str) -> Option<egui::Rect> {
 }
 
 fn install_cjk_font(ctx: &egui::Context) {
-    let Some(cjk) = crate::diagrams::system_cjk_font() else { return };
+    // The same face the diagrams and slides fall back to: the system's (Simplified Chinese in a
+    // collection), else the subset built in.
+    let cjk = crate::diagrams::cjk_font();
     let mut fonts = egui::FontDefinitions::default();
-    // The same face the diagrams and slides fall back to (Simplified Chinese in a collection).
-    let mut data = egui::FontData::from_static(cjk.bytes.as_slice());
+    let mut data = egui::FontData::from_static(cjk.data());
     data.index = cjk.face_index;
     fonts.font_data.insert("cjk".to_owned(), Arc::new(data));
     for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {

@@ -1,8 +1,8 @@
-//! Screenshots: the window as egui painted it, and each view as rendered, as PNGs.
+//! Screenshots: the window as egui painted it, and each view as rendered, as PNGs: written to
+//! the screenshot folder on the desktop, handed to the browser as downloads in a page.
 
 use super::ShadowlabApp;
 use crate::views::View;
-use std::path::PathBuf;
 
 impl ShadowlabApp {
     pub fn request_screenshot(&mut self, ctx: &egui::Context) {
@@ -24,11 +24,11 @@ impl ShadowlabApp {
         };
         let Some(window) = image else { return };
         self.screenshot_pending = false;
+        let done = if cfg!(target_arch = "wasm32") { "downloaded" } else { "saved" };
         match self.save_screenshot(&window) {
-            Ok(paths) => {
-                let names: Vec<String> = paths.iter().map(|p| p.display().to_string()).collect();
+            Ok(names) => {
                 self.state.status =
-                    format!("{} {}", crate::i18n::tr(self.state.lang, "saved"), names.join(", "));
+                    format!("{} {}", crate::i18n::tr(self.state.lang, done), names.join(", "));
             }
             Err(e) => self.state.error = Some(super::AppError::new("could not save the screenshot", e)),
         }
@@ -60,13 +60,8 @@ impl ShadowlabApp {
         Some(picture)
     }
 
-    pub(super) fn save_screenshot(&mut self, window: &egui::ColorImage) -> Result<Vec<PathBuf>, String> {
-        // Reported and written as an absolute path: the working directory is nobody's business.
-        let dir = std::path::absolute(&self.state.settings.screenshot_dir)
-            .map_err(|e| format!("{}: {e}", self.state.settings.screenshot_dir.display()))?;
-        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
-        let n = (1..10_000).find(|n| !dir.join(format!("shot-{n:03}-window.png")).exists()).unwrap_or(0);
-        let mut written = Vec::new();
+    /// The screenshot's pictures by what they show: the window, the camera view, the shadow map.
+    fn screenshot_pictures(&self, window: &egui::ColorImage) -> Vec<(&'static str, image::RgbaImage)> {
         let [w, h] = window.size;
         let bytes: Vec<u8> = window.pixels.iter().flat_map(|c| c.to_srgba_unmultiplied()).collect();
         let mut images = Vec::new();
@@ -79,11 +74,40 @@ impl ShadowlabApp {
         if let Some((map, light)) = self.view_state.map() {
             images.push(("shadow-map", crate::views::shadow_map_image(map, light).0));
         }
-        for (what, img) in images {
+        images
+    }
+
+    /// Write the pictures as `shot-NNN-*.png` to the screenshot folder; their absolute paths.
+    #[cfg(not(target_arch = "wasm32"))]
+    pub(super) fn save_screenshot(&mut self, window: &egui::ColorImage) -> Result<Vec<String>, String> {
+        // Reported and written as an absolute path: the working directory is nobody's business.
+        let dir = std::path::absolute(&self.state.settings.screenshot_dir)
+            .map_err(|e| format!("{}: {e}", self.state.settings.screenshot_dir.display()))?;
+        std::fs::create_dir_all(&dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        let n = (1..10_000).find(|n| !dir.join(format!("shot-{n:03}-window.png")).exists()).unwrap_or(0);
+        let mut written = Vec::new();
+        for (what, img) in self.screenshot_pictures(window) {
             let path = dir.join(format!("shot-{n:03}-{what}.png"));
             crate::export::write_png(&path, &img).map_err(|e| e.to_string())?;
-            written.push(path);
+            written.push(path.display().to_string());
         }
         Ok(written)
+    }
+
+    /// Hand the pictures to the browser as downloads named `shot-NNN-*.png` (numbered from 1
+    /// in each visit; a browser renames a name it already has); their names.
+    #[cfg(target_arch = "wasm32")]
+    pub(super) fn save_screenshot(&mut self, window: &egui::ColorImage) -> Result<Vec<String>, String> {
+        static SHOTS: std::sync::atomic::AtomicU32 = std::sync::atomic::AtomicU32::new(1);
+        let n = SHOTS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+        let mut downloaded = Vec::new();
+        for (what, img) in self.screenshot_pictures(window) {
+            let name = format!("shot-{n:03}-{what}.png");
+            let png =
+                crate::export::encode_png(&img, std::path::Path::new(&name)).map_err(|e| e.to_string())?;
+            crate::browser::download(&name, "image/png", &png)?;
+            downloaded.push(name);
+        }
+        Ok(downloaded)
     }
 }

@@ -5,6 +5,7 @@
 
 use super::ShadowlabApp;
 use crate::app::scheduler::MapView;
+use crate::browser::NoWebGpu;
 use crate::i18n::Lang;
 use crate::i18n::tr;
 use crate::shadow::{DepthImage, LightGpu};
@@ -197,18 +198,46 @@ impl ViewState {
     }
 }
 
+impl ShadowlabApp {
+    /// Say why in place of the views, and render none: the page's device is WebGL2's, which
+    /// the renderer cannot run on (the lessons, diagrams and panels need no GPU of their own).
+    pub fn without_webgpu(&mut self, why: NoWebGpu) {
+        self.worker = None;
+        self.gpu_error = Some(why.reason().to_owned());
+    }
+}
+
+/// In place of the views: why there are none (for a page without WebGPU, what works and which
+/// browsers have it).
+fn no_views(app: &ShadowlabApp, ui: &mut Ui) {
+    let lang = app.state.lang;
+    let why = app.gpu_error.as_deref().unwrap_or("unknown reason");
+    let Some(no_webgpu) = NoWebGpu::from_reason(why) else {
+        ui.centered_and_justified(|ui| ui.label(format!("{}: {}", tr(lang, "No GPU view"), tr(lang, why))));
+        return;
+    };
+    ui.vertical_centered(|ui| {
+        ui.add_space((ui.available_height() * 0.2).max(8.0));
+        ui.set_max_width(ui.available_width().min(620.0));
+        // Brighter than the panels' labels: this text stands in for the views.
+        let heading = tr(lang, "The camera view and the shadow map need WebGPU");
+        ui.label(egui::RichText::new(heading).heading().color(Color32::from_gray(230)));
+        ui.add_space(10.0);
+        for text in [
+            no_webgpu.reason(),
+            "The page runs on WebGL2 instead, which has no storage buffers or compute shaders, and shadowlab renders the views with both. The lessons, the diagrams and the panels work without them.",
+            "For the views, open this page in a browser with WebGPU: Chrome or Edge 113 or later, Safari 26 or later, Firefox 141 or later on Windows.",
+        ] {
+            ui.label(egui::RichText::new(tr(lang, text)).size(15.0).color(Color32::from_gray(205)));
+            ui.add_space(6.0);
+        }
+    });
+}
+
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     app.view_state.follow_scene(app.state.scenes_opened);
     if app.worker.is_none() {
-        ui.centered_and_justified(|ui| {
-            ui.label(format!(
-                "{}: {}",
-                crate::i18n::tr(app.state.lang, "No GPU view"),
-                app.gpu_error
-                    .clone()
-                    .unwrap_or_else(|| crate::i18n::tr(app.state.lang, "unknown reason").into())
-            ));
-        });
+        no_views(app, ui);
         return;
     }
     let full = ui.available_rect_before_wrap();
