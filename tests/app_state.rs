@@ -268,8 +268,10 @@ fn files_handed_over_as_bytes_open_as_a_page_opens_them_and_are_not_remembered()
     let main = shadowlab::app::main_file(&dropped).expect("one to open");
     assert_eq!(main, Path::new("handed-over/phongFragment.glsl"), "named by the file, not the sender's path");
     let mut state = fresh();
-    state.open_any(&main);
+    state.open_files(&dropped);
     let homework = state.homework.as_ref().expect("the homework opened");
+    assert_eq!(homework.fragment, main);
+    assert_eq!(homework.shadow_fragment.as_deref(), Some(Path::new("handed-over/shadowFragment.glsl")));
     assert!(homework.error.is_none(), "{:?}", homework.error);
     assert!(homework.program.is_some(), "it compiled from the bytes handed over");
     assert!(state.settings.recent_files.is_empty(), "{:?}", state.settings.recent_files);

@@ -185,25 +185,43 @@ const checks = [
     },
   },
   {
-    name: "lesson link: ?lesson=pcss&step=3&lang=zh opens that step",
-    // Until the page reads links (it says so with <body data-links>).
-    skip: async ({ browser }) => !("links" in (await body(await open(browser)))) && "the page does not read links yet (no data-links)",
+    name: "lesson link: ?lesson=pcss&step=3&lang=zh opens that step, and the address follows",
     async run({ browser, decoder }) {
       const page = await open(browser, "?lesson=pcss&step=3&lang=zh");
       await waitForBody(page, () => document.body.dataset.lesson === "pcss");
       const where = await body(page);
       expect(where.step === "3" && where.lang === "zh", `data-step=${where.step} data-lang=${where.lang}`);
       await look(page, decoder, "lesson-link");
-      return `data-lesson=${where.lesson} data-step=${where.step} data-lang=${where.lang}`;
+      // The next step (the arrow key, as a student walks on): the address says where they are.
+      await page.focus("#shadowlab_canvas");
+      await page.keyboard.press("ArrowRight");
+      await waitForBody(page, () => document.body.dataset.step === "4");
+      const address = await page.evaluate(() => location.search);
+      expect(address === "?lesson=pcss&step=4&lang=zh", `the address is ${address}`);
+      return `data-lesson=${where.lesson} data-step=${where.step} data-lang=${where.lang}, then ${address}`;
     },
   },
   {
-    name: "homework: a .glsl dropped on the page is checked",
-    // Until the page takes dropped files (it says so with <body data-homework>).
-    skip: async ({ browser }) => !("homework" in (await body(await open(browser)))) && "the page does not take dropped homework yet (no data-homework)",
+    name: "scene link: ?scene=contact&technique=pcf opens that scene with that technique",
+    async run({ browser }) {
+      const page = await open(browser, "?scene=contact&technique=pcf");
+      await waitForBody(page, () => document.body.dataset.technique === "pcf");
+      const where = await body(page);
+      expect(where.lesson === "", `a lesson is open: ${where.lesson}`);
+      const address = await page.evaluate(() => location.search);
+      expect(address.startsWith("?scene=contact&technique=pcf"), `the address is ${address}`);
+      return `data-technique=${where.technique}, ${address}`;
+    },
+  },
+  {
+    name: "homework: a .glsl dropped on the page is checked, with its findings",
     async run({ browser, decoder }) {
       const page = await open(browser);
-      const shader = readFileSync(new URL("../assets/homework/phongFragment.glsl", import.meta.url), "utf8");
+      // The example whose light is smaller than a texel: its one finding is no_penumbra.
+      const shader = readFileSync(
+        new URL("../assets/homework/phongFragment_tiny_light.glsl", import.meta.url),
+        "utf8",
+      );
       const drop = await page.evaluateHandle((text) => {
         const data = new DataTransfer();
         data.items.add(new File([text], "phongFragment.glsl", { type: "text/plain" }));
@@ -216,7 +234,8 @@ const checks = [
       await look(page, decoder, "homework-drop");
       const where = await body(page);
       expect(where.homework === "checked", `the check ended with data-homework=${where.homework}`);
-      return `data-homework=${where.homework}, findings: ${where.findings || "none"}`;
+      expect(where.findings === "no_penumbra", `findings: ${where.findings || "none"}`);
+      return `data-homework=${where.homework}, findings: ${where.findings}`;
     },
   },
 ];

@@ -212,6 +212,11 @@ impl AppState {
     /// camera view shows their picture, the homework panel what the check found. A shader that
     /// does not compile opens too, with its error, and shows once it does.
     pub fn open_homework(&mut self, path: &Path) {
+        self.open_homework_with(path, None);
+    }
+
+    /// `open_homework` with the student's light-pass shader (`shadowFragment.glsl`) too.
+    pub fn open_homework_with(&mut self, path: &Path, shadow_fragment: Option<&Path>) {
         if !crate::files::is_file(path) {
             let detail = format!("{}: no such file", path.display());
             self.error = Some(AppError::new("could not open the shader", detail));
@@ -230,7 +235,7 @@ impl AppState {
                 }
             }
         }
-        let state = HomeworkState::open(path, None, None);
+        let state = HomeworkState::open(path, shadow_fragment, None);
         self.status = format!("{} {}", crate::i18n::tr(self.lang, "opened"), path.display());
         self.settings.remember_file(path);
         self.homework = Some(state);

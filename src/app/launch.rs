@@ -114,6 +114,21 @@ pub fn is_lesson_file(path: &Path) -> bool {
 }
 
 impl super::AppState {
+    /// Open files dropped or picked together: the one `main_file` picks; where that is a
+    /// homework shader, with a light pass's shader given beside it.
+    pub fn open_files(&mut self, paths: &[PathBuf]) {
+        let Some(main) = main_file(paths) else { return };
+        let light_pass = paths.iter().find(|p| **p != main && is_light_pass_shader(p));
+        if crate::files::exists(&main)
+            && super::homework::is_shader_file(&main)
+            && !is_light_pass_shader(&main)
+        {
+            self.open_homework_with(&main, light_pass.map(PathBuf::as_path));
+        } else {
+            self.open_any(&main);
+        }
+    }
+
     /// Open what the path box, a drop or the dialog names: a scene or lesson (.toml), a model
     /// (.obj), or a shipped lesson's id. A bad path keeps what is shown and says why.
     pub fn open_any(&mut self, path: &Path) {
@@ -167,16 +182,19 @@ impl super::AppState {
     }
 }
 
+/// A light pass's shader by its name (`shadowFragment.glsl`), as the framework names it.
+fn is_light_pass_shader(path: &Path) -> bool {
+    let name = path.file_name().map(|n| n.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
+    super::homework::is_shader_file(path) && name.starts_with("shadow")
+}
+
 /// Of several files dropped or picked at once, the one to open: a homework shader (the camera
 /// pass's, `phongFragment`, before a light pass's), a scene or lesson, a model; else the last.
 /// The others (a model's material and textures) are found by the one opened.
 pub fn main_file(paths: &[PathBuf]) -> Option<PathBuf> {
     let extension = |p: &PathBuf| p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let rank = |p: &PathBuf| match extension(p).as_deref() {
-        _ if super::homework::is_shader_file(p) => {
-            let name = p.file_name().map(|n| n.to_string_lossy().to_ascii_lowercase()).unwrap_or_default();
-            if name.starts_with("shadow") { 1 } else { 0 }
-        }
+        _ if super::homework::is_shader_file(p) => usize::from(is_light_pass_shader(p)),
         Some("toml") => 2,
         Some("obj") => 3,
         _ => 4,

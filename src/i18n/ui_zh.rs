@@ -40,6 +40,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     // What failed (the details after it are the file, line and key, as the CLI prints them).
     ("could not load the lessons", "无法加载课程"),
     ("could not open the scene", "无法打开场景"),
+    ("could not follow all of the link", "链接中有部分无法打开"),
     ("could not show this lesson step", "无法显示这一步"),
     ("could not apply this prompt", "无法应用这条提示"),
     ("could not draw the diagram", "无法绘制示意图"),

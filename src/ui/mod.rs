@@ -228,9 +228,7 @@ impl ShadowlabApp {
         let arrived =
             vec![dropped.iter().map(|f| f.path().to_path_buf()).collect::<Vec<std::path::PathBuf>>()];
         for files in arrived {
-            if let Some(path) = crate::app::main_file(&files) {
-                self.state.open_any(&path);
-            }
+            self.state.open_files(&files);
         }
     }
 
