@@ -265,3 +265,13 @@ pub(super) fn attribute_location(name: &str, own_sorted: &[String]) -> u32 {
         None => (ATTRIBUTES.len() + own_sorted.iter().position(|a| a == name).unwrap_or(0)) as u32,
     }
 }
+
+/// GLSL 450's name for a WebGL texture lookup.
+pub(super) fn texture_call(word: &str) -> Option<&'static str> {
+    match word {
+        "texture2D" => Some("texture"),
+        "texture2DProj" => Some("textureProj"),
+        "texture2DLod" => Some("textureLod"),
+        _ => None,
+    }
+}

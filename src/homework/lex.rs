@@ -184,3 +184,12 @@ pub(super) fn check_size(source: &str, toks: &[Token]) -> Result<(), super::Home
     }
     Ok(())
 }
+
+/// How deep in parentheses token `at` is, counted from the `(` at `open`.
+pub(super) fn depth_in(source: &str, toks: &[Token], open: usize, at: usize) -> i32 {
+    (open..at).fold(0, |depth, k| match &source[toks[k].start..toks[k].end] {
+        "(" => depth + 1,
+        ")" => depth - 1,
+        _ => depth,
+    })
+}

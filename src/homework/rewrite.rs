@@ -25,9 +25,9 @@ use super::instrument::{
 };
 use super::interface::{
     Binding, BindingKind, CLIP_Y_SIGN, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface,
-    STUDENT_BLOCK_BINDING, attribute_location, declarations, is_precision,
+    STUDENT_BLOCK_BINDING, attribute_location, declarations, is_precision, texture_call,
 };
-use super::lex::{Kind, Token, check_size, matching, matching_open, tokens};
+use super::lex::{Kind, Token, check_size, depth_in, matching, matching_open, tokens};
 use super::{HomeworkError, Stage};
 
 /// The name the rewrite gives WebGL's `gl_FragColor`, declared at location 0 in the prelude.
@@ -370,25 +370,6 @@ fn prelude(stage: Stage, layout: &Interface) -> String {
         out += &recording_prelude();
     }
     out
-}
-
-/// How deep in parentheses token `at` is, counted from the `(` at `open`.
-fn depth_in(source: &str, toks: &[Token], open: usize, at: usize) -> i32 {
-    (open..at).fold(0, |depth, k| match &source[toks[k].start..toks[k].end] {
-        "(" => depth + 1,
-        ")" => depth - 1,
-        _ => depth,
-    })
-}
-
-/// GLSL 450's name for a WebGL texture lookup.
-fn texture_call(word: &str) -> Option<&'static str> {
-    match word {
-        "texture2D" => Some("texture"),
-        "texture2DProj" => Some("textureProj"),
-        "texture2DLod" => Some("textureLod"),
-        _ => None,
-    }
 }
 
 /// Function headers at file scope: `sampler2D` parameters become a texture and a sampler; the
