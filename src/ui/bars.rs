@@ -334,7 +334,7 @@ impl ShadowlabApp {
     /// resolution it was rendered at.
     pub(super) fn timing_text(&self, ctx: &egui::Context) -> String {
         let ui_ms = ctx.input(|i| i.unstable_dt) * 1e3;
-        let shown = &self.shown;
+        let shown = &self.render.shown;
         let lang = self.state.lang;
         let mut text = fill(
             lang,

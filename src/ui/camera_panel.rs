@@ -95,7 +95,7 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
             if let Some(id) = homework_picture(app, ui.ctx()) {
                 painter.image(id, rect, uv, Color32::WHITE);
                 homework_shown = app.state.homework.as_ref().map(|h| h.picture);
-            } else if let Some(texture) = &app.shown.camera {
+            } else if let Some(texture) = &app.render.shown.camera {
                 painter.image(texture.id(), rect, uv, Color32::WHITE);
             }
         }
@@ -105,7 +105,7 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     }
     let mut ab_labels = Vec::new();
     let mut a_side = rect;
-    if let (Some(ab), Some(id_b)) = (&app.state.ab, app.shown.camera_b.as_ref().map(|t| t.id())) {
+    if let (Some(ab), Some(id_b)) = (&app.state.ab, app.render.shown.camera_b.as_ref().map(|t| t.id())) {
         let x = rect.left() + rect.width() * ab.divider;
         a_side.max.x = x;
         let right = Rect::from_min_max(pos2(x, rect.top()), rect.max);
@@ -180,7 +180,7 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         }
     }
     let delta = response.drag_delta();
-    app.interacting = response.dragged() && delta != Vec2::ZERO;
+    app.render.interacting = response.dragged() && delta != Vec2::ZERO;
     if !handled && response.dragged_by(egui::PointerButton::Primary) && delta != Vec2::ZERO {
         app.state.scene.camera.orbit(-delta.x * 0.008, -delta.y * 0.008);
         app.state.mark_dirty();
@@ -252,7 +252,7 @@ fn render_progress(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
         painter.rect_filled(r, 3.0, Color32::from_black_alpha(170));
         painter.galley(r.min + vec2(4.0, 4.0), galley, Color32::WHITE);
     };
-    if app.shown.camera.is_none() || app.render_is_slow().is_some() {
+    if app.render.shown.camera.is_none() || app.render_is_slow().is_some() {
         let waited = app.render_is_slow().map_or(0.0, |d| d.as_secs_f32());
         label(
             format!("{} {waited:.1} s", tr(app.state.lang, "rendering...")),
@@ -260,7 +260,7 @@ fn render_progress(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
             egui::Align2::RIGHT_TOP,
         );
     }
-    if let Some((done, total)) = app.shown.reference_progress
+    if let Some((done, total)) = app.render.shown.reference_progress
         && done < total
     {
         let bar = Rect::from_min_size(rect.left_bottom() + vec2(8.0, -14.0), vec2(rect.width() - 16.0, 6.0));
@@ -281,7 +281,7 @@ fn draw_light_frusta(app: &ShadowlabApp, painter: &egui::Painter, rect: Rect) {
     use crate::views::overlays::{FRUSTUM_OTHER, FRUSTUM_SELECTED, light_frustum_edges};
     let camera = app.state.scene.camera.clip_from_world(rect.width() / rect.height().max(1.0));
     let at = |p: [f32; 2]| pos2(rect.left() + p[0] * rect.width(), rect.top() + p[1] * rect.height());
-    for (a, b, selected) in light_frustum_edges(&camera, &app.shown.lights, app.state.selected_light) {
+    for (a, b, selected) in light_frustum_edges(&camera, &app.render.shown.lights, app.state.selected_light) {
         let [r, g, bl] = if selected { FRUSTUM_SELECTED } else { FRUSTUM_OTHER };
         painter.line_segment([at(a), at(b)], Stroke::new(1.5, Color32::from_rgb(r, g, bl)));
     }

@@ -171,7 +171,7 @@ pub(super) fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) 
                 l.position = l.target + yawed;
             }
         }
-        app.interacting = true;
+        app.render.interacting = true;
         app.state.mark_dirty();
     }
 }

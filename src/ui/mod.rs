@@ -35,10 +35,8 @@ pub use window::{display_available, run, ui_painter, window_options};
 use crate::app::scheduler::WorkerThread;
 use crate::app::scheduler::{FrameDriven, RenderScheduler};
 use crate::lessons;
-use crate::render::Analysis;
 #[cfg(not(target_arch = "wasm32"))]
 use crate::shipped_path;
-use rendering::{Shown, Submitted};
 use std::sync::{Arc, Mutex};
 
 /// The window: the app's state (`state`, which field access reads through to) and what only
@@ -46,26 +44,12 @@ use std::sync::{Arc, Mutex};
 /// panels' own state, the Open dialog, screenshots.
 pub struct ShadowlabApp {
     pub state: AppState,
-    /// Renders the views (None where no GPU device could be had).
-    worker: Option<Box<dyn RenderScheduler>>,
-    /// What the views show: the last finished render.
-    shown: Shown,
-    /// The job the views wait for, and the newest one shown.
-    submitted: Submitted,
-    shown_job: u64,
-    frames_shown: u64,
+    /// Rendering the views: the scheduler, what it sent, what is waited for.
+    render: rendering::RenderSession,
     /// Wall-clock time of the last UI frame (playback advances by it).
     last_tick: Option<web_time::Instant>,
-    /// Why there is no GPU view (shown in place of the views).
-    gpu_error: Option<String>,
     /// Point the camera at the probe's surface point once the probe is computed (double-click).
     focus_on_probe: bool,
-    /// The user is dragging in a view: render previews.
-    interacting: bool,
-    /// Previews render at 1/preview_divisor of the view's width and height (2..=4, adapted to
-    /// how long they take).
-    preview_divisor: u32,
-    analysis: Option<Analysis>,
     view_state: view_panels::ViewState,
     diagram_panel: panels::DiagramPanel,
     open_path: String,
@@ -120,17 +104,9 @@ impl ShadowlabApp {
     ) -> Self {
         Self {
             state: AppState::new(settings),
-            worker,
-            shown: Shown::default(),
-            submitted: Submitted::default(),
-            shown_job: 0,
-            frames_shown: 0,
+            render: rendering::RenderSession::new(worker, gpu_error),
             last_tick: None,
-            gpu_error,
             focus_on_probe: false,
-            interacting: false,
-            preview_divisor: 2,
-            analysis: None,
             view_state: Default::default(),
             diagram_panel: Default::default(),
             open_path: String::new(),
@@ -151,12 +127,12 @@ impl ShadowlabApp {
 
     /// Why there is no GPU view, or the last rendering error, if any.
     pub fn gpu_problem(&self) -> Option<String> {
-        self.gpu_error.clone().or_else(|| self.state.error.as_ref().map(AppError::to_string))
+        self.render.gpu_error.clone().or_else(|| self.state.error.as_ref().map(AppError::to_string))
     }
 
     /// The camera view as last rendered (for screenshots and tests).
     pub fn camera_image(&self) -> Option<image::RgbaImage> {
-        self.shown.color.clone()
+        self.render.shown.color.clone()
     }
 
     /// The lines under the camera view: the view's legend, then the overlays' (as painted).
@@ -172,7 +148,7 @@ impl ShadowlabApp {
     /// The B side of the A/B split as last rendered, when the split is on.
     pub fn camera_image_b(&self) -> Option<image::RgbaImage> {
         self.state.ab.as_ref()?;
-        self.shown.color_b.clone()
+        self.render.shown.color_b.clone()
     }
 
     fn handle_keys(&mut self, ctx: &egui::Context) {
@@ -361,12 +337,12 @@ impl eframe::App for ShadowlabApp {
         self.receive_renders(&ctx);
         #[cfg(target_arch = "wasm32")]
         {
-            page::publish(self.frames_shown, &self.state);
+            page::publish(self.render.frames_shown, &self.state);
             page::follow(&self.state);
         }
         // Dragging a slider (or anything else) asks for previews until it is let go.
-        self.interacting = ctx.dragged_id().is_some();
-        if self.state.playing || self.worker.as_ref().is_some_and(|w| w.needs_polling()) {
+        self.render.interacting = ctx.dragged_id().is_some();
+        if self.state.playing || self.render.worker.as_ref().is_some_and(|w| w.needs_polling()) {
             ctx.request_repaint();
         } else if self.render_pending() {
             // Finished frames wake the UI themselves; this only keeps "rendering..." counting.

@@ -3,8 +3,8 @@
 //! previews (half resolution or less, PCSS with fewer taps) and refine once it is let go.
 
 use super::{ProbeAt, ShadowlabApp};
-use crate::app::scheduler::{HomeworkJob, ProbeSpot, RenderEvent, RenderJob, RenderOutput};
-use crate::render::{FrameRequest, PassTimes};
+use crate::app::scheduler::{HomeworkJob, ProbeSpot, RenderEvent, RenderJob, RenderOutput, RenderScheduler};
+use crate::render::{Analysis, FrameRequest, PassTimes};
 use crate::scene::Technique;
 use crate::shadow::{LightGpu, ShadowParamsGpu};
 use crate::views::View;
@@ -58,6 +58,43 @@ pub struct Submitted {
     pub size: (u32, u32),
 }
 
+/// Rendering the views: the scheduler, what it sent, and what the views wait for.
+pub(super) struct RenderSession {
+    /// Renders the views (None where no GPU device could be had).
+    pub(super) worker: Option<Box<dyn RenderScheduler>>,
+    /// What the views show: the last finished render.
+    pub(super) shown: Shown,
+    /// The job the views wait for, and the newest one shown.
+    pub(super) submitted: Submitted,
+    pub(super) shown_job: u64,
+    pub(super) frames_shown: u64,
+    /// Why there is no GPU view (shown in place of the views).
+    pub(super) gpu_error: Option<String>,
+    /// The user is dragging in a view: render previews.
+    pub(super) interacting: bool,
+    /// Previews render at 1/preview_divisor of the view's width and height (2..=4, adapted to
+    /// how long they take).
+    pub(super) preview_divisor: u32,
+    /// The overlays' analysis of the frame shown, once it came.
+    pub(super) analysis: Option<Analysis>,
+}
+
+impl RenderSession {
+    pub(super) fn new(worker: Option<Box<dyn RenderScheduler>>, gpu_error: Option<String>) -> Self {
+        Self {
+            worker,
+            shown: Shown::default(),
+            submitted: Submitted::default(),
+            shown_job: 0,
+            frames_shown: 0,
+            gpu_error,
+            interacting: false,
+            preview_divisor: PREVIEW_DIVISOR_MIN,
+            analysis: None,
+        }
+    }
+}
+
 /// How often the homework's files are looked at for changes.
 const HOMEWORK_WATCH_EVERY: std::time::Duration = std::time::Duration::from_millis(300);
 
@@ -80,33 +117,34 @@ impl ShadowlabApp {
 
     /// Take what the worker has finished; called once per UI frame.
     pub(super) fn receive_renders(&mut self, ctx: &egui::Context) {
-        let Some(worker) = self.worker.as_mut() else { return };
+        let Some(worker) = self.render.worker.as_mut() else { return };
         for event in worker.poll() {
             match event {
                 RenderEvent::Ready(Ok(_)) => {}
                 RenderEvent::Ready(Err(e)) => {
-                    self.gpu_error = Some(e);
-                    self.worker = None;
+                    self.render.gpu_error = Some(e);
+                    self.render.worker = None;
                     return;
                 }
                 RenderEvent::Frame(output) => self.show_output(ctx, *output),
                 RenderEvent::Maps(maps) => self.show_maps(ctx, *maps),
                 RenderEvent::Details(details) => self.show_details(*details),
                 RenderEvent::Reference { job, done, total, values } => {
-                    if job == self.submitted.job {
+                    if job == self.render.submitted.job {
                         // The error legend's number, once the ground truth is all there.
                         self.state.mean_abs_error = self
+                            .render
                             .analysis
                             .as_ref()
                             .filter(|a| done == total && a.shadow.len() == values.len())
                             .map(|a| crate::views::mean_abs_error(a, &values));
                         self.state.reference = Some(values);
-                        self.shown.reference_progress = Some((done, total));
+                        self.render.shown.reference_progress = Some((done, total));
                         self.view_state.invalidate();
                     }
                 }
                 RenderEvent::ProbeReference { job, light, done, total, value } => {
-                    if job == self.submitted.job && self.shown.probe_job == Some(job) {
+                    if job == self.render.submitted.job && self.render.shown.probe_job == Some(job) {
                         self.show_probe_reference(light, done, total, value);
                     }
                 }
@@ -123,8 +161,8 @@ impl ShadowlabApp {
                     }
                 }
                 RenderEvent::Failed { job, message } => {
-                    if job == self.submitted.job {
-                        self.shown.reference_progress = None;
+                    if job == self.render.submitted.job {
+                        self.render.shown.reference_progress = None;
                         self.state.probe_truth_progress.clear();
                         self.state.error = Some(super::AppError::new("rendering failed", message));
                     }
@@ -135,11 +173,11 @@ impl ShadowlabApp {
 
     fn show_output(&mut self, ctx: &egui::Context, out: RenderOutput) {
         // A frame older than the one shown (possible only across a worker restart) is dropped.
-        if out.job < self.shown_job {
+        if out.job < self.render.shown_job {
             return;
         }
-        self.shown_job = out.job;
-        self.frames_shown += 1;
+        self.render.shown_job = out.job;
+        self.render.frames_shown += 1;
         let filter = egui::TextureOptions::LINEAR;
         let upload = |slot: &mut Option<egui::TextureHandle>, name: &str, image: &image::RgbaImage| {
             let pixels = egui::ColorImage::from_rgba_unmultiplied(
@@ -151,32 +189,32 @@ impl ShadowlabApp {
                 None => *slot = Some(ctx.load_texture(name, pixels, filter)),
             }
         };
-        upload(&mut self.shown.camera, "camera view", &out.color);
+        upload(&mut self.render.shown.camera, "camera view", &out.color);
         match &out.color_b {
-            Some(b) => upload(&mut self.shown.camera_b, "camera view B", b),
-            None => self.shown.camera_b = None,
+            Some(b) => upload(&mut self.render.shown.camera_b, "camera view B", b),
+            None => self.render.shown.camera_b = None,
         }
-        self.shown.color = Some(out.color);
-        self.shown.color_b = out.color_b;
-        self.shown.lights = out.lights;
-        self.shown.params = out.params;
-        self.shown.size = out.size;
-        self.shown.preview = out.preview;
+        self.render.shown.color = Some(out.color);
+        self.render.shown.color_b = out.color_b;
+        self.render.shown.lights = out.lights;
+        self.render.shown.params = out.params;
+        self.render.shown.size = out.size;
+        self.render.shown.preview = out.preview;
         if out.preview {
             self.adapt_preview_size(out.render_ms);
         }
-        self.shown.pass_times = out.pass_times;
-        self.shown.render_ms = out.render_ms;
-        if out.job == self.submitted.job {
+        self.render.shown.pass_times = out.pass_times;
+        self.render.shown.render_ms = out.render_ms;
+        if out.job == self.render.submitted.job {
             // The ground truths (progress since the job was asked for) follow with their events.
             self.state.mean_abs_error = None;
         }
         // The probe and the overlays' analysis follow in a `Details` event; until then the old
         // ones stay (and the overlays hide, being about other settings).
-        self.shown.details_pending = out.details_follow.then_some(out.job);
+        self.render.shown.details_pending = out.details_follow.then_some(out.job);
         if !out.preview && !out.details_follow {
             // A full frame with no overlays on and no probe pinned.
-            self.analysis = None;
+            self.render.analysis = None;
             if self.state.probe_at.is_none() {
                 self.state.probe = None;
             }
@@ -186,25 +224,25 @@ impl ShadowlabApp {
 
     /// The shadow-map pictures of the frame just shown.
     fn show_maps(&mut self, ctx: &egui::Context, maps: crate::app::scheduler::Maps) {
-        if maps.job < self.shown_job {
+        if maps.job < self.render.shown_job {
             return;
         }
         if let Some(map) = maps.map {
             self.view_state.set_map(ctx, map);
         }
-        if !maps.thumbnails.is_empty() || self.shown.lights.len() < 2 {
+        if !maps.thumbnails.is_empty() || self.render.shown.lights.len() < 2 {
             self.view_state.set_thumbnails(ctx, &maps.thumbnails);
         }
         self.view_state.invalidate();
     }
 
     fn show_details(&mut self, details: crate::app::scheduler::Details) {
-        if self.shown.details_pending != Some(details.job) {
+        if self.render.shown.details_pending != Some(details.job) {
             return;
         }
-        self.shown.details_pending = None;
-        self.shown.render_ms = details.render_ms;
-        self.analysis = details.analysis;
+        self.render.shown.details_pending = None;
+        self.render.shown.render_ms = details.render_ms;
+        self.render.analysis = details.analysis;
         match details.probe {
             Some(Ok(report)) => {
                 // No surface, no ground truth to wait for.
@@ -212,7 +250,7 @@ impl ShadowlabApp {
                     self.state.probe_truth_progress.clear();
                 }
                 self.state.probe = Some(report);
-                self.shown.probe_job = Some(details.job);
+                self.render.shown.probe_job = Some(details.job);
             }
             Some(Err(e)) => {
                 self.state.probe = None;
@@ -252,32 +290,32 @@ impl ShadowlabApp {
     /// Dynamic resolution for previews: a step smaller when one took well over the budget, a step
     /// larger when well under it (the gap between keeps it from hunting).
     fn adapt_preview_size(&mut self, render_ms: f64) {
-        if render_ms > 1.4 * PREVIEW_BUDGET_MS && self.preview_divisor < PREVIEW_DIVISOR_MAX {
-            self.preview_divisor += 1;
-        } else if render_ms < 0.6 * PREVIEW_BUDGET_MS && self.preview_divisor > PREVIEW_DIVISOR_MIN {
-            self.preview_divisor -= 1;
+        if render_ms > 1.4 * PREVIEW_BUDGET_MS && self.render.preview_divisor < PREVIEW_DIVISOR_MAX {
+            self.render.preview_divisor += 1;
+        } else if render_ms < 0.6 * PREVIEW_BUDGET_MS && self.render.preview_divisor > PREVIEW_DIVISOR_MIN {
+            self.render.preview_divisor -= 1;
         }
     }
 
     /// The view shows an image whose overlays are not worked out yet (a preview, or a full frame
     /// waiting for its details): they would be about other settings.
     pub fn overlays_stale(&self) -> bool {
-        self.shown.preview || self.shown.details_pending.is_some()
+        self.render.shown.preview || self.render.shown.details_pending.is_some()
     }
 
     /// Ask for a new frame where something changed; called once per frame with the camera
     /// view's size in pixels. Never waits for the GPU.
     pub(super) fn schedule_render(&mut self, view_size_px: (u32, u32)) {
-        if self.worker.is_none() {
+        if self.render.worker.is_none() {
             return;
         }
-        let preview = self.interacting;
-        let d = self.preview_divisor;
+        let preview = self.render.interacting;
+        let d = self.render.preview_divisor;
         let size =
             if preview { ((view_size_px.0 / d).max(1), (view_size_px.1 / d).max(1)) } else { view_size_px };
         // A preview is followed by the full-quality frame once the drag ends.
-        let refine = self.submitted.preview && !preview;
-        let resized = self.submitted.size != size;
+        let refine = self.render.submitted.preview && !preview;
+        let resized = self.render.submitted.size != size;
         if !(self.state.dirty || resized || refine || self.state.playing) {
             return;
         }
@@ -339,53 +377,54 @@ impl ShadowlabApp {
         };
         // Waiting for the ground truths from now on, until their last batch comes (a probe that
         // finds no surface and a failed job clear them).
-        self.shown.reference_progress =
+        self.render.shown.reference_progress =
             job.reference.then_some((0, self.state.scene.shadow.reference_samples));
         self.state.probe_truth_progress =
             job.probe_reference.iter().map(|&l| (l, 0, self.state.scene.shadow.reference_samples)).collect();
-        let Some(worker) = self.worker.as_mut() else { return };
+        let Some(worker) = self.render.worker.as_mut() else { return };
         let id = worker.submit(job);
-        self.submitted = Submitted { job: id, preview, size };
+        self.render.submitted = Submitted { job: id, preview, size };
         self.state.dirty = false;
     }
 
     /// A render is waiting or in progress (or a ground truth is still accumulating).
     pub fn render_pending(&self) -> bool {
-        let Some(worker) = self.worker.as_ref() else { return false };
-        let reference_running = self.shown.reference_progress.is_some_and(|(done, total)| done < total);
+        let Some(worker) = self.render.worker.as_ref() else { return false };
+        let reference_running =
+            self.render.shown.reference_progress.is_some_and(|(done, total)| done < total);
         let probe_reference_running =
             self.state.probe_truth_progress.iter().any(|(_, done, total)| done < total);
         self.state.dirty
             || worker.busy()
             || reference_running
             || probe_reference_running
-            || self.shown_job < self.submitted.job
-            || self.shown.details_pending.is_some()
+            || self.render.shown_job < self.render.submitted.job
+            || self.render.shown.details_pending.is_some()
     }
 
     /// How many frames have reached the views (each a new image on screen).
     pub fn frames_shown(&self) -> u64 {
-        self.frames_shown
+        self.render.frames_shown
     }
 
     /// The resolution the shown camera view was rendered at, pixels.
     pub fn shown_size(&self) -> (u32, u32) {
-        self.shown.size
+        self.render.shown.size
     }
 
     /// The ground truth shown so far: (samples averaged, samples in all).
     pub fn reference_progress(&self) -> Option<(u32, u32)> {
-        self.shown.reference_progress
+        self.render.shown.reference_progress
     }
 
     /// The views show a reduced-quality preview.
     pub fn showing_preview(&self) -> bool {
-        self.shown.preview
+        self.render.shown.preview
     }
 
     /// The worker has been busy long enough to say so.
     pub fn render_is_slow(&self) -> Option<Duration> {
-        self.worker.as_ref()?.waiting_for().filter(|d| *d >= SLOW_RENDER)
+        self.render.worker.as_ref()?.waiting_for().filter(|d| *d >= SLOW_RENDER)
     }
 
     /// Scene time advances at wall-clock rate times the speed, however long frames take.

@@ -37,7 +37,7 @@ impl ShadowlabApp {
     /// The camera panel as drawn: the view shown, its overlays and the probe's marker.
     fn camera_picture(&self) -> Option<image::RgbaImage> {
         let mut picture = match self.camera_panel_view() {
-            View::Final | View::ShadowMap => self.shown.color.clone()?,
+            View::Final | View::ShadowMap => self.render.shown.color.clone()?,
             _ => self.view_state.view_picture.clone()?,
         };
         let (w, h) = picture.dimensions();

@@ -118,17 +118,20 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     }
     app.view_state.stale = false;
     app.view_state.legend_lang = Some(app.state.lang);
-    let light = app.shown.lights.get(app.state.selected_light).copied();
+    let light = app.render.shown.lights.get(app.state.selected_light).copied();
     // The debug view from the analysis pass (and the ground truth).
     app.view_state.view_image = None;
     app.view_state.view_legend = None;
     app.view_state.view_picture = None;
     app.view_state.overlay_picture = None;
-    if let Some(analysis) = &app.analysis {
+    if let Some(analysis) = &app.render.analysis {
         // The samples of the ground truth shown (it was worked out for the frame on screen).
-        let samples =
-            app.shown.reference_progress.map_or(app.state.scene.shadow.reference_samples, |(_, all)| all);
-        let light_and_params = light.as_ref().map(|l| (l, &app.shown.params));
+        let samples = app
+            .render
+            .shown
+            .reference_progress
+            .map_or(app.state.scene.shadow.reference_samples, |(_, all)| all);
+        let light_and_params = light.as_ref().map(|l| (l, &app.render.shown.params));
         if let Some((image, legend)) = crate::views::analysis_view(
             app.state.view,
             analysis,
@@ -149,7 +152,7 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     // Overlays from the analysis pass.
     app.view_state.overlay = None;
     app.view_state.legends.clear();
-    if let Some(analysis) = &app.analysis {
+    if let Some(analysis) = &app.render.analysis {
         let overlays: Vec<Overlay> = app
             .overlays
             .iter()
@@ -202,8 +205,8 @@ impl ShadowlabApp {
     /// Say why in place of the views, and render none: the page's device is WebGL2's, which
     /// the renderer cannot run on (the lessons, diagrams and panels need no GPU of their own).
     pub fn without_webgpu(&mut self, why: NoWebGpu) {
-        self.worker = None;
-        self.gpu_error = Some(why.reason().to_owned());
+        self.render.worker = None;
+        self.render.gpu_error = Some(why.reason().to_owned());
     }
 }
 
@@ -211,7 +214,7 @@ impl ShadowlabApp {
 /// browsers have it).
 fn no_views(app: &ShadowlabApp, ui: &mut Ui) {
     let lang = app.state.lang;
-    let why = app.gpu_error.as_deref().unwrap_or("unknown reason");
+    let why = app.render.gpu_error.as_deref().unwrap_or("unknown reason");
     let Some(no_webgpu) = NoWebGpu::from_reason(why) else {
         ui.centered_and_justified(|ui| ui.label(format!("{}: {}", tr(lang, "No GPU view"), tr(lang, why))));
         return;
@@ -236,7 +239,7 @@ fn no_views(app: &ShadowlabApp, ui: &mut Ui) {
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     app.view_state.follow_scene(app.state.scenes_opened);
-    if app.worker.is_none() {
+    if app.render.worker.is_none() {
         no_views(app, ui);
         return;
     }
@@ -286,7 +289,11 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let mut y = legend_rect.top() + 4.0;
     let waiting = [String::from(tr(
         app.state.lang,
-        if app.interacting { "(overlays refresh when you let go)" } else { "(working out the overlays...)" },
+        if app.render.interacting {
+            "(overlays refresh when you let go)"
+        } else {
+            "(working out the overlays...)"
+        },
     ))];
     let shown_view = app.camera_panel_view();
     let stale = app.overlays_stale() && (app.view_state.overlay.is_some() || shown_view != View::Final);
