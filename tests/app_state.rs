@@ -268,7 +268,10 @@ fn files_handed_over_as_bytes_open_as_a_page_opens_them_and_are_not_remembered()
     let main = shadowlab::app::main_file(&dropped).expect("one to open");
     assert_eq!(main, Path::new("handed-over/phongFragment.glsl"), "named by the file, not the sender's path");
     let mut state = fresh();
+    // A first start offers the lessons; a file dropped on it is what the student chose instead.
+    state.show_lesson_list = true;
     state.open_files(&dropped);
+    assert!(!state.show_lesson_list, "the lesson list closes");
     let homework = state.homework.as_ref().expect("the homework opened");
     assert_eq!(homework.fragment, main);
     assert_eq!(homework.shadow_fragment.as_deref(), Some(Path::new("handed-over/shadowFragment.glsl")));

@@ -235,6 +235,8 @@ impl AppState {
                 }
             }
         }
+        // Whatever was offered at the start, the student chose their shader.
+        self.show_lesson_list = false;
         let state = HomeworkState::open(path, shadow_fragment, None);
         self.status = format!("{} {}", crate::i18n::tr(self.lang, "opened"), path.display());
         self.settings.remember_file(path);

@@ -167,6 +167,7 @@ impl AppState {
                 // A scene that shows nothing says so (the CLI prints the same warnings).
                 let warnings = scene.warnings(0.0, 16.0 / 9.0);
                 self.homework = None;
+                self.show_lesson_list = false;
                 self.set_fresh_scene(scene, Source::Scene(path.to_path_buf()));
                 self.settings.last_scene =
                     (!is_obj && !crate::files::is_handed_over(path)).then(|| path.to_path_buf());
