@@ -128,3 +128,19 @@ fn in_chinese_the_findings_are_explained_in_chinese() {
     }
     h.get_by_label("你的作业");
 }
+
+/// A page's drop: the shader's bytes handed over, not a path. The panel says it is not watched
+/// (there is no disk copy to watch) and shows the findings as for a file.
+#[test]
+fn a_shader_handed_over_as_bytes_is_checked_and_the_panel_says_it_is_not_watched() {
+    let mut h = harness();
+    let dropped = vec![shadowlab::files::hand_over(
+        "phongFragment.glsl",
+        example("phongFragment_nan_blocker.glsl").as_bytes(),
+    )];
+    h.state_mut().open_files(&dropped);
+    settle_check(&mut h);
+    assert_eq!(finding_ids(&h), ["nan_blocker_depth"]);
+    h.get_by_label_contains("not watched: after an edit, drop the file again");
+    assert!(h.query_by_label_contains("watching the file").is_none());
+}

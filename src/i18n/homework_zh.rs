@@ -35,6 +35,10 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "watching the file: save it in your editor and the check runs again ({} reloads)",
         "正在监视这个文件：在编辑器里保存后会重新检查（已重新载入 {} 次）",
     ),
+    (
+        "handed over, not watched: after an edit, drop the file again",
+        "文件是拖进网页的副本，不会被监视：修改后请重新拖入",
+    ),
     ("does not compile", "无法编译"),
     ("the picture is the last version that compiled", "画面是最后一个能编译的版本"),
     ("the camera view shows", "相机视图显示"),

@@ -26,14 +26,17 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
     ui.heading(RichText::new(tr(lang, "Your homework")).size(20.0));
     ui.label(RichText::new(homework.name()).monospace().strong())
         .on_hover_text(homework.fragment.display().to_string());
-    ui.label(
-        RichText::new(fill(
+    // A file handed over as bytes (a page's drop) has no disk copy to watch.
+    let watched = if crate::files::is_handed_over(&homework.fragment) {
+        tr(lang, "handed over, not watched: after an edit, drop the file again").to_string()
+    } else {
+        fill(
             lang,
             "watching the file: save it in your editor and the check runs again ({} reloads)",
             &[&homework.reloads],
-        ))
-        .weak(),
-    );
+        )
+    };
+    ui.label(RichText::new(watched).weak());
     if let Some(error) = &homework.error {
         ui.add_space(6.0);
         ui.label(
