@@ -5,7 +5,7 @@
 //! returned at every pixel.
 
 use super::interface::STUDENT_BLOCK_BINDING;
-use super::pipeline::{Pass, one_line};
+use super::pipeline::Pass;
 use super::program::HomeworkProgram;
 use super::{BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS_SIZE_BYTES, SamplerFilter};
 use crate::render::readback;
@@ -421,7 +421,7 @@ impl HomeworkRenderer {
         }
         self.queue.submit([encoder.finish()]);
         if let Some(e) = crate::render::scope_error(scope.pop()) {
-            return Err(HomeworkGpuError(format!("homework render: {}", one_line(&e))));
+            return Err(HomeworkGpuError(format!("homework render: {}", crate::render::error_line(&e))));
         }
         // The three targets come back together (one wait for all).
         let read = |texture: &wgpu::Texture, bytes: u32| {

@@ -31,11 +31,6 @@ impl Pass {
     }
 }
 
-/// A WGPU error on one line (its sources joined).
-pub(super) fn one_line(e: &wgpu::Error) -> String {
-    crate::render::error_line(e)
-}
-
 /// The size of the student's uniform block (binding 1) a WGSL stage declares, bytes.
 fn student_block_bytes(wgsl: &str) -> u64 {
     let Ok(module) = naga::front::wgsl::parse_str(wgsl) else { return 0 };

@@ -12,6 +12,8 @@ use std::cell::RefCell;
 thread_local! {
     static PUBLISHED: RefCell<Vec<(&'static str, String)>> = const { RefCell::new(Vec::new()) };
     static ADDRESS: RefCell<String> = const { RefCell::new(String::new()) };
+    /// The parts of the address every place keeps (`&backend=...`), as the page was opened.
+    static KEPT: String = link::kept_parts(&query());
 }
 
 /// The address's query, as the page was opened.
@@ -33,7 +35,7 @@ pub(super) fn open_link(state: &mut AppState) {
 /// it would a slide's link).
 pub(super) fn follow(state: &AppState) {
     let Some(window) = web_sys::window() else { return };
-    let now = format!("?{}{}", state.link(), link::kept_parts(&query()));
+    let now = format!("?{}{}", state.link(), KEPT.with(|kept| kept.clone()));
     if ADDRESS.with_borrow(|address| *address == now) {
         return;
     }
