@@ -77,7 +77,8 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("Drop a .toml or .obj", "拖入 .toml 或 .obj 文件"),
     ("open it", "打开它"),
     // Status bar: timings.
-    ("UI {} ms · render {} ms", "界面 {} ms · 渲染 {} ms"),
+    ("UI {} ms", "界面 {} ms"),
+    (" · render {} ms", " · 渲染 {} ms"),
     (" (GPU shadow {} ms, camera {} ms)", "（GPU 阴影趟 {} ms，相机趟 {} ms）"),
     (" at {}x{}", "，分辨率 {}x{}"),
     (" · preview", " · 预览"),

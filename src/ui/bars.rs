@@ -336,11 +336,13 @@ impl ShadowlabApp {
         let ui_ms = ctx.input(|i| i.unstable_dt) * 1e3;
         let shown = &self.render.shown;
         let lang = self.state.lang;
-        let mut text = fill(
-            lang,
-            "UI {} ms · render {} ms",
-            &[&format!("{ui_ms:.0}"), &format!("{:.0}", shown.render_ms)],
-        );
+        let mut text = fill(lang, "UI {} ms", &[&format!("{ui_ms:.0}")]);
+        // Nothing rendered yet (or no views at all, in a browser without WebGPU): no render
+        // figures to give, rather than "0 ms at 0x0".
+        if self.render.frames_shown == 0 {
+            return text;
+        }
+        text += &fill(lang, " · render {} ms", &[&format!("{:.0}", shown.render_ms)]);
         if let Some(t) = shown.pass_times {
             let (shadow, camera) = (format!("{:.1}", t.shadow_ms), format!("{:.1}", t.camera_ms));
             text += &fill(lang, " (GPU shadow {} ms, camera {} ms)", &[&shadow, &camera]);
