@@ -18,6 +18,11 @@ const LIT: f32 = 0.98;
 const SOFT: (f32, f32) = (0.05, 0.95);
 /// `nan_visibility`: more than this share of shaded pixels.
 const NAN_SHARE: f64 = 0.001;
+/// `visibility_out_of_range`: a visibility below -`RANGE_EPS` or above 1 + `RANGE_EPS` is outside
+/// [0, 1]; the slack is for float sums of weights meant to total 1.
+const RANGE_EPS: f32 = 1e-3;
+/// `visibility_out_of_range`: more than this share of the pixels with a finite visibility.
+const OUT_OF_RANGE_SHARE: f64 = 0.001;
 /// `umbra_not_dark`: the student's mean visibility over the ground truth's umbra above this.
 const UMBRA_MEAN_LIMIT: f64 = 0.25;
 /// `shadows_missing` (instead of `umbra_not_dark`): the umbra's mean visibility above this.
@@ -162,6 +167,10 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
 
     let mut findings = Vec::new();
     let percent = |share: f64| 100.0 * share;
+    let in_range = |v: f32| (-RANGE_EPS..=1.0 + RANGE_EPS).contains(&v);
+    let out_of_range = finite.iter().filter(|&&(_, v)| !in_range(v)).count();
+    let out_of_range_share = out_of_range as f64 / finite.len().max(1) as f64;
+    let range_wrong = out_of_range_share > OUT_OF_RANGE_SHARE;
     let nan_blocker = shaded
         .iter()
         .filter(|&&i| student.calls[i][0] & 8 != 0 && !student.returned[i][3].is_finite())
@@ -191,6 +200,31 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
             ),
             lesson: "pcss",
             step: 3,
+        });
+    }
+    if range_wrong {
+        let (low, high) = finite
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(low, high), &(_, v)| (low.min(v), high.max(v)));
+        let mut figures = BTreeMap::from([
+            ("out_of_range_share", out_of_range_share),
+            ("out_of_range_pixels", out_of_range as f64),
+            ("visibility_min", f64::from(low)),
+            ("visibility_max", f64::from(high)),
+        ]);
+        if let Some(lit) = f.lit_area_mean {
+            figures.insert("lit_area_mean", lit);
+        }
+        findings.push(Finding {
+            id: "visibility_out_of_range",
+            figures,
+            explanation: fill(
+                lang,
+                "{:.1}% of the visibilities your shader returned lie outside [0, 1], from {:.2} to {:.2}. Visibility is the share of the light a point sees: a filter must divide its sum of 0/1 tests by the number of tests it summed, not by another count (PCF_NUM_SAMPLES - 8), and not leave it undivided.",
+                &[&percent(out_of_range_share), &low, &high],
+            ),
+            lesson: "pcf",
+            step: 2,
         });
     }
     let shadows_missing = f.umbra_mean.is_some_and(|m| m > SHADOWS_MISSING_MEAN);
@@ -342,6 +376,42 @@ mod tests {
         assert_eq!(ids(&white, &truth), ["shadows_missing"]);
         let right = images(|i| truth[i]);
         assert_eq!(ids(&right, &truth), Vec::<&str>::new());
+    }
+
+    #[test]
+    fn a_visibility_above_1_or_below_0_is_out_of_range_and_only_that() {
+        let truth: Vec<f32> = (0..400).map(|i| if i < 100 { 0.0 } else { 1.0 }).collect();
+        // A sum of 32 tests divided by 24: lit reads 4/3.
+        let above = images(|i| truth[i] * 32.0 / 24.0);
+        assert_eq!(ids(&above, &truth), ["visibility_out_of_range"]);
+        let below = images(|i| if i < 100 { -0.5 } else { 1.0 });
+        assert_eq!(ids(&below, &truth), ["visibility_out_of_range"]);
+        // A float's rounding off 0 or 1 is in range.
+        let rounded = images(|i| if i < 100 { -0.0005 } else { 1.0005 });
+        assert_eq!(ids(&rounded, &truth), Vec::<&str>::new());
+
+        let inputs = |student| CheckInputs {
+            student,
+            student_white_map: student,
+            shadowlab: &truth,
+            ground_truth: &truth,
+            facing: &[Some(1.0); 400],
+            visibility_function: Some(3),
+            positions: &[],
+        };
+        let (_, findings) = check(&inputs(&above), Lang::En);
+        let figures = &findings[0].figures;
+        assert_eq!(figures["out_of_range_share"], 0.75);
+        assert_eq!(figures["out_of_range_pixels"], 300.0);
+        assert_eq!((figures["visibility_min"], figures["visibility_max"]), (0.0, f64::from(32.0f32 / 24.0)));
+        assert_eq!(figures["lit_area_mean"], f64::from(32.0f32 / 24.0));
+        assert_eq!((findings[0].lesson, findings[0].step), ("pcf", 2));
+        let explanation = &findings[0].explanation;
+        assert!(explanation.starts_with("75.0% of the visibilities"), "{explanation}");
+        let (_, findings) = check(&inputs(&below), Lang::Zh);
+        assert_eq!(findings[0].figures["visibility_min"], -0.5);
+        let explanation = &findings[0].explanation;
+        assert!(explanation.contains("25.0%") && explanation.contains("-0.50"), "{explanation}");
     }
 
     #[test]
