@@ -227,8 +227,13 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
             step: 2,
         });
     }
-    let shadows_missing = f.umbra_mean.is_some_and(|m| m > SHADOWS_MISSING_MEAN);
-    if let Some(umbra) = f.umbra_mean.filter(|_| shadows_missing) {
+    // The umbra is judged on how dark it is: a visibility above 1 counts as fully lit (1), below 0
+    // as dark (0). Unclamped, a sum left undivided would weigh its count of lit taps (3 of 32
+    // weighs 3) and the umbra would read as missing; the wrong count is the finding above's.
+    let umbra_mean =
+        mean(finite.iter().filter(|&&(i, _)| truth(i) <= UMBRA).map(|&(_, v)| f64::from(v.clamp(0.0, 1.0))));
+    let shadows_missing = umbra_mean.is_some_and(|m| m > SHADOWS_MISSING_MEAN);
+    if let Some(umbra) = umbra_mean.filter(|_| shadows_missing) {
         findings.push(Finding {
             id: "shadows_missing",
             figures: BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]),
@@ -240,7 +245,7 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
             lesson: "hard-shadows",
             step: 2,
         });
-    } else if let Some(umbra) = f.umbra_mean.filter(|m| *m > UMBRA_MEAN_LIMIT) {
+    } else if let Some(umbra) = umbra_mean.filter(|m| *m > UMBRA_MEAN_LIMIT) {
         findings.push(Finding {
             id: "umbra_not_dark",
             figures: BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]),
@@ -254,8 +259,11 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
         });
     }
     let soft_share = f.penumbra_pixels as f64 / f.penumbra_pixels_ground_truth.max(1) as f64;
+    // Soft pixels are counted on [0, 1]: out of it they measure the divisor, not the filter (a sum
+    // left undivided is never between 0 and 1).
     if inputs.visibility_function == Some(3)
         && !shadows_missing
+        && !range_wrong
         && f.penumbra_pixels_ground_truth >= PENUMBRA_PIXELS_MIN
         && soft_share < PENUMBRA_SHARE_LIMIT
     {
@@ -281,10 +289,11 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
         .filter(|&&(i, _)| truth(i) >= LIT && inputs.facing[i].is_some_and(|c| c > FACING))
         .map(|&(_, v)| v)
         .collect();
+    // A visibility above 1 stays in: a lit surface that reads more than lit is not darkened.
     let acne = facing_lit.iter().filter(|v| **v < 0.5).count() as f64 / facing_lit.len().max(1) as f64;
     // Acne darkens lit surfaces in a picture whose shadows are otherwise right; where the umbra
     // is wrong too, the whole lookup is, and the findings above say so.
-    let umbra_right = f.umbra_mean.is_none_or(|m| m <= UMBRA_MEAN_LIMIT);
+    let umbra_right = umbra_mean.is_none_or(|m| m <= UMBRA_MEAN_LIMIT);
     if umbra_right && acne > ACNE_SHARE {
         findings.push(Finding {
             id: "self_shadowing",
@@ -412,6 +421,29 @@ mod tests {
         assert_eq!(findings[0].figures["visibility_min"], -0.5);
         let explanation = &findings[0].explanation;
         assert!(explanation.contains("25.0%") && explanation.contains("-0.50"), "{explanation}");
+    }
+
+    /// Tests summed and never divided: the umbra's one lit tap reads 1 and its soft pixels none,
+    /// which is the range's finding, not missing shadows or a missing penumbra.
+    #[test]
+    fn an_undivided_sum_is_out_of_range_not_missing_shadows_or_penumbra() {
+        let truth: Vec<f32> = (0..400)
+            .map(|i| match i {
+                0..100 => 0.0,
+                100..300 => 0.5,
+                _ => 1.0,
+            })
+            .collect();
+        let undivided = images(|i| match i {
+            0..100 if i % 10 == 0 => 16.0,
+            0..100 => 0.0,
+            100..300 => 16.0,
+            _ => 32.0,
+        });
+        assert_eq!(ids(&undivided, &truth), ["visibility_out_of_range"]);
+        // Divided right, the same picture has its penumbra.
+        let divided = images(|i| undivided.returned[i][2] / 32.0);
+        assert_eq!(ids(&divided, &truth), Vec::<&str>::new());
     }
 
     #[test]
