@@ -115,6 +115,35 @@ fn a_hard_shadow_is_compared_with_shadowlabs_hard_shadow_and_has_no_penumbra_to_
     assert!(report["mean_abs_difference"].as_f64().is_some_and(|d| d < 0.01), "{report:#}");
 }
 
+/// A PCF whose sum of 32 tests is divided by another count (24), or not at all: visibility above
+/// 1, and that finding alone (not missing shadows, a missing penumbra or acne).
+#[test]
+fn a_pcf_sum_divided_by_the_wrong_count_is_out_of_range_and_only_that() {
+    let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    for (what, divided, max) in [
+        ("PCF_NUM_SAMPLES - 8", "  return lit / float(PCF_NUM_SAMPLES - 8);", 32.0 / 24.0),
+        ("no division", "  return lit;", 32.0),
+    ] {
+        let wrong = source.replace("  return lit / float(PCF_NUM_SAMPLES);", divided);
+        assert_ne!(wrong, source);
+        let shader = scratch.path().join("phongFragment.glsl");
+        std::fs::write(&shader, wrong).expect("write the shader");
+        let report = check(&shader.display().to_string(), &[], &scratch.path().join(what.replace(' ', "_")));
+        assert_eq!(finding_ids(&report), ["visibility_out_of_range"], "{what}: {report:#}");
+        let finding = &report["findings"][0];
+        let figure = |key: &str| finding["figures"][key].as_f64().unwrap_or_else(|| panic!("{what}: {key}"));
+        // Most lit pixels ran the filter with every tap lit.
+        assert!(figure("out_of_range_share") > 0.5, "{what}: {finding}");
+        assert!(
+            (figure("visibility_max") - max).abs() < 1e-3 && figure("visibility_min") >= 0.0,
+            "{what}: {finding}"
+        );
+        assert!(figure("lit_area_mean") > 1.2, "{what}: {finding}");
+        assert_eq!((finding["lesson"].as_str(), finding["step"].as_u64()), (Some("pcf"), Some(2)), "{what}");
+    }
+}
+
 #[test]
 fn a_shader_that_does_not_compile_exits_2_on_the_students_own_line() {
     let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");

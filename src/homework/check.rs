@@ -18,6 +18,11 @@ const LIT: f32 = 0.98;
 const SOFT: (f32, f32) = (0.05, 0.95);
 /// `nan_visibility`: more than this share of shaded pixels.
 const NAN_SHARE: f64 = 0.001;
+/// `visibility_out_of_range`: a visibility below -`RANGE_EPS` or above 1 + `RANGE_EPS` is outside
+/// [0, 1]; the slack is for float sums of weights meant to total 1.
+const RANGE_EPS: f32 = 1e-3;
+/// `visibility_out_of_range`: more than this share of the pixels with a finite visibility.
+const OUT_OF_RANGE_SHARE: f64 = 0.001;
 /// `umbra_not_dark`: the student's mean visibility over the ground truth's umbra above this.
 const UMBRA_MEAN_LIMIT: f64 = 0.25;
 /// `shadows_missing` (instead of `umbra_not_dark`): the umbra's mean visibility above this.
@@ -162,6 +167,10 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
 
     let mut findings = Vec::new();
     let percent = |share: f64| 100.0 * share;
+    let in_range = |v: f32| (-RANGE_EPS..=1.0 + RANGE_EPS).contains(&v);
+    let out_of_range = finite.iter().filter(|&&(_, v)| !in_range(v)).count();
+    let out_of_range_share = out_of_range as f64 / finite.len().max(1) as f64;
+    let range_wrong = out_of_range_share > OUT_OF_RANGE_SHARE;
     let nan_blocker = shaded
         .iter()
         .filter(|&&i| student.calls[i][0] & 8 != 0 && !student.returned[i][3].is_finite())
@@ -193,8 +202,38 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
             step: 3,
         });
     }
-    let shadows_missing = f.umbra_mean.is_some_and(|m| m > SHADOWS_MISSING_MEAN);
-    if let Some(umbra) = f.umbra_mean.filter(|_| shadows_missing) {
+    if range_wrong {
+        let (low, high) = finite
+            .iter()
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(low, high), &(_, v)| (low.min(v), high.max(v)));
+        let mut figures = BTreeMap::from([
+            ("out_of_range_share", out_of_range_share),
+            ("out_of_range_pixels", out_of_range as f64),
+            ("visibility_min", f64::from(low)),
+            ("visibility_max", f64::from(high)),
+        ]);
+        if let Some(lit) = f.lit_area_mean {
+            figures.insert("lit_area_mean", lit);
+        }
+        findings.push(Finding {
+            id: "visibility_out_of_range",
+            figures,
+            explanation: fill(
+                lang,
+                "{:.1}% of the visibilities your shader returned lie outside [0, 1], from {:.2} to {:.2}. Visibility is the share of the light a point sees: a filter must divide its sum of 0/1 tests by the number of tests it summed, not by another count (PCF_NUM_SAMPLES - 8), and not leave it undivided.",
+                &[&percent(out_of_range_share), &low, &high],
+            ),
+            lesson: "pcf",
+            step: 2,
+        });
+    }
+    // The umbra is judged on how dark it is: a visibility above 1 counts as fully lit (1), below 0
+    // as dark (0). Unclamped, a sum left undivided would weigh its count of lit taps (3 of 32
+    // weighs 3) and the umbra would read as missing; the wrong count is the finding above's.
+    let umbra_mean =
+        mean(finite.iter().filter(|&&(i, _)| truth(i) <= UMBRA).map(|&(_, v)| f64::from(v.clamp(0.0, 1.0))));
+    let shadows_missing = umbra_mean.is_some_and(|m| m > SHADOWS_MISSING_MEAN);
+    if let Some(umbra) = umbra_mean.filter(|_| shadows_missing) {
         findings.push(Finding {
             id: "shadows_missing",
             figures: BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]),
@@ -206,7 +245,7 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
             lesson: "hard-shadows",
             step: 2,
         });
-    } else if let Some(umbra) = f.umbra_mean.filter(|m| *m > UMBRA_MEAN_LIMIT) {
+    } else if let Some(umbra) = umbra_mean.filter(|m| *m > UMBRA_MEAN_LIMIT) {
         findings.push(Finding {
             id: "umbra_not_dark",
             figures: BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]),
@@ -220,8 +259,11 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
         });
     }
     let soft_share = f.penumbra_pixels as f64 / f.penumbra_pixels_ground_truth.max(1) as f64;
+    // Soft pixels are counted on [0, 1]: out of it they measure the divisor, not the filter (a sum
+    // left undivided is never between 0 and 1).
     if inputs.visibility_function == Some(3)
         && !shadows_missing
+        && !range_wrong
         && f.penumbra_pixels_ground_truth >= PENUMBRA_PIXELS_MIN
         && soft_share < PENUMBRA_SHARE_LIMIT
     {
@@ -247,10 +289,11 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
         .filter(|&&(i, _)| truth(i) >= LIT && inputs.facing[i].is_some_and(|c| c > FACING))
         .map(|&(_, v)| v)
         .collect();
+    // A visibility above 1 stays in: a lit surface that reads more than lit is not darkened.
     let acne = facing_lit.iter().filter(|v| **v < 0.5).count() as f64 / facing_lit.len().max(1) as f64;
     // Acne darkens lit surfaces in a picture whose shadows are otherwise right; where the umbra
     // is wrong too, the whole lookup is, and the findings above say so.
-    let umbra_right = f.umbra_mean.is_none_or(|m| m <= UMBRA_MEAN_LIMIT);
+    let umbra_right = umbra_mean.is_none_or(|m| m <= UMBRA_MEAN_LIMIT);
     if umbra_right && acne > ACNE_SHARE {
         findings.push(Finding {
             id: "self_shadowing",
@@ -342,6 +385,65 @@ mod tests {
         assert_eq!(ids(&white, &truth), ["shadows_missing"]);
         let right = images(|i| truth[i]);
         assert_eq!(ids(&right, &truth), Vec::<&str>::new());
+    }
+
+    #[test]
+    fn a_visibility_above_1_or_below_0_is_out_of_range_and_only_that() {
+        let truth: Vec<f32> = (0..400).map(|i| if i < 100 { 0.0 } else { 1.0 }).collect();
+        // A sum of 32 tests divided by 24: lit reads 4/3.
+        let above = images(|i| truth[i] * 32.0 / 24.0);
+        assert_eq!(ids(&above, &truth), ["visibility_out_of_range"]);
+        let below = images(|i| if i < 100 { -0.5 } else { 1.0 });
+        assert_eq!(ids(&below, &truth), ["visibility_out_of_range"]);
+        // A float's rounding off 0 or 1 is in range.
+        let rounded = images(|i| if i < 100 { -0.0005 } else { 1.0005 });
+        assert_eq!(ids(&rounded, &truth), Vec::<&str>::new());
+
+        let inputs = |student| CheckInputs {
+            student,
+            student_white_map: student,
+            shadowlab: &truth,
+            ground_truth: &truth,
+            facing: &[Some(1.0); 400],
+            visibility_function: Some(3),
+            positions: &[],
+        };
+        let (_, findings) = check(&inputs(&above), Lang::En);
+        let figures = &findings[0].figures;
+        assert_eq!(figures["out_of_range_share"], 0.75);
+        assert_eq!(figures["out_of_range_pixels"], 300.0);
+        assert_eq!((figures["visibility_min"], figures["visibility_max"]), (0.0, f64::from(32.0f32 / 24.0)));
+        assert_eq!(figures["lit_area_mean"], f64::from(32.0f32 / 24.0));
+        assert_eq!((findings[0].lesson, findings[0].step), ("pcf", 2));
+        let explanation = &findings[0].explanation;
+        assert!(explanation.starts_with("75.0% of the visibilities"), "{explanation}");
+        let (_, findings) = check(&inputs(&below), Lang::Zh);
+        assert_eq!(findings[0].figures["visibility_min"], -0.5);
+        let explanation = &findings[0].explanation;
+        assert!(explanation.contains("25.0%") && explanation.contains("-0.50"), "{explanation}");
+    }
+
+    /// Tests summed and never divided: the umbra's one lit tap reads 1 and its soft pixels none,
+    /// which is the range's finding, not missing shadows or a missing penumbra.
+    #[test]
+    fn an_undivided_sum_is_out_of_range_not_missing_shadows_or_penumbra() {
+        let truth: Vec<f32> = (0..400)
+            .map(|i| match i {
+                0..100 => 0.0,
+                100..300 => 0.5,
+                _ => 1.0,
+            })
+            .collect();
+        let undivided = images(|i| match i {
+            0..100 if i % 10 == 0 => 16.0,
+            0..100 => 0.0,
+            100..300 => 16.0,
+            _ => 32.0,
+        });
+        assert_eq!(ids(&undivided, &truth), ["visibility_out_of_range"]);
+        // Divided right, the same picture has its penumbra.
+        let divided = images(|i| undivided.returned[i][2] / 32.0);
+        assert_eq!(ids(&divided, &truth), Vec::<&str>::new());
     }
 
     #[test]

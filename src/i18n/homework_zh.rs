@@ -11,6 +11,10 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "{:.1}% 的着色像素得到的可见度是 NaN 或无穷大。常见原因：没有找到遮挡物时，findBlocker 仍用遮挡物个数去除深度之和（0 / 0）。",
     ),
     (
+        "{:.1}% of the visibilities your shader returned lie outside [0, 1], from {:.2} to {:.2}. Visibility is the share of the light a point sees: a filter must divide its sum of 0/1 tests by the number of tests it summed, not by another count (PCF_NUM_SAMPLES - 8), and not leave it undivided.",
+        "你的着色器返回的可见度中有 {:.1}% 超出了 [0, 1]，范围从 {:.2} 到 {:.2}。可见度是一个点能看到的光的比例：滤波器必须用它实际求和的测试次数去除 0/1 测试结果之和，而不是用别的个数（PCF_NUM_SAMPLES - 8），也不能不除。",
+    ),
+    (
         "Where the ground truth is in full shadow, your visibility averages {:.2}: the shadows are missing. The lookups do not meet the blockers: coordinates in the wrong space (NDC in [-1, 1] where the map wants [0, 1]), depths compared in different units, or the wrong matrix.",
         "在真实结果处于全影的地方，你的可见度平均为 {:.2}：阴影不见了。查询没有碰到遮挡物：坐标用错了空间（贴图需要 [0, 1]，却给了 [-1, 1] 的 NDC）、比较的两个深度单位不同，或者用错了矩阵。",
     ),
