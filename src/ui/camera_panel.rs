@@ -66,12 +66,12 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     // While a homework is checked the final picture is the homework's (the A/B split then puts
     // shadowlab's technique beside it).
     let mut homework_shown = None;
-    match (shown_view, &app.view_state.view_image, &app.view_state.map) {
-        (View::ShadowMap, _, Some((texture, ..))) => {
+    match (shown_view, &app.view_state.view_image, &app.render.shown.map) {
+        (View::ShadowMap, _, Some(map)) => {
             // The light's map, square, in the middle of the panel.
             painter.rect_filled(rect, 0.0, Color32::from_gray(20));
             let square = Rect::from_center_size(rect.center(), Vec2::splat(rect.width().min(rect.height())));
-            painter.image(texture.id(), square, uv, Color32::WHITE);
+            painter.image(map.texture.id(), square, uv, Color32::WHITE);
             probe_texel.extend(probe_uv.map(|uv| mark_texel(&painter, square, uv)));
         }
         (View::Moments, Some(texture), _) => {
@@ -133,7 +133,8 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
     let camera_space = !is_light_space(shown_view);
     // Overlays come from the last full-quality frame: over a preview of other settings they
     // would show the old numbers, so they wait for the release. They describe side A only.
-    let overlay = app.view_state.overlay.as_ref().filter(|_| !app.overlays_stale() && camera_space);
+    let overlay =
+        app.view_state.overlay.as_ref().filter(|_| !app.render.shown.overlays_stale() && camera_space);
     if let Some(overlay) = overlay {
         let a_uv = Rect::from_min_max(Pos2::ZERO, pos2((a_side.width() / rect.width()).min(1.0), 1.0));
         painter.image(overlay.id(), a_side, a_uv, Color32::WHITE);

@@ -18,7 +18,7 @@ pub(super) fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) 
         ui.strong(tr(app.state.lang, "Shadow map"));
         for i in 0..light_count {
             let selected = app.state.selected_light == i;
-            let clicked = match app.view_state.thumbnails.get(i) {
+            let clicked = match app.render.shown.thumbnails.get(i) {
                 Some(t) => ui
                     .add(
                         egui::Button::image_and_text(
@@ -38,9 +38,10 @@ pub(super) fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) 
             }
         }
     });
-    legend_bar(ui, app.state.lang, app.view_state.map_range, app.state.present);
+    let range = app.render.shown.map.as_ref().map_or((0.0, 0.0), |m| m.range);
+    legend_bar(ui, app.state.lang, range, app.state.present);
     let zoom = app.view_state.zoom.max(1.0);
-    let Some((texture, map, light)) = &app.view_state.map else {
+    let Some(super::rendering::MapPicture { texture, depth: map, light, .. }) = &app.render.shown.map else {
         ui.label(tr(app.state.lang, "no light in this scene"));
         return;
     };

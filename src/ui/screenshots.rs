@@ -41,7 +41,9 @@ impl ShadowlabApp {
             _ => self.view_state.view_picture.clone()?,
         };
         let (w, h) = picture.dimensions();
-        if let Some(overlay) = self.view_state.overlay_picture.as_ref().filter(|_| !self.overlays_stale()) {
+        if let Some(overlay) =
+            self.view_state.overlay_picture.as_ref().filter(|_| !self.render.shown.overlays_stale())
+        {
             crate::views::overlays::blend_onto(&mut picture, overlay);
         }
         if let Some((fx, fy)) = self.probe_fraction(w as f32 / h.max(1) as f32) {
@@ -71,8 +73,8 @@ impl ShadowlabApp {
         if let Some(img) = self.camera_picture() {
             images.push(("camera", img));
         }
-        if let Some((map, light)) = self.view_state.map() {
-            images.push(("shadow-map", crate::views::shadow_map_image(map, light).0));
+        if let Some(map) = &self.render.shown.map {
+            images.push(("shadow-map", crate::views::shadow_map_image(&map.depth, &map.light).0));
         }
         images
     }

@@ -4,11 +4,10 @@
 //! circles and every tap at its real size; drag to move the light.
 
 use super::ShadowlabApp;
-use crate::app::scheduler::MapView;
+use super::rendering::color_image;
 use crate::browser::NoWebGpu;
 use crate::i18n::Lang;
 use crate::i18n::tr;
-use crate::shadow::{DepthImage, LightGpu};
 use crate::views::View;
 use crate::views::overlays::Overlay;
 use egui::{Color32, Pos2, Rect, Sense, Ui, pos2, vec2};
@@ -27,11 +26,6 @@ pub struct ViewState {
     /// The pictures behind `view_image` and `overlay`, for the per-view screenshot.
     pub(super) view_picture: Option<image::RgbaImage>,
     pub(super) overlay_picture: Option<image::RgbaImage>,
-    pub(super) map: Option<(egui::TextureHandle, DepthImage, LightGpu)>,
-    /// Linear depth range of the shown map, world units.
-    pub(super) map_range: (f32, f32),
-    /// One small picture per light (several lights only).
-    pub(super) thumbnails: Vec<egui::TextureHandle>,
     /// Zoom of the shadow-map panel (1 = whole map) and the uv at its centre.
     pub(super) zoom: f32,
     pub(super) zoom_centre: (f32, f32),
@@ -98,18 +92,6 @@ impl ViewState {
     pub fn zoomed(&self) -> bool {
         self.zoom > 1.0
     }
-
-    /// The shadow map shown: its depths and the light it was rendered for.
-    pub fn map(&self) -> Option<(&DepthImage, &LightGpu)> {
-        self.map.as_ref().map(|(_, depth, light)| (depth, light))
-    }
-}
-
-pub(super) fn color_image(image: &image::RgbaImage) -> egui::ColorImage {
-    egui::ColorImage::from_rgba_unmultiplied(
-        [image.width() as usize, image.height() as usize],
-        image.as_raw(),
-    )
 }
 
 fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
@@ -124,7 +106,7 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     app.view_state.view_legend = None;
     app.view_state.view_picture = None;
     app.view_state.overlay_picture = None;
-    if let Some(analysis) = &app.render.analysis {
+    if let Some(analysis) = &app.render.shown.analysis {
         // The samples of the ground truth shown (it was worked out for the frame on screen).
         let samples = app
             .render
@@ -152,7 +134,7 @@ fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
     // Overlays from the analysis pass.
     app.view_state.overlay = None;
     app.view_state.legends.clear();
-    if let Some(analysis) = &app.render.analysis {
+    if let Some(analysis) = &app.render.shown.analysis {
         let overlays: Vec<Overlay> = app
             .overlays
             .iter()
@@ -180,24 +162,6 @@ impl ViewState {
     pub fn legend_lines(&self) -> Vec<String> {
         let view = self.view_legend.iter().flat_map(|l| l.lines()).map(String::from);
         view.chain(self.legends.iter().cloned()).collect()
-    }
-
-    /// Show a new shadow-map picture (from the render worker).
-    pub fn set_map(&mut self, ctx: &egui::Context, map: MapView) {
-        self.map_range = map.range;
-        let texture = ctx.load_texture("shadow map", color_image(&map.image), egui::TextureOptions::NEAREST);
-        self.map = Some((texture, map.depth, map.light));
-    }
-
-    /// Thumbnails of every light's map (several lights only).
-    pub fn set_thumbnails(&mut self, ctx: &egui::Context, images: &[image::RgbaImage]) {
-        self.thumbnails = images
-            .iter()
-            .enumerate()
-            .map(|(i, image)| {
-                ctx.load_texture(format!("thumbnail {i}"), color_image(image), egui::TextureOptions::LINEAR)
-            })
-            .collect();
     }
 }
 
@@ -296,7 +260,8 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         },
     ))];
     let shown_view = app.camera_panel_view();
-    let stale = app.overlays_stale() && (app.view_state.overlay.is_some() || shown_view != View::Final);
+    let stale =
+        app.render.shown.overlays_stale() && (app.view_state.overlay.is_some() || shown_view != View::Final);
     let legend_lines = app.view_state.legend_lines();
     let mut lines: Vec<&str> = Vec::new();
     if stale {
@@ -356,8 +321,8 @@ impl ShadowlabApp {
         let view = self.camera_view_kind();
         let ready = match view {
             View::Final => true,
-            View::ShadowMap => self.view_state.map.is_some(),
-            _ => self.view_state.view_image.is_some() && !self.overlays_stale(),
+            View::ShadowMap => self.render.shown.map.is_some(),
+            _ => self.view_state.view_image.is_some() && !self.render.shown.overlays_stale(),
         };
         if ready { view } else { View::Final }
     }
