@@ -3,7 +3,7 @@
 
 use super::view_panels::{is_light_space, view_selector};
 use super::{ProbeAt, ShadowlabApp};
-use crate::i18n::{Lang, tr};
+use crate::i18n::tr;
 use crate::views::View;
 use egui::{Color32, Pos2, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
 
@@ -215,32 +215,6 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         app.state.probe_at = Some(pointer_fraction(pos));
         app.state.mark_dirty();
     }
-}
-
-/// The depth colour ramp with its range in world units.
-pub(super) fn legend_bar(ui: &mut Ui, lang: Lang, (lo, hi): (f32, f32), present: bool) {
-    // Readable on a projector too.
-    let text = |ui: &mut Ui, s: String| {
-        let text = egui::RichText::new(s);
-        ui.label(if present { text.size(18.0) } else { text.small() })
-    };
-    let bar = if present { vec2(216.0, 18.0) } else { vec2(140.0, 10.0) };
-    ui.horizontal_wrapped(|ui| {
-        text(ui, format!("{lo:.1}"));
-        let (rect, _) = ui.allocate_exact_size(bar, Sense::hover());
-        let steps = 28;
-        for k in 0..steps {
-            let c = crate::views::heat_color(k as f32 / (steps - 1) as f32);
-            let x0 = rect.left() + rect.width() * k as f32 / steps as f32;
-            let cell = Rect::from_min_max(
-                pos2(x0, rect.top()),
-                pos2(x0 + rect.width() / steps as f32 + 0.5, rect.bottom()),
-            );
-            ui.painter().rect_filled(cell, 0.0, Color32::from_rgb(c[0], c[1], c[2]));
-        }
-        text(ui, format!("{hi:.1} {}", tr(lang, "world units from the light")));
-        text(ui, tr(lang, "· white: nothing stored · wheel: zoom").into());
-    });
 }
 
 /// "rendering..." over a view whose frame is slow (or not there yet), and the ground truth's

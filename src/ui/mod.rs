@@ -51,6 +51,7 @@ pub struct ShadowlabApp {
     /// Point the camera at the probe's surface point once the probe is computed (double-click).
     focus_on_probe: bool,
     view_state: view_panels::ViewState,
+    map_panel: map_panel::MapPanel,
     diagram_panel: panels::DiagramPanel,
     open_path: String,
     /// The Open dialog, while it is up.
@@ -108,6 +109,7 @@ impl ShadowlabApp {
             last_tick: None,
             focus_on_probe: false,
             view_state: Default::default(),
+            map_panel: Default::default(),
             diagram_panel: Default::default(),
             open_path: String::new(),
             #[cfg(not(target_arch = "wasm32"))]

@@ -404,7 +404,7 @@ impl ShadowlabApp {
                 Some(HomeworkJob { program, generation: h.generation, lang: self.state.lang })
             }),
             preview,
-            map_texels: if self.view_state.zoomed() { MAP_PICTURE_TEXELS_ZOOMED } else { MAP_PICTURE_TEXELS },
+            map_texels: if self.map_panel.zoomed() { MAP_PICTURE_TEXELS_ZOOMED } else { MAP_PICTURE_TEXELS },
         };
         // Waiting for the ground truths from now on, until their last batch comes (a probe that
         // finds no surface and a failed job clear them).

@@ -26,13 +26,8 @@ pub struct ViewState {
     /// The pictures behind `view_image` and `overlay`, for the per-view screenshot.
     pub(super) view_picture: Option<image::RgbaImage>,
     pub(super) overlay_picture: Option<image::RgbaImage>,
-    /// Zoom of the shadow-map panel (1 = whole map) and the uv at its centre.
-    pub(super) zoom: f32,
-    pub(super) zoom_centre: (f32, f32),
     /// What the camera panel painted in the last frame (for tests).
     pub(super) painted: CameraPaint,
-    /// `AppState::scenes_opened` when the zoom was last reset.
-    pub(super) scenes_opened: u64,
 }
 
 /// What the camera panel painted: where the picture went and which marks were drawn on it.
@@ -77,20 +72,6 @@ impl Default for CameraPaint {
 impl ViewState {
     pub fn invalidate(&mut self) {
         self.stale = true;
-    }
-
-    /// The whole map again once another scene is open.
-    pub fn follow_scene(&mut self, scenes_opened: u64) {
-        if self.scenes_opened != scenes_opened {
-            self.scenes_opened = scenes_opened;
-            self.zoom = 1.0;
-            self.zoom_centre = (0.5, 0.5);
-        }
-    }
-
-    /// The map panel is zoomed in (its picture then needs every texel).
-    pub fn zoomed(&self) -> bool {
-        self.zoom > 1.0
     }
 }
 
@@ -202,7 +183,7 @@ fn no_views(app: &ShadowlabApp, ui: &mut Ui) {
 }
 
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
-    app.view_state.follow_scene(app.state.scenes_opened);
+    app.map_panel.follow_scene(app.state.scenes_opened);
     if app.render.worker.is_none() {
         no_views(app, ui);
         return;
@@ -290,7 +271,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         y += height;
     }
     if show_map {
-        super::map_panel::shadow_map_panel(app, ui, map_rect);
+        app.map_panel.ui(ui, map_rect, &mut app.state, &app.render.shown);
     }
     ui.allocate_rect(full, Sense::hover());
 }
