@@ -206,7 +206,7 @@ pub(super) fn camera_view(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
         // Focus: the probe finds the surface point; the camera turns to it once it is known.
         if let Some(pos) = response.interact_pointer_pos() {
             app.state.probe_at = Some(pointer_fraction(pos));
-            app.focus_on_probe = true;
+            app.state.focus_on_probe = true;
             app.state.mark_dirty();
         }
     } else if response.clicked()

@@ -48,8 +48,6 @@ pub struct ShadowlabApp {
     render: rendering::RenderSession,
     /// Wall-clock time of the last UI frame (playback advances by it).
     last_tick: Option<web_time::Instant>,
-    /// Point the camera at the probe's surface point once the probe is computed (double-click).
-    focus_on_probe: bool,
     view_state: view_panels::ViewState,
     map_panel: map_panel::MapPanel,
     diagram_panel: panels::DiagramPanel,
@@ -107,7 +105,6 @@ impl ShadowlabApp {
             state: AppState::new(settings),
             render: rendering::RenderSession::new(worker, gpu_error),
             last_tick: None,
-            focus_on_probe: false,
             view_state: Default::default(),
             map_panel: Default::default(),
             diagram_panel: Default::default(),

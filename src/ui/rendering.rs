@@ -297,13 +297,13 @@ impl ShadowlabApp {
             None if self.state.probe_at.is_none() => self.state.probe = None,
             None => {}
         }
-        if self.focus_on_probe
+        if self.state.focus_on_probe
             && let Some(p) = self.state.probe.as_ref().and_then(|p| p.world_position)
         {
             self.state.scene.camera.target = glam::Vec3::from(p);
             // The focused point now projects to the centre of the view, and so does the probe.
             self.state.probe_at = Some(ProbeAt::View(0.5, 0.5));
-            self.focus_on_probe = false;
+            self.state.focus_on_probe = false;
             self.state.mark_dirty();
         }
         self.view_state.invalidate();
