@@ -54,6 +54,8 @@ pub struct Shown {
     pub probe_job: Option<u64>,
     /// The job whose probe and analysis are still to come.
     pub details_pending: Option<u64>,
+    /// Counts the changes to what is shown (the camera panel makes its pictures again after one).
+    pub changes: u64,
 }
 
 /// The shadow map shown: its picture, its depths, the light it was rendered for and its linear
@@ -169,7 +171,7 @@ impl ShadowlabApp {
                             .map(|a| crate::views::mean_abs_error(a, &values));
                         self.state.reference = Some(values);
                         self.render.shown.reference_progress = Some((done, total));
-                        self.view_state.invalidate();
+                        self.render.shown.changes += 1;
                     }
                 }
                 RenderEvent::ProbeReference { job, light, done, total, value } => {
@@ -245,7 +247,7 @@ impl ShadowlabApp {
                 self.state.probe = None;
             }
         }
-        self.view_state.invalidate();
+        self.render.shown.changes += 1;
     }
 
     /// The shadow-map pictures of the frame just shown.
@@ -270,7 +272,7 @@ impl ShadowlabApp {
                 })
                 .collect();
         }
-        self.view_state.invalidate();
+        self.render.shown.changes += 1;
     }
 
     fn show_details(&mut self, details: crate::app::scheduler::Details) {
@@ -306,7 +308,7 @@ impl ShadowlabApp {
             self.state.focus_on_probe = false;
             self.state.mark_dirty();
         }
-        self.view_state.invalidate();
+        self.render.shown.changes += 1;
     }
 
     /// The ground truth at the probe so far for `light`: its progress, and once complete, the
