@@ -56,6 +56,8 @@ pub struct AppState {
     /// Where the probe is pinned, if anywhere.
     pub probe_at: Option<ProbeAt>,
     pub probe: Option<ProbeReport>,
+    /// Turn the camera to the probe's surface point once the probe finds it (a double-click).
+    pub focus_on_probe: bool,
     pub overlays: Vec<Overlay>,
     /// What the camera panel shows (a lesson step sets it).
     pub view: View,
@@ -128,6 +130,7 @@ impl AppState {
             selected_light: 0,
             probe_at: None,
             probe: None,
+            focus_on_probe: false,
             overlays: settings.overlays.clone(),
             view: View::Final,
             ab: None,

@@ -1,177 +1,238 @@
 //! The shadow-map panel: linear depth with a colour bar, hover readout, the probe's uv with its
-//! search and filter circles and every tap at its real size; drag to move the light.
+//! search and filter circles and every tap at its real size; wheel to zoom, drag to move the light.
 
-use super::ShadowlabApp;
-use super::camera_panel::legend_bar;
-use crate::i18n::{fill, tr};
+use super::AppState;
+use super::rendering::Shown;
+use crate::i18n::{Lang, fill, tr};
 use crate::shadow::depth_linear_from_ndc;
 use egui::{Color32, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
 use glam::{Mat4, Vec4};
 
-pub(super) fn shadow_map_panel(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
-    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect));
-    let ui = &mut child;
-    // Nothing of the map panel spills over the panel beside it (the lesson text).
-    ui.set_clip_rect(rect.intersect(ui.clip_rect()));
-    let light_count = app.state.scene.lights.len();
-    ui.horizontal(|ui| {
-        ui.strong(tr(app.state.lang, "Shadow map"));
-        for i in 0..light_count {
-            let selected = app.state.selected_light == i;
-            let clicked = match app.view_state.thumbnails.get(i) {
-                Some(t) => ui
-                    .add(
-                        egui::Button::image_and_text(
-                            egui::Image::new(t).fit_to_exact_size(vec2(40.0, 40.0)),
-                            format!("{} {i}", tr(app.state.lang, "light")),
+/// The shadow-map panel, which owns its zoom (the map's picture is the render session's: the
+/// camera panel shows it too).
+pub struct MapPanel {
+    /// 1 = the whole map.
+    zoom: f32,
+    /// The uv at the centre of the panel while zoomed.
+    zoom_centre: (f32, f32),
+    /// `AppState::scenes_opened` when the zoom was last reset.
+    scenes_opened: u64,
+}
+
+impl Default for MapPanel {
+    fn default() -> Self {
+        Self { zoom: 1.0, zoom_centre: (0.5, 0.5), scenes_opened: 0 }
+    }
+}
+
+impl MapPanel {
+    /// The whole map again once another scene is open.
+    pub fn follow_scene(&mut self, scenes_opened: u64) {
+        if self.scenes_opened != scenes_opened {
+            self.scenes_opened = scenes_opened;
+            self.zoom = 1.0;
+            self.zoom_centre = (0.5, 0.5);
+        }
+    }
+
+    /// The panel is zoomed in (its picture then needs every texel).
+    pub fn zoomed(&self) -> bool {
+        self.zoom > 1.0
+    }
+
+    /// The light buttons, the colour bar and the map shown, in `rect`.
+    pub(super) fn ui(&mut self, ui: &mut Ui, rect: Rect, state: &mut AppState, shown: &Shown) {
+        let mut child = ui.new_child(egui::UiBuilder::new().max_rect(rect));
+        let ui = &mut child;
+        // Nothing of the map panel spills over the panel beside it (the lesson text).
+        ui.set_clip_rect(rect.intersect(ui.clip_rect()));
+        let lang = state.lang;
+        let light_count = state.scene.lights.len();
+        ui.horizontal(|ui| {
+            ui.strong(tr(lang, "Shadow map"));
+            for i in 0..light_count {
+                let selected = state.selected_light == i;
+                let clicked = match shown.thumbnails.get(i) {
+                    Some(t) => ui
+                        .add(
+                            egui::Button::image_and_text(
+                                egui::Image::new(t).fit_to_exact_size(vec2(40.0, 40.0)),
+                                format!("{} {i}", tr(lang, "light")),
+                            )
+                            .selected(selected),
                         )
-                        .selected(selected),
-                    )
-                    .clicked(),
-                None => {
-                    ui.selectable_label(selected, format!("{} {i}", tr(app.state.lang, "light"))).clicked()
+                        .clicked(),
+                    None => ui.selectable_label(selected, format!("{} {i}", tr(lang, "light"))).clicked(),
+                };
+                if clicked && !selected {
+                    state.selected_light = i;
+                    state.mark_dirty();
                 }
-            };
-            if clicked && !selected {
-                app.state.selected_light = i;
-                app.state.mark_dirty();
+            }
+        });
+        let range = shown.map.as_ref().map_or((0.0, 0.0), |m| m.range);
+        legend_bar(ui, lang, range, state.present);
+        let zoom = self.zoom.max(1.0);
+        let Some(shown_map) = &shown.map else {
+            ui.label(tr(lang, "no light in this scene"));
+            return;
+        };
+        let (map, light) = (&shown_map.depth, &shown_map.light);
+        let avail = ui.available_rect_before_wrap();
+        // The column's own width: a long legend line must not widen the map past it.
+        let side = rect.width().min(avail.height() - 60.0).max(64.0);
+        let map_rect = Rect::from_min_size(avail.min, vec2(side, side));
+        let response = ui.allocate_rect(map_rect, Sense::click_and_drag());
+        super::set_landmark(ui.ctx(), super::LANDMARK_SHADOW_MAP, map_rect);
+        let painter = ui.painter_at(map_rect);
+        // The part of the map shown: all of it, or a window of 1/zoom around the zoom centre.
+        let half = 0.5 / zoom;
+        let (cx, cy) = self.zoom_centre;
+        let (cx, cy) =
+            if zoom > 1.0 { (cx.clamp(half, 1.0 - half), cy.clamp(half, 1.0 - half)) } else { (0.5, 0.5) };
+        let window = Rect::from_min_max(pos2(cx - half, cy - half), pos2(cx + half, cy + half));
+        painter.image(shown_map.texture.id(), map_rect, window, Color32::WHITE);
+        let side = side * zoom;
+        let to_rect = |uv: [f32; 2]| {
+            pos2(
+                map_rect.left() + (uv[0] - window.left()) * side,
+                map_rect.top() + (uv[1] - window.top()) * side,
+            )
+        };
+
+        // The probe on the map, at its real size.
+        let probe =
+            state.probe.as_ref().and_then(|r| r.lights.iter().find(|l| l.light == state.selected_light));
+        if let Some(l) = probe {
+            let centre = to_rect(l.shadow_map_uv);
+            if l.blocker_search_radius_uv > 0.0 {
+                painter.circle_stroke(
+                    centre,
+                    l.blocker_search_radius_uv * side,
+                    Stroke::new(1.5, Color32::from_rgb(86, 180, 233)),
+                );
+            }
+            if l.filter_radius_uv > 0.0 {
+                painter.circle_stroke(centre, l.filter_radius_uv * side, Stroke::new(1.5, Color32::WHITE));
+            }
+            for tap in &l.taps {
+                let p = to_rect(tap.uv);
+                let (fill, search) = match tap.kind.as_str() {
+                    "blocker-search" => (tap.value > 0.5, true),
+                    _ => (tap.value < 0.5, false),
+                };
+                let color =
+                    if fill { Color32::from_rgb(204, 121, 167) } else { Color32::from_rgb(0, 158, 115) };
+                if search {
+                    painter.circle_stroke(p, 2.5, Stroke::new(1.0, color));
+                } else {
+                    painter.circle_filled(p, 2.5, color);
+                }
+            }
+            painter.circle_stroke(centre, 4.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
+        }
+        let info_pos = pos2(map_rect.left(), map_rect.bottom() + 4.0);
+        let mut info = String::from(tr(
+            lang,
+            "drag to move the light · blue: blocker search · white: filter · green lit, pink blocked",
+        ));
+        if let Some(pos) = response.hover_pos() {
+            let u = (window.left() + (pos.x - map_rect.left()) / side).clamp(0.0, 0.9999);
+            let v = (window.top() + (pos.y - map_rect.top()) / side).clamp(0.0, 0.9999);
+            let (tx, ty) = ((u * map.size as f32) as u32, (v * map.size as f32) as u32);
+            let z = map.depth_ndc[(ty * map.size + tx) as usize];
+            if z < 1.0 {
+                let ndc = Vec4::new(u * 2.0 - 1.0, 1.0 - v * 2.0, z, 1.0);
+                let w = Mat4::from_cols_array_2d(&light.clip_from_world).inverse() * ndc;
+                let p = w.truncate() / w.w;
+                let d = depth_linear_from_ndc(light, z);
+                info = fill(
+                    lang,
+                    "texel {},{} · stored {} NDC = {} world · point ({}, {}, {})",
+                    &[
+                        &tx,
+                        &ty,
+                        &format!("{z:.5}"),
+                        &format!("{d:.3}"),
+                        &format!("{:.2}", p.x),
+                        &format!("{:.2}", p.y),
+                        &format!("{:.2}", p.z),
+                    ],
+                );
+            } else {
+                info = fill(lang, "texel {},{} · nothing stored (cleared to 1.0)", &[&tx, &ty]);
             }
         }
+        // Wrapped to the map's width: the column may be narrow.
+        let info_font = egui::FontId::proportional(if state.present { 18.0 } else { 13.0 });
+        let galley = ui.painter().layout(info, info_font, Color32::LIGHT_GRAY, side);
+        ui.painter().galley(info_pos, galley, Color32::LIGHT_GRAY);
+
+        // Wheel over the map zooms around the probe (or the pointer), to see taps at texel scale.
+        if response.hovered() {
+            let scroll = ui.input(|i| i.smooth_scroll_delta.y);
+            if scroll != 0.0 {
+                let max_zoom = (map.size as f32 / 16.0).max(1.0);
+                let was_zoomed = self.zoomed();
+                self.zoom = (zoom * (scroll * 0.004).exp()).clamp(1.0, max_zoom);
+                if self.zoomed() != was_zoomed {
+                    // The picture's resolution follows the zoom.
+                    state.dirty = true;
+                }
+                let pointer = response.hover_pos().map(|p| {
+                    (
+                        window.left() + (p.x - map_rect.left()) / side,
+                        window.top() + (p.y - map_rect.top()) / side,
+                    )
+                });
+                if let Some(centre) = probe.map(|l| (l.shadow_map_uv[0], l.shadow_map_uv[1])).or(pointer) {
+                    self.zoom_centre = centre;
+                }
+            }
+        }
+
+        // Dragging on the map moves the light: yaw about its up axis, pitch towards it.
+        if response.dragged() && response.drag_delta() != Vec2::ZERO {
+            let d = response.drag_delta();
+            if let Some(l) = state.scene.lights.get_mut(state.selected_light) {
+                let offset = l.position - l.target;
+                let up = l.up.normalize_or(glam::Vec3::Y);
+                let yawed = glam::Quat::from_axis_angle(up, -d.x * 0.005) * offset;
+                let right = yawed.cross(up).normalize_or(glam::Vec3::X);
+                let pitched = glam::Quat::from_axis_angle(right, -d.y * 0.005) * yawed;
+                if pitched.normalize().dot(up).abs() < 0.995 {
+                    l.position = l.target + pitched;
+                } else {
+                    l.position = l.target + yawed;
+                }
+            }
+            state.mark_dirty();
+        }
+    }
+}
+
+/// The depth colour ramp with its range in world units.
+fn legend_bar(ui: &mut Ui, lang: Lang, (lo, hi): (f32, f32), present: bool) {
+    // Readable on a projector too.
+    let text = |ui: &mut Ui, s: String| {
+        let text = egui::RichText::new(s);
+        ui.label(if present { text.size(18.0) } else { text.small() })
+    };
+    let bar = if present { vec2(216.0, 18.0) } else { vec2(140.0, 10.0) };
+    ui.horizontal_wrapped(|ui| {
+        text(ui, format!("{lo:.1}"));
+        let (rect, _) = ui.allocate_exact_size(bar, Sense::hover());
+        let steps = 28;
+        for k in 0..steps {
+            let c = crate::views::heat_color(k as f32 / (steps - 1) as f32);
+            let x0 = rect.left() + rect.width() * k as f32 / steps as f32;
+            let cell = Rect::from_min_max(
+                pos2(x0, rect.top()),
+                pos2(x0 + rect.width() / steps as f32 + 0.5, rect.bottom()),
+            );
+            ui.painter().rect_filled(cell, 0.0, Color32::from_rgb(c[0], c[1], c[2]));
+        }
+        text(ui, format!("{hi:.1} {}", tr(lang, "world units from the light")));
+        text(ui, tr(lang, "· white: nothing stored · wheel: zoom").into());
     });
-    legend_bar(ui, app.state.lang, app.view_state.map_range, app.state.present);
-    let zoom = app.view_state.zoom.max(1.0);
-    let Some((texture, map, light)) = &app.view_state.map else {
-        ui.label(tr(app.state.lang, "no light in this scene"));
-        return;
-    };
-    let avail = ui.available_rect_before_wrap();
-    // The column's own width: a long legend line must not widen the map past it.
-    let side = rect.width().min(avail.height() - 60.0).max(64.0);
-    let map_rect = Rect::from_min_size(avail.min, vec2(side, side));
-    let response = ui.allocate_rect(map_rect, Sense::click_and_drag());
-    super::set_landmark(ui.ctx(), super::LANDMARK_SHADOW_MAP, map_rect);
-    let painter = ui.painter_at(map_rect);
-    // The part of the map shown: all of it, or a window of 1/zoom around the zoom centre.
-    let half = 0.5 / zoom;
-    let (cx, cy) = app.view_state.zoom_centre;
-    let (cx, cy) =
-        if zoom > 1.0 { (cx.clamp(half, 1.0 - half), cy.clamp(half, 1.0 - half)) } else { (0.5, 0.5) };
-    let shown = Rect::from_min_max(pos2(cx - half, cy - half), pos2(cx + half, cy + half));
-    painter.image(texture.id(), map_rect, shown, Color32::WHITE);
-    let side = side * zoom;
-    let to_rect = |uv: [f32; 2]| {
-        pos2(map_rect.left() + (uv[0] - shown.left()) * side, map_rect.top() + (uv[1] - shown.top()) * side)
-    };
-
-    // The probe on the map, at its real size.
-    if let Some(report) = &app.state.probe
-        && let Some(l) = report.lights.iter().find(|l| l.light == app.state.selected_light)
-    {
-        let centre = to_rect(l.shadow_map_uv);
-        if l.blocker_search_radius_uv > 0.0 {
-            painter.circle_stroke(
-                centre,
-                l.blocker_search_radius_uv * side,
-                Stroke::new(1.5, Color32::from_rgb(86, 180, 233)),
-            );
-        }
-        if l.filter_radius_uv > 0.0 {
-            painter.circle_stroke(centre, l.filter_radius_uv * side, Stroke::new(1.5, Color32::WHITE));
-        }
-        for tap in &l.taps {
-            let p = to_rect(tap.uv);
-            let (fill, search) = match tap.kind.as_str() {
-                "blocker-search" => (tap.value > 0.5, true),
-                _ => (tap.value < 0.5, false),
-            };
-            let color = if fill { Color32::from_rgb(204, 121, 167) } else { Color32::from_rgb(0, 158, 115) };
-            if search {
-                painter.circle_stroke(p, 2.5, Stroke::new(1.0, color));
-            } else {
-                painter.circle_filled(p, 2.5, color);
-            }
-        }
-        painter.circle_stroke(centre, 4.0, Stroke::new(2.0, Color32::from_rgb(255, 210, 0)));
-    }
-    let info_pos = pos2(map_rect.left(), map_rect.bottom() + 4.0);
-    let mut info = String::from(tr(
-        app.state.lang,
-        "drag to move the light · blue: blocker search · white: filter · green lit, pink blocked",
-    ));
-    if let Some(pos) = response.hover_pos() {
-        let u = (shown.left() + (pos.x - map_rect.left()) / side).clamp(0.0, 0.9999);
-        let v = (shown.top() + (pos.y - map_rect.top()) / side).clamp(0.0, 0.9999);
-        let (tx, ty) = ((u * map.size as f32) as u32, (v * map.size as f32) as u32);
-        let z = map.depth_ndc[(ty * map.size + tx) as usize];
-        if z < 1.0 {
-            let ndc = Vec4::new(u * 2.0 - 1.0, 1.0 - v * 2.0, z, 1.0);
-            let w = Mat4::from_cols_array_2d(&light.clip_from_world).inverse() * ndc;
-            let p = w.truncate() / w.w;
-            let d = depth_linear_from_ndc(light, z);
-            info = fill(
-                app.state.lang,
-                "texel {},{} · stored {} NDC = {} world · point ({}, {}, {})",
-                &[
-                    &tx,
-                    &ty,
-                    &format!("{z:.5}"),
-                    &format!("{d:.3}"),
-                    &format!("{:.2}", p.x),
-                    &format!("{:.2}", p.y),
-                    &format!("{:.2}", p.z),
-                ],
-            );
-        } else {
-            info = fill(app.state.lang, "texel {},{} · nothing stored (cleared to 1.0)", &[&tx, &ty]);
-        }
-    }
-    // Wrapped to the map's width: the column may be narrow.
-    let info_font = egui::FontId::proportional(if app.state.present { 18.0 } else { 13.0 });
-    let galley = ui.painter().layout(info, info_font, Color32::LIGHT_GRAY, side);
-    ui.painter().galley(info_pos, galley, Color32::LIGHT_GRAY);
-
-    // Wheel over the map zooms around the probe (or the pointer), to see taps at texel scale.
-    let map_size = map.size;
-    let probe_uv = app
-        .probe
-        .as_ref()
-        .and_then(|r| r.lights.iter().find(|l| l.light == app.state.selected_light))
-        .map(|l| (l.shadow_map_uv[0], l.shadow_map_uv[1]));
-    if response.hovered() {
-        let scroll = ui.input(|i| i.smooth_scroll_delta.y);
-        if scroll != 0.0 {
-            let max_zoom = (map_size as f32 / 16.0).max(1.0);
-            let was_zoomed = app.view_state.zoomed();
-            app.view_state.zoom = (zoom * (scroll * 0.004).exp()).clamp(1.0, max_zoom);
-            if app.view_state.zoomed() != was_zoomed {
-                // The picture's resolution follows the zoom.
-                app.state.dirty = true;
-            }
-            let pointer = response.hover_pos().map(|p| {
-                (shown.left() + (p.x - map_rect.left()) / side, shown.top() + (p.y - map_rect.top()) / side)
-            });
-            if let Some(centre) = probe_uv.or(pointer) {
-                app.view_state.zoom_centre = centre;
-            }
-        }
-    }
-
-    // Dragging on the map moves the light: yaw about its up axis, pitch towards it.
-    if response.dragged() && response.drag_delta() != Vec2::ZERO {
-        let d = response.drag_delta();
-        if let Some(l) = app.state.scene.lights.get_mut(app.state.selected_light) {
-            let offset = l.position - l.target;
-            let up = l.up.normalize_or(glam::Vec3::Y);
-            let yawed = glam::Quat::from_axis_angle(up, -d.x * 0.005) * offset;
-            let right = yawed.cross(up).normalize_or(glam::Vec3::X);
-            let pitched = glam::Quat::from_axis_angle(right, -d.y * 0.005) * yawed;
-            if pitched.normalize().dot(up).abs() < 0.995 {
-                l.position = l.target + pitched;
-            } else {
-                l.position = l.target + yawed;
-            }
-        }
-        app.render.interacting = true;
-        app.state.mark_dirty();
-    }
 }

@@ -2,7 +2,9 @@
 //! probe with its samples drawn on the map, overlays, lessons and diagrams.
 
 mod bars;
+mod camera_marks;
 mod camera_panel;
+mod camera_pictures;
 #[cfg(not(target_arch = "wasm32"))]
 mod dialog;
 mod homework_panel;
@@ -40,18 +42,18 @@ use crate::shipped_path;
 use std::sync::{Arc, Mutex};
 
 /// The window: the app's state (`state`, which field access reads through to) and what only
-/// drawing it needs: the render worker and what it sent, the views' textures and zoom, the
-/// panels' own state, the Open dialog, screenshots.
+/// drawing it needs: the render session, the panels that keep state of their own, the Open
+/// dialog, screenshots.
 pub struct ShadowlabApp {
     pub state: AppState,
     /// Rendering the views: the scheduler, what it sent, what is waited for.
     render: rendering::RenderSession,
     /// Wall-clock time of the last UI frame (playback advances by it).
     last_tick: Option<web_time::Instant>,
-    /// Point the camera at the probe's surface point once the probe is computed (double-click).
-    focus_on_probe: bool,
-    view_state: view_panels::ViewState,
+    camera_panel: camera_panel::CameraPanel,
+    map_panel: map_panel::MapPanel,
     diagram_panel: panels::DiagramPanel,
+    /// The top bar's path box.
     open_path: String,
     /// The Open dialog, while it is up.
     #[cfg(not(target_arch = "wasm32"))]
@@ -60,7 +62,6 @@ pub struct ShadowlabApp {
     focus_path_box: bool,
     screenshot: Arc<Mutex<Option<Arc<egui::ColorImage>>>>,
     screenshot_pending: bool,
-    homework_textures: homework_view::HomeworkTextures,
     /// When the homework's files were last looked at (they are watched a few times a second).
     homework_watched: Option<web_time::Instant>,
 }
@@ -106,8 +107,8 @@ impl ShadowlabApp {
             state: AppState::new(settings),
             render: rendering::RenderSession::new(worker, gpu_error),
             last_tick: None,
-            focus_on_probe: false,
-            view_state: Default::default(),
+            camera_panel: Default::default(),
+            map_panel: Default::default(),
             diagram_panel: Default::default(),
             open_path: String::new(),
             #[cfg(not(target_arch = "wasm32"))]
@@ -115,7 +116,6 @@ impl ShadowlabApp {
             focus_path_box: false,
             screenshot: Arc::new(Mutex::new(None)),
             screenshot_pending: false,
-            homework_textures: Default::default(),
             homework_watched: None,
         }
     }
@@ -137,12 +137,12 @@ impl ShadowlabApp {
 
     /// The lines under the camera view: the view's legend, then the overlays' (as painted).
     pub fn legend_lines(&self) -> Vec<String> {
-        self.view_state.legend_lines()
+        self.camera_panel.legend_lines()
     }
 
     /// The overlays as last composed over the camera view (translucent), if any is on.
     pub fn overlay_image(&self) -> Option<&image::RgbaImage> {
-        self.view_state.overlay_picture.as_ref()
+        self.camera_panel.overlay_picture()
     }
 
     /// The B side of the A/B split as last rendered, when the split is on.

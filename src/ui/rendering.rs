@@ -6,7 +6,7 @@ use super::{ProbeAt, ShadowlabApp};
 use crate::app::scheduler::{HomeworkJob, ProbeSpot, RenderEvent, RenderJob, RenderOutput, RenderScheduler};
 use crate::render::{Analysis, FrameRequest, PassTimes};
 use crate::scene::Technique;
-use crate::shadow::{LightGpu, ShadowParamsGpu};
+use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
 use crate::views::View;
 use crate::views::overlays::Overlay;
 use std::time::Duration;
@@ -32,6 +32,12 @@ pub struct Shown {
     pub camera_b: Option<egui::TextureHandle>,
     pub color: Option<image::RgbaImage>,
     pub color_b: Option<image::RgbaImage>,
+    /// The selected light's shadow map (the last one a scene with lights sent).
+    pub map: Option<MapPicture>,
+    /// One small picture per light (several lights only).
+    pub thumbnails: Vec<egui::TextureHandle>,
+    /// The overlays' analysis of the frame shown, once it came.
+    pub analysis: Option<Analysis>,
     /// The lights as the GPU saw them in that frame.
     pub lights: Vec<LightGpu>,
     /// The shadow parameters of that frame (the views read these, not the scene's newer ones).
@@ -48,6 +54,33 @@ pub struct Shown {
     pub probe_job: Option<u64>,
     /// The job whose probe and analysis are still to come.
     pub details_pending: Option<u64>,
+    /// Counts the changes to what is shown (the camera panel makes its pictures again after one).
+    pub changes: u64,
+}
+
+/// The shadow map shown: its picture, its depths, the light it was rendered for and its linear
+/// depth range (world units).
+pub struct MapPicture {
+    pub texture: egui::TextureHandle,
+    pub depth: DepthImage,
+    pub light: LightGpu,
+    pub range: (f32, f32),
+}
+
+impl Shown {
+    /// The view shows an image whose overlays are not worked out yet (a preview, or a full frame
+    /// waiting for its details): they would be about other settings.
+    pub fn overlays_stale(&self) -> bool {
+        self.preview || self.details_pending.is_some()
+    }
+}
+
+/// A picture as egui takes it.
+pub(super) fn color_image(image: &image::RgbaImage) -> egui::ColorImage {
+    egui::ColorImage::from_rgba_unmultiplied(
+        [image.width() as usize, image.height() as usize],
+        image.as_raw(),
+    )
 }
 
 /// What the last submitted job was, so that a preview is followed by a full-quality frame.
@@ -75,8 +108,6 @@ pub(super) struct RenderSession {
     /// Previews render at 1/preview_divisor of the view's width and height (2..=4, adapted to
     /// how long they take).
     pub(super) preview_divisor: u32,
-    /// The overlays' analysis of the frame shown, once it came.
-    pub(super) analysis: Option<Analysis>,
 }
 
 impl RenderSession {
@@ -90,7 +121,6 @@ impl RenderSession {
             gpu_error,
             interacting: false,
             preview_divisor: PREVIEW_DIVISOR_MIN,
-            analysis: None,
         }
     }
 }
@@ -134,13 +164,14 @@ impl ShadowlabApp {
                         // The error legend's number, once the ground truth is all there.
                         self.state.mean_abs_error = self
                             .render
+                            .shown
                             .analysis
                             .as_ref()
                             .filter(|a| done == total && a.shadow.len() == values.len())
                             .map(|a| crate::views::mean_abs_error(a, &values));
                         self.state.reference = Some(values);
                         self.render.shown.reference_progress = Some((done, total));
-                        self.view_state.invalidate();
+                        self.render.shown.changes += 1;
                     }
                 }
                 RenderEvent::ProbeReference { job, light, done, total, value } => {
@@ -180,10 +211,7 @@ impl ShadowlabApp {
         self.render.frames_shown += 1;
         let filter = egui::TextureOptions::LINEAR;
         let upload = |slot: &mut Option<egui::TextureHandle>, name: &str, image: &image::RgbaImage| {
-            let pixels = egui::ColorImage::from_rgba_unmultiplied(
-                [image.width() as usize, image.height() as usize],
-                image.as_raw(),
-            );
+            let pixels = color_image(image);
             match slot {
                 Some(handle) => handle.set(pixels, filter),
                 None => *slot = Some(ctx.load_texture(name, pixels, filter)),
@@ -214,12 +242,12 @@ impl ShadowlabApp {
         self.render.shown.details_pending = out.details_follow.then_some(out.job);
         if !out.preview && !out.details_follow {
             // A full frame with no overlays on and no probe pinned.
-            self.render.analysis = None;
+            self.render.shown.analysis = None;
             if self.state.probe_at.is_none() {
                 self.state.probe = None;
             }
         }
-        self.view_state.invalidate();
+        self.render.shown.changes += 1;
     }
 
     /// The shadow-map pictures of the frame just shown.
@@ -228,12 +256,23 @@ impl ShadowlabApp {
             return;
         }
         if let Some(map) = maps.map {
-            self.view_state.set_map(ctx, map);
+            let texture =
+                ctx.load_texture("shadow map", color_image(&map.image), egui::TextureOptions::NEAREST);
+            self.render.shown.map =
+                Some(MapPicture { texture, depth: map.depth, light: map.light, range: map.range });
         }
         if !maps.thumbnails.is_empty() || self.render.shown.lights.len() < 2 {
-            self.view_state.set_thumbnails(ctx, &maps.thumbnails);
+            self.render.shown.thumbnails = maps
+                .thumbnails
+                .iter()
+                .enumerate()
+                .map(|(i, image)| {
+                    let picture = color_image(image);
+                    ctx.load_texture(format!("thumbnail {i}"), picture, egui::TextureOptions::LINEAR)
+                })
+                .collect();
         }
-        self.view_state.invalidate();
+        self.render.shown.changes += 1;
     }
 
     fn show_details(&mut self, details: crate::app::scheduler::Details) {
@@ -242,7 +281,7 @@ impl ShadowlabApp {
         }
         self.render.shown.details_pending = None;
         self.render.shown.render_ms = details.render_ms;
-        self.render.analysis = details.analysis;
+        self.render.shown.analysis = details.analysis;
         match details.probe {
             Some(Ok(report)) => {
                 // No surface, no ground truth to wait for.
@@ -260,16 +299,16 @@ impl ShadowlabApp {
             None if self.state.probe_at.is_none() => self.state.probe = None,
             None => {}
         }
-        if self.focus_on_probe
+        if self.state.focus_on_probe
             && let Some(p) = self.state.probe.as_ref().and_then(|p| p.world_position)
         {
             self.state.scene.camera.target = glam::Vec3::from(p);
             // The focused point now projects to the centre of the view, and so does the probe.
             self.state.probe_at = Some(ProbeAt::View(0.5, 0.5));
-            self.focus_on_probe = false;
+            self.state.focus_on_probe = false;
             self.state.mark_dirty();
         }
-        self.view_state.invalidate();
+        self.render.shown.changes += 1;
     }
 
     /// The ground truth at the probe so far for `light`: its progress, and once complete, the
@@ -295,12 +334,6 @@ impl ShadowlabApp {
         } else if render_ms < 0.6 * PREVIEW_BUDGET_MS && self.render.preview_divisor > PREVIEW_DIVISOR_MIN {
             self.render.preview_divisor -= 1;
         }
-    }
-
-    /// The view shows an image whose overlays are not worked out yet (a preview, or a full frame
-    /// waiting for its details): they would be about other settings.
-    pub fn overlays_stale(&self) -> bool {
-        self.render.shown.preview || self.render.shown.details_pending.is_some()
     }
 
     /// Ask for a new frame where something changed; called once per frame with the camera
@@ -373,7 +406,7 @@ impl ShadowlabApp {
                 Some(HomeworkJob { program, generation: h.generation, lang: self.state.lang })
             }),
             preview,
-            map_texels: if self.view_state.zoomed() { MAP_PICTURE_TEXELS_ZOOMED } else { MAP_PICTURE_TEXELS },
+            map_texels: if self.map_panel.zoomed() { MAP_PICTURE_TEXELS_ZOOMED } else { MAP_PICTURE_TEXELS },
         };
         // Waiting for the ground truths from now on, until their last batch comes (a probe that
         // finds no surface and a failed job clear them).

@@ -38,13 +38,15 @@ impl ShadowlabApp {
     fn camera_picture(&self) -> Option<image::RgbaImage> {
         let mut picture = match self.camera_panel_view() {
             View::Final | View::ShadowMap => self.render.shown.color.clone()?,
-            _ => self.view_state.view_picture.clone()?,
+            _ => self.camera_panel.view_picture()?.clone(),
         };
         let (w, h) = picture.dimensions();
-        if let Some(overlay) = self.view_state.overlay_picture.as_ref().filter(|_| !self.overlays_stale()) {
+        if let Some(overlay) =
+            self.camera_panel.overlay_picture().filter(|_| !self.render.shown.overlays_stale())
+        {
             crate::views::overlays::blend_onto(&mut picture, overlay);
         }
-        if let Some((fx, fy)) = self.probe_fraction(w as f32 / h.max(1) as f32) {
+        if let Some((fx, fy)) = super::camera_marks::probe_fraction(&self.state, w as f32 / h.max(1) as f32) {
             // The marker as on screen: a yellow ring of radius 7 and 2 px wide.
             let (cx, cy) = (fx * w as f32, fy * h as f32);
             let span = |c: f32, size: u32| (c - 9.0).max(0.0) as u32..((c + 9.0).max(0.0) as u32).min(size);
@@ -71,8 +73,8 @@ impl ShadowlabApp {
         if let Some(img) = self.camera_picture() {
             images.push(("camera", img));
         }
-        if let Some((map, light)) = self.view_state.map() {
-            images.push(("shadow-map", crate::views::shadow_map_image(map, light).0));
+        if let Some(map) = &self.render.shown.map {
+            images.push(("shadow-map", crate::views::shadow_map_image(&map.depth, &map.light).0));
         }
         images
     }

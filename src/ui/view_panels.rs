@@ -1,205 +1,13 @@
-//! The centre: the camera view beside the light's shadow map (resizable split).
-//! Camera view: orbit/pan/zoom, click to pin the probe, overlays, A/B divider, light frustum.
-//! Shadow map: linear depth with a legend, hover readout, the probe's uv, search and filter
-//! circles and every tap at its real size; drag to move the light.
+//! The centre: the camera panel beside the shadow-map panel (resizable split), or, without a
+//! GPU view, why there is none.
 
 use super::ShadowlabApp;
-use crate::app::scheduler::MapView;
+use super::camera_marks::CameraPaint;
+use super::camera_panel::CameraLayout;
 use crate::browser::NoWebGpu;
-use crate::i18n::Lang;
 use crate::i18n::tr;
-use crate::shadow::{DepthImage, LightGpu};
 use crate::views::View;
-use crate::views::overlays::Overlay;
-use egui::{Color32, Pos2, Rect, Sense, Ui, pos2, vec2};
-
-/// Texture caches, rebuilt after each render.
-#[derive(Default)]
-pub struct ViewState {
-    pub(super) stale: bool,
-    pub(super) overlay: Option<egui::TextureHandle>,
-    pub(super) legends: Vec<String>,
-    /// The camera panel's debug view (visibility, heatmaps, reference, error) and its legend.
-    pub(super) view_image: Option<egui::TextureHandle>,
-    pub(super) view_legend: Option<String>,
-    /// The language the legends were written in (a new language writes them again).
-    pub(super) legend_lang: Option<Lang>,
-    /// The pictures behind `view_image` and `overlay`, for the per-view screenshot.
-    pub(super) view_picture: Option<image::RgbaImage>,
-    pub(super) overlay_picture: Option<image::RgbaImage>,
-    pub(super) map: Option<(egui::TextureHandle, DepthImage, LightGpu)>,
-    /// Linear depth range of the shown map, world units.
-    pub(super) map_range: (f32, f32),
-    /// One small picture per light (several lights only).
-    pub(super) thumbnails: Vec<egui::TextureHandle>,
-    /// Zoom of the shadow-map panel (1 = whole map) and the uv at its centre.
-    pub(super) zoom: f32,
-    pub(super) zoom_centre: (f32, f32),
-    /// What the camera panel painted in the last frame (for tests).
-    pub(super) painted: CameraPaint,
-    /// `AppState::scenes_opened` when the zoom was last reset.
-    pub(super) scenes_opened: u64,
-}
-
-/// What the camera panel painted: where the picture went and which marks were drawn on it.
-#[derive(Clone, Debug, PartialEq)]
-pub struct CameraPaint {
-    /// The view shown.
-    pub view: Option<View>,
-    /// The panel's area and the picture inside it (a lesson's frame is letterboxed in the area).
-    pub area: Rect,
-    pub picture: Rect,
-    /// Camera-space marks: the overlays' image, the light frusta, the probe's crosshair.
-    pub overlay: bool,
-    pub frusta: bool,
-    pub probe_crosshair: Option<Pos2>,
-    /// The probe's texel circled on a light-space view (the shadow map, the moments).
-    pub probe_texel: Vec<Pos2>,
-    /// The A/B split's labels.
-    pub ab_labels: Vec<Rect>,
-    /// The view selector.
-    pub selector: Rect,
-    /// The lines under the picture, as painted.
-    pub legend: Vec<String>,
-}
-
-impl Default for CameraPaint {
-    fn default() -> Self {
-        Self {
-            view: None,
-            area: Rect::NOTHING,
-            picture: Rect::NOTHING,
-            overlay: false,
-            frusta: false,
-            probe_crosshair: None,
-            probe_texel: Vec::new(),
-            ab_labels: Vec::new(),
-            selector: Rect::NOTHING,
-            legend: Vec::new(),
-        }
-    }
-}
-
-impl ViewState {
-    pub fn invalidate(&mut self) {
-        self.stale = true;
-    }
-
-    /// The whole map again once another scene is open.
-    pub fn follow_scene(&mut self, scenes_opened: u64) {
-        if self.scenes_opened != scenes_opened {
-            self.scenes_opened = scenes_opened;
-            self.zoom = 1.0;
-            self.zoom_centre = (0.5, 0.5);
-        }
-    }
-
-    /// The map panel is zoomed in (its picture then needs every texel).
-    pub fn zoomed(&self) -> bool {
-        self.zoom > 1.0
-    }
-
-    /// The shadow map shown: its depths and the light it was rendered for.
-    pub fn map(&self) -> Option<(&DepthImage, &LightGpu)> {
-        self.map.as_ref().map(|(_, depth, light)| (depth, light))
-    }
-}
-
-pub(super) fn color_image(image: &image::RgbaImage) -> egui::ColorImage {
-    egui::ColorImage::from_rgba_unmultiplied(
-        [image.width() as usize, image.height() as usize],
-        image.as_raw(),
-    )
-}
-
-fn refresh(app: &mut ShadowlabApp, ctx: &egui::Context) {
-    if !app.view_state.stale && app.view_state.legend_lang == Some(app.state.lang) {
-        return;
-    }
-    app.view_state.stale = false;
-    app.view_state.legend_lang = Some(app.state.lang);
-    let light = app.render.shown.lights.get(app.state.selected_light).copied();
-    // The debug view from the analysis pass (and the ground truth).
-    app.view_state.view_image = None;
-    app.view_state.view_legend = None;
-    app.view_state.view_picture = None;
-    app.view_state.overlay_picture = None;
-    if let Some(analysis) = &app.render.analysis {
-        // The samples of the ground truth shown (it was worked out for the frame on screen).
-        let samples = app
-            .render
-            .shown
-            .reference_progress
-            .map_or(app.state.scene.shadow.reference_samples, |(_, all)| all);
-        let light_and_params = light.as_ref().map(|l| (l, &app.render.shown.params));
-        if let Some((image, legend)) = crate::views::analysis_view(
-            app.state.view,
-            analysis,
-            app.state.reference.as_deref(),
-            samples,
-            light_and_params,
-            app.state.lang,
-        ) {
-            app.view_state.view_image =
-                Some(ctx.load_texture("debug view", color_image(&image), egui::TextureOptions::NEAREST));
-            app.view_state.view_legend = Some(legend);
-            app.view_state.view_picture = Some(image);
-        } else if app.state.view == View::Moments {
-            app.view_state.view_legend =
-                Some(tr(app.state.lang, "the moments view needs the vsm or vssm technique").into());
-        }
-    }
-    // Overlays from the analysis pass.
-    app.view_state.overlay = None;
-    app.view_state.legends.clear();
-    if let Some(analysis) = &app.render.analysis {
-        let overlays: Vec<Overlay> = app
-            .overlays
-            .iter()
-            .copied()
-            .filter(|&o| !crate::views::overlays::hidden_by_view(app.camera_view_kind(), o))
-            .collect();
-        let (image, legends) = crate::views::overlays::compose(
-            app.state.lang,
-            &overlays,
-            analysis,
-            light.as_ref(),
-            app.state.reference.as_deref(),
-        );
-        app.view_state.legends = legends;
-        if !overlays.is_empty() {
-            app.view_state.overlay =
-                Some(ctx.load_texture("overlay", color_image(&image), egui::TextureOptions::NEAREST));
-            app.view_state.overlay_picture = Some(image);
-        }
-    }
-}
-
-impl ViewState {
-    /// The view's legend lines, then the overlays'.
-    pub fn legend_lines(&self) -> Vec<String> {
-        let view = self.view_legend.iter().flat_map(|l| l.lines()).map(String::from);
-        view.chain(self.legends.iter().cloned()).collect()
-    }
-
-    /// Show a new shadow-map picture (from the render worker).
-    pub fn set_map(&mut self, ctx: &egui::Context, map: MapView) {
-        self.map_range = map.range;
-        let texture = ctx.load_texture("shadow map", color_image(&map.image), egui::TextureOptions::NEAREST);
-        self.map = Some((texture, map.depth, map.light));
-    }
-
-    /// Thumbnails of every light's map (several lights only).
-    pub fn set_thumbnails(&mut self, ctx: &egui::Context, images: &[image::RgbaImage]) {
-        self.thumbnails = images
-            .iter()
-            .enumerate()
-            .map(|(i, image)| {
-                ctx.load_texture(format!("thumbnail {i}"), color_image(image), egui::TextureOptions::LINEAR)
-            })
-            .collect();
-    }
-}
+use egui::{Color32, Rect, Sense, Ui, pos2, vec2};
 
 impl ShadowlabApp {
     /// Say why in place of the views, and render none: the page's device is WebGL2's, which
@@ -237,8 +45,9 @@ fn no_views(app: &ShadowlabApp, ui: &mut Ui) {
     });
 }
 
+/// The two view panels side by side; the render they show asked for at the camera picture's size.
 pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
-    app.view_state.follow_scene(app.state.scenes_opened);
+    app.map_panel.follow_scene(app.state.scenes_opened);
     if app.render.worker.is_none() {
         no_views(app, ui);
         return;
@@ -249,20 +58,7 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
     let divider_x = full.left() + full.width() * split;
     let left = Rect::from_min_max(full.min, pos2(divider_x - 3.0, full.bottom()));
     let map_rect = Rect::from_min_max(pos2(divider_x + 3.0, full.top()), full.max);
-    let legend_font = egui::FontId::proportional(if app.state.present { 18.0 } else { 13.0 });
-    // Room for the legends the view and overlays will have, known before they are worked out
-    // (sized by what is asked, not by what arrives, so the view does not change size with them).
-    let line_height = ui.fonts_mut(|f| f.row_height(&legend_font));
-    let legend_height = (app.legend_lines_expected() as f32 * line_height + 8.0)
-        .clamp(40.0, (left.height() * 0.35).max(40.0));
-    let area = Rect::from_min_max(left.min, pos2(left.right(), left.bottom() - legend_height));
-    // A lesson's frame is shown whole, letterboxed: cropped to the panel's shape, its probe and
-    // what the text points at could fall outside.
-    let camera_rect = match app.state.current_step() {
-        Some(_) => letterbox(area, crate::lessons::PROBE_FRAME),
-        None => area,
-    };
-    let legend_rect = Rect::from_min_max(pos2(left.left(), camera_rect.bottom()), left.max);
+    let camera = CameraLayout::new(ui, &app.state, left);
 
     if show_map {
         // The split between the two views.
@@ -277,133 +73,24 @@ pub fn show(app: &mut ShadowlabApp, ui: &mut Ui) {
         let divider_color = if divider_response.hovered() { Color32::GRAY } else { Color32::from_gray(60) };
         ui.painter().rect_filled(divider.shrink2(vec2(2.0, 0.0)), 0.0, divider_color);
     }
-    let ppp = ui.ctx().pixels_per_point();
-    let size_px =
-        ((camera_rect.width() * ppp).max(16.0) as u32, (camera_rect.height() * ppp).max(16.0) as u32);
-    app.schedule_render(size_px);
-    refresh(app, ui.ctx());
-
-    app.view_state.painted = CameraPaint { area, ..Default::default() };
-    super::camera_panel::camera_view(app, ui, camera_rect);
-    let painter = ui.painter_at(legend_rect);
-    let mut y = legend_rect.top() + 4.0;
-    let waiting = [String::from(tr(
-        app.state.lang,
-        if app.render.interacting {
-            "(overlays refresh when you let go)"
-        } else {
-            "(working out the overlays...)"
-        },
-    ))];
-    let shown_view = app.camera_panel_view();
-    let stale = app.overlays_stale() && (app.view_state.overlay.is_some() || shown_view != View::Final);
-    let legend_lines = app.view_state.legend_lines();
-    let mut lines: Vec<&str> = Vec::new();
-    if stale {
-        lines.push(&waiting[0]);
-    } else if !is_light_space(shown_view) {
-        // A light-space view has its own caption; the camera's legends are about other pictures.
-        lines.extend(legend_lines.iter().map(String::as_str));
-    }
-    let ab_note;
-    if app.state.ab.is_some() && app.state.view != View::Final {
-        ab_note =
-            tr(app.state.lang, "the A/B split compares the shaded pictures: the view returns when it is off");
-        lines.push(ab_note);
-    }
-    app.view_state.painted.legend = lines.iter().map(|l| l.to_string()).collect();
-    // Wrapped to the view's width: a long legend takes a second line rather than being cut.
-    for legend in lines {
-        let galley = painter.layout(
-            legend.to_string(),
-            legend_font.clone(),
-            Color32::LIGHT_GRAY,
-            legend_rect.width() - 8.0,
-        );
-        let height = galley.size().y;
-        painter.galley(pos2(legend_rect.left() + 4.0, y), galley, Color32::LIGHT_GRAY);
-        y += height;
-    }
+    app.schedule_render(camera.picture_px(ui.ctx().pixels_per_point()));
+    let slow = app.render_is_slow();
+    app.camera_panel.ui(ui, &camera, &mut app.state, &app.render.shown, slow);
     if show_map {
-        super::map_panel::shadow_map_panel(app, ui, map_rect);
+        app.map_panel.ui(ui, map_rect, &mut app.state, &app.render.shown);
     }
     ui.allocate_rect(full, Sense::hover());
 }
 
-/// The largest rectangle of the frame's shape in `area`, centred across and at its top.
-pub(super) fn letterbox(area: Rect, (frame_w, frame_h): (u32, u32)) -> Rect {
-    let aspect = frame_w as f32 / frame_h as f32;
-    let width = area.width().min(area.height() * aspect).max(1.0);
-    let size = vec2(width, width / aspect);
-    Rect::from_min_size(pos2(area.center().x - size.x * 0.5, area.top()), size)
-}
-
-/// Views of the light's map rather than of the camera's picture.
-pub(super) fn is_light_space(view: View) -> bool {
-    matches!(view, View::ShadowMap | View::Moments)
-}
-
 impl ShadowlabApp {
-    /// The view the camera panel is set to show: the chosen one, or the shaded picture while
-    /// the A/B split compares two of them.
-    pub fn camera_view_kind(&self) -> View {
-        if self.state.ab.is_some() { View::Final } else { self.state.view }
-    }
-
     /// The view the camera panel shows now: the chosen one once it is worked out for the frame
     /// on screen, the shaded image until then (a preview while dragging, the first frame).
     pub fn camera_panel_view(&self) -> View {
-        let view = self.camera_view_kind();
-        let ready = match view {
-            View::Final => true,
-            View::ShadowMap => self.view_state.map.is_some(),
-            _ => self.view_state.view_image.is_some() && !self.overlays_stale(),
-        };
-        if ready { view } else { View::Final }
-    }
-
-    /// Lines of legend the view and the overlays will take (wrapping aside).
-    fn legend_lines_expected(&self) -> usize {
-        let view = self.camera_view_kind();
-        let of_view = match view {
-            View::Final | View::ShadowMap => 0,
-            View::Moments | View::Error => 2,
-            _ => 1,
-        };
-        let overlays = self
-            .overlays
-            .iter()
-            .filter(|&&o| o != Overlay::LightFrustum && !crate::views::overlays::hidden_by_view(view, o))
-            .count();
-        (of_view + overlays + usize::from(self.state.ab.is_some())).max(1)
+        self.camera_panel.view_shown(&self.state, &self.render.shown)
     }
 
     /// What the camera panel painted in the last frame.
     pub fn camera_paint(&self) -> &CameraPaint {
-        &self.view_state.painted
-    }
-}
-
-/// What the camera panel shows: a drop-down in its top-left corner (lesson steps set it too).
-pub(super) fn view_selector(app: &mut ShadowlabApp, ui: &mut Ui, rect: Rect) {
-    let corner = Rect::from_min_size(rect.min + vec2(8.0, 8.0), vec2(190.0, 24.0));
-    let mut child = ui.new_child(egui::UiBuilder::new().max_rect(corner));
-    let before = app.state.view;
-    let response = egui::ComboBox::from_id_salt("camera view")
-        .selected_text(format!("{}: {}", tr(app.state.lang, "view"), app.state.view.label(app.state.lang)))
-        // Every view in reach without scrolling.
-        .height(f32::INFINITY)
-        .show_ui(&mut child, |ui| {
-            for view in View::ALL {
-                ui.selectable_value(&mut app.state.view, view, view.label(app.state.lang));
-            }
-        })
-        .response
-        .on_hover_text(tr(app.state.lang, "What the camera panel shows (`--view` in the CLI)"));
-    app.view_state.painted.selector = response.rect;
-    if app.state.view != before {
-        // The analysis pass (and the ground truth) may be needed now.
-        app.state.mark_dirty();
-        app.view_state.invalidate();
+        self.camera_panel.painted()
     }
 }
