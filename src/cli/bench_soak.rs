@@ -73,6 +73,11 @@ pub struct SoakReport {
     pub rss_at_last_new_pipeline_mb: Option<f64>,
     /// GPU memory, where the adapter reports it (lavapipe does not).
     pub gpu_memory_mb: Option<f64>,
+    /// Freed memory handed back to the system (`malloc_trim`, every 2 s of drawing): how often,
+    /// and the time it took on the UI thread, ms, in all and at most once.
+    pub pages_returned: u64,
+    pub pages_returned_total_ms: f64,
+    pub pages_returned_max_ms: f64,
     /// Every play period advanced scene time and put new images on screen.
     pub moving_throughout: bool,
     /// Judged on soaks of `JUDGE_MEMORY_FROM` or longer: end within 10% of the early reading.
@@ -273,6 +278,10 @@ impl Soak {
             report.seconds = self.started.elapsed().as_secs_f64();
             report.frames_rendered = self.app.frames_shown();
             report.rss_end_mb = rss_mb();
+            let trims = crate::ui::trim_stats();
+            report.pages_returned = trims.calls;
+            report.pages_returned_total_ms = trims.total_ms;
+            report.pages_returned_max_ms = trims.max_ms;
             report.rss_growth = report.rss_early_mb.zip(report.rss_end_mb).map(|(a, b)| (b - a) / a);
             report.rss_growth_from_60_s =
                 report.rss_at_60_s_mb.zip(report.rss_end_mb).map(|(a, b)| (b - a) / a);

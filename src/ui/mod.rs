@@ -12,6 +12,7 @@ mod homework_view;
 mod inspector;
 mod lesson_panel;
 mod map_panel;
+mod memory;
 #[cfg(target_arch = "wasm32")]
 mod page;
 #[cfg(target_arch = "wasm32")]
@@ -28,6 +29,7 @@ pub use crate::app::{
     AbSplit, AppError, AppState, PLAYBACK_RANGE_S, ProbeAt, Settings, Source, scene_for_obj,
 };
 pub use inspector::{control_label, value_label};
+pub use memory::{TrimStats, trim_stats};
 pub use panels::DIAGRAM_MIN_TEXT_PT;
 pub use window::{clear_paints_panels, configure_wgpu, window_render_options};
 #[cfg(not(target_arch = "wasm32"))]
@@ -335,6 +337,7 @@ impl eframe::App for ShadowlabApp {
         self.advance_time(web_time::Instant::now());
         self.watch_homework(&ctx);
         self.receive_renders(&ctx);
+        memory::return_free_pages_now_and_then();
         #[cfg(target_arch = "wasm32")]
         {
             page::publish(self.render.frames_shown, &self.state);
