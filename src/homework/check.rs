@@ -23,6 +23,16 @@ const NAN_SHARE: f64 = 0.001;
 const RANGE_EPS: f32 = 1e-3;
 /// `visibility_out_of_range`: more than this share of the pixels with a finite visibility.
 const OUT_OF_RANGE_SHARE: f64 = 0.001;
+/// `visibility_scaled`: the student's visibility is shadowlab's times a constant k (least squares)
+/// that is off 1 by more than this...
+const SCALE_OFF: f64 = 0.1;
+/// ...the scaled picture's mean |v - k s| under this share of the unscaled one's mean |v - s| (the
+/// scale explains the difference)...
+const SCALE_FIT_GAIN: f64 = 0.25;
+/// ...and its R^2 (1 - sum (v - k s)^2 / sum (v - mean v)^2) at least this: the scaled picture has
+/// the student's shadows. A picture flat whatever shadowlab's shows (a filter spanning the map)
+/// is not a scale, however close its mean is to k s.
+const SCALE_R2: f64 = 0.8;
 /// `umbra_not_dark`: the student's mean visibility over the ground truth's umbra above this.
 const UMBRA_MEAN_LIMIT: f64 = 0.25;
 /// `shadows_missing` (instead of `umbra_not_dark`): the umbra's mean visibility above this.
@@ -112,6 +122,36 @@ pub fn penumbra_widths(
     Some((field.width_along(&theirs, pixel, dir, 20), truth_width))
 }
 
+/// A visibility fitted as a constant times shadowlab's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct ScaleFit {
+    /// k = sum v s / sum s^2, least squares.
+    scale: f64,
+    /// Mean |v - k s| and mean |v - s|.
+    fit_error: f64,
+    unscaled_error: f64,
+    /// 1 - sum (v - k s)^2 / sum (v - mean v)^2; None where the student's picture is flat.
+    r_squared: Option<f64>,
+    pixels: usize,
+}
+
+/// The least-squares k of `v = k s` over pairs (v, s); None where shadowlab's values are all 0.
+fn fit_scale(pairs: &[(f32, f32)]) -> Option<ScaleFit> {
+    let pairs: Vec<(f64, f64)> = pairs.iter().map(|&(v, s)| (f64::from(v), f64::from(s))).collect();
+    let (vs, ss) = pairs.iter().fold((0.0, 0.0), |(vs, ss), &(v, s)| (vs + v * s, ss + s * s));
+    if ss <= 0.0 {
+        return None;
+    }
+    let scale = vs / ss;
+    let fit_error = mean(pairs.iter().map(|&(v, s)| (v - scale * s).abs()))?;
+    let unscaled_error = mean(pairs.iter().map(|&(v, s)| (v - s).abs()))?;
+    let v_mean = mean(pairs.iter().map(|&(v, _)| v))?;
+    let spread: f64 = pairs.iter().map(|&(v, _)| (v - v_mean).powi(2)).sum();
+    let residual: f64 = pairs.iter().map(|&(v, s)| (v - scale * s).powi(2)).sum();
+    let r_squared = (spread > 0.0).then(|| 1.0 - residual / spread);
+    Some(ScaleFit { scale, fit_error, unscaled_error, r_squared, pixels: pairs.len() })
+}
+
 fn mean(values: impl Iterator<Item = f64>) -> Option<f64> {
     let (sum, n) = values.fold((0.0, 0u64), |(s, n), v| (s + v, n + 1));
     (n > 0).then(|| sum / n as f64)
@@ -147,14 +187,16 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
         let ran = student.calls[i][0];
         (0..4).all(|k| ran & (1 << k) == 0 || student.returned[i][k].is_finite())
     };
-    let depends_on_clear = |i: usize| {
+    // Whether the visibility changes by more than `by` over a white map.
+    let changes_over_white = |i: usize, by: f32| {
         let (a, b) = (student.visibility(i), inputs.student_white_map.visibility(i));
         match (a, b) {
-            (Some(a), Some(b)) if a.is_finite() && b.is_finite() => (a - b).abs() > 0.1,
+            (Some(a), Some(b)) if a.is_finite() && b.is_finite() => (a - b).abs() > by,
             (Some(a), Some(b)) => a.is_finite() != b.is_finite(),
             (a, b) => a.is_some() != b.is_some(),
         }
     };
+    let depends_on_clear = |i: usize| changes_over_white(i, 0.1);
     let changed = shaded.iter().filter(|&&i| sound(i) && depends_on_clear(i)).count();
     f.uncleared_map_share = if shaded.is_empty() { 0.0 } else { changed as f64 / shaded.len() as f64 };
     let field =
@@ -227,6 +269,59 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
             step: 2,
         });
     }
+    // A visibility scaled by a constant (a PCF sum divided by a count other than its number of
+    // taps, or divided twice) is fitted where the comparison is sound: finite, no recorded
+    // function NaN, and no uncovered texel read (the visibility does not change at all over a
+    // white map: a change of 0.1 would let a sum divided by 32 hide one). Under PCSS the fit keeps
+    // to the pixels where the student's PCF ran: where findBlocker found no blocker PCSS returns
+    // its lit value unfiltered, with no sum to divide.
+    let filtered = |i: usize| student.calls[i][0] & 2 != 0;
+    let comparable: Vec<(usize, f32)> =
+        finite.iter().copied().filter(|&(i, _)| sound(i) && !changes_over_white(i, 0.0)).collect();
+    let through_filter =
+        inputs.visibility_function == Some(3) && comparable.iter().any(|&(i, _)| filtered(i));
+    let fitted: Vec<(f32, f32)> = comparable
+        .iter()
+        .filter(|&&(i, _)| !through_filter || filtered(i))
+        .map(|&(i, v)| (v, inputs.shadowlab[i]))
+        .collect();
+    let scale_fit = fit_scale(&fitted);
+    // A scale above 1 puts the lit area above 1: the range's finding speaks for it, alone (its
+    // figures say by how much, and a sum left undivided is a scale of 32 with no divisor to
+    // name). On a scene with a lit area a scale above 1 cannot stay inside [0, 1].
+    let scaled = scale_fit.filter(|fit| {
+        !range_wrong
+            && fit.scale > 0.0
+            && (fit.scale - 1.0).abs() > SCALE_OFF
+            && fit.fit_error < SCALE_FIT_GAIN * fit.unscaled_error
+            && fit.r_squared.is_some_and(|r2| r2 >= SCALE_R2)
+    });
+    if let Some(fit) = scaled {
+        let mut figures = BTreeMap::from([
+            ("scale", fit.scale),
+            ("one_over_scale", 1.0 / fit.scale),
+            ("fit_mean_abs_error", fit.fit_error),
+            ("unscaled_mean_abs_error", fit.unscaled_error),
+            ("fitted_pixels", fit.pixels as f64),
+        ]);
+        if let Some(r2) = fit.r_squared {
+            figures.insert("r_squared", r2);
+        }
+        if let Some(lit) = f.lit_area_mean {
+            figures.insert("lit_area_mean", lit);
+        }
+        findings.push(Finding {
+            id: "visibility_scaled",
+            figures,
+            explanation: fill(
+                lang,
+                "Your visibility is shadowlab's times {:.3} (divided once more by {:.1}): a fully lit point reads {:.3}, not 1. Visibility is the share of the light a point sees, so where all of it is seen it must be 1: the sum of the 0/1 tests is divided twice (is {:.1} one of your sample counts?), or by a count other than the number of tests summed (PCF_NUM_SAMPLES * 2), or multiplied by a weight.",
+                &[&fit.scale, &(1.0 / fit.scale), &fit.scale, &(1.0 / fit.scale)],
+            ),
+            lesson: "pcf",
+            step: 2,
+        });
+    }
     // The umbra is judged on how dark it is: a visibility above 1 counts as fully lit (1), below 0
     // as dark (0). Unclamped, a sum left undivided would weigh its count of lit taps (3 of 32
     // weighs 3) and the umbra would read as missing; the wrong count is the finding above's.
@@ -260,10 +355,12 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     }
     let soft_share = f.penumbra_pixels as f64 / f.penumbra_pixels_ground_truth.max(1) as f64;
     // Soft pixels are counted on [0, 1]: out of it they measure the divisor, not the filter (a sum
-    // left undivided is never between 0 and 1).
+    // left undivided is never between 0 and 1); scaled, they measure the scale (a sum divided
+    // twice is never above 1/32).
     if inputs.visibility_function == Some(3)
         && !shadows_missing
         && !range_wrong
+        && scaled.is_none()
         && f.penumbra_pixels_ground_truth >= PENUMBRA_PIXELS_MIN
         && soft_share < PENUMBRA_SHARE_LIMIT
     {
@@ -294,7 +391,8 @@ pub fn check(inputs: &CheckInputs<'_>, lang: Lang) -> (Figures, Vec<Finding>) {
     // Acne darkens lit surfaces in a picture whose shadows are otherwise right; where the umbra
     // is wrong too, the whole lookup is, and the findings above say so.
     let umbra_right = umbra_mean.is_none_or(|m| m <= UMBRA_MEAN_LIMIT);
-    if umbra_right && acne > ACNE_SHARE {
+    // A lit area scaled down is darkened everywhere, by the divisor: the scale's finding.
+    if umbra_right && scaled.is_none() && acne > ACNE_SHARE {
         findings.push(Finding {
             id: "self_shadowing",
             figures: BTreeMap::from([("darkened_share", acne), ("lit_facing_pixels", facing_lit.len() as f64)]),
@@ -339,7 +437,9 @@ mod tests {
         }
     }
 
-    fn ids(student: &HomeworkImages, truth: &[f32]) -> Vec<&'static str> {
+    /// The findings of `student` where shadowlab's technique is the ground truth, every surface
+    /// facing the light.
+    fn findings(student: &HomeworkImages, truth: &[f32], lang: Lang) -> Vec<Finding> {
         let facing = vec![Some(1.0); truth.len()];
         let inputs = CheckInputs {
             student,
@@ -350,7 +450,11 @@ mod tests {
             visibility_function: Some(3),
             positions: &[],
         };
-        check(&inputs, Lang::En).1.iter().map(|f| f.id).collect()
+        check(&inputs, lang).1
+    }
+
+    fn ids(student: &HomeworkImages, truth: &[f32]) -> Vec<&'static str> {
+        findings(student, truth, Lang::En).iter().map(|f| f.id).collect()
     }
 
     #[test]
@@ -444,6 +548,96 @@ mod tests {
         // Divided right, the same picture has its penumbra.
         let divided = images(|i| undivided.returned[i][2] / 32.0);
         assert_eq!(ids(&divided, &truth), Vec::<&str>::new());
+    }
+
+    /// An umbra, 200 soft pixels (enough to judge a penumbra) and a lit area.
+    fn soft_truth() -> Vec<f32> {
+        (0..400)
+            .map(|i| match i {
+                0..100 => 0.0,
+                100..300 => 0.5,
+                _ => 1.0,
+            })
+            .collect()
+    }
+
+    /// A PCF sum divided twice (k = 1/32: no soft pixel, lit surfaces dark) or by twice its count
+    /// (k = 0.5): the scale's finding alone, not a missing penumbra or acne.
+    #[test]
+    fn a_visibility_scaled_by_a_constant_is_scaled_and_only_that() {
+        let truth = soft_truth();
+        for k in [1.0 / 32.0, 0.5] {
+            let scaled = images(|i| truth[i] * k);
+            assert_eq!(ids(&scaled, &truth), ["visibility_scaled"], "k = {k}");
+            let found = findings(&scaled, &truth, Lang::En);
+            let figures = &found[0].figures;
+            assert!((figures["scale"] - f64::from(k)).abs() < 1e-6, "k = {k}: {figures:?}");
+            assert!((figures["one_over_scale"] - 1.0 / f64::from(k)).abs() < 1e-3, "k = {k}: {figures:?}");
+            assert!(figures["fit_mean_abs_error"] < 1e-6 && figures["r_squared"] > 0.999, "{figures:?}");
+            assert!((figures["unscaled_mean_abs_error"] - 0.5 * f64::from(1.0 - k)).abs() < 1e-6);
+            assert_eq!(figures["lit_area_mean"], f64::from(k));
+            assert_eq!(figures["fitted_pixels"], 400.0);
+            assert_eq!((found[0].lesson, found[0].step), ("pcf", 2));
+        }
+        let twice = images(|i| truth[i] / 32.0);
+        let explanation = &findings(&twice, &truth, Lang::En)[0].explanation;
+        assert!(
+            explanation.starts_with("Your visibility is shadowlab's times 0.031 (divided once more by 32.0)"),
+            "{explanation}"
+        );
+        let explanation = &findings(&twice, &truth, Lang::Zh)[0].explanation;
+        assert!(explanation.contains("0.031 倍") && explanation.contains("32.0"), "{explanation}");
+        // Scaled above 1, the lit area leaves [0, 1]: the range's finding speaks for it.
+        let above = images(|i| truth[i] * 32.0 / 24.0);
+        assert_eq!(ids(&above, &truth), ["visibility_out_of_range"]);
+    }
+
+    /// PCSS returns 1 unfiltered where findBlocker finds no blocker: those pixels are not
+    /// divided, and the scale is fitted where PCF ran.
+    #[test]
+    fn under_pcss_the_scale_is_fitted_where_the_filter_ran() {
+        let truth = soft_truth();
+        let no_blocker = |i: usize| i >= 360;
+        let mut twice = images(|i| if no_blocker(i) { 1.0 } else { truth[i] / 32.0 });
+        for (i, calls) in twice.calls.iter_mut().enumerate() {
+            // PCSS and findBlocker ran everywhere, PCF where a blocker was found.
+            calls[0] = if no_blocker(i) { 0b1100 } else { 0b1110 };
+        }
+        assert_eq!(ids(&twice, &truth), ["visibility_scaled"]);
+        let found = findings(&twice, &truth, Lang::En);
+        let figures = &found[0].figures;
+        assert_eq!((figures["scale"], figures["fitted_pixels"]), (1.0 / 32.0, 360.0));
+        assert_eq!(figures["lit_area_mean"], (60.0 / 32.0 + 40.0) / 100.0);
+        // Where no PCF is recorded the fit is over every pixel, and the forty that read 1 spoil it.
+        let everywhere = images(|i| twice.returned[i][2]);
+        assert!(!ids(&everywhere, &truth).contains(&"visibility_scaled"));
+    }
+
+    /// A right solution differs from shadowlab's by noise, a few hundredths around the edges: no
+    /// scale; nor is a picture flat whatever shadowlab's shows one, however close its mean.
+    #[test]
+    fn a_right_or_flat_visibility_is_not_scaled() {
+        let truth = soft_truth();
+        let shadowlab: Vec<f32> =
+            truth.iter().enumerate().map(|(i, &t)| t + 0.02 * (i % 3) as f32 - 0.02).collect();
+        let shadowlab: Vec<f32> = shadowlab.iter().map(|s| s.clamp(0.0, 1.0)).collect();
+        let right = images(|i| truth[i]);
+        let facing = [Some(1.0); 400];
+        let inputs = CheckInputs {
+            student: &right,
+            student_white_map: &right,
+            shadowlab: &shadowlab,
+            ground_truth: &truth,
+            facing: &facing,
+            visibility_function: Some(3),
+            positions: &[],
+        };
+        assert_eq!(check(&inputs, Lang::En).1, []);
+        // Lit reads 0.6, and so does the umbra: the scaled picture's mean error is a twentieth of
+        // the unscaled one's, but the scale has not the student's shadow (R^2 far under 0).
+        let truth: Vec<f32> = (0..400).map(|i| if i < 10 { 0.0 } else { 1.0 }).collect();
+        let flat = images(|i| 0.6 + 0.01 * (i % 2) as f32);
+        assert_eq!(ids(&flat, &truth), ["umbra_not_dark"]);
     }
 
     #[test]

@@ -15,6 +15,10 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "你的着色器返回的可见度中有 {:.1}% 超出了 [0, 1]，范围从 {:.2} 到 {:.2}。可见度是一个点能看到的光的比例：滤波器必须用它实际求和的测试次数去除 0/1 测试结果之和，而不是用别的个数（PCF_NUM_SAMPLES - 8），也不能不除。",
     ),
     (
+        "Your visibility is shadowlab's times {:.3} (divided once more by {:.1}): a fully lit point reads {:.3}, not 1. Visibility is the share of the light a point sees, so where all of it is seen it must be 1: the sum of the 0/1 tests is divided twice (is {:.1} one of your sample counts?), or by a count other than the number of tests summed (PCF_NUM_SAMPLES * 2), or multiplied by a weight.",
+        "你的可见度是 shadowlab 的 {:.3} 倍（多除了一次 {:.1}）：完全受光的点读出来是 {:.3}，而不是 1。可见度是一个点能看到的光的比例，所以能看到全部光的地方必须是 1：0/1 测试结果之和被除了两次（{:.1} 是不是你的某个采样数？），或者除以的不是实际求和的测试次数，而是别的个数（PCF_NUM_SAMPLES * 2），或者乘上了一个权重。",
+    ),
+    (
         "Where the ground truth is in full shadow, your visibility averages {:.2}: the shadows are missing. The lookups do not meet the blockers: coordinates in the wrong space (NDC in [-1, 1] where the map wants [0, 1]), depths compared in different units, or the wrong matrix.",
         "在真实结果处于全影的地方，你的可见度平均为 {:.2}：阴影不见了。查询没有碰到遮挡物：坐标用错了空间（贴图需要 [0, 1]，却给了 [-1, 1] 的 NDC）、比较的两个深度单位不同，或者用错了矩阵。",
     ),
