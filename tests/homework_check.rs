@@ -144,6 +144,34 @@ fn a_pcf_sum_divided_by_the_wrong_count_is_out_of_range_and_only_that() {
     }
 }
 
+/// A PCF sum of 32 tests divided by PCF_NUM_SAMPLES twice: visibility 1/32 of shadowlab's
+/// wherever the filter ran, and that finding alone (not a missing penumbra or acne).
+#[test]
+fn a_pcf_sum_divided_twice_is_scaled_and_only_that() {
+    let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
+    let twice = source.replace(
+        "  return lit / float(PCF_NUM_SAMPLES);",
+        "  return lit / float(PCF_NUM_SAMPLES) / float(PCF_NUM_SAMPLES);",
+    );
+    assert_ne!(twice, source);
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let shader = scratch.path().join("phongFragment.glsl");
+    std::fs::write(&shader, twice).expect("write the shader");
+    let report = check(&shader.display().to_string(), &[], &scratch.path().join("out"));
+    assert_eq!(finding_ids(&report), ["visibility_scaled"], "{report:#}");
+    let finding = &report["findings"][0];
+    let figure = |key: &str| finding["figures"][key].as_f64().unwrap_or_else(|| panic!("{key}: {finding}"));
+    // The correct solution's own scale against shadowlab's PCSS is 1 within 0.1% (noise of the
+    // sample pattern); 2% keeps 32 apart from 31 and 33.
+    assert!((32.0 * figure("scale") - 1.0).abs() < 0.02, "{finding}");
+    assert!((figure("one_over_scale") - 32.0).abs() < 0.64, "{finding}");
+    assert!(figure("fit_mean_abs_error") < 0.01 * figure("unscaled_mean_abs_error"), "{finding}");
+    // Where findBlocker finds no blocker PCSS returns 1 unfiltered: the lit area reads a little
+    // above 1/32.
+    assert!(figure("lit_area_mean") < 0.2, "{finding}");
+    assert_eq!((finding["lesson"].as_str(), finding["step"].as_u64()), (Some("pcf"), Some(2)));
+}
+
 #[test]
 fn a_shader_that_does_not_compile_exits_2_on_the_students_own_line() {
     let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
