@@ -22,12 +22,12 @@ const OVERLAYS: [Overlay; 3] = [Overlay::Penumbra, Overlay::OutsideFrustum, Over
 /// The views gone through, one per cycle.
 const VIEWS: [View; 5] =
     [View::Final, View::Visibility, View::Penumbra, View::ShadowMap, View::BlockerRadius];
-/// The tour's stops: every lesson in every view, each played a moment then paused for its
-/// full detail (the soak's own cycle, shorter).
+/// The tour's stops: every lesson in every view, each played then paused for its full detail:
+/// the soak's own cycle once in each lesson and view.
 const TOUR: usize = LESSONS.len() * VIEWS.len();
-/// Playback at a stop of the tour.
-const TOUR_PLAY: Duration = Duration::from_secs(1);
-/// Playback between two pauses, seconds of wall-clock time.
+/// Playback between two pauses, seconds of wall-clock time, on the tour as after it. (A shorter
+/// play on the tour left the multi-light lesson's steady state, the frames and read-backs in
+/// flight while it plays, to the soak proper: 25-60 MB after the first reading.)
 const PLAY: Duration = Duration::from_secs(4);
 /// Cycles (play, pause for the full detail, switch the view) per lesson before the next one.
 const CYCLES_PER_LESSON: u32 = 5;
@@ -120,8 +120,10 @@ struct Soak {
     outcome: Arc<Mutex<Option<Result<SoakReport, String>>>>,
 }
 
-/// Resident memory of this process, MB (Linux).
+/// Resident memory of this process, MB (Linux), once freed memory is handed back: what the
+/// process holds, whenever within the app's 2 s between two hand-backs it is read.
 fn rss_mb() -> Option<f64> {
+    crate::ui::return_free_pages();
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
     let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
@@ -204,7 +206,7 @@ impl Soak {
             Stage::Touring { index, since, frames_before } => {
                 // Each stop is a short cycle: play, pause until the full-detail frame is in.
                 if self.app.playing {
-                    if since.elapsed() >= TOUR_PLAY && self.app.frames_shown() > frames_before {
+                    if since.elapsed() >= PLAY && self.app.frames_shown() > frames_before {
                         self.app.playing = false;
                         self.app.mark_dirty();
                         self.stage = Stage::Touring { index, since: Instant::now(), frames_before };

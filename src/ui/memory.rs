@@ -35,6 +35,13 @@ pub fn return_free_pages_now_and_then() {
         return;
     }
     LAST.set(Some(now));
+    return_free_pages();
+}
+
+/// Hand freed memory back to the system now (a memory reading first does, so that it reads what
+/// the process holds, not what the allocator kept of what it freed).
+pub fn return_free_pages() {
+    let now = Instant::now();
     if release() {
         let ms = now.elapsed().as_secs_f64() * 1e3;
         let mut stats = STATS.get();

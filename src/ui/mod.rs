@@ -29,7 +29,7 @@ pub use crate::app::{
     AbSplit, AppError, AppState, PLAYBACK_RANGE_S, ProbeAt, Settings, Source, scene_for_obj,
 };
 pub use inspector::{control_label, value_label};
-pub use memory::{TrimStats, trim_stats};
+pub use memory::{TrimStats, return_free_pages, trim_stats};
 pub use panels::DIAGRAM_MIN_TEXT_PT;
 pub use window::{clear_paints_panels, configure_wgpu, window_render_options};
 #[cfg(not(target_arch = "wasm32"))]
