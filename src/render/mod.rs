@@ -23,7 +23,7 @@ pub(crate) use context::scope_error;
 #[cfg(not(target_arch = "wasm32"))]
 pub use context::{GpuContext, headless_adapter};
 pub use context::{ScopeAnswer, error_line};
-pub use context::{describe_adapter, optional_features};
+pub use context::{describe_adapter, device_descriptor, optional_features};
 pub use frame::{Frame, FrameRequest};
 pub use pipelines::{COLOR_FORMAT, pipelines_built};
 pub use readback::{GpuWait, Readback};

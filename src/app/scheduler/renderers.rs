@@ -60,13 +60,9 @@ pub(super) struct Renderers {
 /// Renderers on a device of their own (the desktop: the device opens at once).
 #[cfg(not(target_arch = "wasm32"))]
 pub(super) fn open(adapter: &wgpu::Adapter) -> Result<Renderers, RenderError> {
-    let (device, queue) = pollster::block_on(adapter.request_device(&wgpu::DeviceDescriptor {
-        label: Some("shadowlab render worker"),
-        required_features: adapter.features() & crate::render::optional_features(),
-        required_limits: adapter.limits(),
-        ..Default::default()
-    }))
-    .map_err(|e| RenderError::Device(e.to_string()))?;
+    let descriptor = crate::render::device_descriptor(adapter, "shadowlab render worker");
+    let (device, queue) = pollster::block_on(adapter.request_device(&descriptor))
+        .map_err(|e| RenderError::Device(e.to_string()))?;
     open_on(device, queue)
 }
 
