@@ -34,6 +34,17 @@ fn check(shader: &str, extra: &[&str], out: &Path) -> Value {
     report
 }
 
+/// The correct solution with `from` replaced by `to` (a mistake made on purpose), written into
+/// `scratch` and checked there into `out`: its report.
+fn check_edited(scratch: &Path, from: &str, to: &str, out: &str) -> Value {
+    let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
+    let edited = source.replace(from, to);
+    assert_ne!(edited, source, "{from:?} is not in the example");
+    let shader = scratch.join("phongFragment.glsl");
+    std::fs::write(&shader, edited).expect("write the shader");
+    check(&shader.display().to_string(), &[], &scratch.join(out))
+}
+
 fn finding_ids(report: &Value) -> Vec<String> {
     report["findings"]
         .as_array()
@@ -99,16 +110,13 @@ fn each_example_gets_exactly_its_findings_and_the_correct_one_none() {
 
 #[test]
 fn a_hard_shadow_is_compared_with_shadowlabs_hard_shadow_and_has_no_penumbra_to_miss() {
-    let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
-    let hard = source.replace(
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let report = check_edited(
+        scratch.path(),
         "  visibility = PCSS(uShadowMap, vec4(shadowCoord, 1.0));",
         "  visibility = useShadowMap(uShadowMap, vec4(shadowCoord, 1.0));",
+        "out",
     );
-    assert_ne!(hard, source);
-    let scratch = tempfile::tempdir().expect("a scratch folder");
-    let shader = scratch.path().join("phongFragment.glsl");
-    std::fs::write(&shader, hard).expect("write the shader");
-    let report = check(&shader.display().to_string(), &[], &scratch.path().join("out"));
     assert_eq!(report["calls"], serde_json::json!(["useShadowMap"]));
     assert_eq!(report["compared_with"], "hard");
     assert_eq!(finding_ids(&report), Vec::<String>::new(), "{report:#}");
@@ -119,17 +127,13 @@ fn a_hard_shadow_is_compared_with_shadowlabs_hard_shadow_and_has_no_penumbra_to_
 /// 1, and that finding alone (not missing shadows, a missing penumbra or acne).
 #[test]
 fn a_pcf_sum_divided_by_the_wrong_count_is_out_of_range_and_only_that() {
-    let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
     let scratch = tempfile::tempdir().expect("a scratch folder");
     for (what, divided, max) in [
         ("PCF_NUM_SAMPLES - 8", "  return lit / float(PCF_NUM_SAMPLES - 8);", 32.0 / 24.0),
         ("no division", "  return lit;", 32.0),
     ] {
-        let wrong = source.replace("  return lit / float(PCF_NUM_SAMPLES);", divided);
-        assert_ne!(wrong, source);
-        let shader = scratch.path().join("phongFragment.glsl");
-        std::fs::write(&shader, wrong).expect("write the shader");
-        let report = check(&shader.display().to_string(), &[], &scratch.path().join(what.replace(' ', "_")));
+        let out = what.replace(' ', "_");
+        let report = check_edited(scratch.path(), "  return lit / float(PCF_NUM_SAMPLES);", divided, &out);
         assert_eq!(finding_ids(&report), ["visibility_out_of_range"], "{what}: {report:#}");
         let finding = &report["findings"][0];
         let figure = |key: &str| finding["figures"][key].as_f64().unwrap_or_else(|| panic!("{what}: {key}"));
@@ -148,16 +152,13 @@ fn a_pcf_sum_divided_by_the_wrong_count_is_out_of_range_and_only_that() {
 /// wherever the filter ran, and that finding alone (not a missing penumbra or acne).
 #[test]
 fn a_pcf_sum_divided_twice_is_scaled_and_only_that() {
-    let source = std::fs::read_to_string(example("phongFragment.glsl")).expect("the example");
-    let twice = source.replace(
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let report = check_edited(
+        scratch.path(),
         "  return lit / float(PCF_NUM_SAMPLES);",
         "  return lit / float(PCF_NUM_SAMPLES) / float(PCF_NUM_SAMPLES);",
+        "out",
     );
-    assert_ne!(twice, source);
-    let scratch = tempfile::tempdir().expect("a scratch folder");
-    let shader = scratch.path().join("phongFragment.glsl");
-    std::fs::write(&shader, twice).expect("write the shader");
-    let report = check(&shader.display().to_string(), &[], &scratch.path().join("out"));
     assert_eq!(finding_ids(&report), ["visibility_scaled"], "{report:#}");
     let finding = &report["findings"][0];
     let figure = |key: &str| finding["figures"][key].as_f64().unwrap_or_else(|| panic!("{key}: {finding}"));
