@@ -73,8 +73,9 @@ pub struct SoakReport {
     pub rss_at_last_new_pipeline_mb: Option<f64>,
     /// GPU memory, where the adapter reports it (lavapipe does not).
     pub gpu_memory_mb: Option<f64>,
-    /// Freed memory handed back to the system (`malloc_trim`, every 2 s of drawing): how often,
-    /// and the time it took on the UI thread, ms, in all and at most once.
+    /// Freed memory handed back to the system (`malloc_trim`, every 2 s of drawing and before
+    /// each memory reading): how often, and the time it took on the UI thread, ms, in all and at
+    /// most once.
     pub pages_returned: u64,
     pub pages_returned_total_ms: f64,
     pub pages_returned_max_ms: f64,
