@@ -355,12 +355,21 @@ fn the_frame_driven_scheduler_checks_a_homework_without_waiting() {
     let (_gpu, mut renderer) = common::gpu();
     let homework =
         HomeworkRenderer::new(renderer.device(), renderer.queue(), &program).expect("the pipelines");
-    let request = HomeworkRequest { time_s: 0.0, size, light: 0, clear_map_white: false };
+    let request =
+        HomeworkRequest { time_s: 0.0, size, light: 0, map: shadowlab::homework::MapKind::Framework };
+    let light = shadowlab::homework::HomeworkLight::of_scene(
+        &scene,
+        0,
+        0.0,
+        shadowlab::homework::FRAMEWORK_LIGHT_INTENSITY,
+    )
+    .expect("a light");
     let waited = shadowlab::homework::run_check(
         &homework,
         &mut renderer,
         &program.files.phong_fragment,
         &scene,
+        &light,
         &request,
         Lang::En,
     )

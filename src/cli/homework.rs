@@ -5,7 +5,8 @@
 
 use super::{CliError, parse_key_value, parse_size, parse_time};
 use crate::homework::{
-    HomeworkFiles, HomeworkProgram, HomeworkRenderer, HomeworkReport, HomeworkRequest, run_check,
+    HomeworkProgram, HomeworkRenderer, HomeworkReport, HomeworkRequest, HomeworkSource, MapKind,
+    ShaderSource, run_check,
 };
 use crate::i18n::Lang;
 use crate::scene::load_scene;
@@ -17,8 +18,9 @@ pub const DEFAULT_HOMEWORK_SCENE: &str = "assets/scenes/homework_check.toml";
 
 #[derive(Args, Debug)]
 pub struct HomeworkArgs {
-    /// The student's phongFragment.glsl (the framework's WebGL1 GLSL).
-    #[arg(value_name = "SHADER")]
+    /// The student's homework: their phongFragment.glsl (the framework's WebGL1 GLSL), their
+    /// homework folder, or a .zip of it (the framework's files are found wherever they lie).
+    #[arg(value_name = "PATH")]
     pub shader: PathBuf,
     /// The student's shadowFragment.glsl (its `pack`); default: the framework's.
     #[arg(long, value_name = "FILE")]
@@ -91,8 +93,15 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
             scene.lights.len()
         )));
     }
-    let files = HomeworkFiles::read(&args.shader, args.vertex.as_deref(), args.shadow_shader.as_deref())
-        .map_err(|e| CliError::input(e.to_string()))?;
+    let mut source = HomeworkSource::read(&args.shader).map_err(|e| CliError::input(e.to_string()))?;
+    let read = |path: &Path| ShaderSource::read(path).map_err(|e| CliError::input(e.to_string()));
+    if let Some(path) = &args.vertex {
+        source.files.phong_vertex = read(path)?;
+    }
+    if let Some(path) = &args.shadow_shader {
+        source.files.shadow_fragment = read(path)?;
+    }
+    let files = source.files.clone();
     let shader = files.phong_fragment.clone();
     let program = match HomeworkProgram::translate(files) {
         Ok(program) => program,
@@ -113,13 +122,21 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
     let homework = HomeworkRenderer::new(&ctx.device, &ctx.queue, &program)
         .map_err(|e| CliError::input(format!("{}: {e}", shader.name)))?;
     let request =
-        HomeworkRequest { time_s: args.time, size: args.size, light: args.light, clear_map_white: false };
-    let outcome = run_check(&homework, &mut renderer, &shader, &scene, &request, args.lang)
-        .map_err(|e| CliError { code: 1, message: format!("{}: {e}", shader.name) })?;
+        HomeworkRequest { time_s: args.time, size: args.size, light: args.light, map: MapKind::Framework };
+    let student = crate::homework::student_light::student_light(&source, &scene, args.light, args.time)
+        .ok_or_else(|| CliError::input(format!("--light {}: no such light", args.light)))?;
+    if let Some(error) = &student.report.error {
+        eprintln!("shadowlab: warning: {error}; checked with the framework's light instead");
+    }
+    let mut outcome =
+        run_check(&homework, &mut renderer, &shader, &student.scene, &student.light, &request, args.lang)
+            .map_err(|e| CliError { code: 1, message: format!("{}: {e}", shader.name) })?;
+    outcome.report.light = Some(student.report);
     // Everything encoded before the first file is written: a failure leaves no partial folder.
     let text = report_json(&outcome.report)?;
     let pictures = [
         ("student.png", png(&outcome.student_picture())?),
+        ("student_lossless_map.png", png(&outcome.student_picture_lossless_map())?),
         ("reference.png", png(&outcome.shadowlab_picture)?),
         ("visibility.png", png(&outcome.visibility_picture(false))?),
         ("ground_truth.png", png(&outcome.visibility_picture(true))?),

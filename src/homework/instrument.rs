@@ -1,7 +1,10 @@
 //! What the rewrite adds around a student's code so that shadowlab can run it and see into it:
 //! a `main` of its own that calls theirs (converting the framework's GL clip space in the vertex
 //! stage) and, in the fragment stage, a wrapper around each of `useShadowMap`, `PCF`, `PCSS` and
-//! `findBlocker` that records what it returned, written to two extra colour outputs.
+//! `findBlocker` that records what it returned, and a tap on every texture read inside them that
+//! records where it read: how many reads, how far from the receiver's own uv (the mean offset,
+//! its root mean square, the farthest), what shows a search radius, a filter radius, and samples
+//! that are not around the receiver.
 
 use super::Stage;
 use super::interface::{CLIP_Y_SIGN, is_precision};
@@ -18,27 +21,56 @@ pub const RECORDED_FUNCTIONS: [&str; 4] = ["useShadowMap", "PCF", "PCSS", "findB
 /// calls in all (at most 255), 1: the shader ran here).
 pub const RETURNED_OUTPUT: u32 = 1;
 pub const CALLS_OUTPUT: u32 = 2;
+/// The first of four outputs with where the recorded functions read the map (a read counts for
+/// the innermost recorded function running), offsets in uv of the map from the receiver's own uv
+/// (`vPositionFromLight.xy / w * 0.5 + 0.5`): for PCF, PCSS and findBlocker in turn (reads,
+/// |mean offset|, root mean square offset, largest offset), then PCF's and PCSS's stretch: the
+/// two components of the offsets' second moments without their trace, over it, ((xx - yy),
+/// 2 xy) / (xx + yy): (0, 0) for a disk, a unit vector at twice the angle of a line.
+pub const TAPS_OUTPUT: u32 = 3;
+/// The varying the receiver's uv comes from (a shader that does not declare it, the light pass's,
+/// reads at offsets from uv 0).
+pub(super) const POSITION_FROM_LIGHT: &str = "vPositionFromLight";
+/// The function a texture read's uv goes through.
+pub(super) const TAP: &str = "shadowlab_tap";
 
 /// A recorded function's wrapper: the student's definition renamed to `student`, called with
 /// the same arguments; the result recorded as function `k` and returned. One line.
 pub(super) fn wrapper(name: &str, k: usize, student: &str, params: &str, args: &str) -> String {
     format!(
-        "float {name}({params}) {{ shadowlab_depth += 1; float r = {student}({args}); \
-         shadowlab_depth -= 1; return shadowlab_record({k}u, r); }}"
+        "float {name}({params}) {{ shadowlab_depth += 1; uint shadowlab_caller = shadowlab_current; \
+         shadowlab_current = {current}u; float shadowlab_result = {student}({args}); \
+         shadowlab_current = shadowlab_caller; shadowlab_depth -= 1; \
+         return shadowlab_record({k}u, shadowlab_result); }}",
+        current = k + 1
     )
 }
 
-/// The fragment stage's prelude lines for the recording: the two outputs, the state, and
-/// `shadowlab_record` (the visibility is the last of the first three called at `main`'s level).
+/// The fragment stage's prelude lines for the recording: the outputs, the state,
+/// `shadowlab_record` (the visibility is the last of the first three called at `main`'s level)
+/// and the tap.
 pub(super) fn recording_prelude() -> String {
+    let taps: Vec<String> = (0..4)
+        .map(|k| format!("layout(location = {}) out vec4 shadowlab_Taps{k};", TAPS_OUTPUT + k))
+        .collect();
     format!(
         "layout(location = {RETURNED_OUTPUT}) out vec4 shadowlab_Returned; \
-         layout(location = {CALLS_OUTPUT}) out uvec4 shadowlab_Calls;\n\
+         layout(location = {CALLS_OUTPUT}) out uvec4 shadowlab_Calls; {taps}\n\
          vec4 shadowlab_returned; uint shadowlab_ran; uint shadowlab_visibility_function; \
-         uint shadowlab_calls; int shadowlab_depth;\n\
+         uint shadowlab_calls; int shadowlab_depth; uint shadowlab_current; \
+         vec4 shadowlab_tap_sums[4]; vec4 shadowlab_tap_moments[4]; vec2 shadowlab_receiver_uv;\n\
          float shadowlab_record(uint k, float r) {{ shadowlab_ran |= 1u << k; shadowlab_calls += 1u; \
          shadowlab_returned[k] = r; if (shadowlab_depth == 0 && k < 3u) {{ shadowlab_visibility_function = k + 1u; }} \
-         return r; }}\n"
+         return r; }}\n\
+         vec2 {TAP}(vec2 uv) {{ if (shadowlab_current > 0u) {{ uint k = shadowlab_current - 1u; \
+         vec2 d = uv - shadowlab_receiver_uv; shadowlab_tap_sums[k] += vec4(1.0, d, dot(d, d)); \
+         shadowlab_tap_moments[k] += vec4(d.x * d.x, d.y * d.y, d.x * d.y, 0.0); \
+         shadowlab_tap_moments[k].w = max(shadowlab_tap_moments[k].w, length(d)); }} return uv; }}\n\
+         vec4 shadowlab_taps(uint k) {{ vec4 s = shadowlab_tap_sums[k]; float n = max(s.x, 1.0); \
+         return vec4(s.x, length(s.yz) / n, sqrt(s.w / n), shadowlab_tap_moments[k].w); }}\n\
+         vec2 shadowlab_stretch(uint k) {{ vec4 m = shadowlab_tap_moments[k]; float t = m.x + m.y; \
+         return t > 0.0 ? vec2(m.x - m.y, 2.0 * m.z) / t : vec2(0.0); }}\n",
+        taps = taps.join(" ")
     )
 }
 
@@ -89,17 +121,26 @@ pub(super) fn wrapper_parameters(
 
 /// The lines after the student's: a `main` that calls theirs. The vertex stage's converts the
 /// framework's GL clip space to wgpu's (z from -w..w to 0..w; y flipped where the block says, so
-/// that the light pass writes its map the way WebGL lays it out); the fragment stage's writes
-/// what the recorded functions returned.
-pub(super) fn epilogue(stage: Stage) -> String {
+/// that the light pass writes its map the way WebGL lays it out); the fragment stage's finds the
+/// receiver's uv first (where the student's shader declares `vPositionFromLight`) and writes
+/// what the recorded functions returned and where they read.
+pub(super) fn epilogue(stage: Stage, declares_position_from_light: bool) -> String {
+    let receiver = if declares_position_from_light {
+        format!("shadowlab_receiver_uv = {POSITION_FROM_LIGHT}.xy / {POSITION_FROM_LIGHT}.w * 0.5 + 0.5;")
+    } else {
+        String::new()
+    };
     match stage {
         Stage::Vertex => format!(
             "void main() {{ {STUDENT_MAIN}(); gl_Position.z = (gl_Position.z + gl_Position.w) * 0.5; \
              gl_Position.y *= {CLIP_Y_SIGN}; }}\n"
         ),
         Stage::Fragment => format!(
-            "void main() {{ {STUDENT_MAIN}(); shadowlab_Returned = shadowlab_returned; \
-             shadowlab_Calls = uvec4(shadowlab_ran, shadowlab_visibility_function, min(shadowlab_calls, 255u), 1u); }}\n"
+            "void main() {{ {receiver} {STUDENT_MAIN}(); shadowlab_Returned = shadowlab_returned; \
+             shadowlab_Calls = uvec4(shadowlab_ran, shadowlab_visibility_function, min(shadowlab_calls, 255u), 1u); \
+             shadowlab_Taps0 = shadowlab_taps(1u); shadowlab_Taps1 = shadowlab_taps(2u); \
+             shadowlab_Taps2 = shadowlab_taps(3u); \
+             shadowlab_Taps3 = vec4(shadowlab_stretch(1u), shadowlab_stretch(2u)); }}\n"
         ),
     }
 }

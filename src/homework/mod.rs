@@ -14,10 +14,15 @@
 //! [`interface`]; a student's own uniforms and varyings are gathered from both stages with
 //! [`Interface::gather`] so that the two stages agree on locations and layout.
 
-mod check;
+mod figures;
+pub mod findings;
+mod images;
 mod instrument;
 mod interface;
 mod lex;
+mod light;
+mod light_script;
+mod light_width;
 mod pass;
 mod penumbra;
 mod pipeline;
@@ -25,18 +30,22 @@ mod program;
 mod rewrite;
 mod run;
 mod session;
+pub mod student_light;
+pub mod submission;
 mod translate;
 
-pub use check::{Figures, Finding};
-pub use instrument::{CALLS_OUTPUT, RECORDED_FUNCTIONS, RETURNED_OUTPUT};
+pub use figures::Figures;
+pub use findings::{Finding, Severity};
+pub use images::{HomeworkImages, TapImages, Taps};
+pub use instrument::{CALLS_OUTPUT, RECORDED_FUNCTIONS, RETURNED_OUTPUT, TAPS_OUTPUT};
 pub use interface::{
     ATTRIBUTES, Binding, BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS,
     FRAMEWORK_UNIFORMS_SIZE_BYTES, FRAMEWORK_VARYINGS, Interface, SamplerFilter, UniformField,
 };
-pub use pass::{
-    FRAMEWORK_LIGHT_INTENSITY, HomeworkGpuError, HomeworkImages, HomeworkRenderer, HomeworkRequest,
-};
-pub use program::{HomeworkFiles, HomeworkProgram, ShaderSource, TranslatedProgram};
+pub use light::{HomeworkLight, LightFrom, ModelMatrixError, ReadLight, gl_from_wgpu_clip, read_light};
+pub use light_width::{LightWidthFit, SlabShadow};
+pub use pass::{FRAMEWORK_LIGHT_INTENSITY, HomeworkGpuError, HomeworkRenderer, HomeworkRequest, MapKind};
+pub use program::{HomeworkFiles, HomeworkProgram, HomeworkSource, ShaderSource, TranslatedProgram, is_zip};
 pub use rewrite::{FRAG_COLOR, Rewritten, rewrite};
 pub use run::CheckRun;
 pub use session::{CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, homework_picture, run_check};

@@ -1,16 +1,20 @@
 //! A homework's two passes on the GPU, as the framework draws them: the light pass writes packed
 //! depth into an RGBA8 map that starts at 0 (the framework never clears it: texels no object
-//! covers read 0) or, on request, at white; the camera pass runs the student's fragment shader
-//! and keeps, beside the colour, what their `useShadowMap` / `PCF` / `PCSS` / `findBlocker`
-//! returned at every pixel.
+//! covers read 0) or, on request, at white, or in floats (lossless); the camera pass runs the
+//! student's fragment shader and keeps, beside the colour, what their `useShadowMap` / `PCF` /
+//! `PCSS` / `findBlocker` returned at every pixel, or (the taps pass, the same shader again) where
+//! those functions read the map.
 
+use super::images::{HomeworkImages, TapImages, decode, decode_taps};
+use super::instrument::TAPS_OUTPUT;
 use super::interface::STUDENT_BLOCK_BINDING;
+use super::light::{HomeworkLight, gl_from_wgpu_clip};
 use super::pipeline::Pass;
 use super::program::HomeworkProgram;
 use super::{BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS_SIZE_BYTES, SamplerFilter};
 use crate::render::readback;
-use crate::scene::{Object, Scene};
-use glam::{Mat4, Vec3};
+use crate::scene::Scene;
+use glam::Vec3;
 use wgpu::util::DeviceExt;
 
 /// The framework's light: `uLightIntensity` is this times the light's colour and intensity.
@@ -20,13 +24,22 @@ const CLEAR_COLOR: wgpu::Color = wgpu::Color { r: 0.0, g: 0.0, b: 0.0, a: 1.0 };
 const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 const RETURNED_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 const CALLS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Uint;
+const TAPS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba16Float;
 const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// The map kept without loss: the packed channels as floats, so the student's own `unpack` reads
+/// back the depth their `pack` was given (8 bits a channel round it, a bias of its own).
+const LOSSLESS_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
 pub(super) const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
-/// GL clip space from wgpu's: z from 0..w to -w..w (the framework's matrices are GL's; the
-/// vertex epilogue maps them back).
-fn gl_from_wgpu_clip() -> Mat4 {
-    Mat4::from_cols_array(&[1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 2.0, 0.0, 0.0, 0.0, -1.0, 1.0])
+/// The shadow map a homework's camera pass reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MapKind {
+    /// As the framework has it: RGBA8, never cleared (texels no object covers read 0).
+    Framework,
+    /// RGBA8 cleared to white first: what depends on the framework's 0s changes.
+    White,
+    /// Never cleared, but kept in floats: what the 8-bit rounding hides shows.
+    Lossless,
 }
 
 /// What to render a homework with.
@@ -35,43 +48,9 @@ pub struct HomeworkRequest {
     pub time_s: f32,
     /// Camera view size, pixels.
     pub size: (u32, u32),
-    /// The light whose map the student's shader reads.
+    /// The scene light whose map size the light pass uses.
     pub light: usize,
-    /// Clear the map to white before the light pass (the framework leaves it at 0).
-    pub clear_map_white: bool,
-}
-
-/// The camera pass read back, per pixel, rows top first.
-#[derive(Clone, Debug)]
-pub struct HomeworkImages {
-    pub width: u32,
-    pub height: u32,
-    /// What the student's shader wrote to `gl_FragColor` (gamma-encoded, as they computed it).
-    pub color: Vec<[f32; 4]>,
-    /// The last value each of `RECORDED_FUNCTIONS` returned there.
-    pub returned: Vec<[f32; 4]>,
-    /// A bit per recorded function that ran, the visibility function + 1, calls (at most 255),
-    /// and 1 where the student's shader ran at all.
-    pub calls: Vec<[u8; 4]>,
-}
-
-impl HomeworkImages {
-    /// The student's shader ran at pixel `i` (a surface is there).
-    pub fn covered(&self, i: usize) -> bool {
-        self.calls[i][3] != 0
-    }
-
-    /// The visibility at pixel `i`: what the last `useShadowMap` / `PCF` / `PCSS` called from
-    /// the level of `main` returned; None where none was.
-    pub fn visibility(&self, i: usize) -> Option<f32> {
-        let function = self.calls[i][1] as usize;
-        (self.covered(i) && (1..=3).contains(&function)).then(|| self.returned[i][function - 1])
-    }
-
-    /// Which recorded functions ran anywhere (bits in `RECORDED_FUNCTIONS` order).
-    pub fn ran_anywhere(&self) -> u8 {
-        self.calls.iter().fold(0, |bits, c| bits | c[0])
-    }
+    pub map: MapKind,
 }
 
 /// The homework's pipelines on a device.
@@ -79,7 +58,11 @@ pub struct HomeworkRenderer {
     device: wgpu::Device,
     queue: wgpu::Queue,
     light: Pass,
+    light_lossless: Pass,
     camera: Pass,
+    /// The camera pass again, writing where the recorded functions read instead of what they
+    /// returned (a pixel's targets may take 32 bytes: both do not fit at once).
+    camera_taps: Pass,
     linear: wgpu::Sampler,
     nearest: wgpu::Sampler,
 }
@@ -95,29 +78,45 @@ impl From<crate::render::RenderError> for HomeworkGpuError {
     }
 }
 
-/// One object's uniforms for one pass, std140 as `FRAMEWORK_UNIFORMS` lays them out.
-fn framework_block(scene: &Scene, object: &Object, request: &HomeworkRequest, clip_y_sign: f32) -> Vec<u8> {
+/// Object `index`'s uniforms for one pass, std140 as `FRAMEWORK_UNIFORMS` lays them out.
+fn framework_block(
+    scene: &Scene,
+    light: &HomeworkLight,
+    index: usize,
+    request: &HomeworkRequest,
+    clip_y_sign: f32,
+) -> Vec<u8> {
     let (w, h) = request.size;
     let camera = &scene.camera;
-    let light = &scene.lights[request.light];
-    let t = request.time_s;
-    let model = object.world_from_object(t);
-    let to_gl = gl_from_wgpu_clip();
+    let model = scene.objects[index].world_from_object(request.time_s);
     let mut block = vec![0.0f32; (FRAMEWORK_UNIFORMS_SIZE_BYTES / 4) as usize];
     let mut put = |offset_bytes: usize, values: &[f32]| {
         block[offset_bytes / 4..offset_bytes / 4 + values.len()].copy_from_slice(values);
     };
     put(0, &model.to_cols_array());
     put(64, &camera.view_from_world().to_cols_array());
-    put(128, &(to_gl * camera.clip_from_view(w as f32 / h.max(1) as f32)).to_cols_array());
-    put(192, &(to_gl * light.clip_from_world(t) * model).to_cols_array());
+    put(128, &(gl_from_wgpu_clip() * camera.clip_from_view(w as f32 / h.max(1) as f32)).to_cols_array());
+    put(192, &light.clip_from_object[index].to_cols_array());
     put(256, &camera.position.to_array());
-    put(272, &light.position_at(t).to_array());
-    put(288, &(FRAMEWORK_LIGHT_INTENSITY * light.intensity * light.color).to_array());
+    put(272, &light.position.to_array());
+    put(288, &light.intensity.to_array());
     // uKs: the scene's materials have no specular colour (0); uKd: never set by the framework.
     put(304, &Vec3::ZERO.to_array());
     put(CLIP_Y_SIGN_OFFSET_BYTES as usize, &[clip_y_sign]);
     bytemuck::cast_slice(&block).to_vec()
+}
+
+fn colour_target(format: wgpu::TextureFormat) -> Option<wgpu::ColorTargetState> {
+    Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL })
+}
+
+fn clear_to(view: &wgpu::TextureView, value: wgpu::Color) -> Option<wgpu::RenderPassColorAttachment<'_>> {
+    Some(wgpu::RenderPassColorAttachment {
+        view,
+        depth_slice: None,
+        resolve_target: None,
+        ops: wgpu::Operations { load: wgpu::LoadOp::Clear(value), store: wgpu::StoreOp::Store },
+    })
 }
 
 impl HomeworkRenderer {
@@ -127,15 +126,22 @@ impl HomeworkRenderer {
         queue: &wgpu::Queue,
         program: &HomeworkProgram,
     ) -> Result<Self, HomeworkGpuError> {
-        let target =
-            |format| Some(wgpu::ColorTargetState { format, blend: None, write_mask: wgpu::ColorWrites::ALL });
-        let light = Pass::new(device, &program.light, &[target(MAP_FORMAT)], "homework light pass")?;
+        let light = Pass::new(device, &program.light, &[colour_target(MAP_FORMAT)], "homework light pass")?;
+        let light_lossless = Pass::new(
+            device,
+            &program.light,
+            &[colour_target(LOSSLESS_MAP_FORMAT)],
+            "homework light pass (lossless)",
+        )?;
         let camera = Pass::new(
             device,
             &program.camera,
-            &[target(COLOR_FORMAT), target(RETURNED_FORMAT), target(CALLS_FORMAT)],
+            &[colour_target(COLOR_FORMAT), colour_target(RETURNED_FORMAT), colour_target(CALLS_FORMAT)],
             "homework camera pass",
         )?;
+        let mut taps: Vec<Option<wgpu::ColorTargetState>> = vec![None; TAPS_OUTPUT as usize];
+        taps.extend((0..4).map(|_| colour_target(TAPS_FORMAT)));
+        let camera_taps = Pass::new(device, &program.camera, &taps, "homework camera pass (taps)")?;
         let sampler = |filter| {
             device.create_sampler(&wgpu::SamplerDescriptor {
                 label: Some("homework sampler"),
@@ -150,24 +156,26 @@ impl HomeworkRenderer {
             device: device.clone(),
             queue: queue.clone(),
             light,
+            light_lossless,
             camera,
+            camera_taps,
             linear: sampler(wgpu::FilterMode::Linear),
             nearest: sampler(wgpu::FilterMode::Nearest),
         })
     }
 
-    /// Both passes' pipelines were taken (Ready(Ok)), one was refused (Ready(Err)), or a page's
+    /// Every pass's pipeline was taken (Ready(Ok)), one was refused (Ready(Err)), or a page's
     /// browser has not answered yet: render only once they are taken.
     pub fn ready(&mut self) -> std::task::Poll<Result<(), HomeworkGpuError>> {
-        match (self.light.ready(), self.camera.ready()) {
-            (std::task::Poll::Ready(Err(e)), _) | (_, std::task::Poll::Ready(Err(e))) => {
-                std::task::Poll::Ready(Err(e))
+        let mut pending = false;
+        for pass in [&mut self.light, &mut self.light_lossless, &mut self.camera, &mut self.camera_taps] {
+            match pass.ready() {
+                std::task::Poll::Ready(Err(e)) => return std::task::Poll::Ready(Err(e)),
+                std::task::Poll::Pending => pending = true,
+                std::task::Poll::Ready(Ok(())) => {}
             }
-            (std::task::Poll::Ready(Ok(())), std::task::Poll::Ready(Ok(()))) => {
-                std::task::Poll::Ready(Ok(()))
-            }
-            _ => std::task::Poll::Pending,
         }
+        if pending { std::task::Poll::Pending } else { std::task::Poll::Ready(Ok(())) }
     }
 
     fn texture(
@@ -208,13 +216,30 @@ impl HomeworkRenderer {
         )
     }
 
-    /// Draw every object of `scene` with `pass` into `encoder`'s open render pass.
+    /// The object's albedo as the framework binds it: its texture, or its colour sRGB-encoded as a
+    /// texture file would hold it.
+    fn albedo(&self, object: &crate::scene::Object, material: Option<usize>) -> wgpu::TextureView {
+        let mesh = &object.mesh;
+        let material = material.and_then(|m| mesh.materials.get(m));
+        let texture = match material.and_then(|m| m.diffuse_texture.as_ref()) {
+            Some(t) => self.rgba8("homework albedo", (t.width, t.height), &t.rgba8),
+            None => {
+                let linear = material.map_or(object.color, |m| m.diffuse * object.color);
+                let byte = |c: f32| (255.0 * c.clamp(0.0, 1.0).powf(1.0 / 2.2)).round() as u8;
+                self.rgba8("homework colour", (1, 1), &[byte(linear.x), byte(linear.y), byte(linear.z), 255])
+            }
+        };
+        texture.create_view(&Default::default())
+    }
+
+    /// Draw every object of `scene` with `pass` into an open render pass.
     #[allow(clippy::too_many_arguments)]
     fn draw(
         &self,
         pass: &Pass,
         render: &mut wgpu::RenderPass<'_>,
         scene: &Scene,
+        light: &HomeworkLight,
         request: &HomeworkRequest,
         clip_y_sign: f32,
         shadow_map: &wgpu::TextureView,
@@ -228,10 +253,10 @@ impl HomeworkRenderer {
             mapped_at_creation: false,
         });
         render.set_pipeline(&pass.pipeline);
-        for object in &scene.objects {
+        for (index, object) in scene.objects.iter().enumerate() {
             let block = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("homework framework uniforms"),
-                contents: &framework_block(scene, object, request, clip_y_sign),
+                contents: &framework_block(scene, light, index, request, clip_y_sign),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
             let mesh = &object.mesh;
@@ -254,21 +279,7 @@ impl HomeworkRenderer {
                 mesh.parts.iter().map(|p| (p.index_start, p.index_count, p.material)).collect()
             };
             for (start, count, material) in parts {
-                let material = material.and_then(|m| mesh.materials.get(m));
-                let albedo = match material.and_then(|m| m.diffuse_texture.as_ref()) {
-                    Some(t) => self.rgba8("homework albedo", (t.width, t.height), &t.rgba8),
-                    None => {
-                        // The object's colour, sRGB-encoded as a texture file would hold it.
-                        let linear = material.map_or(object.color, |m| m.diffuse * object.color);
-                        let byte = |c: f32| (255.0 * c.clamp(0.0, 1.0).powf(1.0 / 2.2)).round() as u8;
-                        self.rgba8(
-                            "homework colour",
-                            (1, 1),
-                            &[byte(linear.x), byte(linear.y), byte(linear.z), 255],
-                        )
-                    }
-                };
-                let albedo = albedo.create_view(&Default::default());
+                let albedo = self.albedo(object, material);
                 let entries: Vec<wgpu::BindGroupEntry> = pass
                     .bindings
                     .iter()
@@ -313,75 +324,111 @@ impl HomeworkRenderer {
     pub fn render(
         &self,
         scene: &Scene,
+        light: &HomeworkLight,
         request: &HomeworkRequest,
     ) -> Result<HomeworkImages, HomeworkGpuError> {
-        Ok(self.submit(scene, request)?.wait(&self.device)?)
+        Ok(self.submit(scene, light, request)?.wait(&self.device)?)
+    }
+
+    fn read(&self, texture: &wgpu::Texture, size: (u32, u32), bytes: u32) -> readback::Readback<Vec<u8>> {
+        let region = readback::Region::whole(0, size, bytes, wgpu::TextureAspect::All);
+        readback::Readback::texture(&self.device, &self.queue, texture, region, |m| Ok(m.to_vec()))
     }
 
     /// `render`'s passes submitted, their read-back on its way (for a caller that cannot wait).
     pub fn submit(
         &self,
         scene: &Scene,
+        light: &HomeworkLight,
         request: &HomeworkRequest,
     ) -> Result<readback::Readback<HomeworkImages>, HomeworkGpuError> {
-        let light = scene
+        let (w, h) = request.size;
+        let formats = [COLOR_FORMAT, RETURNED_FORMAT, CALLS_FORMAT];
+        let [color, returned, calls] = self.draw_both(scene, light, request, &self.camera, 0, formats)?;
+        // The three targets come back together (one wait for all).
+        let targets = self
+            .read(&color, request.size, 8)
+            .zip(self.read(&returned, request.size, 16))
+            .zip(self.read(&calls, request.size, 4));
+        Ok(targets.map(move |((color, returned), calls)| Ok(decode(w, h, &color, &returned, &calls))))
+    }
+
+    /// The taps pass submitted (where the recorded functions read the map), its read-back on its
+    /// way.
+    pub fn submit_taps(
+        &self,
+        scene: &Scene,
+        light: &HomeworkLight,
+        request: &HomeworkRequest,
+    ) -> Result<readback::Readback<TapImages>, HomeworkGpuError> {
+        let (w, h) = request.size;
+        let taps =
+            self.draw_both(scene, light, request, &self.camera_taps, TAPS_OUTPUT as usize, [TAPS_FORMAT; 4])?;
+        let read = |k: usize| self.read(&taps[k], request.size, 8);
+        let all = read(0).zip(read(1)).zip(read(2)).zip(read(3));
+        Ok(all.map(move |(((a, b), c), d)| Ok(decode_taps(w, h, [&a, &b, &c, &d]))))
+    }
+
+    /// The light pass into a fresh map (as `request.map` asks), then `camera` into fresh targets
+    /// of `formats` at locations `first..`, submitted; the targets.
+    fn draw_both<const N: usize>(
+        &self,
+        scene: &Scene,
+        light: &HomeworkLight,
+        request: &HomeworkRequest,
+        camera: &Pass,
+        first: usize,
+        formats: [wgpu::TextureFormat; N],
+    ) -> Result<[wgpu::Texture; N], HomeworkGpuError> {
+        let scene_light = scene
             .lights
             .get(request.light)
             .ok_or_else(|| HomeworkGpuError(format!("the scene has no light {}", request.light)))?;
-        let (w, h) = request.size;
-        let map_size = (light.shadow_map_size, light.shadow_map_size);
+        if light.clip_from_object.len() != scene.objects.len() {
+            return Err(HomeworkGpuError(format!(
+                "the light has {} object matrices for {} objects",
+                light.clip_from_object.len(),
+                scene.objects.len()
+            )));
+        }
+        let map_size = (scene_light.shadow_map_size, scene_light.shadow_map_size);
         let attach = wgpu::TextureUsages::RENDER_ATTACHMENT;
+        let (light_pass, map_format) = match request.map {
+            MapKind::Lossless => (&self.light_lossless, LOSSLESS_MAP_FORMAT),
+            MapKind::Framework | MapKind::White => (&self.light, MAP_FORMAT),
+        };
         let map = self.texture(
             "homework shadow map",
             map_size,
-            MAP_FORMAT,
+            map_format,
             attach | wgpu::TextureUsages::TEXTURE_BINDING,
         );
         let map_depth = self.texture("homework light depth", map_size, DEPTH_FORMAT, attach);
-        let color = self.texture(
-            "homework colour",
-            request.size,
-            COLOR_FORMAT,
-            attach | wgpu::TextureUsages::COPY_SRC,
-        );
-        let returned = self.texture(
-            "homework returned",
-            request.size,
-            RETURNED_FORMAT,
-            attach | wgpu::TextureUsages::COPY_SRC,
-        );
-        let calls = self.texture(
-            "homework calls",
-            request.size,
-            CALLS_FORMAT,
-            attach | wgpu::TextureUsages::COPY_SRC,
-        );
+        let targets: [wgpu::Texture; N] = std::array::from_fn(|k| {
+            self.texture(
+                "homework camera target",
+                request.size,
+                formats[k],
+                attach | wgpu::TextureUsages::COPY_SRC,
+            )
+        });
         let depth = self.texture("homework depth", request.size, DEPTH_FORMAT, attach);
         let view = |t: &wgpu::Texture| t.create_view(&Default::default());
-        let (map_view, color_view, returned_view, calls_view) =
-            (view(&map), view(&color), view(&returned), view(&calls));
+        let (map_view, map_depth_view, depth_view) = (view(&map), view(&map_depth), view(&depth));
+        let target_views: Vec<wgpu::TextureView> = targets.iter().map(view).collect();
 
         let scope = self.device.push_error_scope(wgpu::ErrorFilter::Validation);
         let mut keep = Vec::new();
         let mut encoder = self.device.create_command_encoder(&Default::default());
-        let (map_depth_view, depth_view) = (view(&map_depth), view(&depth));
         let depth_ops =
             Some(wgpu::Operations { load: wgpu::LoadOp::Clear(1.0), store: wgpu::StoreOp::Discard });
         {
             // The framework's map is never cleared: a fresh texture reads 0, as WebGL's does.
             let map_start =
-                if request.clear_map_white { wgpu::Color::WHITE } else { wgpu::Color::TRANSPARENT };
+                if request.map == MapKind::White { wgpu::Color::WHITE } else { wgpu::Color::TRANSPARENT };
             let mut render = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("homework light pass"),
-                color_attachments: &[Some(wgpu::RenderPassColorAttachment {
-                    view: &map_view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations {
-                        load: wgpu::LoadOp::Clear(map_start),
-                        store: wgpu::StoreOp::Store,
-                    },
-                })],
+                color_attachments: &[clear_to(&map_view, map_start)],
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &map_depth_view,
                     depth_ops,
@@ -389,27 +436,20 @@ impl HomeworkRenderer {
                 }),
                 ..Default::default()
             });
-            self.draw(&self.light, &mut render, scene, request, -1.0, &map_view, &mut keep);
+            self.draw(light_pass, &mut render, scene, light, request, -1.0, &map_view, &mut keep);
         }
         {
-            fn clear(
-                view: &wgpu::TextureView,
-                value: wgpu::Color,
-            ) -> Option<wgpu::RenderPassColorAttachment<'_>> {
-                Some(wgpu::RenderPassColorAttachment {
+            // The colour starts at WebGL's clear colour, the rest at 0.
+            let mut attachments: Vec<Option<wgpu::RenderPassColorAttachment>> = vec![None; first];
+            for (k, view) in target_views.iter().enumerate() {
+                attachments.push(clear_to(
                     view,
-                    depth_slice: None,
-                    resolve_target: None,
-                    ops: wgpu::Operations { load: wgpu::LoadOp::Clear(value), store: wgpu::StoreOp::Store },
-                })
+                    if first + k == 0 { CLEAR_COLOR } else { wgpu::Color::TRANSPARENT },
+                ));
             }
             let mut render = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                 label: Some("homework camera pass"),
-                color_attachments: &[
-                    clear(&color_view, CLEAR_COLOR),
-                    clear(&returned_view, wgpu::Color::TRANSPARENT),
-                    clear(&calls_view, wgpu::Color::TRANSPARENT),
-                ],
+                color_attachments: &attachments,
                 depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
                     view: &depth_view,
                     depth_ops,
@@ -417,37 +457,12 @@ impl HomeworkRenderer {
                 }),
                 ..Default::default()
             });
-            self.draw(&self.camera, &mut render, scene, request, 1.0, &map_view, &mut keep);
+            self.draw(camera, &mut render, scene, light, request, 1.0, &map_view, &mut keep);
         }
         self.queue.submit([encoder.finish()]);
         if let Some(e) = crate::render::scope_error(scope.pop()) {
             return Err(HomeworkGpuError(format!("homework render: {}", crate::render::error_line(&e))));
         }
-        // The three targets come back together (one wait for all).
-        let read = |texture: &wgpu::Texture, bytes: u32| {
-            let region = readback::Region::whole(0, (w, h), bytes, wgpu::TextureAspect::All);
-            readback::Readback::texture(&self.device, &self.queue, texture, region, |m| Ok(m.to_vec()))
-        };
-        let targets = read(&color, 8).zip(read(&returned, 16)).zip(read(&calls, 4));
-        Ok(targets.map(move |((color, returned), calls)| Ok(decode(w, h, &color, &returned, &calls))))
-    }
-}
-
-/// The camera pass's targets as read back: half-float colour, f32 returns, u8 calls.
-fn decode(w: u32, h: u32, color: &[u8], returned: &[u8], calls: &[u8]) -> HomeworkImages {
-    let half = |b: &[u8]| half::f16::from_bits(u16::from_le_bytes([b[0], b[1]])).to_f32();
-    HomeworkImages {
-        width: w,
-        height: h,
-        color: color
-            .chunks_exact(8)
-            .map(|c| [half(&c[0..]), half(&c[2..]), half(&c[4..]), half(&c[6..])])
-            .collect(),
-        returned: readback::f32s(returned)
-            .collect::<Vec<_>>()
-            .chunks_exact(4)
-            .map(|c| [c[0], c[1], c[2], c[3]])
-            .collect(),
-        calls: calls.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect(),
+        Ok(targets)
     }
 }

@@ -5,7 +5,7 @@
 use super::interface::STUDENT_BLOCK_BINDING;
 use super::pass::DEPTH_FORMAT;
 use super::program::TranslatedProgram;
-use super::{BindingKind, HomeworkGpuError};
+use super::{BindingKind, HomeworkGpuError, SamplerFilter};
 
 /// One pass's pipeline with the bindings its two stages declare.
 pub(super) struct Pass {
@@ -66,7 +66,7 @@ impl Pass {
         let visibility = wgpu::ShaderStages::VERTEX_FRAGMENT;
         let entries: Vec<wgpu::BindGroupLayoutEntry> = bindings
             .iter()
-            .map(|(binding, _, kind)| wgpu::BindGroupLayoutEntry {
+            .map(|(binding, name, kind)| wgpu::BindGroupLayoutEntry {
                 binding: *binding,
                 visibility,
                 ty: match kind {
@@ -75,12 +75,17 @@ impl Pass {
                         has_dynamic_offset: false,
                         min_binding_size: None,
                     },
+                    // The shadow map may be the lossless one, in 32-bit floats, which no sampler
+                    // filters: it binds as unfilterable, read with the nearest sampler it has.
                     BindingKind::Texture => wgpu::BindingType::Texture {
-                        sample_type: wgpu::TextureSampleType::Float { filterable: true },
+                        sample_type: wgpu::TextureSampleType::Float { filterable: name != "uShadowMap" },
                         view_dimension: wgpu::TextureViewDimension::D2,
                         multisampled: false,
                     },
-                    BindingKind::Sampler(_) => {
+                    BindingKind::Sampler(SamplerFilter::Nearest) => {
+                        wgpu::BindingType::Sampler(wgpu::SamplerBindingType::NonFiltering)
+                    }
+                    BindingKind::Sampler(SamplerFilter::Linear) => {
                         wgpu::BindingType::Sampler(wgpu::SamplerBindingType::Filtering)
                     }
                 },

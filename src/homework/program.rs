@@ -128,3 +128,108 @@ impl HomeworkProgram {
         &self.camera.fragment.rewritten.recorded
     }
 }
+
+/// A homework as a student hands it over: its shaders (the framework's where it has none), the
+/// scripts its light comes from, and notes on how its files were found.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct HomeworkSource {
+    /// The submission's name (its folder's or zip's, or the shader's file name).
+    pub name: String,
+    pub files: HomeworkFiles,
+    /// `lights/DirectionalLight.js` and `engine.js`, where the submission has them.
+    pub light_script: Option<ShaderSource>,
+    pub engine: Option<ShaderSource>,
+    pub notes: Vec<String>,
+}
+
+impl HomeworkSource {
+    /// A `phongFragment.glsl` alone (the rest the framework's), a student's homework folder, or a
+    /// `.zip` of one; an error on one line naming the file and the problem.
+    pub fn read(path: &Path) -> Result<Self, HomeworkError> {
+        let limits = super::submission::Limits::default();
+        let refused = |e: super::submission::SubmissionError| HomeworkError::Shader {
+            file: e.path,
+            line: None,
+            message: e.message,
+        };
+        if is_zip(path) && crate::files::is_handed_over(path) {
+            // A page's drop: the zip's bytes, not a path on a disk.
+            let bytes = crate::files::read(path).map_err(|e| HomeworkError::Shader {
+                file: path.display().to_string(),
+                line: None,
+                message: format!("cannot read it: {e}"),
+            })?;
+            let name = path.file_name().map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+            let submission = super::submission::read_zip_bytes(&name, &bytes, limits).map_err(refused)?;
+            return Ok(Self::from_submission(submission, None, path));
+        }
+        if crate::files::is_file(path) && !is_zip(path) {
+            // A shader alone, whatever its extension (as the app and the command line took it).
+            let files = HomeworkFiles::with_framework(ShaderSource::read(path)?);
+            let name = files.phong_fragment.name.clone();
+            return Ok(Self { name, files, light_script: None, engine: None, notes: Vec::new() });
+        }
+        let submission = super::submission::read_path(path, limits).map_err(refused)?;
+        let folder = (!crate::files::is_file(path)).then_some(path);
+        Ok(Self::from_submission(submission, folder, path))
+    }
+
+    /// The files a submission was found to have; `folder` is where a folder submission's files lie
+    /// on the disk (for watching them), `path` what was handed over.
+    pub fn from_submission(
+        submission: super::submission::Submission,
+        folder: Option<&Path>,
+        path: &Path,
+    ) -> Self {
+        let lone_file = folder.is_none() && !is_zip(path);
+        let source = |found: super::submission::FoundFile| {
+            let file_path = match folder {
+                Some(dir) => Some(dir.join(&found.path)),
+                None if lone_file => Some(path.to_path_buf()),
+                None => None,
+            };
+            // A lone shader is named by its file name, as before; a submission's files by their
+            // path in it (a class has many `phongFragment.glsl`).
+            let name = if lone_file {
+                path.file_name().map_or_else(|| found.path.clone(), |n| n.to_string_lossy().into_owned())
+            } else {
+                found.path.clone()
+            };
+            ShaderSource { name, path: file_path, text: found.text }
+        };
+        let found = submission.files;
+        let mut files = HomeworkFiles::with_framework(source(found.phong_fragment));
+        if let Some(f) = found.phong_vertex {
+            files.phong_vertex = source(f);
+        }
+        if let Some(f) = found.shadow_vertex {
+            files.shadow_vertex = source(f);
+        }
+        if let Some(f) = found.shadow_fragment {
+            files.shadow_fragment = source(f);
+        }
+        Self {
+            name: submission.name,
+            files,
+            light_script: found.light_script.map(source),
+            engine: found.engine.map(source),
+            notes: submission.notes,
+        }
+    }
+
+    /// Where the source's files lie on the disk (what the app watches).
+    pub fn paths(&self) -> Vec<&Path> {
+        let f = &self.files;
+        [&f.phong_fragment, &f.phong_vertex, &f.shadow_vertex, &f.shadow_fragment]
+            .into_iter()
+            .chain(self.light_script.as_ref())
+            .chain(self.engine.as_ref())
+            .filter_map(|s| s.path.as_deref())
+            .collect()
+    }
+}
+
+/// A path that names a zip archive.
+pub fn is_zip(path: &Path) -> bool {
+    path.extension().and_then(|e| e.to_str()).is_some_and(|e| e.eq_ignore_ascii_case("zip"))
+}

@@ -21,7 +21,8 @@
 //! its definition goes (naga orders a prototyped function wrongly).
 
 use super::instrument::{
-    RECORDED_FUNCTIONS, STUDENT_MAIN, epilogue, recording_prelude, wrapper, wrapper_parameters,
+    POSITION_FROM_LIGHT, RECORDED_FUNCTIONS, STUDENT_MAIN, TAP, epilogue, recording_prelude, wrapper,
+    wrapper_parameters,
 };
 use super::interface::{
     Binding, BindingKind, CLIP_Y_SIGN, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface,
@@ -138,6 +139,11 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
 
     // Globals: varyings and attributes get locations, uniforms go to the blocks, samplers split.
     let decls = declarations(source, &toks)?;
+    let declares_position_from_light = decls.iter().any(|d| {
+        d.qualifier == "varying"
+            && d.glsl_type == "vec4"
+            && d.names.iter().any(|(n, s)| n == POSITION_FROM_LIGHT && s.is_empty())
+    });
     let mut own_attributes: Vec<String> = decls
         .iter()
         .filter(|d| d.qualifier == "attribute")
@@ -301,6 +307,19 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
                 ("textureProj", 2, ")") => "textureProjLod",
                 (call, ..) => call,
             };
+            // The uv of a 2D read goes through the tap (fragment stage: inside a recorded
+            // function it records where the read lands).
+            let uv_start = (i + 3..close).find(|&k| text(k) == "," && depth_in(source, &toks, i + 1, k) == 1);
+            if stage == Stage::Fragment
+                && matches!(call, "texture" | "textureLod")
+                && let Some(comma) = uv_start
+            {
+                let uv_end = (comma + 1..close)
+                    .find(|&k| text(k) == "," && depth_in(source, &toks, i + 1, k) == 1)
+                    .unwrap_or(close);
+                edits.replace(toks[comma].end, toks[comma].end, format!(" {TAP}("));
+                edits.replace(toks[uv_end].start, toks[uv_end].start, ")");
+            }
             if call != texture_call(word).unwrap_or_default() {
                 edits.replace(toks[close].start, toks[close].start, ", 0.0");
             }
@@ -322,7 +341,7 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
     }
     let prelude = prelude(stage, layout);
     let prelude_lines = prelude.lines().count();
-    let epilogue = if main.is_some() { epilogue(stage) } else { String::new() };
+    let epilogue = if main.is_some() { epilogue(stage, declares_position_from_light) } else { String::new() };
     let epilogue_lines = epilogue.lines().count();
     let glsl = format!("{prelude}{body}{epilogue}");
     debug_assert_eq!(

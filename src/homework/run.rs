@@ -1,48 +1,72 @@
 //! A homework check that never waits for the GPU unless told to: each `step` collects what has
-//! arrived and submits the next piece (the student's two pictures, then shadowlab's frame and its
-//! analysis, then the ground truth), so a page's frames can drive it as the render thread does.
+//! arrived and submits the next piece, so a page's frames can drive it as the render thread does:
+//! the student's passes (over the framework's map, a white one and a lossless one, and where
+//! their functions read), then shadowlab's frame and its analysis (where the surfaces are), the
+//! light width the student's penumbrae say, shadowlab's frame again at that width where it
+//! differs, then the ground truth at it.
 
-use super::check::{CheckInputs, check};
+use super::findings::{Evidence, Judged, LightInputs, TwinInputs, findings};
+use super::light_width::{LightWidthFit, WidthInputs};
 use super::session::{CheckOutcome, HomeworkReport};
-use super::{HomeworkGpuError, HomeworkImages, HomeworkRenderer, HomeworkRequest, RECORDED_FUNCTIONS};
+use super::{
+    HomeworkGpuError, HomeworkImages, HomeworkLight, HomeworkRenderer, HomeworkRequest, MapKind,
+    RECORDED_FUNCTIONS, TapImages,
+};
 use crate::i18n::Lang;
 use crate::render::{Analysis, Batches, FrameRequest, GpuWait, GroundTruth, Readback, Renderer};
-use crate::scene::{Scene, Technique};
+use crate::scene::{LightSize, Scene, Technique};
+use crate::shadow::{DepthImage, LightGpu};
+use glam::Vec3;
 
 /// A check under way.
 pub struct CheckRun {
     shader: String,
     scene: Scene,
+    light: HomeworkLight,
     request: HomeworkRequest,
     lang: Lang,
     stage: Stage,
 }
 
 enum Stage {
-    /// The student's shader over the framework's map and over a white one, on their way.
-    Student(Readback<(HomeworkImages, HomeworkImages)>),
-    /// shadowlab's frame with the compared technique, and its analysis, on their way.
-    Shadowlab(Box<Compared>, Readback<(image::RgbaImage, Analysis)>),
+    /// The student's passes on their way.
+    Student(Readback<StudentPasses>),
+    /// shadowlab's frame with the compared technique, its analysis and its map, on their way.
+    Shadowlab(Box<Compared>, Readback<ShadowlabFrame>),
     /// The ground truth of shadowlab's frame, a batch at a time.
     GroundTruth(Box<Compared>, Box<Shadowlab>, Box<GroundTruth>),
     /// Finished (or failed): nothing more to step.
     Over,
 }
 
+/// shadowlab's frame as read back: the picture, the analysis and the light's map.
+type ShadowlabFrame = ((image::RgbaImage, Analysis), DepthImage);
+
+/// The student's passes as read back.
+type StudentPasses = (((HomeworkImages, HomeworkImages), HomeworkImages), TapImages);
+
 /// The student's side and what it is compared with.
 struct Compared {
     student: HomeworkImages,
     white: HomeworkImages,
+    lossless: HomeworkImages,
+    taps: TapImages,
     /// Which of useShadowMap / PCF / PCSS `main` took its visibility from at most pixels (1..=3).
     function: Option<usize>,
-    /// The scene with the technique of that function.
+    /// The scene with the technique of that function, and (once fitted) the light width the
+    /// ground truth takes.
     scene: Scene,
+    /// The light width the student's penumbrae say (once shadowlab's frame placed the surfaces).
+    width: Option<LightWidthFit>,
 }
 
 /// shadowlab's side once read back.
 struct Shadowlab {
     picture: image::RgbaImage,
     analysis: Analysis,
+    map: DepthImage,
+    /// The light as the GPU had it (where the twin projects the receivers).
+    light: LightGpu,
 }
 
 /// shadowlab's technique for the function `main` used (1 useShadowMap, 2 PCF, 3 PCSS).
@@ -54,23 +78,37 @@ fn technique_for(function: usize) -> Technique {
     }
 }
 
+/// World positions and normals under each pixel of an analysis (None: no surface).
+fn surfaces(analysis: &Analysis) -> (Vec<Option<Vec3>>, Vec<Option<Vec3>>) {
+    let at = |v: &[[f32; 4]], i: usize| analysis.hit(i).then(|| Vec3::from_slice(&v[i][..3]));
+    let n = analysis.position.len();
+    ((0..n).map(|i| at(&analysis.position, i)).collect(), (0..n).map(|i| at(&analysis.normal, i)).collect())
+}
+
 impl CheckRun {
-    /// Submit the student's two passes. `shader` names the fragment shader in the report.
+    /// Submit the student's passes, drawn with `light` (their matrices); shadowlab's side renders
+    /// `scene` (whose light `request.light` is the same frustum). `shader` names the fragment
+    /// shader in the report.
     pub fn start(
         homework: &HomeworkRenderer,
         shader: &str,
         scene: &Scene,
+        light: &HomeworkLight,
         request: &HomeworkRequest,
         lang: Lang,
     ) -> Result<Self, HomeworkGpuError> {
-        let student = homework.submit(scene, request)?;
-        let white = homework.submit(scene, &HomeworkRequest { clear_map_white: true, ..*request })?;
+        let over = |map| HomeworkRequest { map, ..*request };
+        let student = homework.submit(scene, light, &over(MapKind::Framework))?;
+        let white = homework.submit(scene, light, &over(MapKind::White))?;
+        let lossless = homework.submit(scene, light, &over(MapKind::Lossless))?;
+        let taps = homework.submit_taps(scene, light, &over(MapKind::Framework))?;
         Ok(Self {
             shader: shader.to_owned(),
             scene: scene.clone(),
+            light: light.clone(),
             request: *request,
             lang,
-            stage: Stage::Student(student.zip(white)),
+            stage: Stage::Student(student.zip(white).zip(lossless).zip(taps)),
         })
     }
 
@@ -89,27 +127,36 @@ impl CheckRun {
                 if !images.arrived(renderer.device(), wait)? {
                     (Stage::Student(images), None)
                 } else {
-                    let (student, white) = images.finish()?;
-                    let compared = self.compared(student, white);
+                    let (((student, white), lossless), taps) = images.finish()?;
+                    let compared = self.compared(student, white, lossless, taps);
                     let coming = self.submit_shadowlab(renderer, &compared.scene)?;
                     (Stage::Shadowlab(Box::new(compared), coming), None)
                 }
             }
-            Stage::Shadowlab(compared, coming) => {
+            Stage::Shadowlab(mut compared, coming) => {
                 if !coming.arrived(renderer.device(), wait)? {
                     (Stage::Shadowlab(compared, coming), None)
                 } else {
-                    let (picture, analysis) = coming.finish()?;
+                    let ((picture, analysis), map) = coming.finish()?;
+                    if compared.width.is_none() {
+                        // The surfaces are placed: measure the student's light, and render again
+                        // where the ground truth's light is not the one just drawn.
+                        let drawn = compared.scene.lights[self.request.light].size;
+                        self.fit_width(&mut compared, &analysis);
+                        if compared.scene.lights[self.request.light].size != drawn {
+                            let coming = self.submit_shadowlab(renderer, &compared.scene)?;
+                            self.stage = Stage::Shadowlab(compared, coming);
+                            return Ok(None);
+                        }
+                    }
+                    let light = renderer
+                        .last_frame()
+                        .and_then(|f| f.lights.get(self.request.light).copied())
+                        .ok_or_else(|| HomeworkGpuError("shadowlab's frame has no light".into()))?;
                     let truth =
                         renderer.start_ground_truth(&compared.scene, self.request.light, Batches::whole())?;
-                    (
-                        Stage::GroundTruth(
-                            compared,
-                            Box::new(Shadowlab { picture, analysis }),
-                            Box::new(truth),
-                        ),
-                        None,
-                    )
+                    let shadowlab = Shadowlab { picture, analysis, map, light };
+                    (Stage::GroundTruth(compared, Box::new(shadowlab), Box::new(truth)), None)
                 }
             }
             Stage::GroundTruth(compared, shadowlab, mut truth) => {
@@ -130,8 +177,44 @@ impl CheckRun {
         Ok(outcome)
     }
 
+    /// The light width the student's penumbrae say, and the light the ground truth takes: for
+    /// PCSS that width (a light wider than the map's half is held there), for hard shadows and
+    /// PCF a point (their edges are a map's or a filter's, not a light's).
+    fn fit_width(&self, compared: &mut Compared, analysis: &Analysis) {
+        let (positions, normals) = surfaces(analysis);
+        let student = &compared.student;
+        let visibility = |i: usize| student.visibility(i);
+        let inputs = WidthInputs {
+            width: analysis.width,
+            height: analysis.height,
+            visibility: &visibility,
+            positions: &positions,
+            normals: &normals,
+        };
+        let light = &mut compared.scene.lights[self.request.light];
+        let fit = super::light_width::fit(&self.scene, light, self.request.time_s, &inputs);
+        let width_world = match compared.scene.shadow.technique {
+            Technique::Pcss => fit
+                .implied_light_width_world
+                .map(|w| w.clamp(0.0, 0.5 * light.frustum_width_world()))
+                .unwrap_or(match light.size {
+                    LightSize::Width { width_world } => width_world,
+                    LightSize::AngularDiameter { .. } => 0.0,
+                }),
+            _ => 0.0,
+        };
+        light.size = LightSize::Width { width_world };
+        compared.width = Some(fit);
+    }
+
     /// The function `main` used, by vote over the pixels, and the scene with its technique.
-    fn compared(&self, student: HomeworkImages, white: HomeworkImages) -> Compared {
+    fn compared(
+        &self,
+        student: HomeworkImages,
+        white: HomeworkImages,
+        lossless: HomeworkImages,
+        taps: TapImages,
+    ) -> Compared {
         let mut votes = [0u64; 4];
         for c in &student.calls {
             votes[(c[1] as usize).min(3)] += u64::from(c[3] != 0 && c[1] != 0);
@@ -139,7 +222,7 @@ impl CheckRun {
         let function = (1..=3).max_by_key(|&k| votes[k]).filter(|&k| votes[k] > 0);
         let mut scene = self.scene.clone();
         scene.shadow.technique = technique_for(function.unwrap_or(3));
-        Compared { student, white, function, scene }
+        Compared { student, white, lossless, taps, function, scene, width: None }
     }
 
     /// shadowlab's frame at the homework's settings, with its analysis; read-backs submitted.
@@ -147,7 +230,7 @@ impl CheckRun {
         &self,
         renderer: &mut Renderer,
         scene: &Scene,
-    ) -> Result<Readback<(image::RgbaImage, Analysis)>, HomeworkGpuError> {
+    ) -> Result<Readback<ShadowlabFrame>, HomeworkGpuError> {
         let frame = FrameRequest {
             time_s: self.request.time_s,
             size: self.request.size,
@@ -158,12 +241,15 @@ impl CheckRun {
             only_pixel: None,
         };
         renderer.render(scene, &frame)?;
-        Ok(renderer.color_readback()?.zip(renderer.analysis_readback()?))
+        Ok(renderer
+            .color_readback()?
+            .zip(renderer.analysis_readback()?)
+            .zip(renderer.shadow_map_readback(self.request.light)?))
     }
 
     /// The figures and findings, from everything rendered.
     fn outcome(&self, compared: Compared, shadowlab: Shadowlab, ground_truth: Vec<f32>) -> CheckOutcome {
-        let Compared { student, white, function, scene } = compared;
+        let Compared { student, white, lossless, taps, function, scene, width } = compared;
         let analysis = &shadowlab.analysis;
         let ran = student.ran_anywhere();
         let calls: Vec<&'static str> = RECORDED_FUNCTIONS
@@ -173,29 +259,43 @@ impl CheckRun {
             .map(|(_, n)| *n)
             .collect();
         let shadowlab_visibility: Vec<f32> = analysis.shadow.iter().map(|s| s[0]).collect();
-        let positions: Vec<Option<glam::Vec3>> = (0..analysis.position.len())
-            .map(|i| analysis.hit(i).then(|| glam::Vec3::from_slice(&analysis.position[i][..3])))
+        let (positions, normals) = surfaces(analysis);
+        let toward_light = -scene.lights[self.request.light].direction_at(self.request.time_s);
+        let facing: Vec<Option<f32>> =
+            normals.iter().map(|n| n.map(|n| n.normalize_or_zero().dot(toward_light))).collect();
+        let objects: Vec<Option<usize>> = (0..analysis.normal.len())
+            .map(|i| analysis.hit(i).then(|| analysis.normal[i][3].round() as usize))
             .collect();
-        let toward_light = -self.scene.lights[self.request.light].direction_at(self.request.time_s);
-        let facing: Vec<Option<f32>> = (0..analysis.shadow.len())
-            .map(|i| {
-                analysis.hit(i).then(|| {
-                    glam::Vec3::from_slice(&analysis.normal[i][..3]).normalize_or_zero().dot(toward_light)
-                })
-            })
-            .collect();
-        let (figures, findings) = check(
-            &CheckInputs {
-                student: &student,
-                student_white_map: &white,
-                shadowlab: &shadowlab_visibility,
-                ground_truth: &ground_truth,
-                facing: &facing,
-                visibility_function: function,
-                positions: &positions,
+        let world_from_object: Vec<glam::Mat4> =
+            self.scene.objects.iter().map(|o| o.world_from_object(self.request.time_s)).collect();
+        let object_names: Vec<String> = self.scene.objects.iter().map(|o| o.name.clone()).collect();
+        let map_size = scene.lights[self.request.light].shadow_map_size;
+        let white_map_change = super::findings::white_map_change(&student, &white);
+        let twin = TwinInputs { map: &shadowlab.map, light: &shadowlab.light, normals: &normals };
+        let evidence = |student| Evidence {
+            student,
+            lossless: &lossless,
+            taps: &taps,
+            white_map_change: &white_map_change,
+            shadowlab: &shadowlab_visibility,
+            ground_truth: &ground_truth,
+            facing: &facing,
+            visibility_function: function,
+            positions: &positions,
+            objects: &objects,
+            light: LightInputs {
+                clip_from_object: &self.light.clip_from_object,
+                world_from_object: &world_from_object,
+                object_names: &object_names,
+                map_size,
+                width: width.as_ref(),
+                model_matrix: self.light.model_matrix,
             },
-            self.lang,
-        );
+            twin: Some(&twin),
+        };
+        let (framework, exact) = (evidence(&student), evidence(&lossless));
+        let figures = super::figures::figures(&Judged::new(&framework));
+        let findings = findings(&framework, &exact, self.lang);
         let report = HomeworkReport {
             shader: self.shader.clone(),
             compiled: true,
@@ -204,12 +304,17 @@ impl CheckRun {
             visibility_function: function.map(|k| RECORDED_FUNCTIONS[k - 1]),
             compared_with: Some(scene.shadow.technique.name()),
             figures: Some(figures),
+            light_width: width.clone(),
+            light: None,
             findings,
         };
         CheckOutcome {
             report,
             student,
             student_white_map: white,
+            student_lossless_map: lossless,
+            taps,
+            light: self.light.clone(),
             shadowlab_picture: shadowlab.picture,
             shadowlab_visibility,
             ground_truth,

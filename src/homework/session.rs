@@ -2,10 +2,11 @@
 //! shadowlab's own technique at the same settings and the ground truth, compared; and the
 //! pictures that show it.
 
-use super::check::{Figures, Finding};
 use super::run::CheckRun;
+use super::{Figures, Finding};
 use super::{
-    HomeworkError, HomeworkGpuError, HomeworkImages, HomeworkRenderer, HomeworkRequest, ShaderSource,
+    HomeworkError, HomeworkGpuError, HomeworkImages, HomeworkLight, HomeworkRenderer, HomeworkRequest,
+    MapKind, ShaderSource, TapImages,
 };
 use crate::i18n::Lang;
 use crate::render::{GpuWait, Renderer};
@@ -48,6 +49,11 @@ pub struct HomeworkReport {
     pub compared_with: Option<&'static str>,
     #[serde(flatten)]
     pub figures: Option<Figures>,
+    /// The light width the student's penumbrae say (the slabs' shadows against similar
+    /// triangles), and the fit's quality.
+    pub light_width: Option<super::LightWidthFit>,
+    /// The light the student built (their DirectionalLight.js and engine.js), or the framework's.
+    pub light: Option<super::student_light::LightReport>,
     pub findings: Vec<Finding>,
 }
 
@@ -62,6 +68,8 @@ impl HomeworkReport {
             visibility_function: None,
             compared_with: None,
             figures: None,
+            light_width: None,
+            light: None,
             findings: Vec::new(),
         }
     }
@@ -73,6 +81,12 @@ pub struct CheckOutcome {
     pub student: HomeworkImages,
     /// The same shader over a map cleared to white (what depends on the framework's 0s).
     pub student_white_map: HomeworkImages,
+    /// The same shader over a map kept without loss (what the 8-bit channels' rounding hides).
+    pub student_lossless_map: HomeworkImages,
+    /// Where the student's recorded functions read the framework's map.
+    pub taps: TapImages,
+    /// The light the student's passes were drawn with.
+    pub light: HomeworkLight,
     /// shadowlab's final picture with the technique compared with.
     pub shadowlab_picture: image::RgbaImage,
     pub shadowlab_visibility: Vec<f32>,
@@ -88,10 +102,11 @@ pub fn run_check(
     renderer: &mut Renderer,
     shader: &ShaderSource,
     scene: &Scene,
+    light: &HomeworkLight,
     request: &HomeworkRequest,
     lang: Lang,
 ) -> Result<CheckOutcome, HomeworkGpuError> {
-    let mut run = CheckRun::start(homework, &shader.name, scene, request, lang)?;
+    let mut run = CheckRun::start(homework, &shader.name, scene, light, request, lang)?;
     loop {
         if let Some(outcome) = run.step(renderer, GpuWait::Block)? {
             return Ok(outcome);
@@ -115,8 +130,10 @@ pub fn homework_picture(
     let program = super::HomeworkProgram::translate(files).map_err(|e| e.to_string())?;
     let homework =
         HomeworkRenderer::new(renderer.device(), renderer.queue(), &program).map_err(|e| e.to_string())?;
-    let request = HomeworkRequest { time_s, size, light: 0, clear_map_white: false };
-    let images = homework.render(scene, &request).map_err(|e| e.to_string())?;
+    let request = HomeworkRequest { time_s, size, light: 0, map: MapKind::Framework };
+    let light = HomeworkLight::of_scene(scene, 0, time_s, super::FRAMEWORK_LIGHT_INTENSITY)
+        .ok_or_else(|| "the scene has no light".to_string())?;
+    let images = homework.render(scene, &light, &request).map_err(|e| e.to_string())?;
     Ok(student_picture(&images))
 }
 
@@ -144,7 +161,7 @@ impl CheckOutcome {
     /// The penumbra's width at `pixel`, world units: the student's and the ground truth's
     /// (None where the ground truth has no edge there).
     pub fn penumbra_widths(&self, pixel: (u32, u32)) -> Option<(f32, f32)> {
-        super::check::penumbra_widths(&self.student, &self.ground_truth, &self.positions, pixel)
+        super::figures::penumbra_widths(&self.student, &self.ground_truth, &self.positions, pixel)
     }
 
     /// The student's picture as their shader wrote it (its colours are already gamma-encoded).
@@ -155,6 +172,12 @@ impl CheckOutcome {
     /// The student's picture over a shadow map cleared to white.
     pub fn student_picture_white_map(&self) -> image::RgbaImage {
         student_picture(&self.student_white_map)
+    }
+
+    /// The student's picture over a map kept without loss (what the framework's 8-bit rounding
+    /// hides shows here).
+    pub fn student_picture_lossless_map(&self) -> image::RgbaImage {
+        student_picture(&self.student_lossless_map)
     }
 
     /// The student's visibility in grey beside the ground truth's: where no visibility was

@@ -4,7 +4,8 @@
 //! scheduler polls, and the last outcome kept while nothing it depends on changes.
 
 use crate::homework::{
-    CheckOutcome, CheckRun, HomeworkProgram, HomeworkRenderer, HomeworkRequest, ShaderSource,
+    CheckOutcome, CheckRun, FRAMEWORK_LIGHT_INTENSITY, HomeworkLight, HomeworkProgram, HomeworkRenderer,
+    HomeworkRequest, MapKind, ShaderSource,
 };
 use crate::i18n::Lang;
 use crate::render::{GpuWait, Renderer};
@@ -95,9 +96,11 @@ impl HomeworkRunner {
                     std::task::Poll::Ready(Err(e)) => return Err(e.to_string()),
                     std::task::Poll::Ready(Ok(())) => {}
                 }
-                let request = HomeworkRequest { time_s, size, light: 0, clear_map_white: false };
+                let request = HomeworkRequest { time_s, size, light: 0, map: MapKind::Framework };
+                let light = HomeworkLight::of_scene(scene, 0, time_s, FRAMEWORK_LIGHT_INTENSITY)
+                    .ok_or_else(|| "the scene has no light".to_string())?;
                 let shader: &ShaderSource = &job.program.files.phong_fragment;
-                let run = CheckRun::start(homework, &shader.name, scene, &request, job.lang)
+                let run = CheckRun::start(homework, &shader.name, scene, &light, &request, job.lang)
                     .map_err(|e| e.to_string())?;
                 &mut slot.insert((key.clone(), run)).1
             }

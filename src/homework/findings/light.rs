@@ -1,0 +1,79 @@
+//! Findings on the light the student built: a model matrix that does not place the objects, and
+//! a frustum that leaves out what the camera sees.
+
+use super::{FindingKind, Found, Judged};
+use crate::homework::ModelMatrixError;
+use crate::i18n::{Lang, fill, tr};
+use std::collections::BTreeMap;
+
+/// `light_frustum_clips`: more than this share of an object's pixels lie outside the frustum.
+const CLIPPED_SHARE: f64 = 0.02;
+
+/// The objects' `uLightMVP` is not projection * view * translate * scale: the map and the lookups
+/// put the objects somewhere else.
+pub const LIGHT_MODEL_MATRIX: FindingKind =
+    FindingKind { id: "light_model_matrix", lesson: "hard-shadows", step: 1, judge: light_model_matrix };
+
+fn light_model_matrix(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
+    let error = j.e.light.model_matrix?;
+    let what = match error {
+        ModelMatrixError::Missing => {
+            "the objects' translation and scale are never applied: every object is drawn into the map where its model file puts it, at the origin and unscaled"
+        }
+        ModelMatrixError::WrongOrder => {
+            "the scale is applied after the translation, so the translation is scaled too: mat4.translate, then mat4.scale, on the same matrix (or T * S)"
+        }
+        ModelMatrixError::TranslatedByLightPosition => {
+            "the objects are translated by the light's position (this.lightPos) instead of their own translation: the template's own line, kept"
+        }
+        ModelMatrixError::Different => "the matrix is not projection * view * translate * scale",
+    };
+    Some(Found::new(
+        Some("CalcLightMVP"),
+        BTreeMap::from([("model_matrix_error", error as u8 as f64)]),
+        fill(
+            lang,
+            "Your CalcLightMVP does not place the objects as the framework does: {}. The light pass and the lookups both use that matrix, so the shadows fall where the objects are not.",
+            &[&tr(lang, what)],
+        ),
+    ))
+}
+
+/// Surfaces the camera sees lie outside the student's light frustum (beside, before the near
+/// plane or beyond the far one): their lookups read outside the map.
+pub const LIGHT_FRUSTUM_CLIPS: FindingKind =
+    FindingKind { id: "light_frustum_clips", lesson: "hard-shadows", step: 4, judge: light_frustum_clips };
+
+fn light_frustum_clips(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if super::has(earlier, "light_model_matrix") {
+        return None;
+    }
+    let names = j.e.light.object_names;
+    let mut seen = vec![0usize; names.len()];
+    let mut outside = vec![0usize; names.len()];
+    for &i in &j.shaded {
+        let (Some(o), Some(r)) = (j.e.objects[i], j.receivers[i]) else { continue };
+        if o < seen.len() {
+            seen[o] += 1;
+            outside[o] += usize::from(!r.inside());
+        }
+    }
+    let share = |o: usize| outside[o] as f64 / seen[o].max(1) as f64;
+    let worst = (0..names.len())
+        .filter(|&o| share(o) > CLIPPED_SHARE)
+        .max_by(|&a, &b| share(a).total_cmp(&share(b)))?;
+    let total = outside.iter().sum::<usize>();
+    Some(Found::new(
+        Some("CalcLightMVP"),
+        BTreeMap::from([
+            ("clipped_share", j.share(total)),
+            ("worst_object_clipped_share", share(worst)),
+            ("clipped_pixels", total as f64),
+        ]),
+        fill(
+            lang,
+            "{:.1}% of what the camera sees lies outside your light's frustum, most of it on the {} ({:.0}% of it): the map has nothing there, and its lookups read outside [0, 1]. Make the orthographic box wide and deep enough for the scene (left/right/bottom/top, near and far).",
+            &[&(100.0 * j.share(total)), &names[worst], &(100.0 * share(worst))],
+        ),
+    ))
+}

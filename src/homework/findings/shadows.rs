@@ -1,0 +1,216 @@
+//! Findings on where the shadows are: missing, not dark, detached from their blockers, on lit
+//! surfaces (acne), or made by texels the framework never cleared.
+
+use super::{FindingKind, Found, Judged, LIT, UMBRA, has, mean};
+use crate::i18n::{Lang, fill};
+use std::collections::BTreeMap;
+
+/// `umbra_not_dark`: the student's mean visibility over the ground truth's umbra above this.
+const UMBRA_MEAN_LIMIT: f64 = 0.25;
+/// `shadows_missing` (instead of `umbra_not_dark`): the umbra's mean visibility above this.
+const SHADOWS_MISSING_MEAN: f64 = 0.9;
+/// The umbra is judged on surfaces whose N.L is above this: a surface turned away from the light
+/// is dark in the shading whatever its visibility (the undersides of the bunnies), and a shader
+/// may well skip its lookup there.
+const UMBRA_FACING: f32 = 0.05;
+/// `self_shadowing`: surfaces facing the light that the ground truth lights fully, darkened
+/// (visibility below 0.5) on more than this share.
+const ACNE_SHARE: f64 = 0.02;
+/// Surfaces with N.L above this face the light squarely (acne is judged there apart).
+const SQUARELY: f32 = 0.9;
+/// Acne is judged over at least this many lit pixels.
+const ACNE_PIXELS: usize = 300;
+/// `depends_on_uncleared_map`: more than this share of shaded pixels change visibility by more
+/// than 0.1 when the map starts white.
+const UNCLEARED_SHARE: f64 = 0.005;
+/// `peter_panning`: a slab's shadow counts as gone where its core's mean visibility is above this.
+const SHADOW_GONE: f32 = 0.5;
+
+fn percent(share: f64) -> f64 {
+    100.0 * share
+}
+
+/// The student's mean visibility over the ground truth's umbra on surfaces facing the light
+/// (clamped to [0, 1]: a sum left undivided would weigh its count of lit taps).
+pub fn umbra_mean(j: &Judged<'_>) -> Option<f64> {
+    mean(
+        j.finite
+            .iter()
+            .filter(|&&(i, _)| j.truth(i) <= UMBRA && j.e.facing[i].is_some_and(|c| c > UMBRA_FACING))
+            .map(|&(_, v)| f64::from(v.clamp(0.0, 1.0))),
+    )
+}
+
+fn judged_on_numbers(earlier: &[super::Finding]) -> bool {
+    has(earlier, "visibility_out_of_range") || has(earlier, "visibility_scaled")
+}
+
+/// Where the ground truth is in full shadow the student's is lit: the lookups never meet the
+/// blockers (coordinates in NDC, depths in other units, the wrong matrix).
+pub const SHADOWS_MISSING: FindingKind =
+    FindingKind { id: "shadows_missing", lesson: "hard-shadows", step: 2, judge: shadows_missing };
+
+fn shadows_missing(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    let umbra = umbra_mean(j).filter(|m| *m > SHADOWS_MISSING_MEAN)?;
+    if has(earlier, "light_model_matrix") {
+        return None;
+    }
+    Some(Found::new(
+        None,
+        BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]),
+        fill(
+            lang,
+            "Where the ground truth is in full shadow, your visibility averages {:.2}: the shadows are missing. The lookups do not meet the blockers: coordinates in the wrong space (NDC in [-1, 1] where the map wants [0, 1]), depths compared in different units, or the wrong matrix.",
+            &[&umbra],
+        ),
+    ))
+}
+
+/// Where no point of the light reaches, the student's visibility averages above
+/// `UMBRA_MEAN_LIMIT`: a filter reaching far past the blocker.
+pub const UMBRA_NOT_DARK: FindingKind =
+    FindingKind { id: "umbra_not_dark", lesson: "pcss", step: 6, judge: umbra_not_dark };
+
+fn umbra_not_dark(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    // A bias that takes a slab's shadow away lights the umbra near contact too: that finding's.
+    if has(earlier, "shadows_missing")
+        || has(earlier, "peter_panning")
+        || has(earlier, "light_model_matrix")
+        || judged_on_numbers(earlier)
+    {
+        return None;
+    }
+    let umbra = umbra_mean(j).filter(|m| *m > UMBRA_MEAN_LIMIT)?;
+    Some(Found::new(
+        None,
+        BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]),
+        fill(
+            lang,
+            "Where no point of the light reaches (the ground truth is 0), your visibility averages {:.2}. A filter that reaches far past the blocker does this: a light size in world units used as a size in uv (or texels).",
+            &[&umbra],
+        ),
+    ))
+}
+
+/// The lowest slab's shadow is gone while the higher ones are there: a bias so large that a
+/// blocker that close to a surface no longer shadows it.
+pub const PETER_PANNING: FindingKind =
+    FindingKind { id: "peter_panning", lesson: "bias", step: 2, judge: peter_panning };
+
+fn peter_panning(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if has(earlier, "shadows_missing") || has(earlier, "light_model_matrix") || judged_on_numbers(earlier) {
+        return None;
+    }
+    let slabs = &j.e.light.width?.slabs;
+    let gone = |s: &&super::super::SlabShadow| s.core_visibility.is_some_and(|v| v > SHADOW_GONE);
+    let there = |s: &&super::super::SlabShadow| s.core_visibility.is_some_and(|v| v <= SHADOW_GONE);
+    let lowest = slabs.iter().min_by(|a, b| a.gap_world.total_cmp(&b.gap_world))?;
+    if !gone(&lowest) || !slabs.iter().any(|s| there(&s)) {
+        return None;
+    }
+    // The bias lies between the largest gap that lost its shadow and the smallest that kept it.
+    let lost = slabs.iter().filter(gone).map(|s| s.gap_world).fold(0.0f32, f32::max);
+    let kept = slabs.iter().filter(there).map(|s| s.gap_world).fold(f32::INFINITY, f32::min);
+    let mut figures =
+        BTreeMap::from([("bias_at_least_world", f64::from(lost)), ("bias_under_world", f64::from(kept))]);
+    for (key, s) in super::SLAB_KEYS.iter().zip(slabs) {
+        if let Some(v) = s.core_visibility {
+            figures.insert(key.core_visibility, f64::from(v));
+        }
+    }
+    Some(Found::new(
+        None,
+        figures,
+        fill(
+            lang,
+            "The {} casts no shadow: a blocker {:.1} world units above the floor (along the light) does not shadow it, while one {:.1} above does. Your depth bias is that large: shadows come loose from what casts them (peter panning). A bias in [0, 1] depth is a distance times 1 / (far - near): 0.01 with far 400 is 4 world units.",
+            &[&lowest.name, &lost, &kept],
+        ),
+    ))
+}
+
+/// Surfaces facing the light and fully lit in the ground truth are dark in the student's:
+/// acne, a surface shadowing itself.
+pub const SELF_SHADOWING: FindingKind =
+    FindingKind { id: "self_shadowing", lesson: "bias", step: 1, judge: self_shadowing };
+
+fn self_shadowing(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    // Acne darkens lit surfaces in a picture whose shadows are otherwise right; where the umbra
+    // is wrong too, the whole lookup is, and the findings above say so. A lit area scaled down is
+    // darkened everywhere, by the divisor: the scale's finding.
+    if has(earlier, "shadows_missing")
+        || has(earlier, "umbra_not_dark")
+        || has(earlier, "visibility_scaled")
+        || has(earlier, "light_model_matrix")
+    {
+        return None;
+    }
+    // Judged apart where the surface faces the light squarely: a bias that grows with the angle
+    // (slope-scaled, with no constant part) is 0 there, and acne shows only there.
+    let darkened = |facing: &dyn Fn(f32) -> bool| {
+        let lit: Vec<f32> = j
+            .finite
+            .iter()
+            // Darkening the uncleared map explains is that finding's, not acne.
+            .filter(|&&(i, _)| j.sound(i) && !j.changes_over_white(i, 0.1))
+            .filter(|&&(i, _)| j.truth(i) >= LIT && j.e.facing[i].is_some_and(facing))
+            .map(|&(_, v)| v)
+            .collect();
+        // A visibility above 1 stays in: a lit surface that reads more than lit is not darkened.
+        let share = lit.iter().filter(|v| **v < 0.5).count() as f64 / lit.len().max(1) as f64;
+        (share, lit.len())
+    };
+    let (slanted, slanted_pixels) = darkened(&|c| c > super::FACING && c <= SQUARELY);
+    let (square, square_pixels) = darkened(&|c| c > SQUARELY);
+    let acne = |(share, pixels): (f64, usize)| pixels >= ACNE_PIXELS && share > ACNE_SHARE;
+    if std::env::var("SHADOWLAB_DEBUG_FINDINGS").is_ok() {
+        eprintln!(
+            "DEBUG acne slanted {slanted:.4} of {slanted_pixels}, square {square:.4} of {square_pixels}"
+        );
+    }
+    (acne((slanted, slanted_pixels)) || acne((square, square_pixels))).then(|| {
+        let worst = if acne((slanted, slanted_pixels)) { slanted.max(square) } else { square };
+        Found::new(
+            None,
+            BTreeMap::from([
+                ("darkened_share", slanted.max(square)),
+                ("darkened_share_facing_squarely", square),
+                ("lit_facing_pixels", (slanted_pixels + square_pixels) as f64),
+            ]),
+            fill(
+                lang,
+                "{:.1}% of the surfaces that face the light and are fully lit in the ground truth are dark in yours: shadow acne, the surface shadowing itself. Compare with a bias (the receiver's depth minus a small amount), or a larger one; a bias that is 0 where a surface faces the light squarely (max(c (1 - N.L), 0)) leaves acne there.",
+                &[&percent(worst)],
+            ),
+        )
+    })
+}
+
+/// The share of shaded pixels whose visibility changes by more than 0.1 over a white map.
+pub fn uncleared_share(j: &Judged<'_>) -> f64 {
+    j.share(j.shaded.iter().filter(|&&i| j.sound(i) && j.changes_over_white(i, 0.1)).count())
+}
+
+/// More than `UNCLEARED_SHARE` of the picture changes when the map starts white: lookups land
+/// on texels the framework never cleared.
+pub const DEPENDS_ON_UNCLEARED_MAP: FindingKind = FindingKind {
+    id: "depends_on_uncleared_map",
+    lesson: "hard-shadows",
+    step: 3,
+    judge: depends_on_uncleared_map,
+};
+
+fn depends_on_uncleared_map(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
+    let share = uncleared_share(j);
+    (share > UNCLEARED_SHARE).then(|| {
+        Found::new(
+            None,
+            BTreeMap::from([("changed_share", share)]),
+            fill(
+                lang,
+                "{:.1}% of the picture changes when the shadow map starts white instead of 0. The framework never clears its map: texels no object covers read depth 0, which counts as a blocker. Your lookups land there (outside [0, 1] uv, or far from the pixel).",
+                &[&percent(share)],
+            ),
+        )
+    })
+}

@@ -1,0 +1,282 @@
+//! The student's own light: their `engine.js` says where it is, their `DirectionalLight.js`'s
+//! `CalcLightMVP(translate, scale)` builds each object's `uLightMVP` (run by `light_script`,
+//! shadowlab's own sandboxed interpreter), and shadowlab reads its own copy of the frustum out of
+//! the matrix (`read_light`). A script that fails says so on one line, and the check goes on
+//! with the framework's light.
+
+use super::light::{HomeworkLight, LightFrom, ModelMatrixError, read_light};
+use super::light_script::{EngineLight, GlCall, LightScript, Limits, engine_light};
+use super::{FRAMEWORK_LIGHT_INTENSITY, HomeworkSource};
+use crate::scene::{Light, LightKind, Scene};
+use glam::{Mat4, Vec3};
+use serde::Serialize;
+
+/// The light's part of a check's report.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LightReport {
+    /// `DirectionalLight.js:37` (the file and line the matrix came from), or `framework`.
+    pub from: String,
+    /// Why the student's script was not used, on one line (the check then uses the framework's).
+    pub error: Option<String>,
+    /// `uLightPos`, the focal point and up, as engine.js gives them, each with where it came from.
+    pub position: [f32; 3],
+    pub position_from: String,
+    pub focal_point: [f32; 3],
+    pub up: [f32; 3],
+    /// The matrix an object at the origin gets (GL clip from world, column-major, as gl-matrix
+    /// lays it out), and each object's `uLightMVP` by object name.
+    pub clip_from_world: [f32; 16],
+    pub clip_from_object: Vec<(String, [f32; 16])>,
+    /// The gl-matrix calls that built the matrix (at the origin, unscaled).
+    pub calls: Vec<CallReport>,
+    /// shadowlab's copy of the frustum, for its own technique and the ground truth.
+    pub frustum: FrustumReport,
+    /// One line each: what shadowlab noticed or had to change.
+    pub notes: Vec<String>,
+    /// How each object's matrix treats its translation and scale (None: as the framework means).
+    pub model_matrix: Option<ModelMatrixError>,
+}
+
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CallReport {
+    pub call: String,
+    pub args: Vec<f64>,
+    pub line: usize,
+}
+
+/// The frustum shadowlab's own side uses.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FrustumReport {
+    pub kind: &'static str,
+    /// Orthographic: the map's width; perspective: its field of view, degrees.
+    pub width_world: Option<f32>,
+    pub fov_deg: Option<f32>,
+    /// The near plane's centre, and the depth range from it, world units.
+    pub near_centre: [f32; 3],
+    pub depth_range_world: f32,
+    /// One texel's width across the light at the focal point, world units.
+    pub texel_world: f32,
+}
+
+/// The light a homework is checked with, and the scene whose light `index` is shadowlab's copy.
+pub struct StudentLight {
+    pub light: HomeworkLight,
+    pub scene: Scene,
+    pub report: LightReport,
+}
+
+fn cols(m: Mat4) -> [f32; 16] {
+    m.to_cols_array()
+}
+
+fn vec3(v: [f64; 3]) -> Vec3 {
+    Vec3::new(v[0] as f32, v[1] as f32, v[2] as f32)
+}
+
+/// Two matrices project the same (relative difference of their entries under `tolerance`).
+fn same(a: Mat4, b: Mat4) -> bool {
+    let scale =
+        a.to_cols_array().iter().chain(&b.to_cols_array()).fold(0.0f32, |m, v| m.max(v.abs())).max(1e-6);
+    a.to_cols_array().iter().zip(b.to_cols_array()).all(|(x, y)| (x - y).abs() <= 1e-4 * scale)
+}
+
+/// How `matrix` (an object's) relates to `clip_from_world` for an object placed by `t` and `s`.
+fn model_matrix(
+    matrix: Mat4,
+    clip_from_world: Mat4,
+    t: Vec3,
+    s: Vec3,
+    light_position: Vec3,
+) -> Option<ModelMatrixError> {
+    let (translate, scale) = (Mat4::from_translation(t), Mat4::from_scale(s));
+    if same(matrix, clip_from_world * translate * scale) {
+        return None;
+    }
+    if t == Vec3::ZERO && s == Vec3::ONE {
+        return Some(ModelMatrixError::Different);
+    }
+    Some(if same(matrix, clip_from_world) {
+        ModelMatrixError::Missing
+    } else if same(matrix, clip_from_world * scale * translate) {
+        ModelMatrixError::WrongOrder
+    } else if same(matrix, clip_from_world * Mat4::from_translation(light_position) * scale) {
+        ModelMatrixError::TranslatedByLightPosition
+    } else {
+        ModelMatrixError::Different
+    })
+}
+
+/// The frustum shadowlab holds as a report.
+fn frustum_report(light: &Light, focal_point: Vec3) -> FrustumReport {
+    let depth_range_world = light.far - light.near;
+    let (kind, width_world, fov_deg) = match light.kind {
+        LightKind::Directional { extent_world } => ("orthographic", Some(2.0 * extent_world), None),
+        LightKind::Spot { fov_deg } => ("perspective", None, Some(fov_deg)),
+    };
+    let distance = (focal_point - light.position).dot(light.direction_at(0.0)).max(light.near);
+    let texel_world = match light.kind {
+        LightKind::Directional { extent_world } => 2.0 * extent_world / light.shadow_map_size as f32,
+        LightKind::Spot { fov_deg } => {
+            2.0 * distance * (0.5 * fov_deg.to_radians()).tan() / light.shadow_map_size as f32
+        }
+    };
+    FrustumReport {
+        kind,
+        width_world,
+        fov_deg,
+        near_centre: light.position.to_array(),
+        depth_range_world,
+        texel_world,
+    }
+}
+
+/// Run the submission's light scripts for `scene` (its light `index` is the framework's) at
+/// `t_s`: the student's light and shadowlab's copy of it, or the framework's with why.
+pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: f32) -> Option<StudentLight> {
+    let limits = Limits::default();
+    let engine = match &source.engine {
+        Some(file) => engine_light(&file.text, &file.name, limits),
+        None => EngineLight::framework(),
+    };
+    let framework = |error: Option<String>, mut notes: Vec<String>| {
+        let light = HomeworkLight::of_scene(scene, index, t_s, FRAMEWORK_LIGHT_INTENSITY)?;
+        let shadowlab = scene.lights.get(index)?;
+        if error.is_some() {
+            notes.push("checked with the framework's own light instead".into());
+        }
+        let report = LightReport {
+            from: LightFrom::Framework.label(),
+            error,
+            position: light.position.to_array(),
+            position_from: "framework".into(),
+            focal_point: shadowlab.target.to_array(),
+            up: shadowlab.up.to_array(),
+            clip_from_world: cols(light.clip_from_world),
+            clip_from_object: scene
+                .objects
+                .iter()
+                .zip(&light.clip_from_object)
+                .map(|(o, m)| (o.name.clone(), cols(*m)))
+                .collect(),
+            calls: Vec::new(),
+            frustum: frustum_report(shadowlab, shadowlab.target),
+            notes,
+            model_matrix: None,
+        };
+        Some(StudentLight { light, scene: scene.clone(), report })
+    };
+    let Some(script) = &source.light_script else {
+        return framework(None, engine.notes.clone());
+    };
+    let mut notes = engine.notes.clone();
+    let loaded = LightScript::load(&script.text, &script.name, &engine, limits);
+    let mut loaded = match loaded {
+        Ok(l) => l,
+        Err(e) => return framework(Some(e.to_string()), notes),
+    };
+    notes.extend(loaded.notes().iter().cloned());
+    let at_origin = match loaded.light_matrix([0.0; 3], [1.0; 3]) {
+        Ok(m) => m,
+        Err(e) => return framework(Some(e.to_string()), notes),
+    };
+    let clip_from_world = Mat4::from_cols_array(&at_origin.clip_from_object);
+    let position = vec3(engine.position.value);
+    let focal_point = vec3(engine.focal_point.value);
+    let mut clip_from_object = Vec::new();
+    let mut model = None;
+    for object in &scene.objects {
+        let rotated = object.rotate_deg != Vec3::ZERO || !object.is_still();
+        if rotated {
+            // The framework never rotates an object: such an object (a scene of one's own) gets
+            // the light's matrix times its whole model matrix.
+            clip_from_object.push(clip_from_world * object.world_from_object(t_s));
+            continue;
+        }
+        let (t, s) = (object.translate, object.scale);
+        let matrix = match loaded.light_matrix(t.as_dvec3().to_array(), s.as_dvec3().to_array()) {
+            Ok(m) => Mat4::from_cols_array(&m.clip_from_object),
+            Err(e) => return framework(Some(e.to_string()), notes),
+        };
+        if model.is_none() {
+            model = model_matrix(matrix, clip_from_world, t, s, position);
+        }
+        clip_from_object.push(matrix);
+    }
+    let projection_line = at_origin
+        .calls
+        .iter()
+        .rev()
+        .find(|c| matches!(c.name.as_str(), "mat4.ortho" | "mat4.perspective" | "mat4.frustum"))
+        .map_or(at_origin.return_line, |c| c.line);
+    let like = scene.lights.get(index)?;
+    let (shadowlab_scene, frustum) = match read_light(clip_from_world, focal_point, like) {
+        Ok(read) => {
+            notes.extend(read.notes);
+            let mut s = scene.clone();
+            s.lights[index] = read.light;
+            (s, frustum_report(&read.light, focal_point))
+        }
+        Err(e) => {
+            notes.push(format!("shadowlab's own side cannot hold this light ({e}); it uses the framework's"));
+            (scene.clone(), frustum_report(like, like.target))
+        }
+    };
+    let engine_intensity = (engine.intensity.value as f32) * vec3(engine.color.value);
+    let light = HomeworkLight {
+        from: LightFrom::Script { file: script.name.clone(), line: projection_line },
+        clip_from_object,
+        clip_from_world,
+        position,
+        intensity: engine_intensity,
+        model_matrix: model,
+    };
+    let report = LightReport {
+        from: light.from.label(),
+        error: None,
+        position: position.to_array(),
+        position_from: if engine.position.line > 0 {
+            format!("{}:{}", engine.position.file, engine.position.line)
+        } else {
+            "framework".into()
+        },
+        focal_point: focal_point.to_array(),
+        up: vec3(engine.up.value).to_array(),
+        clip_from_world: cols(clip_from_world),
+        clip_from_object: scene
+            .objects
+            .iter()
+            .zip(&light.clip_from_object)
+            .map(|(o, m)| (o.name.clone(), cols(*m)))
+            .collect(),
+        calls: at_origin
+            .calls
+            .iter()
+            .map(|c: &GlCall| CallReport { call: c.name.clone(), args: c.args.clone(), line: c.line })
+            .collect(),
+        frustum,
+        notes,
+        model_matrix: model,
+    };
+    Some(StudentLight { light, scene: shadowlab_scene, report })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_model_matrix_is_told_apart_from_its_usual_mistakes() {
+        let view = Mat4::orthographic_rh_gl(-100.0, 100.0, -100.0, 100.0, 1.0, 400.0)
+            * Mat4::look_at_rh(Vec3::new(0.0, 80.0, 80.0), Vec3::ZERO, Vec3::Y);
+        let (t, s, eye) = (Vec3::new(40.0, 0.0, -40.0), Vec3::splat(10.0), Vec3::new(0.0, 80.0, 80.0));
+        let (tm, sm) = (Mat4::from_translation(t), Mat4::from_scale(s));
+        assert_eq!(model_matrix(view * tm * sm, view, t, s, eye), None);
+        assert_eq!(model_matrix(view, view, t, s, eye), Some(ModelMatrixError::Missing));
+        assert_eq!(model_matrix(view * sm * tm, view, t, s, eye), Some(ModelMatrixError::WrongOrder));
+        assert_eq!(
+            model_matrix(view * Mat4::from_translation(eye) * sm, view, t, s, eye),
+            Some(ModelMatrixError::TranslatedByLightPosition)
+        );
+        assert_eq!(model_matrix(view * tm, view, t, s, eye), Some(ModelMatrixError::Different));
+    }
+}

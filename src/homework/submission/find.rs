@@ -1,0 +1,395 @@
+//! Picks the framework's files among a submission's paths, wherever the student put them.
+//!
+//! Paths are '/'-separated and relative. The phongFragment.glsl is picked first; the other
+//! files are then taken from the same homework root where the student has them there.
+//! Folders are listed here too, without following symlinks and within the limits.
+
+use std::cmp::Reverse;
+use std::fs;
+use std::path::{Path, PathBuf};
+
+use super::{Limits, SubmissionError};
+
+/// The framework files a submission may hold, in the order `Picked::files` uses.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Kind {
+    PhongFragment,
+    PhongVertex,
+    ShadowFragment,
+    ShadowVertex,
+    Light,
+    Engine,
+}
+
+impl Kind {
+    pub(super) const ALL: [Kind; 6] = [
+        Kind::PhongFragment,
+        Kind::PhongVertex,
+        Kind::ShadowFragment,
+        Kind::ShadowVertex,
+        Kind::Light,
+        Kind::Engine,
+    ];
+
+    pub(super) fn file_name(self) -> &'static str {
+        match self {
+            Kind::PhongFragment => "phongFragment.glsl",
+            Kind::PhongVertex => "phongVertex.glsl",
+            Kind::ShadowFragment => "shadowFragment.glsl",
+            Kind::ShadowVertex => "shadowVertex.glsl",
+            Kind::Light => "DirectionalLight.js",
+            Kind::Engine => "engine.js",
+        }
+    }
+
+    /// The folder the framework keeps this file in.
+    fn parent(self) -> &'static str {
+        match self {
+            Kind::PhongFragment | Kind::PhongVertex => "phongShader",
+            Kind::ShadowFragment | Kind::ShadowVertex => "shadowShader",
+            Kind::Light => "lights",
+            Kind::Engine => "src",
+        }
+    }
+
+    /// Which framework file a file name is, ignoring case (students' tools and OSes vary).
+    pub(super) fn of(file_name: &str) -> Option<Kind> {
+        Kind::ALL.into_iter().find(|k| k.file_name().eq_ignore_ascii_case(file_name))
+    }
+}
+
+/// Why a path is never looked at, if it is one of those: tool folders and macOS metadata.
+pub(super) fn skip_reason(path: &str) -> Option<&'static str> {
+    let mut parts = path.split('/').peekable();
+    while let Some(part) = parts.next() {
+        let is_last = parts.peek().is_none();
+        if !is_last && let Some(why) = skipped_folder(part) {
+            return Some(why);
+        }
+        if is_last && part.starts_with("._") {
+            return Some("macOS metadata");
+        }
+    }
+    None
+}
+
+/// Why a folder is never walked, if it is one of those.
+pub(super) fn skipped_folder(name: &str) -> Option<&'static str> {
+    if name.eq_ignore_ascii_case(".git") {
+        Some("version control")
+    } else if name.eq_ignore_ascii_case("node_modules") {
+        Some("installed packages")
+    } else if name.eq_ignore_ascii_case("__MACOSX") {
+        Some("macOS metadata")
+    } else {
+        None
+    }
+}
+
+/// Words that name a homework when followed by its number ("homework1", "HW_2", "作业1", "A1").
+const HOMEWORK_WORDS: [&str; 6] = ["homework", "assignment", "作业", "lab", "hw", "a"];
+
+/// Whether a folder name names homework 1 (Some(true)), another homework (Some(false)), or none.
+fn homework_tag(folder: &str) -> Option<bool> {
+    let chars: Vec<char> = folder.to_lowercase().chars().collect();
+    let words: Vec<Vec<char>> = HOMEWORK_WORDS.iter().map(|w| w.chars().collect()).collect();
+    let mut tag = None;
+    for start in 0..chars.len() {
+        // "data1" must not read as "a1": the word has to start the name or follow a non-letter.
+        let follows_letter =
+            start.checked_sub(1).and_then(|i| chars.get(i)).is_some_and(|c| c.is_ascii_alphabetic());
+        if follows_letter {
+            continue;
+        }
+        let rest = chars.get(start..).unwrap_or_default();
+        for word in words.iter().filter(|w| rest.starts_with(w)) {
+            let after = rest.get(word.len()..).unwrap_or_default();
+            let after = after.iter().skip_while(|c| matches!(c, ' ' | '_' | '-' | '.'));
+            let digits: String = after.take_while(|c| c.is_ascii_digit()).collect();
+            if !digits.is_empty() {
+                tag = Some(digits.trim_start_matches('0') == "1");
+            }
+        }
+    }
+    tag
+}
+
+/// Words for a folder of spare copies, matched as whole words with any trailing digits dropped.
+const SPARE_WORDS: [&str; 12] = [
+    "backup",
+    "bak",
+    "old",
+    "odd",
+    "copy",
+    "test",
+    "tests",
+    "tmp",
+    "temp",
+    "deprecated",
+    "unused",
+    "archive",
+];
+
+/// Whether a folder looks like it holds spare copies ("backup", "src_old", "shaders - Copy").
+fn is_spare(folder: &str) -> bool {
+    let lower = folder.to_lowercase();
+    lower.contains("副本")
+        || lower.contains("备份")
+        || lower
+            .split(|c: char| !c.is_alphanumeric())
+            .map(|word| word.trim_end_matches(|c: char| c.is_ascii_digit()))
+            .any(|word| SPARE_WORDS.contains(&word))
+}
+
+/// A candidate's standing; lower sorts first and wins.
+#[derive(Clone, Debug, PartialEq, Eq, PartialOrd, Ord)]
+struct Rank {
+    /// How many of the chosen phongFragment's homework-root folders it shares (others only).
+    near: Reverse<usize>,
+    /// 0: names homework 1; 1: names no homework; 2: names another homework. Before the folder
+    /// layout: a flat `hw1/` beats a framework-shaped `hw2/`.
+    homework: u8,
+    off_parent: bool,
+    spare: bool,
+    depth: usize,
+    path: String,
+}
+
+fn folders(path: &str) -> Vec<&str> {
+    let mut parts: Vec<&str> = path.split('/').collect();
+    parts.pop();
+    parts
+}
+
+fn rank(kind: Kind, path: &str, root: &[&str]) -> Rank {
+    let dirs = folders(path);
+    let near = dirs.iter().zip(root).take_while(|(a, b)| a == b).count();
+    let homework = match dirs.iter().rev().find_map(|d| homework_tag(d)) {
+        Some(true) => 0,
+        None => 1,
+        Some(false) => 2,
+    };
+    Rank {
+        near: Reverse(near),
+        off_parent: !dirs.last().is_some_and(|d| d.eq_ignore_ascii_case(kind.parent())),
+        homework,
+        spare: dirs.iter().any(|d| is_spare(d)),
+        depth: dirs.len(),
+        path: path.to_owned(),
+    }
+}
+
+/// Why `lost` ranks below the chosen candidate, said of `lost`.
+fn reason(kind: Kind, won: &Rank, lost: &Rank) -> String {
+    if won.path == lost.path {
+        "a second entry of the same name".to_owned()
+    } else if won.near != lost.near {
+        "farther from the chosen phongFragment.glsl".to_owned()
+    } else if won.homework != lost.homework {
+        if lost.homework == 2 { "names another homework" } else { "does not name homework 1" }.to_owned()
+    } else if won.off_parent != lost.off_parent {
+        format!("not in {}/", kind.parent())
+    } else if won.spare != lost.spare {
+        "in a backup-like folder".to_owned()
+    } else if won.depth != lost.depth {
+        "deeper".to_owned()
+    } else {
+        "sorts later".to_owned()
+    }
+}
+
+/// At most this many passed-over candidates are named in a note.
+const NAMED_IN_NOTE: usize = 5;
+
+/// The best candidate of `kind` among `paths`, with a note when there were several.
+fn choose(kind: Kind, paths: &[String], root: &[&str]) -> (Option<usize>, Option<String>) {
+    let mut ranked: Vec<(Rank, usize)> = paths
+        .iter()
+        .enumerate()
+        .filter(|(_, p)| p.rsplit('/').next().and_then(Kind::of) == Some(kind))
+        .map(|(i, p)| (rank(kind, p, root), i))
+        .collect();
+    ranked.sort();
+    let mut ranked = ranked.into_iter();
+    let Some((best, index)) = ranked.next() else {
+        return (None, None);
+    };
+    let passed: Vec<Rank> = ranked.map(|(r, _)| r).collect();
+    if passed.is_empty() {
+        return (Some(index), None);
+    }
+    let mut note = format!("{}: chose {} over ", kind.file_name(), best.path);
+    let named: Vec<String> = passed
+        .iter()
+        .take(NAMED_IN_NOTE)
+        .map(|lost| format!("{} ({})", lost.path, reason(kind, &best, lost)))
+        .collect();
+    note.push_str(&named.join(", "));
+    if let Some(more) = passed.len().checked_sub(NAMED_IN_NOTE).filter(|&n| n > 0) {
+        note.push_str(&format!(" and {more} more"));
+    }
+    (Some(index), Some(note))
+}
+
+/// The picked files, as indices into the paths given to `pick`, in `Kind::ALL` order.
+#[derive(Debug)]
+pub(super) struct Picked {
+    pub phong_fragment: usize,
+    pub others: [Option<usize>; 5],
+    pub notes: Vec<String>,
+}
+
+/// Picks a phongFragment.glsl (None when there is none) and the other files beside it.
+pub(super) fn pick(paths: &[String]) -> Option<Picked> {
+    let mut notes = Vec::new();
+    let (phong, note) = choose(Kind::PhongFragment, paths, &[]);
+    let phong = phong?;
+    notes.extend(note);
+    let phong_path = paths.get(phong).map_or("", String::as_str);
+    let root = homework_root(phong_path);
+    let mut others = [None; 5];
+    for (slot, kind) in others.iter_mut().zip(Kind::ALL.into_iter().skip(1)) {
+        let (index, note) = choose(kind, paths, &root);
+        *slot = index;
+        notes.extend(note);
+    }
+    Some(Picked { phong_fragment: phong, others, notes })
+}
+
+/// The folders above the framework's `src/shaders/phongShader/` part of the chosen path, as far
+/// as the student kept that part: the homework's root, where the other files should be.
+fn homework_root(phong_path: &str) -> Vec<&str> {
+    let mut root = folders(phong_path);
+    for expected in ["phongShader", "shaders", "src"] {
+        if root.last().is_some_and(|d| d.eq_ignore_ascii_case(expected)) {
+            root.pop();
+        }
+    }
+    root
+}
+
+/// A folder's files as (relative path, full path), and notes on what was skipped.
+pub(super) struct Walked {
+    pub files: Vec<(String, PathBuf)>,
+    pub notes: Vec<String>,
+}
+
+/// Lists a folder's files: symlinks and tool folders skipped,
+/// depth and entry count bounded.
+pub(super) fn walk(root: &Path, shown: &str, limits: &Limits) -> Result<Walked, SubmissionError> {
+    let mut files = Vec::new();
+    let mut skipped = SkipNotes::default();
+    let mut stack = vec![(root.to_path_buf(), String::new(), 0usize)];
+    let mut walked_entries = 0usize;
+    while let Some((dir, rel, depth)) = stack.pop() {
+        let at = dir.display().to_string();
+        let failed = |e: std::io::Error| SubmissionError::new(&at, format!("cannot be read: {e}"));
+        let mut children = Vec::new();
+        for entry in fs::read_dir(&dir).map_err(failed)? {
+            walked_entries = walked_entries.saturating_add(1);
+            if walked_entries > limits.folder_entries {
+                let message =
+                    format!("has more than {} files and folders; not walked further", limits.folder_entries);
+                return Err(SubmissionError::new(shown, message));
+            }
+            children.push(entry.map_err(failed)?);
+        }
+        children.sort_by_key(|e| e.file_name());
+        for child in children {
+            let name = child.file_name().to_string_lossy().into_owned();
+            let child_rel = if rel.is_empty() { name.clone() } else { format!("{rel}/{name}") };
+            let file_type = child.file_type().map_err(failed)?;
+            if file_type.is_symlink() {
+                // A link may point anywhere (outside, or back up into a loop): never followed.
+                skipped.push(format!("skipped {child_rel} (a symlink)"));
+            } else if file_type.is_dir() {
+                if let Some(why) = skipped_folder(&name) {
+                    skipped.push(format!("skipped {child_rel}/ ({why})"));
+                } else if depth >= limits.depth {
+                    let message = format!("{child_rel} is nested deeper than {} folders", limits.depth);
+                    return Err(SubmissionError::new(shown, message));
+                } else {
+                    stack.push((child.path(), child_rel, depth.saturating_add(1)));
+                }
+            } else if file_type.is_file() {
+                match skip_reason(&name) {
+                    Some(why) => skipped.file(&child_rel, why),
+                    None => files.push((child_rel, child.path())),
+                }
+            }
+        }
+    }
+    Ok(Walked { files, notes: skipped.into_notes() })
+}
+
+/// Notes about skipped things, bounded so a folder of thousands of links stays a short report.
+#[derive(Default)]
+pub(super) struct SkipNotes {
+    lines: Vec<String>,
+    more: usize,
+}
+
+const SKIP_NOTES_MAX: usize = 20;
+
+impl SkipNotes {
+    pub(super) fn push(&mut self, line: String) {
+        if self.lines.len() < SKIP_NOTES_MAX {
+            self.lines.push(line);
+        } else {
+            self.more = self.more.saturating_add(1);
+        }
+    }
+
+    /// Skipped files are worth a note only when they look like one of the framework's files.
+    pub(super) fn file(&mut self, path: &str, why: &str) {
+        let base = path.rsplit('/').next().unwrap_or(path);
+        if Kind::of(base.strip_prefix("._").unwrap_or(base)).is_some() {
+            self.push(format!("skipped {} ({why})", super::zip::shown(path)));
+        }
+    }
+
+    pub(super) fn into_notes(mut self) -> Vec<String> {
+        if self.more > 0 {
+            self.lines.push(format!("and {} more skipped", self.more));
+        }
+        self.lines
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn homework_names() {
+        for one in ["homework1", "HW1", "hw_1", "Homework 01", "作业1", "assignment1", "A1", "games202-hw1"]
+        {
+            assert_eq!(homework_tag(one), Some(true), "{one}");
+        }
+        for other in ["homework2", "hw3", "hw10", "HW12", "A2", "作业3"] {
+            assert_eq!(homework_tag(other), Some(false), "{other}");
+        }
+        for none in ["src", "data1", "GAMES202", "shaders", "phongShader", "hw", ""] {
+            assert_eq!(homework_tag(none), None, "{none}");
+        }
+    }
+
+    #[test]
+    fn spare_folders() {
+        for spare in ["backup", "old", "src_old", "shaders - Copy", "tmp2", "Deprecated", "副本"] {
+            assert!(is_spare(spare), "{spare}");
+        }
+        for kept in ["src", "bold", "shaders", "homework1", "lights"] {
+            assert!(!is_spare(kept), "{kept}");
+        }
+    }
+
+    #[test]
+    fn skips_tool_folders() {
+        assert!(skip_reason("__MACOSX/hw1/._phongFragment.glsl").is_some());
+        assert!(skip_reason("hw1/._phongFragment.glsl").is_some());
+        assert!(skip_reason("a/node_modules/x/engine.js").is_some());
+        assert!(skip_reason(".git/x").is_some());
+        assert!(skip_reason("hw1/src/engine.js").is_none());
+    }
+}
