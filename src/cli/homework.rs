@@ -6,7 +6,7 @@
 use super::{CliError, parse_key_value, parse_size, parse_time};
 use crate::homework::{
     HomeworkProgram, HomeworkRenderer, HomeworkReport, HomeworkRequest, HomeworkSource, MapKind,
-    ShaderSource, run_check,
+    ShaderSource, SubmissionReport, run_check,
 };
 use crate::i18n::Lang;
 use crate::scene::load_scene;
@@ -107,7 +107,8 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
         Ok(program) => program,
         Err(e) => {
             // The report says it too, for a grader reading the folder.
-            let report = HomeworkReport::not_compiled(&shader.name, &e);
+            let mut report = HomeworkReport::not_compiled(&shader.name, &e);
+            report.submission = Some(SubmissionReport::of(&source));
             let text = report_json(&report)?;
             std::fs::create_dir_all(&args.out)
                 .map_err(|err| CliError::input(format!("{}: {err}", args.out.display())))?;
@@ -132,6 +133,7 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
         run_check(&homework, &mut renderer, &shader, &student.scene, &student.light, &request, args.lang)
             .map_err(|e| CliError { code: 1, message: format!("{}: {e}", shader.name) })?;
     outcome.report.light = Some(student.report);
+    outcome.report.submission = Some(SubmissionReport::of(&source));
     // Everything encoded before the first file is written: a failure leaves no partial folder.
     let text = report_json(&outcome.report)?;
     let pictures = [

@@ -48,7 +48,9 @@ pub use pass::{FRAMEWORK_LIGHT_INTENSITY, HomeworkGpuError, HomeworkRenderer, Ho
 pub use program::{HomeworkFiles, HomeworkProgram, HomeworkSource, ShaderSource, TranslatedProgram, is_zip};
 pub use rewrite::{FRAG_COLOR, Rewritten, rewrite};
 pub use run::CheckRun;
-pub use session::{CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, homework_picture, run_check};
+pub use session::{
+    CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, SubmissionReport, homework_picture, run_check,
+};
 pub use translate::{Translated, translate, translate_rewritten};
 
 /// The two stages a homework shader can be.

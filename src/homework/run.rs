@@ -297,6 +297,7 @@ impl CheckRun {
         let figures = super::figures::figures(&Judged::new(&framework));
         let findings = findings(&framework, &exact, self.lang);
         let report = HomeworkReport {
+            submission: None,
             shader: self.shader.clone(),
             compiled: true,
             error: None,

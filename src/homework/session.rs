@@ -37,6 +37,8 @@ impl From<&HomeworkError> for ShaderErrorReport {
 /// What a check found, as `report.json` holds it.
 #[derive(Clone, Debug, Serialize, PartialEq)]
 pub struct HomeworkReport {
+    /// The submission: its name and the files used (None: a lone shader given as such).
+    pub submission: Option<SubmissionReport>,
     /// The student's fragment shader, as named on the command line.
     pub shader: String,
     pub compiled: bool,
@@ -57,10 +59,44 @@ pub struct HomeworkReport {
     pub findings: Vec<Finding>,
 }
 
+/// What a submission handed over, as the report names it.
+#[derive(Clone, Debug, Serialize, PartialEq, Eq)]
+pub struct SubmissionReport {
+    /// The folder's or zip's name (a class report lists students by it).
+    pub name: String,
+    /// Each framework file, and where in the submission it was found (`framework` where the
+    /// submission has none and the framework's own was used).
+    pub files: Vec<(String, String)>,
+    /// How the files were found where there was a choice, one line each.
+    pub notes: Vec<String>,
+}
+
+impl SubmissionReport {
+    pub fn of(source: &super::HomeworkSource) -> Self {
+        let f = &source.files;
+        let name = |s: &super::ShaderSource| s.name.clone();
+        let script =
+            |s: &Option<super::ShaderSource>| s.as_ref().map_or("framework".to_string(), |s| s.name.clone());
+        Self {
+            name: source.name.clone(),
+            files: vec![
+                ("phongFragment.glsl".into(), name(&f.phong_fragment)),
+                ("phongVertex.glsl".into(), name(&f.phong_vertex)),
+                ("shadowFragment.glsl".into(), name(&f.shadow_fragment)),
+                ("shadowVertex.glsl".into(), name(&f.shadow_vertex)),
+                ("DirectionalLight.js".into(), script(&source.light_script)),
+                ("engine.js".into(), script(&source.engine)),
+            ],
+            notes: source.notes.clone(),
+        }
+    }
+}
+
 impl HomeworkReport {
     /// The report of a shader that did not compile.
     pub fn not_compiled(shader: &str, error: &HomeworkError) -> Self {
         Self {
+            submission: None,
             shader: shader.to_string(),
             compiled: false,
             error: Some(error.into()),
