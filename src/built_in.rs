@@ -28,13 +28,26 @@ shipped_files![
     "assets/scenes/homework.toml",
     "assets/scenes/homework_check.toml",
     "assets/homework/README.md",
+    "assets/homework/DirectionalLight.js",
+    "assets/homework/DirectionalLight_narrow.js",
+    "assets/homework/DirectionalLight_no_model.js",
     "assets/homework/phongFragment.glsl",
+    "assets/homework/phongFragment_bias_too_large.glsl",
+    "assets/homework/phongFragment_constant_filter.glsl",
+    "assets/homework/phongFragment_divided_twice.glsl",
     "assets/homework/phongFragment_light_size_world.glsl",
     "assets/homework/phongFragment_nan_blocker.glsl",
     "assets/homework/phongFragment_ndc_coordinates.glsl",
     "assets/homework/phongFragment_no_bias.glsl",
+    "assets/homework/phongFragment_no_bias_hidden.glsl",
+    "assets/homework/phongFragment_random_walk.glsl",
+    "assets/homework/phongFragment_receiver_blocker.glsl",
+    "assets/homework/phongFragment_search_radius.glsl",
     "assets/homework/phongFragment_tiny_light.glsl",
+    "assets/homework/phongFragment_undivided.glsl",
+    "assets/homework/phongFragment_zero_blocker.glsl",
     "assets/homework/shadowFragment_255.glsl",
+    "assets/homework/shadowFragment_carry.glsl",
     "assets/homework/framework/phongVertex.glsl",
     "assets/homework/framework/shadowFragment.glsl",
     "assets/homework/framework/shadowVertex.glsl",
@@ -110,6 +123,6 @@ mod tests {
         assert!(!is_folder(Path::new("assets/home")) && !is_folder(Path::new("lessons/02_bias.toml")));
         let textures = files_in(Path::new("assets/textures"));
         assert_eq!(textures, vec![PathBuf::from("assets/textures/checker.png")]);
-        assert_eq!(files_in(Path::new("assets/homework")).len(), 8);
+        assert_eq!(files_in(Path::new("assets/homework")).len(), 21);
     }
 }

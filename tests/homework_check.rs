@@ -3,6 +3,9 @@
 //! does not compile (exit 2, the student's own line) and on bad input (nothing written).
 
 mod common;
+#[path = "../src/homework/submission/tests/writer.rs"]
+#[allow(dead_code)]
+mod zip_writer;
 
 use common::{Run, repo_path};
 use serde_json::Value;
@@ -54,57 +57,187 @@ fn finding_ids(report: &Value) -> Vec<String> {
         .collect()
 }
 
-#[test]
-fn each_example_gets_exactly_its_findings_and_the_correct_one_none() {
-    let shadow_255 = example("shadowFragment_255.glsl");
-    let cases: [(&str, Vec<&str>, &[&str]); 6] = [
+/// Each example's findings, in order, each `id` or `id (latent)`, with the extra arguments it is
+/// checked with (see assets/homework/README.md).
+fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> {
+    let script = |name: &str| vec!["--light-script".to_string(), example(name)];
+    let shadow = |name: &str| vec!["--shadow-shader".to_string(), example(name)];
+    vec![
         ("phongFragment.glsl", vec![], &[]),
+        ("phongFragment.glsl", script("DirectionalLight.js"), &[]),
+        ("phongFragment.glsl", script("DirectionalLight_no_model.js"), &["light_model_matrix"]),
+        ("phongFragment.glsl", script("DirectionalLight_narrow.js"), &["light_frustum_clips"]),
+        ("phongFragment.glsl", shadow("shadowFragment_carry.glsl"), &["depth_round_trip_wrong"]),
         ("phongFragment_light_size_world.glsl", vec![], &["umbra_not_dark", "depends_on_uncleared_map"]),
         ("phongFragment_tiny_light.glsl", vec![], &["no_penumbra"]),
         ("phongFragment_nan_blocker.glsl", vec![], &["nan_blocker_depth"]),
         ("phongFragment_ndc_coordinates.glsl", vec![], &["shadows_missing"]),
-        ("phongFragment_no_bias.glsl", vec!["--shadow-shader", &shadow_255], &["self_shadowing"]),
-    ];
+        ("phongFragment_no_bias.glsl", shadow("shadowFragment_255.glsl"), &["self_shadowing"]),
+        ("phongFragment_no_bias_hidden.glsl", vec![], &["self_shadowing (latent)"]),
+        ("phongFragment_bias_too_large.glsl", vec![], &["peter_panning"]),
+        ("phongFragment_receiver_blocker.glsl", vec![], &["receiver_counts_as_blocker"]),
+        ("phongFragment_search_radius.glsl", vec![], &["search_radius_wrong (latent)"]),
+        ("phongFragment_random_walk.glsl", vec![], &["samples_not_around_receiver"]),
+        ("phongFragment_constant_filter.glsl", vec![], &["no_contact_hardening"]),
+        ("phongFragment_divided_twice.glsl", vec![], &["visibility_scaled"]),
+        ("phongFragment_undivided.glsl", vec![], &["visibility_out_of_range"]),
+        ("phongFragment_zero_blocker.glsl", vec![], &["filter_radius_not_finite"]),
+    ]
+}
+
+/// A report's findings as `example_cases` writes them.
+fn findings_with_severity(report: &Value) -> Vec<String> {
+    report["findings"]
+        .as_array()
+        .expect("findings")
+        .iter()
+        .map(|f| match f["severity"].as_str() {
+            Some("latent") => format!("{} (latent)", f["id"].as_str().expect("an id")),
+            _ => f["id"].as_str().expect("an id").to_string(),
+        })
+        .collect()
+}
+
+#[test]
+fn each_example_gets_exactly_its_findings_and_the_correct_one_none() {
     let scratch = tempfile::tempdir().expect("a scratch folder");
-    for (name, extra, expected) in cases {
-        let out = scratch.path().join(name.trim_end_matches(".glsl"));
+    for (k, (name, extra, expected)) in example_cases().into_iter().enumerate() {
+        let what = format!("{name} {}", extra.join(" "));
+        let out = scratch.path().join(format!("{k}"));
+        let extra: Vec<&str> = extra.iter().map(String::as_str).collect();
         let report = check(&example(name), &extra, &out);
-        assert_eq!(report["compiled"], true, "{name}");
-        assert_eq!(finding_ids(&report), expected, "{name}: {report:#}");
-        assert_eq!(report["visibility_function"], "PCSS", "{name}");
-        assert_eq!(report["compared_with"], "pcss", "{name}");
-        assert!(report["calls"].as_array().is_some_and(|c| c.contains(&Value::from("PCSS"))), "{name}");
+        assert_eq!(report["compiled"], true, "{what}");
+        assert_eq!(findings_with_severity(&report), expected, "{what}: {report:#}");
+        assert_eq!(report["visibility_function"], "PCSS", "{what}");
+        assert_eq!(report["compared_with"], "pcss", "{what}");
+        assert!(report["calls"].as_array().is_some_and(|c| c.contains(&Value::from("PCSS"))), "{what}");
         for finding in report["findings"].as_array().expect("findings") {
-            assert!(finding["explanation"].as_str().is_some_and(|e| e.len() > 40), "{name}: {finding}");
-            assert!(finding["figures"].as_object().is_some_and(|f| !f.is_empty()), "{name}: {finding}");
-            assert!(finding["step"].as_u64().is_some_and(|s| s >= 1), "{name}: {finding}");
+            assert!(finding["explanation"].as_str().is_some_and(|e| e.len() > 40), "{what}: {finding}");
+            assert!(finding["figures"].as_object().is_some_and(|f| !f.is_empty()), "{what}: {finding}");
+            assert!(finding["step"].as_u64().is_some_and(|s| s >= 1), "{what}: {finding}");
+            if finding["severity"] == "latent" {
+                assert!(
+                    finding["explanation"].as_str().is_some_and(|e| e.starts_with("Hidden today")),
+                    "{what}"
+                );
+            }
         }
-        for picture in
-            ["student.png", "reference.png", "visibility.png", "ground_truth.png", "difference.png"]
-        {
-            let image = image::open(out.join(picture)).unwrap_or_else(|e| panic!("{name}: {picture}: {e}"));
-            assert_eq!((image.width(), image.height()), (480, 270), "{name}: {picture}");
+        // The light the check drew with: the script's where one was given, the scene's otherwise.
+        let from = report["light"]["from"].as_str().unwrap_or_else(|| panic!("{what}: {report:#}"));
+        let script = extra.iter().position(|a| *a == "--light-script").map(|at| extra[at + 1]);
+        match script {
+            Some(path) => assert!(
+                from.contains(Path::new(path).file_name().and_then(|n| n.to_str()).expect("a name")),
+                "{what}: {from}"
+            ),
+            None => assert_eq!(from, "framework", "{what}"),
+        }
+        for picture in [
+            "student.png",
+            "student_lossless_map.png",
+            "reference.png",
+            "visibility.png",
+            "ground_truth.png",
+            "difference.png",
+        ] {
+            let image = image::open(out.join(picture)).unwrap_or_else(|e| panic!("{what}: {picture}: {e}"));
+            assert_eq!((image.width(), image.height()), (480, 270), "{what}: {picture}");
         }
         let figure =
-            |key: &str| report[key].as_f64().unwrap_or_else(|| panic!("{name}: {key} in {report:#}"));
-        assert!(figure("shaded_pixels") > 50_000.0, "{name}");
-        if name == "phongFragment.glsl" {
+            |key: &str| report[key].as_f64().unwrap_or_else(|| panic!("{what}: {key} in {report:#}"));
+        assert!(figure("shaded_pixels") > 50_000.0, "{what}");
+        if name == "phongFragment.glsl" && expected.is_empty() {
             // A correct solution agrees with the ground truth and with shadowlab's PCSS.
             assert!(figure("mean_abs_difference_to_ground_truth") < 0.02, "{report:#}");
             assert!(figure("mean_abs_difference") < 0.02, "{report:#}");
             assert!(figure("lit_area_mean") > 0.99 && figure("umbra_mean") < 0.1, "{report:#}");
             assert_eq!(figure("nan_fraction"), 0.0);
-            // It has a penumbra where the ground truth has one (at 480x270 a penumbra is two or
-            // three pixels wide: its measured width is only that coarse).
-            let (theirs, truth) =
-                (figure("penumbra_width_world"), figure("penumbra_width_world_ground_truth"));
-            assert!(truth > 0.1 && theirs > 0.0 && theirs < 4.0 * truth, "{theirs} against {truth}");
+            // Its light width: LIGHT_WIDTH_UV 5/200 of a 200-unit map is 5 world units, and its
+            // 20-sample spiral spans about three quarters of the nominal disk. The slabs' widths
+            // follow similar triangles.
+            let width = &report["light_width"];
+            let implied = width["implied_light_width_world"].as_f64().expect("a width");
+            assert!((2.5..5.0).contains(&implied), "{what}: {width:#}");
+            assert_eq!(width["law_holds"], true, "{what}: {width:#}");
+            assert_eq!(width["slabs"].as_array().map(Vec::len), Some(4), "{what}");
         }
         if name == "phongFragment_tiny_light.glsl" {
-            let (theirs, truth) =
-                (figure("penumbra_width_world"), figure("penumbra_width_world_ground_truth"));
-            assert!(theirs < 0.2 * truth, "a penumbra of {theirs} against {truth}");
+            // Its light, as its penumbrae show it, is far under the 5 world units of the scene's.
+            let implied = report["light_width"]["implied_light_width_world"].as_f64();
+            assert!(implied.is_none_or(|w| w < 0.5), "{what}: {:#}", report["light_width"]);
         }
+    }
+}
+
+/// The examples' table in assets/homework/README.md says what the test above checks.
+#[test]
+fn the_examples_readme_lists_every_example_with_its_findings() {
+    let readme = std::fs::read_to_string(repo_path("assets/homework/README.md")).expect("the README");
+    for (name, extra, expected) in example_cases() {
+        let row = readme
+            .lines()
+            .find(|l| {
+                l.starts_with("| `")
+                    && l.contains(&format!("`{name}`"))
+                    && extra.iter().skip(1).step_by(2).all(|a| {
+                        let file = Path::new(a).file_name().and_then(|n| n.to_str()).expect("a name");
+                        l.contains(file)
+                    })
+                    && (!extra.is_empty() || !l.contains("` with `"))
+            })
+            .unwrap_or_else(|| panic!("no row for {name} {extra:?}"));
+        let listed = row.rsplit('|').nth(1).expect("a last column").trim();
+        let wanted = if expected.is_empty() {
+            "nothing".to_string()
+        } else {
+            expected.iter().map(|f| format!("`{f}`")).collect::<Vec<_>>().join(", ")
+        };
+        assert_eq!(listed, wanted, "{row}");
+    }
+}
+
+/// A homework as the student hands it: their folder (the framework's layout, their light in
+/// DirectionalLight.js) and the same folder zipped. The check finds the files and reads the light.
+#[test]
+fn a_homework_folder_and_its_zip_are_checked_with_the_students_own_light() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let files = [
+        ("homework1/src/shaders/phongShader/phongFragment.glsl", example("phongFragment.glsl")),
+        ("homework1/src/lights/DirectionalLight.js", example("DirectionalLight_narrow.js")),
+        ("homework1/README.md", repo_path("assets/homework/README.md").display().to_string()),
+    ];
+    let folder = scratch.path().join("alice");
+    let mut zip_entries = Vec::new();
+    for (inside, from) in &files {
+        let bytes = std::fs::read(from).expect("an example");
+        let to = folder.join(inside);
+        std::fs::create_dir_all(to.parent().expect("a parent")).expect("folders");
+        std::fs::write(&to, &bytes).expect("write");
+        zip_entries.push(zip_writer::deflated(&format!("alice/{inside}"), &bytes));
+    }
+    let zip = scratch.path().join("bob.zip");
+    std::fs::write(&zip, zip_writer::build(&zip_entries)).expect("write the zip");
+    for (path, name) in [(folder, "alice"), (zip, "bob")] {
+        let report = check(&path.display().to_string(), &[], &scratch.path().join(format!("out_{name}")));
+        assert_eq!(report["submission"]["name"], name, "{report:#}");
+        // Each framework file with where it came from, a path inside the submission.
+        let found: Vec<&str> = report["submission"]["files"]
+            .as_array()
+            .expect("files")
+            .iter()
+            .filter_map(|pair| pair[1].as_str())
+            .collect();
+        assert!(found.iter().any(|f| f.ends_with("phongShader/phongFragment.glsl")), "{found:?}");
+        assert!(found.iter().any(|f| f.ends_with("lights/DirectionalLight.js")), "{found:?}");
+        // Their own light: the narrow box (50 world units wide) the script builds, not the
+        // scene's 200; it leaves part of the scene out, which is what they are told.
+        let light = &report["light"];
+        assert!(light["from"].as_str().is_some_and(|f| f.contains("DirectionalLight.js")), "{light:#}");
+        assert!(
+            (light["frustum"]["width_world"].as_f64().expect("a width") - 50.0).abs() < 1e-3,
+            "{light:#}"
+        );
+        assert_eq!(finding_ids(&report), ["light_frustum_clips"], "{report:#}");
     }
 }
 

@@ -2,8 +2,9 @@
 precision mediump float;
 #endif
 
-// Mistake: no bias, with a pack and unpack that keep every bit of depth (255 steps a channel:
-// run with --shadow-shader shadowFragment_255.glsl). Expected finding: self_shadowing.
+// Mistake: no bias where the receiver is compared with the map (PCF and useShadowMap), with a pack
+// and unpack that keep every bit of depth (255 steps a channel: run with --shadow-shader
+// shadowFragment_255.glsl), so nothing hides the acne. Expected finding: self_shadowing.
 uniform sampler2D uSampler;
 uniform vec3 uKd;
 uniform vec3 uKs;
@@ -27,7 +28,7 @@ varying highp vec3 vNormal;
 // The light is 5 world units wide; the light's frustum (DirectionalLight.js) is 200 wide.
 #define LIGHT_WIDTH_UV (5.0 / 200.0)
 // A constant bias in the map's depth units ([0, 1] over near..far).
-#define BIAS 0.0
+#define BIAS 0.003
 
 uniform sampler2D uShadowMap;
 
@@ -84,7 +85,7 @@ float PCF(sampler2D shadowMap, vec4 coords, float radiusUV) {
   float lit = 0.0;
   for (int i = 0; i < PCF_NUM_SAMPLES; i++) {
     float depth = unpack(texture2D(shadowMap, coords.xy + poissonDisk[i] * radiusUV));
-    lit += coords.z <= depth + BIAS ? 1.0 : 0.0;
+    lit += coords.z <= depth ? 1.0 : 0.0;
   }
   return lit / float(PCF_NUM_SAMPLES);
 }
@@ -101,7 +102,7 @@ float PCSS(sampler2D shadowMap, vec4 coords) {
 
 float useShadowMap(sampler2D shadowMap, vec4 shadowCoord) {
   float depth = unpack(texture2D(shadowMap, shadowCoord.xy));
-  return step(shadowCoord.z, depth + BIAS);
+  return step(shadowCoord.z, depth);
 }
 
 vec3 blinnPhong() {

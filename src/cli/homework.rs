@@ -28,6 +28,14 @@ pub struct HomeworkArgs {
     /// The student's phongVertex.glsl; default: the framework's.
     #[arg(long, value_name = "FILE")]
     pub vertex: Option<PathBuf>,
+    /// The student's lights/DirectionalLight.js (their CalcLightMVP builds the light); default:
+    /// the one in the submission's folder, else the framework's light.
+    #[arg(long, value_name = "FILE")]
+    pub light_script: Option<PathBuf>,
+    /// The student's engine.js (where the light is); default: the submission's, else the
+    /// framework's (0, 80, 80).
+    #[arg(long, value_name = "FILE")]
+    pub engine: Option<PathBuf>,
     /// Scene file (default: assets/scenes/homework_check.toml, the framework's light and map).
     #[arg(long)]
     pub scene: Option<PathBuf>,
@@ -100,6 +108,12 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
     }
     if let Some(path) = &args.shadow_shader {
         source.files.shadow_fragment = read(path)?;
+    }
+    if let Some(path) = &args.light_script {
+        source.light_script = Some(read(path)?);
+    }
+    if let Some(path) = &args.engine {
+        source.engine = Some(read(path)?);
     }
     let files = source.files.clone();
     let shader = files.phong_fragment.clone();

@@ -209,7 +209,6 @@ fn systematic_misfit(outline: &[Vec2], points: &[(Vec2, f32)], width: f32, disk:
 /// The per-pixel inputs of a fit, all of one view's size, rows top first.
 pub struct WidthInputs<'a> {
     pub width: u32,
-    pub height: u32,
     /// The student's visibility (None: no surface, or no visibility returned).
     pub visibility: &'a dyn Fn(usize) -> Option<f32>,
     /// World position and shading normal of the surface under each pixel.
@@ -351,7 +350,7 @@ mod tests {
 
     #[test]
     fn a_square_seen_through_a_disk_is_dark_inside_lit_outside_and_half_at_its_edge() {
-        let square = vec![Vec2::new(0.0, 0.0), Vec2::new(4.0, 0.0), Vec2::new(4.0, 4.0), Vec2::new(0.0, 4.0)];
+        let square = [Vec2::new(0.0, 0.0), Vec2::new(4.0, 0.0), Vec2::new(4.0, 4.0), Vec2::new(0.0, 4.0)];
         let hull = convex_hull(vec![square[2], square[0], Vec2::new(2.0, 2.0), square[1], square[3]]);
         assert_eq!(hull.len(), 4, "{hull:?}");
         let disk: Vec<Vec2> = (0..256).map(|k| disk_point(k, 256)).collect();

@@ -53,6 +53,28 @@ pub struct HomeworkRequest {
     pub map: MapKind,
 }
 
+/// A lossless map as the light pass wrote it: each texel's four packed channels, rows in the
+/// order the student's uv reads them (v = 0 first).
+#[derive(Clone, Debug)]
+pub struct PackedMap {
+    pub size: u32,
+    pub texels: Vec<[f32; 4]>,
+}
+
+impl PackedMap {
+    fn decode(size: u32, bytes: &[u8]) -> Self {
+        let values: Vec<f32> = readback::f32s(bytes).collect();
+        Self { size, texels: values.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect() }
+    }
+
+    /// The texel the student's lookup at `uv` reads (REPEAT, NEAREST).
+    pub fn at(&self, uv: glam::Vec2) -> [f32; 4] {
+        let n = self.size as f32;
+        let wrap = |c: f32| ((c - c.floor()) * n).floor().clamp(0.0, n - 1.0) as usize;
+        self.texels[wrap(uv.y) * self.size as usize + wrap(uv.x)]
+    }
+}
+
 /// The homework's pipelines on a device.
 pub struct HomeworkRenderer {
     device: wgpu::Device,
@@ -342,15 +364,36 @@ impl HomeworkRenderer {
         light: &HomeworkLight,
         request: &HomeworkRequest,
     ) -> Result<readback::Readback<HomeworkImages>, HomeworkGpuError> {
+        Ok(self.submit_with_map(scene, light, request)?.map(|(images, _)| Ok(images)))
+    }
+
+    /// `submit`, with the map the light pass wrote read back too (the lossless one: its packed
+    /// channels, rows as the student's uv lays them out).
+    pub fn submit_with_map(
+        &self,
+        scene: &Scene,
+        light: &HomeworkLight,
+        request: &HomeworkRequest,
+    ) -> Result<readback::Readback<(HomeworkImages, Option<PackedMap>)>, HomeworkGpuError> {
         let (w, h) = request.size;
         let formats = [COLOR_FORMAT, RETURNED_FORMAT, CALLS_FORMAT];
-        let [color, returned, calls] = self.draw_both(scene, light, request, &self.camera, 0, formats)?;
-        // The three targets come back together (one wait for all).
+        let ([color, returned, calls], map) =
+            self.draw_both(scene, light, request, &self.camera, 0, formats)?;
+        // The targets come back together (one wait for all).
         let targets = self
             .read(&color, request.size, 8)
             .zip(self.read(&returned, request.size, 16))
             .zip(self.read(&calls, request.size, 4));
-        Ok(targets.map(move |((color, returned), calls)| Ok(decode(w, h, &color, &returned, &calls))))
+        let side = map.width();
+        let map = match request.map {
+            MapKind::Lossless => {
+                self.read(&map, (side, side), 16).map(move |bytes| Ok(Some(PackedMap::decode(side, &bytes))))
+            }
+            MapKind::Framework | MapKind::White => readback::Readback::ready(None),
+        };
+        Ok(targets
+            .zip(map)
+            .map(move |(((color, returned), calls), map)| Ok((decode(w, h, &color, &returned, &calls), map))))
     }
 
     /// The taps pass submitted (where the recorded functions read the map), its read-back on its
@@ -362,7 +405,7 @@ impl HomeworkRenderer {
         request: &HomeworkRequest,
     ) -> Result<readback::Readback<TapImages>, HomeworkGpuError> {
         let (w, h) = request.size;
-        let taps =
+        let (taps, _) =
             self.draw_both(scene, light, request, &self.camera_taps, TAPS_OUTPUT as usize, [TAPS_FORMAT; 4])?;
         let read = |k: usize| self.read(&taps[k], request.size, 8);
         let all = read(0).zip(read(1)).zip(read(2)).zip(read(3));
@@ -370,7 +413,7 @@ impl HomeworkRenderer {
     }
 
     /// The light pass into a fresh map (as `request.map` asks), then `camera` into fresh targets
-    /// of `formats` at locations `first..`, submitted; the targets.
+    /// of `formats` at locations `first..`, submitted; the targets and the map.
     fn draw_both<const N: usize>(
         &self,
         scene: &Scene,
@@ -379,7 +422,7 @@ impl HomeworkRenderer {
         camera: &Pass,
         first: usize,
         formats: [wgpu::TextureFormat; N],
-    ) -> Result<[wgpu::Texture; N], HomeworkGpuError> {
+    ) -> Result<([wgpu::Texture; N], wgpu::Texture), HomeworkGpuError> {
         let scene_light = scene
             .lights
             .get(request.light)
@@ -401,7 +444,7 @@ impl HomeworkRenderer {
             "homework shadow map",
             map_size,
             map_format,
-            attach | wgpu::TextureUsages::TEXTURE_BINDING,
+            attach | wgpu::TextureUsages::TEXTURE_BINDING | wgpu::TextureUsages::COPY_SRC,
         );
         let map_depth = self.texture("homework light depth", map_size, DEPTH_FORMAT, attach);
         let targets: [wgpu::Texture; N] = std::array::from_fn(|k| {
@@ -463,6 +506,6 @@ impl HomeworkRenderer {
         if let Some(e) = crate::render::scope_error(scope.pop()) {
             return Err(HomeworkGpuError(format!("homework render: {}", crate::render::error_line(&e))));
         }
-        Ok(targets)
+        Ok((targets, map))
     }
 }

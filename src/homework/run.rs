@@ -7,6 +7,7 @@
 
 use super::findings::{Evidence, Judged, LightInputs, TwinInputs, findings};
 use super::light_width::{LightWidthFit, WidthInputs};
+use super::pass::PackedMap;
 use super::session::{CheckOutcome, HomeworkReport};
 use super::{
     HomeworkGpuError, HomeworkImages, HomeworkLight, HomeworkRenderer, HomeworkRequest, MapKind,
@@ -43,13 +44,15 @@ enum Stage {
 type ShadowlabFrame = ((image::RgbaImage, Analysis), DepthImage);
 
 /// The student's passes as read back.
-type StudentPasses = (((HomeworkImages, HomeworkImages), HomeworkImages), TapImages);
+type StudentPasses = (((HomeworkImages, HomeworkImages), (HomeworkImages, Option<PackedMap>)), TapImages);
 
 /// The student's side and what it is compared with.
 struct Compared {
     student: HomeworkImages,
     white: HomeworkImages,
     lossless: HomeworkImages,
+    /// The lossless map as the student's light pass packed it.
+    lossless_map: Option<PackedMap>,
     taps: TapImages,
     /// Which of useShadowMap / PCF / PCSS `main` took its visibility from at most pixels (1..=3).
     function: Option<usize>,
@@ -100,7 +103,7 @@ impl CheckRun {
         let over = |map| HomeworkRequest { map, ..*request };
         let student = homework.submit(scene, light, &over(MapKind::Framework))?;
         let white = homework.submit(scene, light, &over(MapKind::White))?;
-        let lossless = homework.submit(scene, light, &over(MapKind::Lossless))?;
+        let lossless = homework.submit_with_map(scene, light, &over(MapKind::Lossless))?;
         let taps = homework.submit_taps(scene, light, &over(MapKind::Framework))?;
         Ok(Self {
             shader: shader.to_owned(),
@@ -127,8 +130,9 @@ impl CheckRun {
                 if !images.arrived(renderer.device(), wait)? {
                     (Stage::Student(images), None)
                 } else {
-                    let (((student, white), lossless), taps) = images.finish()?;
-                    let compared = self.compared(student, white, lossless, taps);
+                    let (((student, white), (lossless, lossless_map)), taps) = images.finish()?;
+                    let mut compared = self.compared(student, white, lossless, taps);
+                    compared.lossless_map = lossless_map;
                     let coming = self.submit_shadowlab(renderer, &compared.scene)?;
                     (Stage::Shadowlab(Box::new(compared), coming), None)
                 }
@@ -186,7 +190,6 @@ impl CheckRun {
         let visibility = |i: usize| student.visibility(i);
         let inputs = WidthInputs {
             width: analysis.width,
-            height: analysis.height,
             visibility: &visibility,
             positions: &positions,
             normals: &normals,
@@ -222,7 +225,7 @@ impl CheckRun {
         let function = (1..=3).max_by_key(|&k| votes[k]).filter(|&k| votes[k] > 0);
         let mut scene = self.scene.clone();
         scene.shadow.technique = technique_for(function.unwrap_or(3));
-        Compared { student, white, lossless, taps, function, scene, width: None }
+        Compared { student, white, lossless, lossless_map: None, taps, function, scene, width: None }
     }
 
     /// shadowlab's frame at the homework's settings, with its analysis; read-backs submitted.
@@ -249,7 +252,7 @@ impl CheckRun {
 
     /// The figures and findings, from everything rendered.
     fn outcome(&self, compared: Compared, shadowlab: Shadowlab, ground_truth: Vec<f32>) -> CheckOutcome {
-        let Compared { student, white, lossless, taps, function, scene, width } = compared;
+        let Compared { student, white, lossless, lossless_map, taps, function, scene, width } = compared;
         let analysis = &shadowlab.analysis;
         let ran = student.ran_anywhere();
         let calls: Vec<&'static str> = RECORDED_FUNCTIONS
@@ -275,6 +278,7 @@ impl CheckRun {
         let evidence = |student| Evidence {
             student,
             lossless: &lossless,
+            lossless_map: lossless_map.as_ref(),
             taps: &taps,
             white_map_change: &white_map_change,
             shadowlab: &shadowlab_visibility,

@@ -72,4 +72,80 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
     ("penumbra width (world units)", "半影宽度（世界单位）"),
     ("{:.2}, ground truth {:.2}", "{:.2}，真实结果 {:.2}"),
     ("your shader, map cleared to white", "你的着色器（贴图清成白色）"),
+    (
+        "findBlocker's search radius is wrong: it is not a finite number at {:.1}% of the receivers and under half a texel at {:.1}%. On an orthographic map similar triangles make it nearly the same for every receiver, w_light (z_r - z_near) / z_r: a near plane in world units mixed with a depth in [0, 1], or a clip-space depth taken for a distance, makes it negative, zero or infinite, and the search reads anywhere.",
+        "findBlocker 的搜索半径是错的：在 {:.1}% 的接收点上它不是有限的数，在 {:.1}% 的接收点上不到半个纹素。在正交贴图上，相似三角形使它对每个接收点都几乎相同，即 w_light (z_r - z_near) / z_r：把以世界单位表示的近平面和 [0, 1] 的深度混在一起，或把裁剪空间的深度当成距离，会使它变成负数、零或无穷大，搜索就会读到任意位置。",
+    ),
+    (
+        "findBlocker's search radius swings with the receiver's depth, from {:.1} to {:.1} texels over this scene (10th to 90th percentile), where similar triangles on an orthographic map keep it nearly the same, w_light (z_r - z_near) / z_r with z_near the near plane's depth, 0. A near plane in world units mixed with a depth in [0, 1], or a perspective formula (near / z), does this.",
+        "findBlocker 的搜索半径随接收点的深度大幅变化，在这个场景中从 {:.1} 到 {:.1} 个纹素（第 10 到第 90 百分位）；而在正交贴图上，相似三角形使它几乎不变，即 w_light (z_r - z_near) / z_r，其中近平面的深度 z_near 为 0。把以世界单位表示的近平面和 [0, 1] 的深度混在一起，或使用透视的公式（near / z），就会这样。",
+    ),
+    (
+        "Hidden today by this scene: the search still reaches the blockers that shape each penumbra, and the penumbrae follow similar triangles; another scene or light shows it:",
+        "在这个场景中暂时看不出来：搜索仍能找到决定每个半影的遮挡物，半影也符合相似三角形；换一个场景或光源就会显现：",
+    ),
+    (
+        "PCSS filters over a radius that is not a number at {:.1}% of the pixels it filters: the penumbra estimate (z_r - z_blocker) / z_blocker is infinite where the blocker depth is 0, and the taps read texels nobody chose. Where findBlocker finds no blocker, return a value PCSS recognises (-1, or 1 with a test) and return full light before estimating.",
+        "在 PCSS 滤波的像素中，有 {:.1}% 的滤波半径不是一个数：遮挡物深度为 0 时，半影估计 (z_r - z_blocker) / z_blocker 是无穷大，采样会读到谁也没有选定的纹素。findBlocker 找不到遮挡物时，请返回一个 PCSS 能识别的值（-1，或者 1 并加以判断），并在估计半影之前直接返回完全受光。",
+    ),
+    (
+        "findBlocker counts the receiver as its own blocker: where nothing blocks the disk it searched, it returns the receiver's own depth at {:.0}% of the points, and where part of the disk is blocked its average lies {:.0}% of the way from the blockers' depth to the receiver's. Test blockers as nearer than the receiver by more than a bias (depth + bias < z_receiver): a bias the other way, or none, lets the receiver's own texels in, and the penumbra shrinks.",
+        "findBlocker 把接收点自己算成了遮挡物：在搜索的圆盘内没有任何遮挡的地方，它在 {:.0}% 的点上返回了接收点自己的深度；在圆盘被部分遮挡的地方，它的平均值从遮挡物的深度向接收点的深度偏移了 {:.0}%。判断遮挡物时，应要求它比接收点近出一个偏移量以上（depth + bias < z_receiver）：偏移方向反了或没有偏移，接收点自己的纹素就会被算进来，半影随之变窄。",
+    ),
+    (
+        "Depth does not come back from the map as it went in: even with every bit kept, the depth unpacked where a lit surface looks itself up differs from its own by {:.4} (typical) to {:.4} in [0, 1] depth, at {:.0}% of them. Your pack (shadowFragment.glsl) must take each channel's carry out of the one before (rgbaDepth -= rgbaDepth.gbaa * bitMask), in the same base as your unpack.",
+        "从贴图读回的深度与写入的不一致：即使保留每一位，受光表面查询自己时解包出的深度也与它自身的深度相差 {:.4}（典型值）到 {:.4}（[0, 1] 深度），这样的表面占 {:.0}%。你的 pack（shadowFragment.glsl）必须从前一个通道中减去后一个通道的进位（rgbaDepth -= rgbaDepth.gbaa * bitMask），并且与 unpack 使用相同的基数。",
+    ),
+    (
+        "{}'s taps are not spread over a disk around the receiver: their mean lies {:.0}% of their spread away from it, and they stretch along one line, the same at every pixel, {:.0}% of the way from a disk to a line. Offsets added to the previous tap's position walk away from the receiver or back and forth along a line, and a fixed seed turns every pixel's pattern the same way (the template's 20 samples in 10 rings lie on one line): offset the receiver's own uv by each sample, with a seed that changes from pixel to pixel.",
+        "{} 的采样点没有分布在以接收点为中心的圆盘上：它们的均值偏离接收点，距离为其分布范围的 {:.0}%；而且它们沿同一条直线拉长，每个像素都一样，从圆盘到直线的程度为 {:.0}%。把偏移加到上一个采样点的位置上，采样就会离接收点越走越远，或沿一条直线来回；固定的随机种子又让每个像素的图案朝同一方向转（模板的 20 个样本、10 圈正好落在一条直线上）：应该用每个样本偏移接收点自己的 uv，并让种子随像素变化。",
+    ),
+    (
+        "findBlocker returns NaN at {:.1}% of the shaded pixels: it divides by the number of blockers found, which is 0 where the light is not blocked. PCSS catches it before it reaches the picture, so nothing shows today; return a \"no blocker\" value there all the same.",
+        "在 {:.1}% 的着色像素上，findBlocker 返回了 NaN：它用找到的遮挡物个数去除，而光没有被挡住的地方这个个数是 0。PCSS 在它影响画面之前拦住了它，所以现在看不出来；但仍应在那里返回一个“没有遮挡物”的值。",
+    ),
+    (
+        "Your PCSS draws hard shadows: even the {}'s penumbra is {:.2} world units wide, under the {:.2} a texel or a pixel covers here. The filter is under a texel wide: a light size or filter radius far too small for the map, or the penumbra estimate lost before filtering.",
+        "你的 PCSS 画出的是硬阴影：即使是 {} 的半影也只有 {:.2} 个世界单位宽，小于这里一个纹素或一个像素覆盖的 {:.2}。滤波范围不到一个纹素：光源大小或滤波半径对这张贴图来说太小了，或者半影估计在滤波之前就丢失了。",
+    ),
+    (
+        "Your penumbrae do not widen with the distance from blocker to receiver as similar triangles say (w = w_light (d_r - d_b) / d_b): under the slabs they are {} world units wide (where a light's disk explains their shape at all), and no one light width fits them. Contact hardening is what PCSS is for: check the blocker search (its radius, and what it counts as a blocker) and the penumbra's formula.",
+        "你的半影没有像相似三角形所说的那样随遮挡物到接收点的距离变宽（w = w_light (d_r - d_b) / d_b）：几块板下面的半影宽度分别为 {} 个世界单位（仅在光源圆盘能解释其形状的地方），没有一个光源宽度能同时符合它们。接触硬化正是 PCSS 的目的：请检查遮挡物搜索（它的半径，以及它把什么算作遮挡物）和半影的公式。",
+    ),
+    (
+        "Hidden today by the framework's packing (its 256-vs-255 rounding reads every depth a little too far, a bias of its own); it shows as soon as depth is kept exactly:",
+        "目前被框架的深度打包掩盖了（它 256 对 255 的舍入让每个深度都读得稍远一点，相当于自带了一个偏移）；一旦深度被精确保存，它就会显现：",
+    ),
+    (
+        "The {} casts no shadow: a blocker {:.1} world units above the floor (along the light) does not shadow it, while one {:.1} above does. Your depth bias is that large: shadows come loose from what casts them (peter panning). A bias in [0, 1] depth is a distance times 1 / (far - near): 0.01 with far 400 is 4 world units.",
+        "{} 没有投下阴影：（沿光线方向）离地面 {:.1} 个世界单位的遮挡物没有在地面上留下阴影，而离地面 {:.1} 的却有。你的深度偏移就有这么大：阴影与投射它的物体脱开了（彼得潘现象，悬浮）。[0, 1] 深度中的偏移等于距离乘以 1 / (far - near)：far 为 400 时，0.01 就是 4 个世界单位。",
+    ),
+    (
+        "{:.1}% of the surfaces that face the light and are fully lit in the ground truth are dark in yours: shadow acne, the surface shadowing itself. Compare with a bias (the receiver's depth minus a small amount), or a larger one; a bias that is 0 where a surface faces the light squarely (max(c (1 - N.L), 0)) leaves acne there.",
+        "在真实结果中朝向光源且完全受光的表面里，有 {:.1}% 在你的画面中是暗的：这是阴影失真（shadow acne），表面遮挡了自己。比较时请加上偏移（接收点的深度减去一个小量），或把偏移加大；在表面正对光源的地方为 0 的偏移（max(c (1 - N.L), 0)）会在那里留下失真。",
+    ),
+    (
+        "Your CalcLightMVP does not place the objects as the framework does: {}. The light pass and the lookups both use that matrix, so the shadows fall where the objects are not.",
+        "你的 CalcLightMVP 放置物体的方式与框架不同：{}。光源的渲染和阴影查询都使用这个矩阵，所以阴影落在了物体不在的地方。",
+    ),
+    (
+        "{:.1}% of what the camera sees lies outside your light's frustum, most of it on the {} ({:.0}% of it): the map has nothing there, and its lookups read outside [0, 1]. Make the orthographic box wide and deep enough for the scene (left/right/bottom/top, near and far).",
+        "相机看到的内容中有 {:.1}% 位于光源视锥之外，大部分在 {} 上（占它的 {:.0}%）：阴影贴图在那里什么也没有，查询读到的是 [0, 1] 之外。请把正交盒子设得足够宽、足够深，能容下整个场景（left/right/bottom/top，以及 near 和 far）。",
+    ),
+    (
+        "the objects' translation and scale are never applied: every object is drawn into the map where its model file puts it, at the origin and unscaled",
+        "物体的平移和缩放从未被应用：每个物体都按它模型文件中的位置画进贴图，位于原点且没有缩放",
+    ),
+    (
+        "the scale is applied after the translation, so the translation is scaled too: mat4.translate, then mat4.scale, on the same matrix (or T * S)",
+        "缩放是在平移之后应用的，所以平移也被缩放了：应在同一个矩阵上先 mat4.translate，再 mat4.scale（即 T * S）",
+    ),
+    (
+        "the objects are translated by the light's position (this.lightPos) instead of their own translation: the template's own line, kept",
+        "物体被光源的位置（this.lightPos）平移，而不是它们自己的平移：这是模板里原有的那一行，没有改掉",
+    ),
+    (
+        "the matrix is not projection * view * translate * scale",
+        "这个矩阵不是 projection * view * translate * scale",
+    ),
 ];

@@ -16,8 +16,10 @@ const FIND_BLOCKER: usize = 3;
 /// `search_radius_wrong`: the search radius is NaN or infinite at more than this share of the
 /// pixels findBlocker ran at...
 const NOT_FINITE_SHARE: f64 = 0.01;
-/// ...or under half a texel (every tap on the receiver's own texel) at more than this share...
+/// ...or under half a texel (every tap on the receiver's own texel) at more than this share (but
+/// not nearly everywhere: a search as small as its tiny light is that light's, `no_penumbra`)...
 const COLLAPSED_SHARE: f64 = 0.2;
+const COLLAPSED_EVERYWHERE: f64 = 0.95;
 /// ...or varies more than this (the 90th percentile over the 10th) over the scene's receivers: a
 /// radius that similar triangles make nearly constant on an orthographic map (a near plane at
 /// -100, as one student has it, moves it by 13% here; a perspective formula, near / z, by 50%).
@@ -43,18 +45,26 @@ const PULL: f32 = 0.2;
 /// changes from pixel to pixel (the template's 20-sample, 10-ring spiral, turned by the pixel's
 /// random angle) make noise, not a penumbra soft one way and hard the other.
 const STRETCH: f32 = 0.5;
-/// `depth_round_trip_wrong`: over the lossless map, where the twin's disk is all blocked,
-/// findBlocker's average differs from the blockers' depth by more than this...
-const ROUND_TRIP_ERROR: f32 = 4e-4;
-/// ...at more than this share of such points (at least `ROUND_TRIP_POINTS` of them).
-const ROUND_TRIP_SHARE: f64 = 0.4;
-const ROUND_TRIP_POINTS: usize = 30;
+/// `depth_round_trip_wrong`: a lit surface's depth read back from the lossless map is off by more
+/// than this (0.4 world units with far 400; a texel spans a fifth of it)...
+const ROUND_TRIP_ERROR: f32 = 1e-3;
+/// ...at more than this share of lit surfaces (at least `ROUND_TRIP_POINTS` of them, at most
+/// `ROUND_TRIP_POINTS_MAX` looked at).
+const ROUND_TRIP_SHARE: f64 = 0.25;
+const ROUND_TRIP_POINTS: usize = 200;
+const ROUND_TRIP_POINTS_MAX: usize = 20_000;
 
 /// What the twin needs to search shadowlab's map where the student's findBlocker searched.
 pub struct TwinInputs<'a> {
     pub map: &'a DepthImage,
     pub light: &'a LightGpu,
     pub normals: &'a [Option<Vec3>],
+}
+
+/// Where the lookups never meet the blockers, or the light puts the objects elsewhere, what a
+/// function reads says nothing of the function.
+fn lookups_broken(earlier: &[super::Finding]) -> bool {
+    super::has(earlier, "shadows_missing") || super::has(earlier, "light_model_matrix")
 }
 
 fn texel_uv(j: &Judged<'_>) -> f32 {
@@ -65,8 +75,8 @@ fn texel_uv(j: &Judged<'_>) -> f32 {
 pub const SEARCH_RADIUS_WRONG: FindingKind =
     FindingKind { id: "search_radius_wrong", lesson: "pcss", step: 2, judge: search_radius_wrong };
 
-fn search_radius_wrong(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
-    if !j.pcss() {
+fn search_radius_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if !j.pcss() || lookups_broken(earlier) {
         return None;
     }
     let taps = &j.e.taps.taps;
@@ -90,7 +100,8 @@ fn search_radius_wrong(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Opti
         |p: f64| finite.get(((finite.len() as f64 - 1.0) * p) as usize).copied().unwrap_or(f32::NAN);
     let (low, mid, high) = (percentile(0.1), percentile(0.5), percentile(0.9));
     let spread = if finite.is_empty() { 1.0 } else { high / low.max(1e-9) };
-    let broken = not_finite > NOT_FINITE_SHARE || collapsed > COLLAPSED_SHARE;
+    let broken =
+        not_finite > NOT_FINITE_SHARE || (collapsed > COLLAPSED_SHARE && collapsed < COLLAPSED_EVERYWHERE);
     if !broken && spread <= RADIUS_SPREAD {
         return None;
     }
@@ -117,7 +128,51 @@ fn search_radius_wrong(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Opti
     // A radius that swings leaves the picture right where the penumbrae still follow similar
     // triangles: it does not show today.
     let shows = broken || j.e.light.width.is_some_and(|w| w.law_holds == Some(false));
+    let explanation = if shows {
+        explanation
+    } else {
+        format!(
+            "{} {explanation}",
+            crate::i18n::tr(
+                lang,
+                "Hidden today by this scene: the search still reaches the blockers that shape each penumbra, and the penumbrae follow similar triangles; another scene or light shows it:"
+            )
+        )
+    };
     Some(Found { latent: !shows, ..Found::new(Some("findBlocker"), figures, explanation) })
+}
+
+/// PCSS's filter reads at a uv that is not a number: its radius, the penumbra estimate, is
+/// infinite or NaN (a blocker depth of 0, returned where no blocker was found, divided by).
+pub const FILTER_RADIUS_NOT_FINITE: FindingKind =
+    FindingKind { id: "filter_radius_not_finite", lesson: "pcss", step: 3, judge: filter_radius_not_finite };
+
+fn filter_radius_not_finite(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if !j.pcss() || lookups_broken(earlier) {
+        return None;
+    }
+    let taps = &j.e.taps.taps;
+    let filtered: Vec<f32> = j
+        .shaded
+        .iter()
+        .filter(|&&i| taps[i][PCF].reads >= 1.0)
+        .map(|&i| taps[i][PCF].max_offset_uv)
+        .collect();
+    if filtered.len() < 100 {
+        return None;
+    }
+    let share = filtered.iter().filter(|r| !r.is_finite()).count() as f64 / filtered.len() as f64;
+    (share > NOT_FINITE_SHARE).then(|| {
+        Found::new(
+            Some("PCSS"),
+            BTreeMap::from([("not_finite_share", share), ("pixels", filtered.len() as f64)]),
+            fill(
+                lang,
+                "PCSS filters over a radius that is not a number at {:.1}% of the pixels it filters: the penumbra estimate (z_r - z_blocker) / z_blocker is infinite where the blocker depth is 0, and the taps read texels nobody chose. Where findBlocker finds no blocker, return a value PCSS recognises (-1, or 1 with a test) and return full light before estimating.",
+                &[&(100.0 * share)],
+            ),
+        )
+    })
 }
 
 /// A search found reading anywhere (not finite, or on the receiver's own texel) leaves nothing
@@ -126,7 +181,9 @@ pub(crate) fn search_broken(earlier: &[super::Finding]) -> bool {
     earlier.iter().any(|f| {
         f.id == "search_radius_wrong"
             && (f.figures.get("not_finite_share").is_some_and(|s| *s > NOT_FINITE_SHARE)
-                || f.figures.get("under_half_a_texel_share").is_some_and(|s| *s > COLLAPSED_SHARE))
+                || f.figures
+                    .get("under_half_a_texel_share")
+                    .is_some_and(|s| *s > COLLAPSED_SHARE && *s < COLLAPSED_EVERYWHERE))
     })
 }
 
@@ -226,7 +283,7 @@ pub const RECEIVER_COUNTS_AS_BLOCKER: FindingKind = FindingKind {
 };
 
 fn receiver_counts_as_blocker(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    if !j.pcss() || search_broken(earlier) {
+    if !j.pcss() || search_broken(earlier) || lookups_broken(earlier) {
         return None;
     }
     let (mut clear, mut found_itself) = (0usize, 0usize);
@@ -262,9 +319,11 @@ fn receiver_counts_as_blocker(j: &Judged<'_>, earlier: &[super::Finding], lang: 
     })
 }
 
-/// Over the lossless map (where a pack and an unpack that agree give every depth back exactly),
-/// findBlocker's average over an all-blocked disk is not the blockers' depth: `pack` and `unpack`
-/// disagree (another base, a carry not removed).
+/// The lossless map, read back and unpacked, does not hold the depths the light pass was given:
+/// `pack` loses them (a carry not taken out, another base in each channel). Where a surface is
+/// fully lit, the texel its lookup reads holds its own depth; read with a 256-step unpack or a
+/// 255-step one (whichever the student's pack uses), a sound pack gives it back to within the
+/// depth a texel spans.
 pub const DEPTH_ROUND_TRIP_WRONG: FindingKind = FindingKind {
     id: "depth_round_trip_wrong",
     lesson: "hard-shadows",
@@ -272,27 +331,42 @@ pub const DEPTH_ROUND_TRIP_WRONG: FindingKind = FindingKind {
     judge: depth_round_trip_wrong,
 };
 
-fn depth_round_trip_wrong(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
-    if !j.pcss() {
+fn depth_round_trip_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if lookups_broken(earlier) {
         return None;
     }
-    let errors: Vec<f32> = j
-        .twin()
+    let map = j.e.lossless_map?;
+    let unpack =
+        |c: [f32; 4], base: f32| c[0] + c[1] / base + c[2] / (base * base) + c[3] / (base * base * base);
+    let lit: Vec<usize> = j
+        .finite
         .iter()
-        .filter(|(_, s)| s.blocked > 0.95)
-        .map(|(i, s)| j.e.lossless.returned[*i][FIND_BLOCKER] - s.z_blocker)
+        .map(|&(i, _)| i)
+        .filter(|&i| {
+            j.truth(i) >= super::LIT && j.faces_light(i) && j.receivers[i].is_some_and(|r| r.inside())
+        })
+        .collect();
+    let step = lit.len().div_ceil(ROUND_TRIP_POINTS_MAX).max(1);
+    let errors: Vec<f32> = lit
+        .iter()
+        .step_by(step)
+        .filter_map(|&i| {
+            let r = j.receivers[i]?;
+            let c = map.at(r.uv);
+            Some((unpack(c, 256.0) - r.depth).abs().min((unpack(c, 255.0) - r.depth).abs()))
+        })
         .filter(|e| e.is_finite())
         .collect();
     if errors.len() < ROUND_TRIP_POINTS {
         return None;
     }
-    let off = errors.iter().filter(|e| e.abs() > ROUND_TRIP_ERROR).count() as f64 / errors.len() as f64;
-    let mut sizes: Vec<f32> = errors.iter().map(|e| e.abs()).collect();
+    let off = errors.iter().filter(|e| **e > ROUND_TRIP_ERROR).count() as f64 / errors.len() as f64;
+    let mut sizes = errors.clone();
     sizes.sort_by(f32::total_cmp);
     let (typical, large) = (sizes[sizes.len() / 2], sizes[sizes.len() * 9 / 10]);
     (off > ROUND_TRIP_SHARE).then(|| {
         Found::new(
-            Some("pack/unpack"),
+            Some("pack"),
             BTreeMap::from([
                 ("off_share", off),
                 ("depth_error_median", f64::from(typical)),
@@ -301,8 +375,8 @@ fn depth_round_trip_wrong(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> O
             ]),
             fill(
                 lang,
-                "Depth does not come back from the map as it went in: even with every bit kept, the depth your unpack reads under a blocker differs from the blocker's by {:.4} (typical) to {:.4} in [0, 1] depth. Your pack (shadowFragment.glsl) and unpack must use the same base, and pack must take each channel's carry out of the one before (rgbaDepth -= rgbaDepth.gbaa * bitMask).",
-                &[&typical, &large],
+                "Depth does not come back from the map as it went in: even with every bit kept, the depth unpacked where a lit surface looks itself up differs from its own by {:.4} (typical) to {:.4} in [0, 1] depth, at {:.0}% of them. Your pack (shadowFragment.glsl) must take each channel's carry out of the one before (rgbaDepth -= rgbaDepth.gbaa * bitMask), in the same base as your unpack.",
+                &[&typical, &large, &(100.0 * off)],
             ),
         )
     })
@@ -317,7 +391,10 @@ pub const SAMPLES_NOT_AROUND_RECEIVER: FindingKind = FindingKind {
     judge: samples_not_around_receiver,
 };
 
-fn samples_not_around_receiver(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
+fn samples_not_around_receiver(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if lookups_broken(earlier) {
+        return None;
+    }
     let taps = &j.e.taps.taps;
     let texel = texel_uv(j);
     let (function, name) = if j.pcss() && !j.shaded.iter().any(|&i| taps[i][PCF].reads > 0.0) {

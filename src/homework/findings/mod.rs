@@ -134,11 +134,12 @@ pub const FINDINGS: &[FindingKind] = &[
     shadows::UMBRA_NOT_DARK,
     functions::DEPTH_ROUND_TRIP_WRONG,
     functions::SEARCH_RADIUS_WRONG,
+    functions::FILTER_RADIUS_NOT_FINITE,
     functions::RECEIVER_COUNTS_AS_BLOCKER,
     functions::SAMPLES_NOT_AROUND_RECEIVER,
+    shadows::SELF_SHADOWING,
     penumbra::NO_PENUMBRA,
     penumbra::NO_CONTACT_HARDENING,
-    shadows::SELF_SHADOWING,
     shadows::DEPENDS_ON_UNCLEARED_MAP,
 ];
 
@@ -162,9 +163,9 @@ pub struct Evidence<'a> {
     /// The student's pass over the map judged (the framework's, or the lossless one), and where
     /// their functions read.
     pub student: &'a HomeworkImages,
-    /// The student's pass over the lossless map (where a consistent pack and unpack read every
-    /// depth back exactly).
+    /// The student's pass over the lossless map, and that map as their light pass packed it.
     pub lossless: &'a HomeworkImages,
+    pub lossless_map: Option<&'a super::pass::PackedMap>,
     pub taps: &'a TapImages,
     /// Per pixel, by how much the visibility over the framework's map changes over a white one
     /// (NaN where one of the two is not a finite number and the other is, or only one has one):
@@ -304,14 +305,14 @@ pub fn white_map_change(student: &HomeworkImages, white: &HomeworkImages) -> Vec
 }
 
 /// Run every finding over the evidence, in order.
-pub fn judge(evidence: &Evidence<'_>, lang: Lang, severity: Severity) -> Vec<Finding> {
+pub fn judge(evidence: &Evidence<'_>, lang: Lang) -> Vec<Finding> {
     let judged = Judged::new(evidence);
     let mut found: Vec<Finding> = Vec::new();
     for kind in FINDINGS {
         if let Some(f) = (kind.judge)(&judged, &found, lang) {
             found.push(Finding {
                 id: kind.id,
-                severity: if f.latent { Severity::Latent } else { severity },
+                severity: if f.latent { Severity::Latent } else { Severity::Mistake },
                 function: f.function,
                 figures: f.figures,
                 explanation: f.explanation,
@@ -326,11 +327,12 @@ pub fn judge(evidence: &Evidence<'_>, lang: Lang, severity: Severity) -> Vec<Fin
 /// The findings of a check: the mistakes the framework's map shows, then what shows only over
 /// the lossless one (latent), each with why it does not show today.
 pub fn findings(framework: &Evidence<'_>, lossless: &Evidence<'_>, lang: Lang) -> Vec<Finding> {
-    let mut all = judge(framework, lang, Severity::Mistake);
-    let hidden: Vec<Finding> = judge(lossless, lang, Severity::Latent)
+    let mut all = judge(framework, lang);
+    let hidden: Vec<Finding> = judge(lossless, lang)
         .into_iter()
         .filter(|f| !has(&all, f.id) && f.id != "depends_on_uncleared_map")
         .map(|mut f| {
+            f.severity = Severity::Latent;
             f.explanation = format!(
                 "{} {}",
                 crate::i18n::tr(lang, "Hidden today by the framework's packing (its 256-vs-255 rounding reads every depth a little too far, a bias of its own); it shows as soon as depth is kept exactly:"),

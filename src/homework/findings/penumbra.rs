@@ -16,6 +16,8 @@ fn penumbra_judged(j: &Judged<'_>, earlier: &[super::Finding]) -> bool {
             "umbra_not_dark",
             "light_model_matrix",
             "peter_panning",
+            // Acne darkens the lit side of every slab's penumbra: its widths are the acne's.
+            "self_shadowing",
         ]
         .iter()
         .any(|id| has(earlier, id))
@@ -80,13 +82,11 @@ fn no_contact_hardening(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) 
             widths.push(format!("{w:.2} ({:.0} high)", s.height_world));
         }
     }
-    // Where a function of theirs was found wrong first, that is the cause to name.
-    let cause = earlier.iter().find(|f| f.function.is_some()).map(|f| f.id);
     let measured = if widths.is_empty() { "-".to_string() } else { widths.join(", ") };
     let explanation = fill(
         lang,
         "Your penumbrae do not widen with the distance from blocker to receiver as similar triangles say (w = w_light (d_r - d_b) / d_b): under the slabs they are {} world units wide (where a light's disk explains their shape at all), and no one light width fits them. Contact hardening is what PCSS is for: check the blocker search (its radius, and what it counts as a blocker) and the penumbra's formula.",
         &[&measured],
     );
-    Some(Found::new(cause.map(|_| "PCSS"), figures, explanation))
+    Some(Found::new(Some("PCSS"), figures, explanation))
 }

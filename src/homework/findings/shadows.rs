@@ -98,7 +98,12 @@ pub const PETER_PANNING: FindingKind =
     FindingKind { id: "peter_panning", lesson: "bias", step: 2, judge: peter_panning };
 
 fn peter_panning(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    if has(earlier, "shadows_missing") || has(earlier, "light_model_matrix") || judged_on_numbers(earlier) {
+    // A slab outside a clipped frustum loses its shadow to the frustum, not to a bias.
+    if has(earlier, "shadows_missing")
+        || has(earlier, "light_model_matrix")
+        || has(earlier, "light_frustum_clips")
+        || judged_on_numbers(earlier)
+    {
         return None;
     }
     let slabs = &j.e.light.width?.slabs;
@@ -152,7 +157,10 @@ fn self_shadowing(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opt
             .finite
             .iter()
             // Darkening the uncleared map explains is that finding's, not acne.
-            .filter(|&&(i, _)| j.sound(i) && !j.changes_over_white(i, 0.1))
+            // Outside the light's frustum the map has nothing to say: that is the frustum's finding.
+            .filter(|&&(i, _)| {
+                j.sound(i) && !j.changes_over_white(i, 0.1) && j.receivers[i].is_some_and(|r| r.inside())
+            })
             .filter(|&&(i, _)| j.truth(i) >= LIT && j.e.facing[i].is_some_and(facing))
             .map(|&(_, v)| v)
             .collect();
@@ -163,11 +171,6 @@ fn self_shadowing(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opt
     let (slanted, slanted_pixels) = darkened(&|c| c > super::FACING && c <= SQUARELY);
     let (square, square_pixels) = darkened(&|c| c > SQUARELY);
     let acne = |(share, pixels): (f64, usize)| pixels >= ACNE_PIXELS && share > ACNE_SHARE;
-    if std::env::var("SHADOWLAB_DEBUG_FINDINGS").is_ok() {
-        eprintln!(
-            "DEBUG acne slanted {slanted:.4} of {slanted_pixels}, square {square:.4} of {square_pixels}"
-        );
-    }
     (acne((slanted, slanted_pixels)) || acne((square, square_pixels))).then(|| {
         let worst = if acne((slanted, slanted_pixels)) { slanted.max(square) } else { square };
         Found::new(
@@ -200,7 +203,16 @@ pub const DEPENDS_ON_UNCLEARED_MAP: FindingKind = FindingKind {
     judge: depends_on_uncleared_map,
 };
 
-fn depends_on_uncleared_map(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
+fn depends_on_uncleared_map(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    // Objects put elsewhere by the light's own model matrix, or outside its frustum, and radii
+    // that are not numbers read texels nothing covers: those findings say why.
+    if has(earlier, "light_model_matrix")
+        || has(earlier, "light_frustum_clips")
+        || has(earlier, "filter_radius_not_finite")
+        || super::functions::search_broken(earlier)
+    {
+        return None;
+    }
     let share = uncleared_share(j);
     (share > UNCLEARED_SHARE).then(|| {
         Found::new(

@@ -232,6 +232,13 @@ pub fn class_members(dir: &Path) -> Result<Vec<PathBuf>, SubmissionError> {
     Ok(members)
 }
 
+/// The files of a folder submission as the reader walks it (symlinks, `.git`, `node_modules`,
+/// `__MACOSX` and macOS metadata skipped; within `limits`): each file's '/'-separated path inside
+/// the folder and its path on the disk. What a class run fingerprints to see whether it changed.
+pub fn folder_files(root: &Path, limits: Limits) -> Result<Vec<(String, PathBuf)>, SubmissionError> {
+    Ok(find::walk(root, &root.display().to_string(), &limits)?.files)
+}
+
 fn read_zip(archive: &str, name: &str, bytes: &[u8], limits: &Limits) -> Result<Submission, SubmissionError> {
     let parsed = zip::Archive::parse(bytes, limits).map_err(|e| SubmissionError::new(archive, e))?;
     let mut skipped = find::SkipNotes::default();
