@@ -2,6 +2,7 @@
 //! runs it, beside shadowlab's own technique and the ground truth; the pictures and the findings
 //! written to DIR (`report.json`; with `--json` on stdout too). A shader that does not compile
 //! exits 2 with `FILE:LINE: message` on the student's own line (and a report saying so).
+//! `--class DIR` checks a whole class instead (`homework_class`).
 
 use super::{CliError, parse_key_value, parse_size, parse_time};
 use crate::homework::{
@@ -20,8 +21,38 @@ pub const DEFAULT_HOMEWORK_SCENE: &str = "assets/scenes/homework_check.toml";
 pub struct HomeworkArgs {
     /// The student's homework: their phongFragment.glsl (the framework's WebGL1 GLSL), their
     /// homework folder, or a .zip of it (the framework's files are found wherever they lie).
-    #[arg(value_name = "PATH")]
-    pub shader: PathBuf,
+    #[arg(value_name = "PATH", required_unless_present = "class")]
+    pub shader: Option<PathBuf>,
+    /// A class instead: every submission in DIR (each sub-folder and each .zip) checked by this
+    /// program as a process of its own; each one's pictures and report.json in OUT/NAME, and the
+    /// class report in OUT: index.html, index_zh.html and grades.csv.
+    #[arg(
+        long,
+        value_name = "DIR",
+        conflicts_with_all = ["shader", "shadow_shader", "vertex", "scene", "set", "time", "light", "json"]
+    )]
+    pub class: Option<PathBuf>,
+    /// With --class: seconds one submission's check may take before it is stopped.
+    #[arg(
+        long,
+        value_name = "SECONDS",
+        default_value = "120",
+        value_parser = super::homework_class::parse_timeout,
+        requires = "class"
+    )]
+    pub timeout: std::time::Duration,
+    /// With --class: how many checks run at once.
+    #[arg(
+        long,
+        value_name = "N",
+        default_value_t = 1,
+        value_parser = clap::value_parser!(u32).range(1..=64),
+        requires = "class"
+    )]
+    pub jobs: u32,
+    /// With --class: check every submission again, even those checked already and unchanged.
+    #[arg(long, requires = "class")]
+    pub force: bool,
     /// The student's shadowFragment.glsl (its `pack`); default: the framework's.
     #[arg(long, value_name = "FILE")]
     pub shadow_shader: Option<PathBuf>,
@@ -79,6 +110,12 @@ fn report_json(report: &HomeworkReport) -> Result<String, CliError> {
 }
 
 pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
+    if let Some(class) = &args.class {
+        return super::homework_class::run(class, &args);
+    }
+    let Some(shader_path) = args.shader.clone() else {
+        return Err(CliError::input("give the homework's PATH, or --class DIR"));
+    };
     if args.out.exists() && !args.out.is_dir() {
         return Err(CliError::input(format!("{}: is a file, not a folder", args.out.display())));
     }
@@ -101,7 +138,7 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
             scene.lights.len()
         )));
     }
-    let mut source = HomeworkSource::read(&args.shader).map_err(|e| CliError::input(e.to_string()))?;
+    let mut source = HomeworkSource::read(&shader_path).map_err(|e| CliError::input(e.to_string()))?;
     let read = |path: &Path| ShaderSource::read(path).map_err(|e| CliError::input(e.to_string()));
     if let Some(path) = &args.vertex {
         source.files.phong_vertex = read(path)?;

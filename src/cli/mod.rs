@@ -9,6 +9,7 @@ mod bench_window;
 #[path = "export.rs"]
 mod export_cmd;
 mod homework;
+mod homework_class;
 mod parse;
 
 pub use parse::MAX_TIME_S;

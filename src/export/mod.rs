@@ -1,7 +1,9 @@
 //! Writing output files atomically (see [`crate::files`]), and the lesson slides `shadowlab export` writes:
 //! the pictures of a step (`step`), the slide itself (`slide`, drawn on the diagrams' canvas),
-//! the index page (`html`) and the loop over the lessons that writes them all (`lessons`).
+//! the index page (`html`) and the loop over the lessons that writes them all (`lessons`); and
+//! the class report of a class's homework checks (`class_report`).
 
+pub mod class_report;
 pub mod html;
 pub mod lessons;
 pub mod slide;

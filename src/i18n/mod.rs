@@ -5,6 +5,7 @@
 //! `tests/app.rs` walks the app in Chinese and fails on English text left on screen; the
 //! diagram tests do the same for every label a diagram draws.
 
+mod class_zh;
 mod diagrams_zh;
 mod homework_zh;
 mod page_zh;
@@ -47,6 +48,7 @@ fn entries() -> impl Iterator<Item = &'static (&'static str, &'static str)> {
         .chain(slides_zh::SLIDES)
         .chain(homework_zh::HOMEWORK)
         .chain(page_zh::PAGE)
+        .chain(class_zh::CLASS)
 }
 
 fn table() -> &'static HashMap<&'static str, &'static str> {
