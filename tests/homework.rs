@@ -93,7 +93,12 @@ fn the_template_filled_in_translates_with_its_lines_kept() {
     assert!(glsl.contains("float findBlocker(texture2D shadowMap, sampler shadowMap_sampler, vec2 uv"));
     // At level 0 explicitly: a lookup in a loop is not in uniform control flow (WGSL refuses
     // implicit levels there).
-    assert!(glsl.contains("textureLod(sampler2D(shadowMap, shadowMap_sampler), uv + poissonDisk[i]"));
+    // Every 2D read's uv goes through the tap that records where the student's functions read.
+    assert!(
+        glsl.contains(
+            "textureLod(sampler2D(shadowMap, shadowMap_sampler), shadowlab_tap( uv + poissonDisk[i]"
+        )
+    );
     assert!(glsl.contains("PCSS(uShadowMap, uShadowMap_sampler, vec4(shadowCoord, 1.0))"));
     assert!(glsl.contains("void poissonDiskSamples(in vec2 randomSeed)"), "`const in` becomes `in`");
     let sampler = |name: &str| f.rewritten.bindings.iter().find(|b| b.name == name).map(|b| b.kind.clone());
@@ -130,7 +135,9 @@ fn helpers_taking_sampler2d_and_missing_returns_translate() {
     let at =
         lines.iter().position(|l| l.starts_with("float PCF(sampler2D shadowMap, vec4 coords);")).expect("it");
     assert_eq!(glsl.split('\n').nth(at + f.rewritten.prelude_lines), Some(""));
-    assert!(glsl.contains("return unpack(textureLod(sampler2D(map, map_sampler), uv, 0.0));"));
+    assert!(
+        glsl.contains("return unpack(textureLod(sampler2D(map, map_sampler), shadowlab_tap( uv), 0.0));")
+    );
     assert!(glsl.contains("depthAt(map, map_sampler, uv + radius"));
     // findBlocker and noBlockerYet lack a final return: each gets one before its closing brace.
     let closing = |header: &str| {
@@ -212,7 +219,11 @@ fn a_students_own_texture_gets_its_own_bindings() {
     assert_eq!(layout.texture_binding("uNoise"), Some((6, SamplerFilter::Linear)));
     let f =
         translate("phongFragment.glsl", &source, Stage::Fragment, &layout).unwrap_or_else(|e| panic!("{e}"));
-    assert!(f.rewritten.glsl.contains("textureLod(sampler2D(uNoise, uNoise_sampler), coords.xy, 0.0)"));
+    assert!(
+        f.rewritten
+            .glsl
+            .contains("textureLod(sampler2D(uNoise, uNoise_sampler), shadowlab_tap( coords.xy), 0.0)")
+    );
     let binding = |name: &str| {
         f.rewritten.bindings.iter().find(|b| b.name == name).map(|b| (b.binding, b.kind.clone()))
     };

@@ -134,7 +134,7 @@ fn a_class_is_checked_reported_and_checked_again_only_where_it_changed() {
     );
     assert!(rows.iter().all(|r| r.len() == rows[0].len()), "{rows:?}");
     assert_eq!(rows[1][column("mistakes")], "0");
-    assert_eq!(rows[2][column("nan_blocker_depth")], "latent", "{rows:?}");
+    assert_eq!(rows[2][column("nan_blocker_depth")], "1", "{rows:?}");
     assert_eq!(rows[1][column("visibility function")], "PCSS");
     assert!(
         rows[3][message].contains("phongFragment.glsl:") && rows[3][message].contains("floot"),
@@ -145,7 +145,7 @@ fn a_class_is_checked_reported_and_checked_again_only_where_it_changed() {
     let en = std::fs::read_to_string(out.join("index.html")).expect("index.html");
     let zh = std::fs::read_to_string(out.join("index_zh.html")).expect("index_zh.html");
     assert!(en.contains("href=\"index_zh.html\"") && zh.contains("href=\"index.html\""));
-    // The ranked list: bob's latent NaN, one student of four.
+    // The ranked list: bob's NaN, one student of four.
     let ranked = en.split("<tr id=\"finding-nan_blocker_depth\">").nth(1).expect("nan_blocker_depth ranked");
     let ranked = ranked.split("</tr>").next().unwrap_or_default();
     assert!(ranked.contains("<td class=\"n\">1</td><td class=\"n\">25%</td>"), "{ranked}");
@@ -167,7 +167,7 @@ fn a_class_is_checked_reported_and_checked_again_only_where_it_changed() {
     ] {
         assert!(!zh.contains(english), "`{english}` on the Chinese page");
     }
-    assert!(zh.contains("课程 pcss，第 3 步") && zh.contains("潜在"));
+    assert!(zh.contains("课程 pcss，第 3 步") && zh.contains("错误"));
     for page in [&en, &zh] {
         let sections = sections(page);
         let headings: Vec<&str> = sections.iter().map(|(h, _)| h.as_str()).collect();

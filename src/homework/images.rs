@@ -106,3 +106,25 @@ pub(super) fn decode_taps(w: u32, h: u32, targets: [&[u8]; 4]) -> TapImages {
         .collect();
     TapImages { width: w, height: h, taps }
 }
+
+/// A lossless map as the light pass wrote it: each texel's four packed channels, rows in the
+/// order the student's uv reads them (v = 0 first).
+#[derive(Clone, Debug)]
+pub struct PackedMap {
+    pub size: u32,
+    pub texels: Vec<[f32; 4]>,
+}
+
+impl PackedMap {
+    pub(super) fn decode(size: u32, bytes: &[u8]) -> Self {
+        let values: Vec<f32> = crate::render::readback::f32s(bytes).collect();
+        Self { size, texels: values.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect() }
+    }
+
+    /// The texel the student's lookup at `uv` reads (REPEAT, NEAREST).
+    pub fn at(&self, uv: glam::Vec2) -> [f32; 4] {
+        let n = self.size as f32;
+        let wrap = |c: f32| ((c - c.floor()) * n).floor().clamp(0.0, n - 1.0) as usize;
+        self.texels[wrap(uv.y) * self.size as usize + wrap(uv.x)]
+    }
+}

@@ -23,6 +23,7 @@ mod lex;
 mod light;
 mod light_script;
 mod light_width;
+mod missing_return;
 mod pass;
 mod penumbra;
 mod pipeline;

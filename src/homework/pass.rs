@@ -5,7 +5,7 @@
 //! `PCSS` / `findBlocker` returned at every pixel, or (the taps pass, the same shader again) where
 //! those functions read the map.
 
-use super::images::{HomeworkImages, TapImages, decode, decode_taps};
+use super::images::{HomeworkImages, PackedMap, TapImages, decode, decode_taps};
 use super::instrument::TAPS_OUTPUT;
 use super::interface::STUDENT_BLOCK_BINDING;
 use super::light::{HomeworkLight, gl_from_wgpu_clip};
@@ -51,28 +51,6 @@ pub struct HomeworkRequest {
     /// The scene light whose map size the light pass uses.
     pub light: usize,
     pub map: MapKind,
-}
-
-/// A lossless map as the light pass wrote it: each texel's four packed channels, rows in the
-/// order the student's uv reads them (v = 0 first).
-#[derive(Clone, Debug)]
-pub struct PackedMap {
-    pub size: u32,
-    pub texels: Vec<[f32; 4]>,
-}
-
-impl PackedMap {
-    fn decode(size: u32, bytes: &[u8]) -> Self {
-        let values: Vec<f32> = readback::f32s(bytes).collect();
-        Self { size, texels: values.chunks_exact(4).map(|c| [c[0], c[1], c[2], c[3]]).collect() }
-    }
-
-    /// The texel the student's lookup at `uv` reads (REPEAT, NEAREST).
-    pub fn at(&self, uv: glam::Vec2) -> [f32; 4] {
-        let n = self.size as f32;
-        let wrap = |c: f32| ((c - c.floor()) * n).floor().clamp(0.0, n - 1.0) as usize;
-        self.texels[wrap(uv.y) * self.size as usize + wrap(uv.x)]
-    }
 }
 
 /// The homework's pipelines on a device.

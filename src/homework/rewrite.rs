@@ -29,6 +29,7 @@ use super::interface::{
     STUDENT_BLOCK_BINDING, attribute_location, declarations, is_precision, texture_call,
 };
 use super::lex::{Kind, Token, check_size, depth_in, matching, matching_open, tokens};
+use super::missing_return::{ends_with_return, zero_of};
 use super::{HomeworkError, Stage};
 
 /// The name the rewrite gives WebGL's `gl_FragColor`, declared at location 0 in the prelude.
@@ -231,7 +232,7 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
         let header = (0..body.open).rev().find(|&j| text(j) == ")").unwrap_or(0);
         let name_at = matching_open(source, &toks, header).saturating_sub(1);
         let return_type = (0..name_at).rev().find(|&j| !is_precision(text(j))).map(text).unwrap_or("void");
-        if return_type == "void" || ends_with_return(source, &toks, body) {
+        if return_type == "void" || ends_with_return(source, &toks, body.open, body.close) {
             continue;
         }
         if let Some(value) = zero_of(return_type) {
@@ -460,47 +461,4 @@ fn functions(source: &str, toks: &[Token], used: &mut [bool], edits: &mut Edits)
         }
     }
     bodies
-}
-
-/// Whether a function body's last statement at its own level is a `return`.
-fn ends_with_return(source: &str, toks: &[Token], body: &Body) -> bool {
-    let mut last_start = None;
-    let (mut braces, mut parens) = (0i32, 0i32);
-    let mut starts_statement = true;
-    for j in body.open + 1..body.close {
-        let word = &source[toks[j].start..toks[j].end];
-        if starts_statement && braces == 0 && parens == 0 && !toks[j].in_directive {
-            last_start = Some(word);
-            starts_statement = false;
-        }
-        match word {
-            "(" => parens += 1,
-            ")" => parens -= 1,
-            "{" => braces += 1,
-            "}" => {
-                braces -= 1;
-                starts_statement = braces == 0;
-            }
-            ";" if braces == 0 && parens == 0 => starts_statement = true,
-            _ => {}
-        }
-    }
-    last_start == Some("return")
-}
-
-/// A zero of a GLSL type, for the `return` a non-void function lacked (what WebGL drivers
-/// commonly give back when such a function runs off its end).
-fn zero_of(glsl_type: &str) -> Option<String> {
-    let size = |prefix: &str| glsl_type.strip_prefix(prefix).filter(|n| matches!(*n, "2" | "3" | "4"));
-    Some(match glsl_type {
-        "float" => "0.0".into(),
-        "int" => "0".into(),
-        "uint" => "0u".into(),
-        "bool" => "false".into(),
-        _ if size("vec").is_some() || size("mat").is_some() => format!("{glsl_type}(0.0)"),
-        _ if size("ivec").is_some() => format!("{glsl_type}(0)"),
-        _ if size("uvec").is_some() => format!("{glsl_type}(0u)"),
-        _ if size("bvec").is_some() => format!("{glsl_type}(false)"),
-        _ => return None,
-    })
 }

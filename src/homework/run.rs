@@ -6,8 +6,8 @@
 //! differs, then the ground truth at it.
 
 use super::findings::{Evidence, Judged, LightInputs, TwinInputs, findings};
+use super::images::PackedMap;
 use super::light_width::{LightWidthFit, WidthInputs};
-use super::pass::PackedMap;
 use super::session::{CheckOutcome, HomeworkReport};
 use super::{
     HomeworkGpuError, HomeworkImages, HomeworkLight, HomeworkRenderer, HomeworkRequest, MapKind,

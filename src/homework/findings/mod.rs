@@ -165,7 +165,7 @@ pub struct Evidence<'a> {
     pub student: &'a HomeworkImages,
     /// The student's pass over the lossless map, and that map as their light pass packed it.
     pub lossless: &'a HomeworkImages,
-    pub lossless_map: Option<&'a super::pass::PackedMap>,
+    pub lossless_map: Option<&'a super::images::PackedMap>,
     pub taps: &'a TapImages,
     /// Per pixel, by how much the visibility over the framework's map changes over a white one
     /// (NaN where one of the two is not a finite number and the other is, or only one has one):

@@ -34,6 +34,7 @@ mod parse_fn;
 mod parse_lit;
 mod parse_stmt;
 mod props;
+mod string_methods;
 mod value;
 
 #[cfg(test)]
