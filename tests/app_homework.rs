@@ -8,6 +8,10 @@ use shadowlab::i18n::Lang;
 use shadowlab::ui::{Settings, ShadowlabApp, app_for_test};
 use std::path::Path;
 
+#[path = "../src/homework/submission/tests/writer.rs"]
+#[allow(dead_code)]
+mod zip_writer;
+
 fn harness() -> Harness<'static, ShadowlabApp> {
     let mut setup = egui_kittest::wgpu::default_wgpu_setup();
     if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
@@ -143,4 +147,91 @@ fn a_shader_handed_over_as_bytes_is_checked_and_the_panel_says_it_is_not_watched
     assert_eq!(finding_ids(&h), ["nan_blocker_depth"]);
     h.get_by_label_contains("not watched: after an edit, drop the file again");
     assert!(h.query_by_label_contains("watching the file").is_none());
+}
+
+/// Wait until the homework was read again after a change on disk (`reloads` past `before`).
+fn await_reload(h: &mut Harness<'_, ShadowlabApp>, before: u64) {
+    let start = std::time::Instant::now();
+    while h.state().homework.as_ref().is_some_and(|hw| hw.reloads <= before) {
+        h.step();
+        std::thread::sleep(std::time::Duration::from_millis(20));
+        assert!(start.elapsed() < std::time::Duration::from_secs(30), "the edit was not noticed");
+    }
+}
+
+/// The student's homework folder opened from the path box: checked with the light their
+/// DirectionalLight.js builds (the panel says where it came from), and their light script
+/// watched like their shader: fixed in their editor, it is checked again.
+#[test]
+fn a_homework_folder_is_checked_with_the_students_own_light_and_its_script_is_watched() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let folder = scratch.path().join("alice");
+    let shader = folder.join("homework1/src/shaders/phongShader/phongFragment.glsl");
+    let light = folder.join("homework1/src/lights/DirectionalLight.js");
+    for (path, name) in [(&shader, "phongFragment.glsl"), (&light, "DirectionalLight_narrow.js")] {
+        std::fs::create_dir_all(path.parent().expect("a parent")).expect("folders");
+        std::fs::write(path, example(name)).expect("write");
+    }
+    let mut h = harness();
+    h.get_by_label("file").click();
+    h.run_steps(1);
+    h.get_by_label("file").type_text(&folder.display().to_string());
+    h.run_steps(1);
+    h.get_by_label("Open").click();
+    settle_check(&mut h);
+    assert!(h.state().error.is_none(), "{:?}", h.state().error);
+    assert_eq!(finding_ids(&h), ["light_frustum_clips"]);
+    h.get_by_label("alice");
+    h.get_by_label("light from");
+    h.get_by_label_contains("DirectionalLight.js:");
+    h.get_by_label_contains(", 50 wide");
+    // The student widens their light's box; the app notices the script and checks again.
+    std::thread::sleep(std::time::Duration::from_millis(20));
+    std::fs::write(&light, example("DirectionalLight.js")).expect("write");
+    await_reload(&mut h, 0);
+    settle_check(&mut h);
+    assert_eq!(finding_ids(&h), Vec::<&str>::new());
+    h.get_by_label_contains(", 200 wide");
+    let width = h
+        .state()
+        .homework
+        .as_ref()
+        .and_then(|hw| hw.outcome.as_ref()?.report.light_width.as_ref()?.implied_light_width_world);
+    assert!(width.is_some_and(|w| (2.5..5.0).contains(&w)), "{width:?}");
+}
+
+/// A page's drop of a zip: the submission's bytes handed over, its files found inside, its light
+/// used; a folder or zip with no homework in it keeps what is shown and says why.
+#[test]
+fn a_zip_handed_over_is_checked_and_one_without_a_homework_is_refused() {
+    let mut h = harness();
+    let zip = zip_writer::build(&[
+        zip_writer::deflated(
+            "bob/homework1/src/shaders/phongShader/phongFragment.glsl",
+            example("phongFragment_nan_blocker.glsl").as_bytes(),
+        ),
+        zip_writer::deflated(
+            "bob/homework1/src/lights/DirectionalLight.js",
+            example("DirectionalLight.js").as_bytes(),
+        ),
+    ]);
+    let dropped = vec![shadowlab::files::hand_over("bob.zip", &zip)];
+    h.state_mut().open_files(&dropped);
+    settle_check(&mut h);
+    assert_eq!(finding_ids(&h), ["nan_blocker_depth"]);
+    let from = h
+        .state()
+        .homework
+        .as_ref()
+        .and_then(|hw| Some(hw.outcome.as_ref()?.report.light.as_ref()?.from.clone()));
+    assert!(from.as_deref().is_some_and(|f| f.contains("DirectionalLight.js")), "{from:?}");
+    h.get_by_label("bob");
+    // A zip with no homework in it: an error naming it, bob's check still on screen.
+    let empty = zip_writer::build(&[zip_writer::spec("notes.txt", b"no homework here")]);
+    let dropped = vec![shadowlab::files::hand_over("empty.zip", &empty)];
+    h.state_mut().open_files(&dropped);
+    h.run_steps(2);
+    let error = h.state().error.as_ref().map(|e| format!("{e:?}"));
+    assert!(error.as_deref().is_some_and(|e| e.contains("empty.zip")), "{error:?}");
+    assert_eq!(finding_ids(&h), ["nan_blocker_depth"]);
 }

@@ -273,7 +273,7 @@ fn files_handed_over_as_bytes_open_as_a_page_opens_them_and_are_not_remembered()
     state.open_files(&dropped);
     assert!(!state.show_lesson_list, "the lesson list closes");
     let homework = state.homework.as_ref().expect("the homework opened");
-    assert_eq!(homework.fragment, main);
+    assert_eq!(homework.path, main);
     assert_eq!(homework.shadow_fragment.as_deref(), Some(Path::new("handed-over/shadowFragment.glsl")));
     assert!(homework.error.is_none(), "{:?}", homework.error);
     assert!(homework.program.is_some(), "it compiled from the bytes handed over");

@@ -1,9 +1,10 @@
-//! A student's homework open in the app: their files (watched: an edit in their editor reloads
-//! it), the last program that compiled (its picture stays while a newer edit does not compile),
-//! the current error on the student's own line, and the last check's outcome.
+//! A student's homework open in the app: what they hand in (a shader, their homework folder or
+//! a .zip of it), its files watched (an edit in their editor reloads it), the last program that
+//! compiled with the light scripts read beside it (its picture stays while a newer edit does not
+//! compile), the current error on the student's own line, and the last check's outcome.
 
 use super::{AppError, AppState, Source};
-use crate::homework::{CheckOutcome, HomeworkError, HomeworkFiles, HomeworkProgram};
+use crate::homework::{CheckOutcome, HomeworkError, HomeworkProgram, HomeworkSource, ShaderSource};
 use crate::scene::load_scene;
 use crate::shipped_path;
 use std::path::{Path, PathBuf};
@@ -56,10 +57,14 @@ impl HomeworkPicture {
 
 /// A homework open in the app.
 pub struct HomeworkState {
-    /// The student's phongFragment.glsl, and their shadowFragment / phongVertex where given.
-    pub fragment: PathBuf,
+    /// What was opened: the student's phongFragment.glsl, their homework folder or a .zip of it;
+    /// and a shadowFragment / phongVertex given beside it, in place of what was found.
+    pub path: PathBuf,
     pub shadow_fragment: Option<PathBuf>,
     pub vertex: Option<PathBuf>,
+    /// The submission as last read with `program`: its name, where each file came from, and its
+    /// light scripts (DirectionalLight.js, engine.js), which build the light the check draws with.
+    pub source: Option<Arc<HomeworkSource>>,
     /// Each file's modification time when last read (None: could not be read).
     modified: Vec<Option<SystemTime>>,
     /// The last program that compiled; a newer edit that does not keeps it on screen.
@@ -86,11 +91,12 @@ fn modified(path: &Path) -> Option<SystemTime> {
 impl HomeworkState {
     /// Read and translate the student's files. A shader that does not compile still opens (with
     /// its error shown), so the student can fix it and see it reload.
-    pub fn open(fragment: &Path, shadow_fragment: Option<&Path>, vertex: Option<&Path>) -> Self {
+    pub fn open(path: &Path, shadow_fragment: Option<&Path>, vertex: Option<&Path>) -> Self {
         let mut state = Self {
-            fragment: fragment.to_path_buf(),
+            path: path.to_path_buf(),
             shadow_fragment: shadow_fragment.map(Path::to_path_buf),
             vertex: vertex.map(Path::to_path_buf),
+            source: None,
             modified: Vec::new(),
             program: None,
             generation: 0,
@@ -105,31 +111,45 @@ impl HomeworkState {
         state
     }
 
-    fn paths(&self) -> Vec<&Path> {
-        std::iter::once(self.fragment.as_path())
-            .chain(self.shadow_fragment.as_deref())
-            .chain(self.vertex.as_deref())
-            .collect()
+    /// What is watched: what was opened (a zip as a whole), every file found in a folder, and
+    /// the files given beside it.
+    fn paths(&self) -> Vec<PathBuf> {
+        let mut paths = vec![self.path.clone()];
+        let found = self.source.iter().flat_map(|s| s.paths()).map(Path::to_path_buf);
+        for path in found.chain(self.shadow_fragment.clone()).chain(self.vertex.clone()) {
+            if !paths.contains(&path) {
+                paths.push(path);
+            }
+        }
+        paths
     }
 
     fn read(&mut self) {
-        self.modified = self.paths().into_iter().map(modified).collect();
-        let translated =
-            HomeworkFiles::read(&self.fragment, self.vertex.as_deref(), self.shadow_fragment.as_deref())
-                .and_then(HomeworkProgram::translate);
-        match translated {
-            Ok(program) => {
+        let read = HomeworkSource::read(&self.path).and_then(|mut source| {
+            if let Some(path) = &self.shadow_fragment {
+                source.files.shadow_fragment = ShaderSource::read(path)?;
+            }
+            if let Some(path) = &self.vertex {
+                source.files.phong_vertex = ShaderSource::read(path)?;
+            }
+            let program = HomeworkProgram::translate(source.files.clone())?;
+            Ok((source, program))
+        });
+        match read {
+            Ok((source, program)) => {
+                self.source = Some(Arc::new(source));
                 self.program = Some(Arc::new(program));
                 self.generation += 1;
                 self.error = None;
             }
             Err(e) => self.error = Some(e),
         }
+        self.modified = self.paths().iter().map(|p| modified(p)).collect();
     }
 
     /// Read the files again where one changed on disk since the last read; true where it did.
     pub fn reload_if_changed(&mut self) -> bool {
-        let now: Vec<Option<SystemTime>> = self.paths().into_iter().map(modified).collect();
+        let now: Vec<Option<SystemTime>> = self.paths().iter().map(|p| modified(p)).collect();
         if now == self.modified {
             return false;
         }
@@ -138,11 +158,16 @@ impl HomeworkState {
         true
     }
 
-    /// The file name errors and the panel show.
+    /// The name errors and the panel show: the submission's (its folder's or zip's, or the
+    /// shader's file name).
     pub fn name(&self) -> String {
-        self.fragment
-            .file_name()
-            .map_or_else(|| self.fragment.display().to_string(), |n| n.to_string_lossy().into())
+        match &self.source {
+            Some(source) => source.name.clone(),
+            None => self
+                .path
+                .file_name()
+                .map_or_else(|| self.path.display().to_string(), |n| n.to_string_lossy().into()),
+        }
     }
 
     /// A check of the current program is on screen.
@@ -200,6 +225,11 @@ impl HomeworkState {
     }
 }
 
+/// A path that names a homework as a student hands it in: a folder or a `.zip`.
+pub fn is_submission(path: &Path) -> bool {
+    crate::homework::is_zip(path) || (crate::files::exists(path) && !crate::files::is_file(path))
+}
+
 /// A path that names a homework shader (`.glsl`, `.frag`, `.fs`).
 pub fn is_shader_file(path: &Path) -> bool {
     path.extension()
@@ -208,18 +238,26 @@ pub fn is_shader_file(path: &Path) -> bool {
 }
 
 impl AppState {
-    /// Open a student's homework shader (their `phongFragment.glsl`) on the homework scene: the
-    /// camera view shows their picture, the homework panel what the check found. A shader that
-    /// does not compile opens too, with its error, and shows once it does.
+    /// Open a student's homework on the homework scene: their `phongFragment.glsl`, their
+    /// homework folder or a .zip of it (checked with the light their DirectionalLight.js builds).
+    /// The camera view shows their picture, the homework panel what the check found. A shader
+    /// that does not compile opens too, with its error, and shows once it does.
     pub fn open_homework(&mut self, path: &Path) {
         self.open_homework_with(path, None);
     }
 
     /// `open_homework` with the student's light-pass shader (`shadowFragment.glsl`) too.
     pub fn open_homework_with(&mut self, path: &Path, shadow_fragment: Option<&Path>) {
-        if !crate::files::is_file(path) {
-            let detail = format!("{}: no such file", path.display());
-            self.error = Some(AppError::new("could not open the shader", detail));
+        if !crate::files::exists(path) {
+            let detail = format!("{}: no such file or folder", path.display());
+            self.error = Some(AppError::new("could not open the homework", detail));
+            return;
+        }
+        // A folder or zip with no homework in it is refused here, the last state kept.
+        if is_submission(path)
+            && let Err(e) = HomeworkSource::read(path)
+        {
+            self.error = Some(AppError::new("could not open the homework", e.to_string()));
             return;
         }
         let scene_path = shipped_path(HOMEWORK_SCENE);

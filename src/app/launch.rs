@@ -84,6 +84,12 @@ fn open_file(file: &str, step: Option<u32>) -> Result<Opening, String> {
             crate::files::check_regular_file(path).map_err(|e| format!("{file}: {e}"))?;
             Ok(Opening::Homework(path.to_path_buf()))
         }
+        // A homework folder or a .zip of one, as the student hands it in.
+        _ if super::homework::is_submission(path) => {
+            not_lesson(step)?;
+            crate::homework::HomeworkSource::read(path).map_err(|e| e.to_string())?;
+            Ok(Opening::Homework(path.to_path_buf()))
+        }
         Some("obj") => {
             not_lesson(step)?;
             super::scene_for_obj(path)?;
@@ -98,9 +104,9 @@ fn open_file(file: &str, step: Option<u32>) -> Result<Opening, String> {
             crate::scene::load_scene(path, &[]).map_err(|e| e.to_string())?;
             Ok(Opening::Scene(path.to_path_buf()))
         }
-        _ => {
-            Err(format!("{file}: not a scene or lesson (.toml), a model (.obj) or a homework shader (.glsl)"))
-        }
+        _ => Err(format!(
+            "{file}: not a scene or lesson (.toml), a model (.obj), a homework shader (.glsl), folder or .zip"
+        )),
     }
 }
 
@@ -134,7 +140,9 @@ impl super::AppState {
     pub fn open_any(&mut self, path: &Path) {
         // Scenes and models through `open` (loaded once, the old scene kept if this one fails);
         // lesson files and lesson ids as the command line takes them.
-        if crate::files::exists(path) && super::homework::is_shader_file(path) {
+        if crate::files::exists(path)
+            && (super::homework::is_shader_file(path) || super::homework::is_submission(path))
+        {
             return self.open_homework(path);
         }
         if crate::files::exists(path) && !is_lesson_file(path) {
@@ -188,12 +196,14 @@ fn is_light_pass_shader(path: &Path) -> bool {
     super::homework::is_shader_file(path) && name.starts_with("shadow")
 }
 
-/// Of several files dropped or picked at once, the one to open: a homework shader (the camera
-/// pass's, `phongFragment`, before a light pass's), a scene or lesson, a model; else the last.
+/// Of several files dropped or picked at once, the one to open: a homework folder or zip, a
+/// homework shader (the camera pass's, `phongFragment`, before a light pass's), a scene or
+/// lesson, a model; else the last.
 /// The others (a model's material and textures) are found by the one opened.
 pub fn main_file(paths: &[PathBuf]) -> Option<PathBuf> {
     let extension = |p: &PathBuf| p.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let rank = |p: &PathBuf| match extension(p).as_deref() {
+        _ if super::homework::is_submission(p) => 0,
         _ if super::homework::is_shader_file(p) => usize::from(is_light_pass_shader(p)),
         Some("toml") => 2,
         Some("obj") => 3,

@@ -25,9 +25,9 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
     let Some(homework) = state.homework.as_ref() else { return };
     ui.heading(RichText::new(tr(lang, "Your homework")).size(20.0));
     ui.label(RichText::new(homework.name()).monospace().strong())
-        .on_hover_text(homework.fragment.display().to_string());
+        .on_hover_text(homework.path.display().to_string());
     // A file handed over as bytes (a page's drop) has no disk copy to watch.
-    let watched = if crate::files::is_handed_over(&homework.fragment) {
+    let watched = if crate::files::is_handed_over(&homework.path) {
         tr(lang, "handed over, not watched: after an edit, drop the file again").to_string()
     } else {
         fill(
@@ -84,6 +84,21 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
         row("visibility from", report.visibility_function.unwrap_or("-").to_string());
         let technique = report.compared_with.and_then(crate::scene::Technique::from_name);
         row("compared with shadowlab's", technique.map_or("-", |t| t.label(lang)).to_string());
+        // The light the check drew with: theirs where their DirectionalLight.js builds one.
+        let light = report.light.as_ref().map_or_else(
+            || tr(lang, "the framework's").to_string(),
+            |l| match (&l.error, l.frustum.width_world) {
+                (Some(_), _) => tr(lang, "the framework's (yours did not run)").to_string(),
+                (None, Some(width)) => fill(lang, "{}, {:.0} wide", &[&l.from, &width]),
+                (None, None) => l.from.clone(),
+            },
+        );
+        row("light from", light);
+        let width = report.light_width.as_ref().and_then(|w| w.implied_light_width_world);
+        row(
+            "light width your shader behaves as",
+            width.map_or_else(|| "-".to_string(), |w| fill(lang, "{:.2} world units", &[&w])),
+        );
         if let Some(f) = &report.figures {
             row("mean |difference| to shadowlab's", figure(f.mean_abs_difference));
             row("mean |difference| to the ground truth", figure(f.mean_abs_difference_to_ground_truth));
@@ -96,6 +111,13 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
             );
         }
     });
+    if let Some(error) = report.light.as_ref().and_then(|l| l.error.as_ref()) {
+        ui.label(
+            RichText::new(fill(lang, "your light did not run: {}", &[error]))
+                .monospace()
+                .color(Color32::from_rgb(255, 170, 160)),
+        );
+    }
     if let Some(probe) = state.probe_at.and_then(|at| state.homework.as_ref()?.probe(at)) {
         ui.add_space(6.0);
         ui.label(

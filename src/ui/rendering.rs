@@ -403,7 +403,12 @@ impl ShadowlabApp {
             thumbnails: full_detail,
             homework: self.state.homework.as_ref().filter(|_| full_detail).and_then(|h| {
                 let program = h.program.clone()?;
-                Some(HomeworkJob { program, generation: h.generation, lang: self.state.lang })
+                Some(HomeworkJob {
+                    program,
+                    source: h.source.clone(),
+                    generation: h.generation,
+                    lang: self.state.lang,
+                })
             }),
             preview,
             map_texels: if self.map_panel.zoomed() { MAP_PICTURE_TEXELS_ZOOMED } else { MAP_PICTURE_TEXELS },

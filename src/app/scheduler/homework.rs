@@ -3,9 +3,10 @@
 //! its frame for the probe and the ground truths), a piece at a time without waiting where the
 //! scheduler polls, and the last outcome kept while nothing it depends on changes.
 
+use crate::homework::student_light::{LightReport, student_light};
 use crate::homework::{
     CheckOutcome, CheckRun, FRAMEWORK_LIGHT_INTENSITY, HomeworkLight, HomeworkProgram, HomeworkRenderer,
-    HomeworkRequest, MapKind, ShaderSource,
+    HomeworkRequest, HomeworkSource, MapKind, ShaderSource,
 };
 use crate::i18n::Lang;
 use crate::render::{GpuWait, Renderer};
@@ -16,6 +17,9 @@ use std::sync::Arc;
 #[derive(Clone)]
 pub struct HomeworkJob {
     pub program: Arc<HomeworkProgram>,
+    /// The submission it was read from, whose light scripts build the light (None: the
+    /// framework's light, as for a shader opened alone).
+    pub source: Option<Arc<HomeworkSource>>,
     pub generation: u64,
     /// The language of the findings' explanations.
     pub lang: Lang,
@@ -41,8 +45,8 @@ pub(super) struct HomeworkRunner {
     pipelines: Option<(u64, HomeworkRenderer)>,
     /// shadowlab's side of the comparison (made on first use).
     comparison: Option<Renderer>,
-    /// The check under way, and what it depends on.
-    running: Option<(CheckKey, CheckRun)>,
+    /// The check under way, what it depends on, and the light it draws with.
+    running: Option<(CheckKey, CheckRun, Option<LightReport>)>,
     last: Option<(CheckKey, Arc<CheckOutcome>)>,
 }
 
@@ -79,8 +83,8 @@ impl HomeworkRunner {
             Some(r) => r,
             None => self.comparison.insert(Renderer::new(device, queue).map_err(|e| e.to_string())?),
         };
-        let run = match &mut self.running {
-            Some((k, run)) if *k == key => run,
+        let (run, light_report) = match &mut self.running {
+            Some((k, run, light)) if *k == key => (run, light),
             slot => {
                 let homework = match &mut self.pipelines {
                     Some((generation, renderer)) if *generation == job.generation => renderer,
@@ -97,18 +101,38 @@ impl HomeworkRunner {
                     std::task::Poll::Ready(Ok(())) => {}
                 }
                 let request = HomeworkRequest { time_s, size, light: 0, map: MapKind::Framework };
-                let light = HomeworkLight::of_scene(scene, 0, time_s, FRAMEWORK_LIGHT_INTENSITY)
-                    .ok_or_else(|| "the scene has no light".to_string())?;
                 let shader: &ShaderSource = &job.program.files.phong_fragment;
-                let run = CheckRun::start(homework, &shader.name, scene, &light, &request, job.lang)
-                    .map_err(|e| e.to_string())?;
-                &mut slot.insert((key.clone(), run)).1
+                // The student's own light where their submission has its scripts.
+                let run =
+                    match job.source.as_deref().and_then(|source| student_light(source, scene, 0, time_s)) {
+                        Some(student) => {
+                            let run = CheckRun::start(
+                                homework,
+                                &shader.name,
+                                &student.scene,
+                                &student.light,
+                                &request,
+                                job.lang,
+                            );
+                            (run.map_err(|e| e.to_string())?, Some(student.report))
+                        }
+                        None => {
+                            let light = HomeworkLight::of_scene(scene, 0, time_s, FRAMEWORK_LIGHT_INTENSITY)
+                                .ok_or_else(|| "the scene has no light".to_string())?;
+                            let run =
+                                CheckRun::start(homework, &shader.name, scene, &light, &request, job.lang);
+                            (run.map_err(|e| e.to_string())?, None)
+                        }
+                    };
+                let (_, run, light) = slot.insert((key.clone(), run.0, run.1));
+                (run, light)
             }
         };
         let stepped = run.step(comparison, wait).map_err(|e| e.to_string());
         match stepped {
             Ok(None) => Ok(None),
-            Ok(Some(outcome)) => {
+            Ok(Some(mut outcome)) => {
+                outcome.report.light = light_report.take();
                 self.running = None;
                 let outcome = Arc::new(outcome);
                 self.last = Some((key, outcome.clone()));
