@@ -182,8 +182,8 @@ fn a_homework_folder_is_checked_with_the_students_own_light_and_its_script_is_wa
     assert!(h.state().error.is_none(), "{:?}", h.state().error);
     assert_eq!(finding_ids(&h), ["light_frustum_clips"]);
     h.get_by_label("alice");
-    h.get_by_label("light from");
-    h.get_by_label_contains("DirectionalLight.js:");
+    h.get_by_label_contains("light from DirectionalLight.js:");
+    h.get_by_label_contains("your penumbrae behave as a light");
     h.get_by_label_contains(", 50 wide");
     // The student widens their light's box; the app notices the script and checks again.
     std::thread::sleep(std::time::Duration::from_millis(20));

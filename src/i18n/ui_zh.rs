@@ -314,9 +314,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("the framework's", "框架自带的"),
     ("the framework's (yours did not run)", "框架自带的（你的没能运行）"),
     ("{}, {:.0} wide", "{}，宽 {:.0}"),
-    ("light from", "光源来自"),
-    ("light width your shader behaves as", "你的着色器表现出的光源宽度"),
-    ("{:.2} world units", "{:.2} 个世界单位"),
+    ("your penumbrae behave as a light {:.2} world units wide", "你的半影相当于一个 {:.2} 个世界单位宽的光源"),
     ("your light did not run: {}", "你的光源没能运行：{}"),
     ("could not open the homework", "无法打开作业"),
 ];

@@ -20,6 +20,11 @@ fn lesson_link(state: &AppState, lesson: &str, step: usize, lang: Lang) -> Optio
     Some((index, format!("{} · {} {step}: {step_title}", l.title.get(lang), tr(lang, "step"))))
 }
 
+/// `homework1/src/lights/DirectionalLight.js:32` as `DirectionalLight.js:32`.
+fn file_and_line(from: &str) -> String {
+    from.rsplit(['/', '\\']).next().unwrap_or(from).to_string()
+}
+
 pub fn show(state: &mut AppState, ui: &mut Ui) {
     let lang = state.lang;
     let Some(homework) = state.homework.as_ref() else { return };
@@ -84,21 +89,6 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
         row("visibility from", report.visibility_function.unwrap_or("-").to_string());
         let technique = report.compared_with.and_then(crate::scene::Technique::from_name);
         row("compared with shadowlab's", technique.map_or("-", |t| t.label(lang)).to_string());
-        // The light the check drew with: theirs where their DirectionalLight.js builds one.
-        let light = report.light.as_ref().map_or_else(
-            || tr(lang, "the framework's").to_string(),
-            |l| match (&l.error, l.frustum.width_world) {
-                (Some(_), _) => tr(lang, "the framework's (yours did not run)").to_string(),
-                (None, Some(width)) => fill(lang, "{}, {:.0} wide", &[&l.from, &width]),
-                (None, None) => l.from.clone(),
-            },
-        );
-        row("light from", light);
-        let width = report.light_width.as_ref().and_then(|w| w.implied_light_width_world);
-        row(
-            "light width your shader behaves as",
-            width.map_or_else(|| "-".to_string(), |w| fill(lang, "{:.2} world units", &[&w])),
-        );
         if let Some(f) = &report.figures {
             row("mean |difference| to shadowlab's", figure(f.mean_abs_difference));
             row("mean |difference| to the ground truth", figure(f.mean_abs_difference_to_ground_truth));
@@ -111,6 +101,21 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
             );
         }
     });
+    // The light the check drew with (theirs where their DirectionalLight.js builds one) and the
+    // one their shader behaves as: sentences that wrap, not grid rows that widen the panel.
+    let light = report.light.as_ref().map_or_else(
+        || tr(lang, "the framework's").to_string(),
+        |l| match (&l.error, l.frustum.width_world) {
+            (Some(_), _) => tr(lang, "the framework's (yours did not run)").to_string(),
+            // The file's name and line: the path inside the submission is in report.json.
+            (None, Some(width)) => fill(lang, "{}, {:.0} wide", &[&file_and_line(&l.from), &width]),
+            (None, None) => file_and_line(&l.from),
+        },
+    );
+    ui.label(fill(lang, "light from {}", &[&light]));
+    if let Some(width) = report.light_width.as_ref().and_then(|w| w.implied_light_width_world) {
+        ui.label(fill(lang, "your penumbrae behave as a light {:.2} world units wide", &[&width]));
+    }
     if let Some(error) = report.light.as_ref().and_then(|l| l.error.as_ref()) {
         ui.label(
             RichText::new(fill(lang, "your light did not run: {}", &[error]))
