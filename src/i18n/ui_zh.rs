@@ -314,7 +314,10 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("the framework's", "框架自带的"),
     ("the framework's (yours did not run)", "框架自带的（你的没能运行）"),
     ("{}, {:.0} wide", "{}，宽 {:.0}"),
-    ("your penumbrae behave as a light {:.2} world units wide", "你的半影相当于一个 {:.2} 个世界单位宽的光源"),
+    (
+        "your penumbrae behave as a light {:.2} world units wide",
+        "你的半影相当于一个 {:.2} 个世界单位宽的光源",
+    ),
     ("your light did not run: {}", "你的光源没能运行：{}"),
     ("could not open the homework", "无法打开作业"),
 ];
