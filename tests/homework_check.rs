@@ -237,6 +237,11 @@ fn a_homework_folder_and_its_zip_are_checked_with_the_students_own_light() {
             (light["frustum"]["width_world"].as_f64().expect("a width") - 50.0).abs() < 1e-3,
             "{light:#}"
         );
+        // The scene (about 141 world units deep along the light) spans about 35% of its 400-unit
+        // depth range: no note that the precision is spent on empty space.
+        let share = light["frustum"]["scene_depth_share"].as_f64().expect("a share");
+        assert!((0.3..0.4).contains(&share), "{light:#}");
+        assert!(!light["notes"].to_string().contains("empty space"), "{light:#}");
         assert_eq!(finding_ids(&report), ["light_frustum_clips"], "{report:#}");
     }
 }

@@ -56,6 +56,56 @@ pub struct FrustumReport {
     pub depth_range_world: f32,
     /// One texel's width across the light at the focal point, world units.
     pub texel_world: f32,
+    /// The share of the map's [0, 1] depth the scene's objects occupy under the student's matrix
+    /// (the rest of the depth precision is spent on empty space).
+    pub scene_depth_share: Option<f32>,
+}
+
+/// Under this share of the depth range a note says the precision goes to empty space.
+const DEPTH_SHARE_NOTE: f32 = 0.25;
+
+/// The [0, 1] depth the scene's objects span under `clip_from_world` (GL clip conventions),
+/// from their bounding boxes; None where a corner is behind a perspective light's eye.
+fn scene_depth_share(clip_from_world: Mat4, scene: &Scene, t_s: f32) -> Option<f32> {
+    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+    for object in &scene.objects {
+        let (a, b) = object.world_bounds(t_s);
+        for i in 0..8 {
+            let corner = Vec3::new(
+                if i & 1 == 0 { a.x } else { b.x },
+                if i & 2 == 0 { a.y } else { b.y },
+                if i & 4 == 0 { a.z } else { b.z },
+            );
+            let clip = clip_from_world * corner.extend(1.0);
+            if clip.w <= 0.0 {
+                return None;
+            }
+            let depth = (0.5 * clip.z / clip.w + 0.5).clamp(0.0, 1.0);
+            (lo, hi) = (lo.min(depth), hi.max(depth));
+        }
+    }
+    (hi >= lo).then_some(hi - lo)
+}
+
+/// The frustum's report with the depth the scene spans under the student's matrix, and a note
+/// where most of the depth range holds nothing.
+fn with_depth_share(
+    mut frustum: FrustumReport,
+    clip_from_world: Mat4,
+    scene: &Scene,
+    t_s: f32,
+    notes: &mut Vec<String>,
+) -> FrustumReport {
+    frustum.scene_depth_share = scene_depth_share(clip_from_world, scene, t_s);
+    if let Some(share) = frustum.scene_depth_share.filter(|s| *s < DEPTH_SHARE_NOTE) {
+        notes.push(format!(
+            "the scene spans {:.0}% of the light's depth range ({:.0} of {:.0} world units): the rest of the map's depth precision is spent on empty space; near and far closer to the scene keep it",
+            100.0 * share,
+            share * frustum.depth_range_world,
+            frustum.depth_range_world
+        ));
+    }
+    frustum
 }
 
 /// The light a homework is checked with, and the scene whose light `index` is shadowlab's copy.
@@ -127,6 +177,7 @@ fn frustum_report(light: &Light, focal_point: Vec3) -> FrustumReport {
         near_centre: light.position.to_array(),
         depth_range_world,
         texel_world,
+        scene_depth_share: None,
     }
 }
 
@@ -159,7 +210,13 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
                 .map(|(o, m)| (o.name.clone(), cols(*m)))
                 .collect(),
             calls: Vec::new(),
-            frustum: frustum_report(shadowlab, shadowlab.target),
+            frustum: with_depth_share(
+                frustum_report(shadowlab, shadowlab.target),
+                light.clip_from_world,
+                scene,
+                t_s,
+                &mut notes,
+            ),
             notes,
             model_matrix: None,
         };
@@ -221,6 +278,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
             (scene.clone(), frustum_report(like, like.target))
         }
     };
+    let frustum = with_depth_share(frustum, clip_from_world, scene, t_s, &mut notes);
     let engine_intensity = (engine.intensity.value as f32) * vec3(engine.color.value);
     let light = HomeworkLight {
         from: LightFrom::Script { file: script.name.clone(), line: projection_line },
