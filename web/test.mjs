@@ -238,7 +238,75 @@ const checks = [
       return `data-homework=${where.homework}, findings: ${where.findings}`;
     },
   },
+  {
+    name: "homework: a .zip of a homework folder dropped on the page is checked with the student's light",
+    async run({ browser, decoder }) {
+      const page = await open(browser);
+      const example = (name) => readFileSync(new URL(`../assets/homework/${name}`, import.meta.url));
+      // The correct shader with a light whose box is only 50 world units wide: one finding.
+      const zip = storedZip([
+        ["alice/homework1/src/shaders/phongShader/phongFragment.glsl", example("phongFragment.glsl")],
+        ["alice/homework1/src/lights/DirectionalLight.js", example("DirectionalLight_narrow.js")],
+      ]);
+      const drop = await page.evaluateHandle((bytes) => {
+        const data = new DataTransfer();
+        data.items.add(new File([new Uint8Array(bytes)], "alice.zip", { type: "application/zip" }));
+        return data;
+      }, Array.from(zip));
+      for (const type of ["dragenter", "dragover", "drop"]) {
+        await page.dispatchEvent("#shadowlab_canvas", type, { dataTransfer: drop });
+      }
+      await waitForBody(page, () => ["checked", "error"].includes(document.body.dataset.homework));
+      await look(page, decoder, "homework-zip-drop");
+      const where = await body(page);
+      expect(where.homework === "checked", `the check ended with data-homework=${where.homework}`);
+      expect(where.findings === "light_frustum_clips", `findings: ${where.findings || "none"}`);
+      return `data-homework=${where.homework}, findings: ${where.findings}`;
+    },
+  },
 ];
+
+/** CRC-32 (IEEE), as a zip's headers carry it. */
+function crc32(bytes) {
+  let crc = 0xffffffff;
+  for (const byte of bytes) {
+    crc ^= byte;
+    for (let k = 0; k < 8; k++) crc = (crc >>> 1) ^ (0xedb88320 & -(crc & 1));
+  }
+  return (crc ^ 0xffffffff) >>> 0;
+}
+
+/** A zip of [name, bytes] entries, stored without compression. */
+function storedZip(entries) {
+  const parts = [];
+  const central = [];
+  let offset = 0;
+  const header = (fields) => {
+    const out = Buffer.alloc(fields.reduce((n, [size]) => n + size, 0));
+    let at = 0;
+    for (const [size, value] of fields) {
+      if (size === 2) out.writeUInt16LE(value, at);
+      else out.writeUInt32LE(value, at);
+      at += size;
+    }
+    return out;
+  };
+  for (const [name, data] of entries) {
+    const nameBytes = Buffer.from(name, "utf8");
+    const crc = crc32(data);
+    const local = header([[4, 0x04034b50], [2, 20], [2, 0], [2, 0], [2, 0], [2, 0], [4, crc],
+      [4, data.length], [4, data.length], [2, nameBytes.length], [2, 0]]);
+    parts.push(local, nameBytes, data);
+    central.push(header([[4, 0x02014b50], [2, 20], [2, 20], [2, 0], [2, 0], [2, 0], [2, 0], [4, crc],
+      [4, data.length], [4, data.length], [2, nameBytes.length], [2, 0], [2, 0], [2, 0], [2, 0],
+      [4, 0], [4, offset]]), nameBytes);
+    offset += local.length + nameBytes.length + data.length;
+  }
+  const directory = Buffer.concat(central);
+  const end = header([[4, 0x06054b50], [2, 0], [2, 0], [2, entries.length], [2, entries.length],
+    [4, directory.length], [4, offset], [2, 0]]);
+  return Buffer.concat([...parts, directory, end]);
+}
 
 const browser = await launchChromium();
 const decoder = await browser.newPage();

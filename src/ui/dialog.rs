@@ -32,7 +32,8 @@ pub fn portal_available() -> bool {
 }
 
 impl OpenDialog {
-    /// Ask for a scene or lesson (.toml), a model (.obj) or a homework shader (.glsl), starting in
+    /// Ask for a scene or lesson (.toml), a model (.obj), a homework shader (.glsl) or a zipped
+    /// homework (.zip), starting in
     /// `folder`; `wake` is
     /// called when the answer is in.
     pub fn open(folder: PathBuf, wake: impl Fn() + Send + 'static) -> Self {
@@ -44,8 +45,8 @@ impl OpenDialog {
                 match rfd::FileDialog::new()
                     .set_title("shadowlab: open a scene, lesson, model or homework shader")
                     .add_filter(
-                        "scene or lesson (.toml), model (.obj), homework shader (.glsl)",
-                        &["toml", "obj", "glsl", "frag", "fs"],
+                        "scene or lesson (.toml), model (.obj), homework (.glsl, .zip)",
+                        &["toml", "obj", "glsl", "frag", "fs", "zip"],
                     )
                     .set_directory(folder)
                     .pick_file()

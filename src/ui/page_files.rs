@@ -10,7 +10,7 @@ use wasm_bindgen::closure::Closure;
 
 /// Files picked in the dialog, and dropped, accepted by the dialog (what the app opens, and what
 /// a model brings along).
-const ACCEPT: &str = ".glsl,.frag,.fs,.toml,.obj,.mtl,.png,.jpg,.jpeg";
+const ACCEPT: &str = ".glsl,.frag,.fs,.zip,.toml,.obj,.mtl,.png,.jpg,.jpeg";
 
 thread_local! {
     /// Batches read and handed over, not yet opened.
