@@ -231,6 +231,31 @@ fn choose(kind: Kind, paths: &[String], root: &[&str]) -> (Option<usize>, Option
     (Some(index), Some(note))
 }
 
+/// The top folders of the phongFragment.glsl files that rank level with the best one, told apart
+/// only by their order: two or more is a class of homeworks side by side (`alice/`, `bob/`), not
+/// one homework with spare copies (a backup, another homework's folder, a deeper copy rank lower).
+pub(super) fn level_homeworks(paths: &[String]) -> Vec<String> {
+    let mut ranked: Vec<Rank> = paths
+        .iter()
+        .filter(|p| p.rsplit('/').next().and_then(Kind::of) == Some(Kind::PhongFragment))
+        .map(|p| rank(Kind::PhongFragment, p, &[]))
+        .collect();
+    ranked.sort();
+    let Some(best) = ranked.first() else { return Vec::new() };
+    let level = |r: &Rank| {
+        (r.near, r.homework, r.off_parent, r.spare, r.depth)
+            == (best.near, best.homework, best.off_parent, best.spare, best.depth)
+    };
+    let mut tops: Vec<String> = Vec::new();
+    for r in ranked.iter().filter(|r| level(r)) {
+        let top = r.path.split('/').next().unwrap_or_default().to_owned();
+        if r.path.contains('/') && !tops.contains(&top) {
+            tops.push(top);
+        }
+    }
+    tops
+}
+
 /// The picked files, as indices into the paths given to `pick`, in `Kind::ALL` order.
 #[derive(Debug)]
 pub(super) struct Picked {

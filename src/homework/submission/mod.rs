@@ -287,6 +287,17 @@ fn assemble(
         let message = format!("no phongFragment.glsl in it (looked in {} {files}{hint})", paths.len());
         return Err(SubmissionError::new(at, message));
     };
+    let side_by_side = find::level_homeworks(paths);
+    if side_by_side.len() >= 2 {
+        let shown: Vec<String> = side_by_side.iter().take(3).map(|t| format!("{t}/")).collect();
+        let more = if side_by_side.len() > 3 { ", ..." } else { "" };
+        let message = format!(
+            "holds {} homeworks side by side ({}{more}): give one of them, or check them all with --class",
+            side_by_side.len(),
+            shown.join(", ")
+        );
+        return Err(SubmissionError::new(at, message));
+    }
     notes.extend(picked.notes);
     notes.extend(
         nested.iter().map(|p| format!("ignored {p} (an archive inside the submission is not opened)")),

@@ -205,3 +205,24 @@ fn dropped_files() {
     let err = from_files("eve", bad, Limits::default()).expect_err("bad text");
     assert_eq!(err.to_string(), "eve/phongFragment.glsl: is not UTF-8 text (invalid byte at offset 1)");
 }
+
+/// A class folder given as one homework: its students' homeworks rank level, told apart only by
+/// their names, so it is refused with a pointer to `--class` rather than checked as its first
+/// student. A student's own spare copies (another homework's folder, a backup) still rank lower.
+#[test]
+fn homeworks_side_by_side_are_a_class_not_one_homework() {
+    let mut files = framework("alice/homework1/");
+    files.extend(framework("bob/homework1/"));
+    files.extend(framework("carol/homework1/"));
+    let (_dir, root) = folder("class", &files);
+    let error = read_path(&root, Limits::default()).expect_err("a class, not a homework");
+    assert!(
+        error.message.contains("holds 3 homeworks side by side (alice/, bob/, carol/)")
+            && error.message.contains("--class"),
+        "{error}"
+    );
+    let mut files = framework("homework1/");
+    files.extend(framework("homework1_backup/"));
+    let (_dir, root) = folder("erin", &files);
+    assert_eq!(found_paths(&read(&root)), framework_paths("homework1/"));
+}
