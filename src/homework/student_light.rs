@@ -70,12 +70,7 @@ fn scene_depth_share(clip_from_world: Mat4, scene: &Scene, t_s: f32) -> Option<f
     let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
     for object in &scene.objects {
         let (a, b) = object.world_bounds(t_s);
-        for i in 0..8 {
-            let corner = Vec3::new(
-                if i & 1 == 0 { a.x } else { b.x },
-                if i & 2 == 0 { a.y } else { b.y },
-                if i & 4 == 0 { a.z } else { b.z },
-            );
+        for corner in crate::scene::box_corners(a, b) {
             let clip = clip_from_world * corner.extend(1.0);
             if clip.w <= 0.0 {
                 return None;
@@ -113,6 +108,11 @@ pub struct StudentLight {
     pub light: HomeworkLight,
     pub scene: Scene,
     pub report: LightReport,
+}
+
+/// Each scene object's name with its matrix, as the report lists them.
+fn named_matrices(scene: &Scene, matrices: &[Mat4]) -> Vec<(String, [f32; 16])> {
+    scene.objects.iter().zip(matrices).map(|(o, m)| (o.name.clone(), cols(*m))).collect()
 }
 
 fn cols(m: Mat4) -> [f32; 16] {
@@ -203,12 +203,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
             focal_point: shadowlab.target.to_array(),
             up: shadowlab.up.to_array(),
             clip_from_world: cols(light.clip_from_world),
-            clip_from_object: scene
-                .objects
-                .iter()
-                .zip(&light.clip_from_object)
-                .map(|(o, m)| (o.name.clone(), cols(*m)))
-                .collect(),
+            clip_from_object: named_matrices(scene, &light.clip_from_object),
             calls: Vec::new(),
             frustum: with_depth_share(
                 frustum_report(shadowlab, shadowlab.target),
@@ -300,12 +295,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
         focal_point: focal_point.to_array(),
         up: vec3(engine.up.value).to_array(),
         clip_from_world: cols(clip_from_world),
-        clip_from_object: scene
-            .objects
-            .iter()
-            .zip(&light.clip_from_object)
-            .map(|(o, m)| (o.name.clone(), cols(*m)))
-            .collect(),
+        clip_from_object: named_matrices(scene, &light.clip_from_object),
         calls: at_origin
             .calls
             .iter()

@@ -76,18 +76,24 @@ impl Object {
         let (a, b) = self.mesh.bounds();
         let mut lo = Vec3::splat(f32::INFINITY);
         let mut hi = Vec3::splat(f32::NEG_INFINITY);
-        for i in 0..8 {
-            let corner = Vec3::new(
-                if i & 1 == 0 { a.x } else { b.x },
-                if i & 2 == 0 { a.y } else { b.y },
-                if i & 4 == 0 { a.z } else { b.z },
-            );
+        for corner in box_corners(a, b) {
             let p = world_from_object.transform_point3(corner);
             lo = lo.min(p);
             hi = hi.max(p);
         }
         (lo, hi)
     }
+}
+
+/// The eight corners of the box from `lo` to `hi`.
+pub fn box_corners(lo: Vec3, hi: Vec3) -> [Vec3; 8] {
+    std::array::from_fn(|i| {
+        Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    })
 }
 
 #[derive(Clone, Debug)]
