@@ -404,6 +404,32 @@ pub(crate) fn draw_canvas(
     if width_px == 0 || height_px == 0 || width_px > MAX_SIDE_PX || height_px > MAX_SIDE_PX {
         return Err(bad);
     }
+    // Text grows towards `min_text_px` only as far as the canvas holds it: where a text column
+    // is squeezed into a strip or texts meet, the diagram is drawn again with smaller text, down
+    // to its design size.
+    let mut min_text = min_text_px;
+    for _ in 0..MAX_SHRINKS {
+        let c = draw_once(kind, inputs, lang, [width_px, height_px], min_text)?;
+        if !c.cramped && c.overlapping_text().is_empty() {
+            return Ok(c);
+        }
+        min_text *= SHRINK;
+    }
+    draw_once(kind, inputs, lang, [width_px, height_px], 0.0)
+}
+
+/// Tries at a smaller text size before the design size, and the factor of each.
+const MAX_SHRINKS: usize = 4;
+const SHRINK: f32 = 0.85;
+
+fn draw_once(
+    kind: DiagramKind,
+    inputs: &DiagramInputs,
+    lang: Lang,
+    [width_px, height_px]: [u32; 2],
+    min_text_px: f32,
+) -> Result<Canvas, DiagramError> {
+    let bad = DiagramError::InvalidSize { width_px, height_px };
     let pixmap = tiny_skia::Pixmap::new(width_px, height_px).ok_or(bad)?;
     let mut c = canvas::Canvas::new(pixmap, lang, min_text_px);
     c.title_bar(kind.title());

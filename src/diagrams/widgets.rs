@@ -160,6 +160,10 @@ pub struct Column {
     pub boxes: Vec<[f32; 4]>,
 }
 
+/// Least room a text column should have, in text heights: less is a strip of a few letters a
+/// line (the canvas is then drawn again with smaller text).
+const MIN_COLUMN_EMS: f32 = 8.0;
+
 /// Lowest a column line may reach: the legend row sits below.
 pub const COLUMN_BOTTOM: f32 = 494.0;
 
@@ -228,6 +232,10 @@ impl Column {
         self.reserve(height(c, &ls));
         if self.x != x {
             ls = wrapped(c, self.x);
+        }
+        let widest = lines.iter().map(|(_, st)| c.fs(st.size)).fold(0.0, f32::max);
+        if !self.dry && fx + fw - 4.0 - self.x < MIN_COLUMN_EMS * widest {
+            c.cramped = true;
         }
         for (s, st, continues) in &ls {
             self.put(c, s, *st);

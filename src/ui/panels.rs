@@ -42,7 +42,8 @@ impl DiagramPanel {
     /// The diagram tabs, the diagram and the sample pattern, from `state`.
     pub fn ui(&mut self, ui: &mut Ui, state: &mut AppState) {
         let show_diagram = state.panel_visible(Panel::Diagram);
-        ui.horizontal(|ui| {
+        // Tabs wrap in a narrow panel rather than widen it over its neighbours.
+        ui.horizontal_wrapped(|ui| {
             if show_diagram {
                 ui.strong(crate::i18n::tr(state.lang, "Diagram"));
                 for kind in DiagramKind::ALL {
@@ -145,8 +146,27 @@ fn kernel_plot(state: &AppState, ui: &mut Ui, rect: Rect) {
         .map(|p| kernels::pixel_seed((p.pixel[0], p.pixel[1]), s.noise_seed, s.rotate_per_pixel))
         .unwrap_or_else(|| kernels::pixel_seed((0, 0), s.noise_seed, s.rotate_per_pixel));
     let points = kernels::kernel_points(s.pcf_kernel, s.samples, seed);
-    let radius = rect.width().min(rect.height() - 36.0) * 0.42;
-    let centre = pos2(rect.center().x, rect.top() + 20.0 + radius * 1.1);
+    // The caption wraps within the plot (a narrow plot used to cut it), the disk below it.
+    let caption = crate::i18n::fill(
+        state.lang,
+        "{} · {} taps{}",
+        &[
+            &s.pcf_kernel.label(state.lang),
+            &points.len(),
+            &if s.rotate_per_pixel { crate::i18n::tr(state.lang, " · rotated per pixel") } else { "" },
+        ],
+    );
+    let galley = painter.layout(
+        caption,
+        egui::FontId::proportional(13.0),
+        Color32::LIGHT_GRAY,
+        (rect.width() - 12.0).max(20.0),
+    );
+    let caption_height = galley.size().y;
+    painter.galley(pos2(rect.left() + 6.0, rect.top() + 4.0), galley, Color32::LIGHT_GRAY);
+    let top = rect.top() + 4.0 + caption_height + 6.0;
+    let radius = ((rect.width() - 12.0).min(rect.bottom() - top - 6.0) * 0.5).max(4.0);
+    let centre = pos2(rect.center().x, top + radius);
     painter.circle_stroke(centre, radius, Stroke::new(1.0, Color32::GRAY));
     painter.line_segment(
         [centre - vec2(radius, 0.0), centre + vec2(radius, 0.0)],
@@ -161,19 +181,4 @@ fn kernel_plot(state: &AppState, ui: &mut Ui, rect: Rect) {
         let color = Color32::from_rgb((86.0 + 160.0 * t) as u8, (180.0 - 60.0 * t) as u8, 233);
         painter.circle_filled(centre + vec2(p.x, -p.y) * radius, 3.0, color);
     }
-    painter.text(
-        pos2(rect.left() + 6.0, rect.top() + 4.0),
-        egui::Align2::LEFT_TOP,
-        crate::i18n::fill(
-            state.lang,
-            "{} · {} taps{}",
-            &[
-                &s.pcf_kernel.label(state.lang),
-                &points.len(),
-                &if s.rotate_per_pixel { crate::i18n::tr(state.lang, " · rotated per pixel") } else { "" },
-            ],
-        ),
-        egui::FontId::proportional(13.0),
-        Color32::LIGHT_GRAY,
-    );
 }

@@ -65,6 +65,32 @@ impl Canvas {
         (m.width_px / self.scale, m.height_px() / self.scale)
     }
 
+    /// Every pair of drawn texts whose boxes overlap, and every text that reaches into a frame
+    /// (title bar, legend) without lying inside it.
+    pub fn overlapping_text(&self) -> Vec<String> {
+        let meet = |a: &[f32; 4], b: &[f32; 4]| super::boxes_meet(a, b, -0.5);
+        let inside = |a: &[f32; 4], f: &[f32; 4]| {
+            a[0] >= f[0] - 0.5
+                && a[1] >= f[1] - 0.5
+                && a[0] + a[2] <= f[0] + f[2] + 0.5
+                && a[1] + a[3] <= f[1] + f[3] + 0.5
+        };
+        let mut out = Vec::new();
+        for (i, (s, a)) in self.text_boxes.iter().enumerate() {
+            for (t, b) in &self.text_boxes[i + 1..] {
+                if meet(a, b) {
+                    out.push(format!("{s:?} {a:?} overlaps {t:?} {b:?}"));
+                }
+            }
+            for f in &self.frames {
+                if meet(a, f) && !inside(a, f) {
+                    out.push(format!("{s:?} {a:?} reaches into the frame {f:?}"));
+                }
+            }
+        }
+        out
+    }
+
     /// The whole pixmap in design units, `[x, y, w, h]` (wider or taller than the design box
     /// when the aspect ratio differs from 16:9).
     pub fn full_rect(&self) -> [f32; 4] {

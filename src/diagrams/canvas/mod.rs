@@ -63,6 +63,9 @@ pub struct Canvas {
     pub continued: usize,
     /// Labels [`Canvas::fit_label`] had to cut, in full.
     pub shortened: Vec<String>,
+    /// A text column had too little room left for its text (a strip a few letters wide): the
+    /// text grew more than this canvas holds.
+    pub cramped: bool,
 }
 
 /// How much a label may grow to reach the minimum text size: more would bury the drawing.
@@ -128,6 +131,7 @@ impl Canvas {
             frames: Vec::new(),
             continued: 0,
             shortened: Vec::new(),
+            cramped: false,
         };
         c.pixmap.fill(bg);
         c
