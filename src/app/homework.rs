@@ -253,6 +253,10 @@ impl AppState {
             self.error = Some(AppError::new("could not open the homework", detail));
             return;
         }
+        // A folder of several students' homeworks is a class.
+        if shadow_fragment.is_none() && super::class::is_class(path) {
+            return self.open_class(path);
+        }
         // A folder or zip with no homework in it is refused here, the last state kept.
         if is_submission(path)
             && let Err(e) = HomeworkSource::read(path)

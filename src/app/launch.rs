@@ -84,10 +84,12 @@ fn open_file(file: &str, step: Option<u32>) -> Result<Opening, String> {
             crate::files::check_regular_file(path).map_err(|e| format!("{file}: {e}"))?;
             Ok(Opening::Homework(path.to_path_buf()))
         }
-        // A homework folder or a .zip of one, as the student hands it in.
+        // A homework folder or a .zip of one, as the student hands it in; or a class of them.
         _ if super::homework::is_submission(path) => {
             not_lesson(step)?;
-            crate::homework::HomeworkSource::read(path).map_err(|e| e.to_string())?;
+            if !super::class::is_class(path) {
+                crate::homework::HomeworkSource::read(path).map_err(|e| e.to_string())?;
+            }
             Ok(Opening::Homework(path.to_path_buf()))
         }
         Some("obj") => {

@@ -4,6 +4,7 @@
 //! into these actions; tests and tools drive it directly; renders are asked for through a
 //! [`scheduler::RenderScheduler`].
 
+pub mod class;
 pub mod homework;
 pub mod launch;
 pub mod link;
@@ -93,6 +94,12 @@ pub struct AppState {
     pub probe_truth_progress: Vec<(usize, u32, u32)>,
     /// A student's homework shader open beside the scene (`open_homework`).
     pub homework: Option<homework::HomeworkState>,
+    /// A class of homeworks open beside it (`open_class`): the class report's ranked findings
+    /// and students, each a click from their homework.
+    pub class: Option<class::ClassState>,
+    /// The program that checks a class (`homework --class`): this one on the desktop; none in
+    /// the page, which starts no processes.
+    pub class_checker: Option<PathBuf>,
 }
 
 const DEFAULT_SCENE: &str = "assets/scenes/games202.toml";
@@ -151,6 +158,8 @@ impl AppState {
             mean_abs_error: None,
             probe_truth_progress: Vec::new(),
             homework: None,
+            class: None,
+            class_checker: class::checker(),
         };
         if let Some((id, step)) = state.settings.last_lesson.clone()
             && let Some(index) = state.lessons.iter().position(|l| l.id == id)

@@ -257,6 +257,7 @@ fn judge(
     let row = ClassRow {
         name: member.name.clone(),
         folder: member.folder.clone(),
+        path: member.path.display().to_string(),
         status,
         message,
         report,
@@ -367,6 +368,7 @@ fn already_checked(member: &Member, settings: &Settings) -> Option<ClassRow> {
     Some(ClassRow {
         name: member.name.clone(),
         folder: member.folder.clone(),
+        path: member.path.display().to_string(),
         status: done.status,
         message: done.message,
         report,

@@ -7,6 +7,9 @@
 //! messages, explanations that quote file names) is escaped wherever it is written.
 
 mod page;
+mod saved;
+
+pub use saved::{CLASS, MAX_REPORT_BYTES, is_class_report, read, read_report};
 
 use crate::homework::findings::FINDINGS;
 use crate::i18n::{Lang, tr};
@@ -172,6 +175,8 @@ pub struct ClassRow {
     pub name: String,
     /// The folder under the class report's its check wrote to.
     pub folder: String,
+    /// The submission as the class folder holds it (its folder or .zip).
+    pub path: String,
     pub status: Status,
     /// What the check said on failure, or its warning; one line.
     pub message: String,
@@ -342,6 +347,7 @@ pub fn write(out: &Path, rows: &[ClassRow], reports_in: Lang) -> Result<(), supe
         (INDEX_EN, page::html(Lang::En, rows, reports_in)),
         (INDEX_ZH, page::html(Lang::Zh, rows, reports_in)),
         (GRADES, csv(rows)),
+        (CLASS, saved::json(rows)),
     ];
     for (name, text) in &files {
         super::write_atomic(&out.join(name), text.as_bytes())?;

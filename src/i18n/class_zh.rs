@@ -3,6 +3,15 @@
 
 pub(super) const CLASS: &[(&str, &str)] = &[
     ("Class report", "班级作业报告"),
+    // The app's class panel.
+    ("Class", "班级"),
+    ("could not open the class", "无法打开班级"),
+    ("{} of {} checked", "已检查 {} / {} 份"),
+    ("each submission is checked as a process of its own", "每份作业在独立的进程中检查"),
+    ("class report:", "班级报告："),
+    ("{} students", "{} 名学生"),
+    ("no findings", "没有发现问题"),
+    ("← class {} ({} submissions)", "← 班级 {}（{} 份作业）"),
     ("{} submissions", "共 {} 份作业"),
     ("checked@class", "已检查"),
     ("did not compile@class", "未能编译"),

@@ -27,6 +27,10 @@ fn file_and_line(from: &str) -> String {
 
 pub fn show(state: &mut AppState, ui: &mut Ui) {
     let lang = state.lang;
+    if state.homework.is_none() {
+        return;
+    }
+    super::class_panel::back_to_class(state, ui);
     let Some(homework) = state.homework.as_ref() else { return };
     ui.heading(RichText::new(tr(lang, "Your homework")).size(20.0));
     ui.label(RichText::new(homework.name()).monospace().strong())

@@ -5,6 +5,7 @@ mod bars;
 mod camera_marks;
 mod camera_panel;
 mod camera_pictures;
+mod class_panel;
 #[cfg(not(target_arch = "wasm32"))]
 mod dialog;
 mod homework_panel;
@@ -336,6 +337,7 @@ impl eframe::App for ShadowlabApp {
         self.save_screenshot_if_ready();
         self.advance_time(web_time::Instant::now());
         self.watch_homework(&ctx);
+        self.watch_class(&ctx);
         self.receive_renders(&ctx);
         memory::return_free_pages_now_and_then();
         #[cfg(target_arch = "wasm32")]
@@ -372,13 +374,24 @@ impl eframe::App for ShadowlabApp {
                 });
             self.state.settings.inspector_width = inspector.response.rect.width();
         }
-        if self.state.current_step().is_none() && self.state.homework.is_some() && !self.state.present {
+        let class_shown =
+            self.state.class.as_ref().is_some_and(|c| c.showing || self.state.homework.is_none());
+        if self.state.current_step().is_none()
+            && (self.state.homework.is_some() || class_shown)
+            && !self.state.present
+        {
             egui::Panel::right("homework")
                 .resizable(true)
                 .default_size(340.0)
                 .max_size((screen.width() * 0.35).max(260.0))
                 .show(ui, |ui| {
-                    egui::ScrollArea::vertical().show(ui, |ui| homework_panel::show(&mut self.state, ui));
+                    egui::ScrollArea::vertical().show(ui, |ui| {
+                        if class_shown {
+                            class_panel::show(&mut self.state, ui);
+                        } else {
+                            homework_panel::show(&mut self.state, ui);
+                        }
+                    });
                 });
         }
         if self.state.current_step().is_some() {

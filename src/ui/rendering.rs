@@ -145,6 +145,16 @@ impl ShadowlabApp {
         ctx.request_repaint_after(HOMEWORK_WATCH_EVERY);
     }
 
+    /// Take the progress of a class check running in the background, and its report once it
+    /// has ended.
+    pub(super) fn watch_class(&mut self, ctx: &egui::Context) {
+        let Some(class) = self.state.class.as_mut() else { return };
+        class.poll();
+        if class.running() {
+            ctx.request_repaint_after(HOMEWORK_WATCH_EVERY);
+        }
+    }
+
     /// Take what the worker has finished; called once per UI frame.
     pub(super) fn receive_renders(&mut self, ctx: &egui::Context) {
         let Some(worker) = self.render.worker.as_mut() else { return };

@@ -17,7 +17,6 @@ use std::time::UNIX_EPOCH;
 pub const CHECKED: &str = "checked.json";
 /// Largest checked.json and report.json read back (a report is tens of kilobytes).
 const MAX_CHECKED_BYTES: u64 = 1 << 20;
-pub const MAX_REPORT_BYTES: u64 = 32 << 20;
 
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct Fingerprint {
@@ -102,10 +101,7 @@ fn read_bounded(path: &Path, max_bytes: u64) -> Option<String> {
     crate::files::read_input_text(path, max_bytes).ok()
 }
 
-/// Read a report a check wrote (None: missing, too large or not a report).
-pub fn read_report(path: &Path) -> Option<StudentReport> {
-    StudentReport::parse(&read_bounded(path, MAX_REPORT_BYTES)?).ok()
-}
+pub use crate::export::class_report::{MAX_REPORT_BYTES, read_report};
 
 /// How the check of the submission with `fingerprint` ended, if `folder` holds a done check of
 /// it whose report (where it has one) still reads.

@@ -15,6 +15,7 @@ fn checked(name: &str, findings: Vec<FindingPart>) -> ClassRow {
     ClassRow {
         name: name.into(),
         folder: name.into(),
+        path: format!("class/{name}"),
         status: Status::Checked,
         message: String::new(),
         report: Some(StudentReport {
@@ -42,6 +43,7 @@ fn failed(name: &str, status: Status, message: &str) -> ClassRow {
     ClassRow {
         name: name.into(),
         folder: name.into(),
+        path: format!("class/{name}"),
         status,
         message: message.into(),
         report: None,
