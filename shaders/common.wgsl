@@ -75,7 +75,7 @@ struct ShadowParamsGpu {
     clamp_outside: u32,
     search_radius_scale: f32,     // blocker search, times the light's cone
     depth_storage: u32,           // DEPTH_*
-    ortho_near_factor: u32,       // 1: NVIDIA's near / d_receiver on orthographic maps too (the bug)
+    ortho_near_factor: u32,       // 1: near / d_receiver on orthographic maps too, the bug [NVIDIA-2008]
     vsm_min_variance: f32,        // NDC depth squared
     vsm_bleed_reduction: f32,     // dimensionless, 0 = off
     _pad0: u32,
@@ -91,7 +91,7 @@ struct ObjectGpu {
     _pad2: u32,
 }
 
-// PCG hash (Jarzynski & Olano 2020): exact integer maths, so the CPU twin gets the same bits.
+// PCG hash [Jarzynski-2020]: exact integer maths, so the CPU twin gets the same bits.
 fn pcg_hash(v: u32) -> u32 {
     let state = v * 747796405u + 2891336453u;
     let word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;

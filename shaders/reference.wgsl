@@ -1,4 +1,5 @@
-// Ground truth: one hard shadow per light sample, averaged into a per-pixel sum.
+// Ground truth: one hard shadow per light sample, averaged into a per-pixel sum
+// [Guennebaud-2006].
 // Dispatched once per sample, after the sample's shadow map is rendered into layer 0.
 
 struct ReferenceInfo {

@@ -36,15 +36,16 @@ fn rotate_by(p: vec2<f32>, rotation: vec2<f32>) -> vec2<f32> {
 // Tap i of n in the unit disk. The patterns are computed once on the CPU into `kernel_table`
 // (src/shadow/kernels.rs, `kernel_base`, which the CPU twin uses too) and turned by the pixel's
 // rotation here:
-//   poisson (GAMES202 poissonDiskSamples): angle i * TAU * 10 / n (NUM_RINGS = 10), radius ((i+1)/n)^0.75;
-//   vogel: angle i * GOLDEN_ANGLE, radius sqrt((i + 0.5) / n);
-//   grid: side x side points over [-1, 1]^2, not turned (LearnOpenGL's 3x3 is side = 3 with a radius of
-//   one texel: offsets -1, 0, 1).
+//   poisson (poissonDiskSamples [GAMES202-HW1]): angle i * TAU * 10 / n (NUM_RINGS = 10),
+//     radius ((i+1)/n)^0.75;
+//   vogel [Vogel-1979]: angle i * GOLDEN_ANGLE, radius sqrt((i + 0.5) / n);
+//   grid: side x side points over [-1, 1]^2, not turned (the 3x3 of [LearnOpenGL-ShadowMapping] is
+//     side = 3 with a radius of one texel: offsets -1, 0, 1).
 // `table_start` is FILTER_TABLE or SEARCH_TABLE.
 fn kernel_offset(kernel: u32, table_start: u32, i: u32, seed: u32, rotation: vec2<f32>) -> vec2<f32> {
     if kernel == KERNEL_UNIFORM {
-        // GAMES202 uniformDiskSamples: (cos 2 pi x, sin 2 pi x) * sqrt(y), new random points per
-        // pixel, so there is no table to turn.
+        // uniformDiskSamples [GAMES202-HW1]: (cos 2 pi x, sin 2 pi x) * sqrt(y), new random
+        // points per pixel, so there is no table to turn.
         let h = pcg_hash(seed ^ pcg_hash(i + 1u));
         let x = unit_float(h);
         let y = unit_float(pcg_hash(h));
@@ -53,7 +54,7 @@ fn kernel_offset(kernel: u32, table_start: u32, i: u32, seed: u32, rotation: vec
     let taps = kernel_table[i];
     let tap = select(taps.xy, taps.zw, table_start == SEARCH_TABLE);
     if kernel == KERNEL_GRID {
-        // LearnOpenGL's regular grid: axis-aligned texel offsets, never turned.
+        // The regular grid [LearnOpenGL-ShadowMapping]: axis-aligned texel offsets, never turned.
         return tap;
     }
     return rotate_by(tap, rotation);
@@ -69,7 +70,7 @@ fn filter_taps(kernel: u32, samples: u32) -> u32 {
 
 // ---------------------------------------------------------------- how to filter
 
-// Hard shadow: one depth comparison.
+// Hard shadow: one depth comparison [Williams-1978].
 fn visibility_hard(light: LightGpu, coord: ShadowCoord) -> f32 {
     let bias = receiver_bias_ndc(light, coord, 0.0);
     if clamp_outside() == 1u && outside_frustum(coord) {
@@ -79,7 +80,8 @@ fn visibility_hard(light: LightGpu, coord: ShadowCoord) -> f32 {
     return select(0.0, 1.0, reference <= stored_depth_ndc(light, coord.uv));
 }
 
-// PCF: V = (1/N) sum_i [d_receiver - bias <= map(uv + r * s_i)], r in uv = radius_texels / map_size.
+// PCF [Reeves-1987]: V = (1/N) sum_i [d_receiver - bias <= map(uv + r * s_i)],
+// r in uv = radius_texels / map_size.
 fn visibility_pcf(light: LightGpu, coord: ShadowCoord, radius_texels: f32, seed: u32) -> f32 {
     let n = filter_taps(kernel(), params.samples);
     let radius_uv = radius_texels / light.map_size_texels;
@@ -117,7 +119,7 @@ fn blocker_search_radius_texels(light: LightGpu, coord: ShadowCoord) -> f32 {
 }
 
 // PCSS step 1: blocker search. The region is the cone from the receiver to the light's area,
-// cut at the near plane (NVIDIA: w_search = w_light * (d_r - near) / d_r, in uv / W_near).
+// cut at the near plane: w_search = w_light * (d_r - near) / d_r, in uv / W_near [NVIDIA-2008].
 fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSearch {
     var out: BlockerSearch;
     // No map data for this receiver: nothing to search (and nothing to report).
@@ -153,7 +155,7 @@ struct Penumbra {
     filter_radius_texels: f32,   // half the width, mapped to the shadow map
 }
 
-// PCSS step 2: penumbra by similar triangles (Fernando 2005).
+// PCSS step 2: penumbra by similar triangles [Fernando-2005].
 // Width model: w_p = w_light * (d_r - d_b) / d_b. Angular model: w_p = (d_r - d_b) * 2 tan(theta/2).
 // The filter radius is half the penumbra width, mapped to the map: orthographic / W,
 // perspective projected to the near plane first (* near / d_r) and then / W_near.
@@ -225,7 +227,7 @@ fn moments_at_level(light: LightGpu, uv: vec2<f32>, level_f: f32) -> vec2<f32> {
     return top * (1.0 - f.y) + bottom * f.y;
 }
 
-// VSM (Donnelly & Lauritzen 2006): with mean mu and variance sigma² of the depths around the
+// VSM [Donnelly-2006]: with mean mu and variance sigma² of the depths around the
 // lookup, Chebyshev's one-sided bound P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu
 // is taken as the lit fraction; t <= mu is lit.
 fn visibility_vsm(light: LightGpu, coord: ShadowCoord, radius_texels: f32) -> f32 {
@@ -237,7 +239,7 @@ fn visibility_vsm(light: LightGpu, coord: ShadowCoord, radius_texels: f32) -> f3
     return reduce_light_bleeding(chebyshev_upper_bound(m, t));
 }
 
-// Light-bleeding reduction (Lauritzen, GPU Gems 3 ch. 8): bounds up to a are taken as shadow
+// Light-bleeding reduction [Lauritzen-2007]: bounds up to a are taken as shadow
 // and the rest stretched back over 0..1. Removes the bleeding where the bound stays below a,
 // and darkens real penumbrae a little too.
 fn reduce_light_bleeding(p: f32) -> f32 {
@@ -255,7 +257,7 @@ fn chebyshev_upper_bound(m: vec2<f32>, t: f32) -> f32 {
     return variance / (variance + d * d);
 }
 
-// VSSM (Yang et al. 2010): over PCSS's search region, the moments give the mean depth z_avg
+// VSSM [Yang-2010]: over PCSS's search region, the moments give the mean depth z_avg
 // and Chebyshev's bound P of the unoccluded share; with the unoccluded depths taken as the
 // receiver's, z_avg = P t + (1 - P) z_occ gives z_occ = (z_avg - P t) / (1 - P), the average
 // blocker depth (NDC, then linear). Then PCSS's similar triangles, and a VSM filter of half the

@@ -89,7 +89,7 @@ fn is_angular(light: LightGpu) -> bool {
 // ---------------------------------------------------------------- what to sample
 
 struct ShadowCoord {
-    uv: vec2<f32>,          // wgpu: uv = ndc.xy * (0.5, -0.5) + 0.5
+    uv: vec2<f32>,          // wgpu: uv = ndc.xy * (0.5, -0.5) + 0.5 [WebGPU-Coordinates]
     depth_ndc: f32,         // receiver depth as the map would store it
     depth_linear: f32,      // receiver distance from the light, world units
     n_dot_l: f32,
@@ -134,8 +134,8 @@ fn project_to_light(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
     return vec3<f32>(ndc.xy * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5), ndc.z);
 }
 
-// Light-space lookup of a surface point, with the normal offset applied
-// (three.js normalBias; Bevy uses 1.8 texels): move along the normal by k texels in world units.
+// Light-space lookup of a surface point, with the normal offset applied: move along the normal
+// by k texels in world units [ThreeJS-NormalBias] [Bevy-DirectionalLight].
 fn light_space_lookup(light: LightGpu, world_pos: vec3<f32>, normal: vec3<f32>) -> ShadowCoord {
     var out: ShadowCoord;
     out.n_dot_l = dot(normal, light_dir_to(light, world_pos));
@@ -154,7 +154,7 @@ fn light_space_lookup(light: LightGpu, world_pos: vec3<f32>, normal: vec3<f32>) 
     return out;
 }
 
-// Two unit vectors that span the plane with unit normal n (Duff et al. 2017, branchless).
+// Two unit vectors that span the plane with unit normal n, branchless [Duff-2017].
 fn tangents_of(n: vec3<f32>) -> array<vec3<f32>, 2> {
     let sign = select(-1.0, 1.0, n.z >= 0.0);
     let a = -1.0 / (sign + n.z);
@@ -165,10 +165,10 @@ fn tangents_of(n: vec3<f32>) -> array<vec3<f32>, 2> {
     );
 }
 
-// The receiver's plane (through p, normal n) as NDC depth per uv of the map: two points of the
-// plane a texel from p, projected like p (at s), fix it. A light's projection maps planes to
-// planes, so this is exact for spot lights too. Edge-on to the light (the two projected steps
-// parallel) there is no such plane: 0, the constant bias alone.
+// The receiver's plane (through p, normal n) as NDC depth per uv of the map [Isidoro-2006]: two
+// points of the plane a texel from p, projected like p (at s), fix it. A light's projection maps
+// planes to planes, so this is exact for spot lights too. Edge-on to the light (the two projected
+// steps parallel) there is no such plane: 0, the constant bias alone.
 fn receiver_plane_gradient(light: LightGpu, p: vec3<f32>, n: vec3<f32>, s: vec3<f32>) -> vec2<f32> {
     let step = texel_world_at(light, depth_linear_from_ndc(light, s.z));
     let t = tangents_of(n);
@@ -181,14 +181,14 @@ fn receiver_plane_gradient(light: LightGpu, p: vec3<f32>, n: vec3<f32>, s: vec3<
     return vec2<f32>(a.z * b.y - a.y * b.z, a.x * b.z - a.z * b.x) / det;
 }
 
-// Depth bias in NDC units (REFERENCES "Bias"). `filter_radius_texels` grows the adaptive bias.
+// Depth bias in NDC units. `filter_radius_texels` grows the adaptive bias.
 fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: f32) -> f32 {
     switch bias_mode() {
         case BIAS_CONSTANT: {
             return params.bias;
         }
         case BIAS_SLOPE: {
-            // LearnOpenGL: max(0.05 * (1 - N.L), 0.005)
+            // [LearnOpenGL-ShadowMapping]: max(0.05 * (1 - N.L), 0.005)
             return max(params.slope_bias * (1.0 - coord.n_dot_l), params.bias);
         }
         case BIAS_RECEIVER_PLANE: {
@@ -197,8 +197,8 @@ fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: 
             return params.bias;
         }
         case BIAS_ADAPTIVE: {
-            // Seed 000: A = (1 + ceil(R)) * W / (2 * map_size) is half a texel in world units,
-            // grown with the filter; B = 1 - N.L; bias = c * max(A, A * B). As published,
+            // [DrFlower-HW1]: A = (1 + ceil(R)) * W / (2 * map_size) is half a texel in world
+            // units, grown with the filter; B = 1 - N.L; bias = c * max(A, A * B). As published,
             // max(A, A*B) is A wherever the light reaches (N.L >= 0, so B <= 1): texel-aware,
             // not slope-aware.
             let a = (1.0 + ceil(filter_radius_texels)) * 0.5 * texel_world_at(light, coord.depth_linear);
@@ -226,12 +226,13 @@ fn outside_frustum(coord: ShadowCoord) -> bool {
     return outside_map(coord.uv) || outside_depth(coord.depth_ndc);
 }
 
-// The GAMES202 framework's RGBA8 depth: `pack` splits the depth over the four 8-bit channels of
-// a colour target, which keeps each as round(255 v) / 255 like any RGBA8 target, and `unpack`
-// sums them back. Without three.js's 256/255 correction the round trip is off by up to about
-// 1/255: too far below half the depth range, too near above it. shadowlab clears its map to white
-// (unpack(1, 1, 1, 1), beyond the far plane) before every frame; the framework never clears its
-// own, so there texels nothing was drawn to read 0 (src/homework runs a student's shader so).
+// The GAMES202 framework's RGBA8 depth [GAMES202-HW1]: `pack` splits the depth over the four
+// 8-bit channels of a colour target, which keeps each as round(255 v) / 255 like any RGBA8
+// target, and `unpack` sums them back. Without three.js's 256/255 correction [ThreeJS-Packing]
+// the round trip is off by up to about 1/255: too far below half the depth range, too near above
+// it. shadowlab clears its map to white (unpack(1, 1, 1, 1), beyond the far plane) before every
+// frame; the framework never clears its own, so there texels nothing was drawn to read 0
+// (src/homework runs a student's shader so).
 fn rgba8_round_trip(depth_ndc: f32) -> f32 {
     if depth_ndc >= 1.0 {
         return ((1.0 + 1.0 / 256.0) + 1.0 / 65536.0) + 1.0 / 16777216.0;

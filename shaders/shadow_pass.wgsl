@@ -1,4 +1,5 @@
-// Pass 1: depth from the light. Only the depth attachment is written (no fragment stage).
+// Pass 1: depth from the light [Williams-1978]. Only the depth attachment is written (no
+// fragment stage).
 
 struct ShadowViewGpu {
     clip_from_world: mat4x4<f32>,

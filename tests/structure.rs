@@ -1,6 +1,7 @@
 //! The shape ARCHITECTURE.md describes, held: the top-level modules of src/ depend on each other
-//! without cycles, no source file is past 500 lines (test code aside), and the twin's formulas
-//! and the GPU parameters are made in one place each.
+//! without cycles, no source file is past 500 lines (test code aside), the twin's formulas
+//! and the GPU parameters are made in one place each, and every source a comment cites is an entry
+//! of docs/REFERENCES.md.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -147,4 +148,127 @@ fn shadow_params_are_built_from_settings_in_the_known_places_only() {
             assert!(allowed.iter().any(|a| shown.ends_with(a)), "{shown} builds ShadowParamsGpu itself");
         }
     }
+}
+
+/// The repository's text files under `dir` (relative to its root) with their text: what is not
+/// UTF-8 (fonts, images) is left out, and so are build and package folders.
+fn text_files(dir: &str) -> Vec<(String, String)> {
+    fn walk(root: &Path, dir: &Path, out: &mut Vec<(String, String)>) {
+        let Ok(entries) = std::fs::read_dir(dir) else { return };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            let name = entry.file_name().to_string_lossy().to_string();
+            if path.is_dir() {
+                if !["target", "node_modules", ".git"].contains(&name.as_str()) {
+                    walk(root, &path, out);
+                }
+            } else if let Ok(text) = std::fs::read_to_string(&path) {
+                let shown = path.strip_prefix(root).unwrap_or(&path).display().to_string();
+                out.push((shown, text));
+            }
+        }
+    }
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut out = Vec::new();
+    let path = root.join(dir);
+    if path.is_file() {
+        out.push((dir.to_string(), std::fs::read_to_string(&path).expect("a text file")));
+    } else {
+        walk(root, &path, &mut out);
+    }
+    out.sort();
+    out
+}
+
+/// A citation key: an upper-case letter, then letters and digits in parts joined by hyphens, at
+/// least one hyphen (`Fernando-2005`, `LearnOpenGL-ShadowMapping`). The hyphen keeps a key apart
+/// from code (`taps[i][PCF]`, `&[Vec2]`) and from rustdoc links, which never contain one.
+fn is_key(key: &str) -> bool {
+    key.starts_with(|c: char| c.is_ascii_uppercase())
+        && key.contains('-')
+        && key.split('-').all(|part| !part.is_empty() && part.chars().all(|c| c.is_ascii_alphanumeric()))
+}
+
+/// The keys cited on one line, as `[Key]`.
+fn citations(line: &str) -> Vec<&str> {
+    let mut keys = Vec::new();
+    for (at, _) in line.match_indices('[') {
+        let rest = &line[at + 1..];
+        let len = rest.find(|c: char| !(c.is_ascii_alphanumeric() || c == '-')).unwrap_or(rest.len());
+        if rest[len..].starts_with(']') && is_key(&rest[..len]) {
+            keys.push(&rest[..len]);
+        }
+    }
+    keys
+}
+
+/// Every `[Key]` in src/, shaders/, lessons/ and assets/ (and README.md, ARCHITECTURE.md and
+/// docs/REFERENCES.md itself) is the heading of an entry in docs/REFERENCES.md, and every entry
+/// is cited somewhere in src/, shaders/, lessons/ or assets/.
+#[test]
+fn every_citation_has_its_entry_and_every_entry_is_cited() {
+    const REFERENCES: &str = "docs/REFERENCES.md";
+    let (_, references) = text_files(REFERENCES).pop().expect("docs/REFERENCES.md");
+    let mut problems = Vec::new();
+    let mut entries: BTreeMap<String, usize> = BTreeMap::new();
+    for (i, line) in references.lines().enumerate() {
+        let Some(heading) = line.strip_prefix("### [") else { continue };
+        let key = heading.split(']').next().unwrap_or_default();
+        if !is_key(key) {
+            problems.push(format!(
+                "{REFERENCES}:{}: `[{key}]` is not a key (Letters-and-digits-with-hyphens)",
+                i + 1
+            ));
+        } else if entries.insert(key.to_string(), i + 1).is_some() {
+            problems.push(format!("{REFERENCES}:{}: [{key}] has a second entry", i + 1));
+        }
+    }
+    let citing = ["src", "shaders", "lessons", "assets"];
+    let mut cited = BTreeSet::new();
+    for dir in citing.iter().chain(&["README.md", "ARCHITECTURE.md", REFERENCES]) {
+        for (path, text) in text_files(dir) {
+            for (i, line) in text.lines().enumerate() {
+                for key in citations(line) {
+                    if !entries.contains_key(key) {
+                        problems.push(format!("{path}:{}: [{key}] has no entry in {REFERENCES}", i + 1));
+                    } else if citing.contains(dir) {
+                        cited.insert(key.to_string());
+                    }
+                }
+            }
+        }
+    }
+    for (key, line) in &entries {
+        if !cited.contains(key) {
+            problems.push(format!(
+                "{REFERENCES}:{line}: [{key}] is cited nowhere in src/, shaders/, lessons/ or assets/"
+            ));
+        }
+    }
+    assert!(problems.is_empty(), "{} citation problems:\n{}", problems.len(), problems.join("\n"));
+}
+
+/// Sources are cited from docs/REFERENCES.md, not from notes kept outside the repository.
+#[test]
+fn nothing_points_at_notes_outside_the_repository() {
+    // Spelled in pieces so that this file does not match itself.
+    let outside = [concat!("../", "shared"), concat!("REFERENCES", " \""), concat!("Seed", " 0")];
+    let places =
+        ["src", "shaders", "lessons", "assets", "tests", "web", "docs", "README.md", "ARCHITECTURE.md"];
+    let mut problems = Vec::new();
+    for place in places {
+        for (path, text) in text_files(place) {
+            for (i, line) in text.lines().enumerate() {
+                for needle in outside.iter().filter(|n| line.contains(**n)) {
+                    problems.push(format!("{path}:{}: mentions `{needle}`", i + 1));
+                }
+            }
+        }
+    }
+    assert!(
+        problems.is_empty(),
+        "{} mentions of notes outside the repository:\n{}",
+        problems.len(),
+        problems.join("\n")
+    );
 }

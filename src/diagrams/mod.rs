@@ -232,7 +232,7 @@ impl VsmPlot {
     }
 }
 
-/// `n` points of a Vogel (golden-angle) disk in the unit disk.
+/// `n` points of a golden-angle disk in the unit disk [Vogel-1979].
 pub fn vogel_disk(n: usize) -> Vec<[f32; 2]> {
     let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
     (0..n)

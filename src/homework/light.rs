@@ -275,7 +275,7 @@ mod tests {
         }
     }
 
-    /// gl-matrix's `ortho` and `lookAt`, written out (GL conventions).
+    /// gl-matrix's `ortho` and `lookAt`, written out (GL conventions) [GlMatrix-Mat4].
     fn gl_ortho(l: f32, r: f32, b: f32, t: f32, n: f32, f: f32) -> Mat4 {
         Mat4::from_cols_array(&[
             2.0 / (r - l),

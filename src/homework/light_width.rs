@@ -1,6 +1,6 @@
 //! The light width a student's shader behaves as, measured. The check scene's slabs float at
 //! several heights over the floor; the penumbra of each one's shadow is fitted, and the widths
-//! against similar triangles, w = w_light (d_r - d_b) / d_b (REFERENCES "PCSS"), give the light
+//! against similar triangles, w = w_light (d_r - d_b) / d_b [Fernando-2005], give the light
 //! the shader behaves as, and whether it follows the law at all (contact hardening).
 //!
 //! A penumbra's width is fitted in the plane across the light, where a light's disk is round:

@@ -2,7 +2,7 @@
 //! light's area (spot lights: point lights on a disk of diameter `width`, perspective maps) or
 //! from directions over its angular disk (directional lights: orthographic maps; a width is
 //! turned into the angle it subtends at the light's target).
-//! REFERENCES "Ground truth for soft shadows"; published comparisons use 1024 hard shadows.
+//! A published comparison averages 1024 hard shadows [Guennebaud-2006].
 
 use crate::scene::{BiasMode, DepthStorage, Light, LightKind, LightSize, ShadowSettings, Technique};
 use crate::shadow::LightGpu;
@@ -10,7 +10,8 @@ use glam::{Mat4, Vec2, Vec3};
 
 const GOLDEN_ANGLE: f32 = 2.399_963_2;
 
-/// Point `k` of `n` on the unit disk, spread evenly over its area (Vogel spiral).
+/// Point `k` of `n` on the unit disk, spread evenly over its area: a golden-angle spiral
+/// [Vogel-1979].
 pub fn disk_point(k: usize, n: usize) -> Vec2 {
     let r = ((k as f32 + 0.5) / n as f32).sqrt();
     let a = k as f32 * GOLDEN_ANGLE;

@@ -1,6 +1,6 @@
 //! Shadow-casting lights and the geometry of their shadow maps.
 //!
-//! Depth conventions (wgpu, depth range 0..1), see ../shared REFERENCES "Notation":
+//! Depth conventions (wgpu, depth range 0..1 [WebGPU-Coordinates]; docs/REFERENCES.md, Notation):
 //! - `d` / `depth_linear`: distance from the light along its axis, world units.
 //! - `z` / `depth_ndc`: what the shadow map stores. Orthographic: `z = (d - near) / (far - near)`.
 //!   Perspective: `z = far * (d - near) / (d * (far - near))`, so `d = near*far / (far - z*(far - near))`.
@@ -18,7 +18,7 @@ pub enum LightKind {
 /// The size model used by PCSS and the ground truth. Keep the two apart: their units differ.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum LightSize {
-    /// Area light of this diameter at the light's position, world units (GAMES202, NVIDIA PCSS).
+    /// Area light of this diameter at the light's position, world units [GAMES202-L3] [NVIDIA-2008].
     Width { width_world: f32 },
     /// Directional light subtending this full angle (the sun: about 0.53 degrees).
     AngularDiameter { angular_diameter_deg: f32 },

@@ -1,5 +1,6 @@
 //! The `[shadow]` table: which technique and its parameters.
-//! Defaults follow the GAMES202 framework and REFERENCES.md where those give one.
+//! Defaults follow the GAMES202 homework framework [GAMES202-HW1] where it gives one; the sources
+//! of the formulas are in docs/REFERENCES.md.
 
 use serde::{Deserialize, Serialize};
 
@@ -11,11 +12,12 @@ pub enum Technique {
     Hard,
     Pcf,
     Pcss,
-    /// Variance shadow maps: Chebyshev's bound on the filtered mean and mean square of depth.
+    /// Variance shadow maps: Chebyshev's bound on the filtered mean and mean square of depth
+    /// [Donnelly-2006].
     Vsm,
-    /// Variance soft shadow mapping: PCSS's three steps with VSM's moments (the average blocker
-    /// depth estimated from the moments over the search region, then a VSM filter of the
-    /// penumbra's size).
+    /// Variance soft shadow mapping [Yang-2010]: PCSS's three steps with VSM's moments (the
+    /// average blocker depth estimated from the moments over the search region, then a VSM filter
+    /// of the penumbra's size).
     Vssm,
 }
 
@@ -38,11 +40,11 @@ pub enum BiasMode {
 pub enum DepthStorage {
     /// A 32-bit float depth buffer (what engines and shadowlab use).
     Float32,
-    /// The GAMES202 framework's way: the depth split over the four 8-bit channels of an RGBA8
-    /// colour target by its `pack`, read back by `unpack` (without the 256/255 correction
-    /// three.js applies, so the stored depth is off by up to about 1/255). Point-sampled taps
-    /// only: the hardware kernel's comparison sampler reads the float map, as no sampler can
-    /// compare an RGBA8 texture.
+    /// The GAMES202 framework's way [GAMES202-HW1]: the depth split over the four 8-bit channels
+    /// of an RGBA8 colour target by its `pack`, read back by `unpack` (without the 256/255
+    /// correction three.js applies [ThreeJS-Packing], so the stored depth is off by up to about
+    /// 1/255). Point-sampled taps only: the hardware kernel's comparison sampler reads the float
+    /// map, as no sampler can compare an RGBA8 texture.
     Rgba8,
 }
 
@@ -50,11 +52,11 @@ pub enum DepthStorage {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Kernel {
-    /// The GAMES202 "poissonDiskSamples" spiral (not a true Poisson disk).
+    /// The GAMES202 "poissonDiskSamples" spiral (not a true Poisson disk) [GAMES202-HW1].
     Poisson,
     /// GAMES202 "uniformDiskSamples": random points, uniform over the disk's area.
     Uniform,
-    /// Golden-angle (Vogel) spiral.
+    /// Golden-angle spiral [Vogel-1979].
     Vogel,
     /// Regular n x n grid (n = floor(sqrt(samples))), axis-aligned and never rotated.
     Grid,
@@ -112,19 +114,21 @@ enum_names!(Kernel, Poisson => "poisson", Uniform => "uniform", Vogel => "vogel"
 pub struct ShadowSettings {
     pub technique: Technique,
     pub bias_mode: BiasMode,
-    /// Constant bias, NDC depth units (GAMES202 EPS is 1e-3); the floor of the slope mode and
-    /// the margin of the receiver-plane mode.
+    /// Constant bias, NDC depth units (the GAMES202 framework's EPS is 1e-3); the floor of the
+    /// slope mode and the margin of the receiver-plane mode.
     pub bias: f32,
     /// Slope-scaled mode: `bias = max(slope_bias * (1 - N.L), bias)`, NDC depth units.
-    /// LearnOpenGL's 0.05 and 0.005 suit its 7.5-unit light frustum; NDC biases do not carry
-    /// over between depth ranges, so the defaults here are smaller.
+    /// The 0.05 and 0.005 of [LearnOpenGL-ShadowMapping] suit its 7.5-unit light frustum; NDC
+    /// biases do not carry over between depth ranges, so the defaults here are smaller.
     pub slope_bias: f32,
-    /// Adaptive mode: `bias_world = adaptive_c * max(A, A * (1 - N.L))`, A = half a texel
-    /// (grown with the filter radius), world units; dimensionless.
+    /// Adaptive mode [DrFlower-HW1]: `bias_world = adaptive_c * max(A, A * (1 - N.L))`, A = half
+    /// a texel (grown with the filter radius), world units; dimensionless.
     pub adaptive_c: f32,
-    /// Lookup point moved along the surface normal by this many texels (in world units).
+    /// Lookup point moved along the surface normal by this many texels (in world units)
+    /// [ThreeJS-NormalBias].
     pub normal_offset_texels: f32,
-    /// Hardware depth bias in the shadow pass, in units of the depth format's resolution.
+    /// Hardware depth bias in the shadow pass, in units of the depth format's resolution
+    /// [Wgpu-ShadowExample].
     pub depth_bias_constant: i32,
     /// Hardware slope-scaled depth bias in the shadow pass.
     pub depth_bias_slope: f32,
@@ -147,15 +151,15 @@ pub struct ShadowSettings {
     pub search_radius_scale: f32,
     /// How the shadow map keeps its depths.
     pub depth_storage: DepthStorage,
-    /// Scale an orthographic map's PCSS filter radius by near / d_receiver too, as NVIDIA's
+    /// Scale an orthographic map's PCSS filter radius by near / d_receiver too, as [NVIDIA-2008]'s
     /// sample does for every light (the copied bug: that factor carries a perspective light's
     /// penumbra onto its near plane; an orthographic map's uv are the same at every depth).
     pub ortho_near_factor: bool,
     /// VSM: the least variance Chebyshev's bound uses, NDC depth squared (keeps a flat receiver
     /// from shadowing itself where its filtered variance rounds to 0).
     pub vsm_min_variance: f32,
-    /// VSM light-bleeding reduction: bounds below this are taken as shadow and the rest are
-    /// stretched back over 0..1, (p - a) / (1 - a). Dimensionless, 0 (off) ..= 0.95.
+    /// VSM light-bleeding reduction [Lauritzen-2007]: bounds below this are taken as shadow and
+    /// the rest are stretched back over 0..1, (p - a) / (1 - a). Dimensionless, 0 (off) ..= 0.95.
     pub vsm_bleed_reduction: f32,
     /// True: points outside the light frustum are lit. False shows the classic bug (wrapped
     /// lookups and a dark band past the far plane).

@@ -9,7 +9,7 @@ pub const TAU: f32 = std::f32::consts::TAU;
 pub const GOLDEN_ANGLE: f32 = 2.399_963_2;
 pub const NUM_RINGS: f32 = 10.0;
 
-/// PCG hash (Jarzynski & Olano 2020), wrapping u32 maths exactly as in WGSL.
+/// PCG hash [Jarzynski-2020], wrapping u32 maths exactly as in WGSL.
 pub fn pcg_hash(v: u32) -> u32 {
     let state = v.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
     let word = ((state >> ((state >> 28) + 4)) ^ state).wrapping_mul(277_803_737);
@@ -39,7 +39,8 @@ fn wrap_angle(a: f32) -> f32 {
 pub fn kernel_base(kernel: Kernel, i: u32, n: u32) -> Vec2 {
     match kernel {
         Kernel::Poisson => {
-            // GAMES202 poissonDiskSamples: a spiral, radius ((i+1)/n)^0.75, NUM_RINGS turns.
+            // poissonDiskSamples [GAMES202-HW1]: a spiral, radius ((i+1)/n)^0.75, NUM_RINGS
+            // turns.
             let angle = wrap_angle(i as f32 * TAU * NUM_RINGS / n as f32);
             let r = ((i + 1) as f32 / n as f32).powf(0.75);
             Vec2::new(angle.cos(), angle.sin()) * r
@@ -54,7 +55,7 @@ pub fn kernel_base(kernel: Kernel, i: u32, n: u32) -> Vec2 {
             g / (side - 1) as f32 * 2.0 - Vec2::ONE
         }
         Kernel::Vogel | Kernel::Hardware => {
-            // Golden-angle spiral, radius sqrt((i + 0.5) / n).
+            // Golden-angle spiral [Vogel-1979], radius sqrt((i + 0.5) / n).
             let angle = wrap_angle(i as f32 * GOLDEN_ANGLE);
             Vec2::new(angle.cos(), angle.sin()) * ((i as f32 + 0.5) / n as f32).sqrt()
         }
@@ -80,13 +81,14 @@ fn rotate_by(p: Vec2, rotation: Vec2) -> Vec2 {
 pub fn kernel_offset(kernel: Kernel, i: u32, n: u32, seed: u32) -> Vec2 {
     match kernel {
         Kernel::Uniform => {
-            // GAMES202 uniformDiskSamples: (cos 2 pi x, sin 2 pi x) * sqrt(y), uniform over area.
+            // uniformDiskSamples [GAMES202-HW1]: (cos 2 pi x, sin 2 pi x) * sqrt(y), uniform
+            // over the area.
             let h = pcg_hash(seed ^ pcg_hash(i + 1));
             let x = unit_float(h);
             let y = unit_float(pcg_hash(h));
             Vec2::new((TAU * x).cos(), (TAU * x).sin()) * y.sqrt()
         }
-        // LearnOpenGL's regular grid: axis-aligned texel offsets, never turned.
+        // The regular grid [LearnOpenGL-ShadowMapping]: axis-aligned texel offsets, never turned.
         Kernel::Grid => kernel_base(kernel, i, n),
         _ => rotate_by(kernel_base(kernel, i, n), pixel_rotation(seed)),
     }
@@ -113,7 +115,8 @@ mod tests {
         assert_eq!(filter_taps(Kernel::Vogel, 9), 9);
     }
 
-    /// LearnOpenGL's 3x3 grid: offsets -1, 0, 1 on both axes, whatever the pixel's rotation.
+    /// The 3x3 grid of [LearnOpenGL-ShadowMapping]: offsets -1, 0, 1 on both axes, whatever the
+    /// pixel's rotation.
     #[test]
     fn the_grid_is_axis_aligned_and_never_turned() {
         let expected: Vec<Vec2> =

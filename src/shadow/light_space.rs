@@ -75,7 +75,7 @@ pub fn outside_frustum(coord: &ShadowCoord) -> bool {
     outside_map(coord.uv) || outside_depth(coord.depth_ndc)
 }
 
-/// Two unit vectors that span the plane with unit normal n (Duff et al. 2017).
+/// Two unit vectors that span the plane with unit normal n [Duff-2017].
 fn tangents_of(n: Vec3) -> [Vec3; 2] {
     let sign = if n.z >= 0.0 { 1.0 } else { -1.0 };
     let a = -1.0 / (sign + n.z);
@@ -84,7 +84,7 @@ fn tangents_of(n: Vec3) -> [Vec3; 2] {
 }
 
 /// The receiver's plane (through p, normal n, projected at s) as NDC depth per uv of the map,
-/// from two points of the plane a texel from p; 0 edge-on to the light.
+/// from two points of the plane a texel from p; 0 edge-on to the light [Isidoro-2006].
 pub fn receiver_plane_gradient(light: &LightGpu, p: Vec3, n: Vec3, s: Vec3) -> Vec2 {
     let step = texel_world_at(light, depth_linear_from_ndc(light, s.z));
     let t = tangents_of(n);
@@ -139,8 +139,9 @@ pub fn light_space_lookup(
     out
 }
 
-/// Depth bias in NDC units (REFERENCES "Bias"; the shader's `receiver_bias_ndc`):
-/// `filter_radius_texels` grows the adaptive bias with the filter it has to cover.
+/// Depth bias in NDC units (the shader's `receiver_bias_ndc`; the modes' sources are under Bias in
+/// docs/REFERENCES.md): `filter_radius_texels` grows the adaptive bias with the filter it has to
+/// cover [DrFlower-HW1].
 pub fn receiver_bias_ndc(
     light: &LightGpu,
     params: &ShadowParamsGpu,

@@ -111,7 +111,7 @@ fn wgsl_fract(v: Vec2) -> Vec2 {
 
 /// PCSS step 2 (the shader's `estimate_penumbra`): the penumbra's width on a receiver at
 /// `d_receiver` (world units from the light) behind blockers averaging `d_blocker`, by similar
-/// triangles (REFERENCES "PCSS"), and the filter radius in map texels that covers it.
+/// triangles [Fernando-2005], and the filter radius in map texels that covers it.
 pub fn estimate_penumbra(
     light: &LightGpu,
     params: &ShadowParamsGpu,

@@ -9,7 +9,8 @@ impl Twin<'_> {
         self.moments.get_or_init(|| moments::MomentsChain::new(map, atlas, block))
     }
 
-    /// VSM: Chebyshev's one-sided bound on the filtered moments (the shader's `visibility_vsm`).
+    /// VSM: Chebyshev's one-sided bound on the filtered moments (the shader's `visibility_vsm`)
+    /// [Donnelly-2006].
     pub fn visibility_vsm(&mut self, coord: &ShadowCoord, radius_texels: f32) -> f32 {
         if self.params.clamp_outside == 1 && outside_frustum(coord) {
             return 1.0;

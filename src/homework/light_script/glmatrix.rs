@@ -1,5 +1,5 @@
-//! gl-matrix's maths, written from its documented behaviour: column-major 4x4 matrices
-//! (m[12..15] hold the translation), computed in f64 in the same operation order as the
+//! gl-matrix's maths, written from its documented behaviour [GlMatrix-Mat4]: column-major 4x4
+//! matrices (m[12..15] hold the translation), computed in f64 in the same operation order as the
 //! library so the browser's doubles are reproduced; the caller rounds on store.
 
 pub(super) type M4 = [f64; 16];

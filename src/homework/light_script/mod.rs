@@ -12,8 +12,9 @@
 //! far beyond any real light. Failures are one-line `ScriptError`s naming a file and line;
 //! nothing panics on any input.
 //!
-//! The gl-matrix functions follow gl-matrix 3.x operation for operation, so results are
-//! the browser's to the bit (checked against gl-matrix 3.4.4 in V8 while writing this).
+//! The gl-matrix functions follow gl-matrix 3.x [GlMatrix-Mat4] operation for operation, so
+//! results are the browser's to the bit (checked against gl-matrix 3.4.4 in V8 while writing
+//! this).
 
 mod ast;
 mod builtins;
