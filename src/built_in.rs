@@ -46,6 +46,7 @@ shipped_files![
     "assets/homework/phongFragment_tiny_light.glsl",
     "assets/homework/phongFragment_undivided.glsl",
     "assets/homework/phongFragment_zero_blocker.glsl",
+    "assets/homework/phongFragment_divided_by_blockers.glsl",
     "assets/homework/shadowFragment_255.glsl",
     "assets/homework/shadowFragment_carry.glsl",
     "assets/homework/framework/phongVertex.glsl",
@@ -123,6 +124,6 @@ mod tests {
         assert!(!is_folder(Path::new("assets/home")) && !is_folder(Path::new("lessons/02_bias.toml")));
         let textures = files_in(Path::new("assets/textures"));
         assert_eq!(textures, vec![PathBuf::from("assets/textures/checker.png")]);
-        assert_eq!(files_in(Path::new("assets/homework")).len(), 21);
+        assert_eq!(files_in(Path::new("assets/homework")).len(), 22);
     }
 }

@@ -82,6 +82,7 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_divided_twice.glsl", vec![], &["visibility_scaled"]),
         ("phongFragment_undivided.glsl", vec![], &["visibility_out_of_range"]),
         ("phongFragment_zero_blocker.glsl", vec![], &["filter_radius_not_finite"]),
+        ("phongFragment_divided_by_blockers.glsl", vec![], &["nan_visibility", "visibility_out_of_range"]),
     ]
 }
 

@@ -7,6 +7,10 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "在 {:.1}% 的着色像素上，findBlocker 返回了 NaN 或无穷大的深度：它用找到的遮挡物个数去除深度之和，而光没有被挡住的地方这个个数是 0。请在那里返回一个“没有遮挡物”的值，并让 PCSS 把它当作受光。",
     ),
     (
+        "{} returned NaN or infinity at {:.1}% of the shaded pixels, and the visibility with it: it divides by something that is 0 there (a count of taps, a sum of weights, a depth). Count what the division means, and give the case where it is 0 a value of its own.",
+        "{} 在 {:.1}% 的着色像素上返回了 NaN 或无穷大，可见度也随之如此：它除以的量在那里为 0（采样点的计数、权重之和或某个深度）。想清楚这个除法的含义，并为除数为 0 的情况单独给出一个值。",
+    ),
+    (
         "{:.1}% of the shaded pixels got a visibility that is NaN or infinite. The usual cause: findBlocker divides the blockers' depth sum by their count when no blocker was found (0 / 0).",
         "{:.1}% 的着色像素得到的可见度是 NaN 或无穷大。常见原因：没有找到遮挡物时，findBlocker 仍用遮挡物个数去除深度之和（0 / 0）。",
     ),

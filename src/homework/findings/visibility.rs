@@ -76,17 +76,42 @@ pub const NAN_VISIBILITY: FindingKind =
 fn nan_visibility(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     let share = j.share(j.non_finite);
     let named = earlier.iter().any(|f| f.id == "nan_blocker_depth" && f.severity == super::Severity::Mistake);
-    (share > NAN_SHARE && !named).then(|| {
-        Found::new(
-            None,
-            BTreeMap::from([("nan_fraction", share), ("nan_pixels", j.non_finite as f64)]),
-            fill(
-                lang,
-                "{:.1}% of the shaded pixels got a visibility that is NaN or infinite. The usual cause: findBlocker divides the blockers' depth sum by their count when no blocker was found (0 / 0).",
-                &[&percent(share)],
-            ),
-        )
-    })
+    if share <= NAN_SHARE || named {
+        return None;
+    }
+    let figures = BTreeMap::from([("nan_fraction", share), ("nan_pixels", j.non_finite as f64)]);
+    let function = first_non_finite(j);
+    let explanation = match function {
+        Some(function) => fill(
+            lang,
+            "{} returned NaN or infinity at {:.1}% of the shaded pixels, and the visibility with it: it divides by something that is 0 there (a count of taps, a sum of weights, a depth). Count what the division means, and give the case where it is 0 a value of its own.",
+            &[&function, &percent(share)],
+        ),
+        None => fill(
+            lang,
+            "{:.1}% of the shaded pixels got a visibility that is NaN or infinite. The usual cause: findBlocker divides the blockers' depth sum by their count when no blocker was found (0 / 0).",
+            &[&percent(share)],
+        ),
+    };
+    Some(Found::new(function, figures, explanation))
+}
+
+/// The innermost recorded function that returned NaN or infinity at most of the pixels whose
+/// visibility is not finite: where the non-finite number was made (None: none returned one).
+fn first_non_finite(j: &Judged<'_>) -> Option<&'static str> {
+    let s = j.e.student;
+    // findBlocker, then PCF (PCSS's filter), then the functions `main` takes a visibility from.
+    const INNERMOST_FIRST: [usize; 4] = [3, 1, 0, 2];
+    let mut votes = [0usize; 4];
+    for &i in &j.shaded {
+        if s.visibility(i).is_some_and(f32::is_finite) {
+            continue;
+        }
+        if let Some(k) = INNERMOST_FIRST.into_iter().find(|&k| s.ran(i, k) && !s.returned[i][k].is_finite()) {
+            votes[k] += 1;
+        }
+    }
+    (0..4).max_by_key(|&k| votes[k]).filter(|&k| votes[k] > 0).map(|k| crate::homework::RECORDED_FUNCTIONS[k])
 }
 
 fn in_range(v: f32) -> bool {
