@@ -101,7 +101,7 @@ fn fs_albedo(in: VertexOut) -> @location(0) vec4<f32> {
 // Blinn-Phong with every light's shadow; the selected light's shadow terms on the side.
 struct Shaded {
     color: vec4<f32>,
-    selected: PcssResult,
+    selected: ShadowVisibility,
     selected_coord: ShadowCoord,
 }
 
@@ -147,7 +147,7 @@ struct AnalysisOut {
     @location(2) normal: vec4<f32>,
 }
 
-fn analysis_of(in: VertexOut, front_facing: bool, result: PcssResult, coord: ShadowCoord) -> AnalysisOut {
+fn analysis_of(in: VertexOut, front_facing: bool, result: ShadowVisibility, coord: ShadowCoord) -> AnalysisOut {
     var out: AnalysisOut;
     out.position = vec4<f32>(in.world_position, 1.0);
     out.normal = vec4<f32>(shading_normal(in, front_facing), f32(object.object_index));
@@ -164,7 +164,7 @@ fn analysis_of(in: VertexOut, front_facing: bool, result: PcssResult, coord: Sha
 @fragment
 fn fs_analysis(in: VertexOut, @builtin(front_facing) front_facing: bool) -> AnalysisOut {
     if light_count() == 0u {
-        var none: PcssResult;
+        var none: ShadowVisibility;
         var nowhere: ShadowCoord;
         return analysis_of(in, front_facing, none, nowhere);
     }

@@ -176,15 +176,15 @@ fn estimate_penumbra(light: LightGpu, coord: ShadowCoord, d_blocker: f32) -> Pen
     return out;
 }
 
-struct PcssResult {
+struct ShadowVisibility {
     visibility: f32,
     search: BlockerSearch,
     penumbra: Penumbra,
 }
 
 // PCSS step 3: filter with the estimated radius. No blockers: fully lit (saves the filter).
-fn visibility_pcss(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult {
-    var out: PcssResult;
+fn visibility_pcss(light: LightGpu, coord: ShadowCoord, seed: u32) -> ShadowVisibility {
+    var out: ShadowVisibility;
     out.search = search_blockers(light, coord, seed);
     if out.search.found == 0u {
         out.visibility = 1.0;
@@ -262,8 +262,8 @@ fn chebyshev_upper_bound(m: vec2<f32>, t: f32) -> f32 {
 // receiver's, z_avg = P t + (1 - P) z_occ gives z_occ = (z_avg - P t) / (1 - P), the average
 // blocker depth (NDC, then linear). Then PCSS's similar triangles, and a VSM filter of half the
 // penumbra. `found` is 1 where blockers were estimated (the count has no meaning here).
-fn visibility_vssm(light: LightGpu, coord: ShadowCoord) -> PcssResult {
-    var out: PcssResult;
+fn visibility_vssm(light: LightGpu, coord: ShadowCoord) -> ShadowVisibility {
+    var out: ShadowVisibility;
     out.visibility = 1.0;
     if clamp_outside() == 1u && outside_frustum(coord) {
         return out;
@@ -283,9 +283,12 @@ fn visibility_vssm(light: LightGpu, coord: ShadowCoord) -> PcssResult {
     return out;
 }
 
+// What `shadow_visibility` returns for a technique id it does not know (mirrors the twin's).
+const VISIBILITY_UNKNOWN_TECHNIQUE: f32 = -1.0;
+
 // The selected technique, with PCSS's intermediate values for the debug views.
-fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResult {
-    var out: PcssResult;
+fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> ShadowVisibility {
+    var out: ShadowVisibility;
     switch technique() {
         case TECHNIQUE_PCF: {
             out.visibility = visibility_pcf(light, coord, params.radius_texels, seed);
@@ -302,8 +305,13 @@ fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> PcssResu
         case TECHNIQUE_VSSM: {
             out = visibility_vssm(light, coord);
         }
-        default: {
+        case TECHNIQUE_HARD: {
             out.visibility = visibility_hard(light, coord);
+        }
+        // An id no case knows is an impossible visibility that the GPU = twin test and the
+        // views show, never a quiet hard shadow.
+        default: {
+            out.visibility = VISIBILITY_UNKNOWN_TECHNIQUE;
         }
     }
     return out;

@@ -409,7 +409,7 @@ fn histogram(depths: &[(f32, f32)], t: f32) -> ([f32; 2], Vec<f32>) {
 fn vssm_probe(
     twin: &mut Twin<'_>,
     coord: &crate::shadow::ShadowCoord,
-    result: &crate::shadow::PcssResult,
+    result: &crate::shadow::ShadowVisibility,
     pixel: (u32, u32),
 ) -> VssmProbe {
     let (light, params) = (*twin.light, *twin.params);

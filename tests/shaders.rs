@@ -75,3 +75,47 @@ fn wgsl_numbering_matches_the_shadow_models() {
         assert_eq!(wgsl, value, "`{name}`: WGSL says {wgsl}, the shadow model {value}");
     }
 }
+
+/// Both dispatchers name every technique the shadow model numbers, and send an id they do not
+/// know to an impossible visibility, never to hard shadows: a technique added on one side only
+/// cannot pass the GPU = twin test as a hard shadow.
+#[test]
+fn every_technique_is_dispatched_and_an_unknown_id_is_visible_on_both_sides() {
+    use shadowlab::shadow::{DepthImage, Twin, VISIBILITY_UNKNOWN_TECHNIQUE, gpu::SHARED_CONSTANTS};
+    let techniques: Vec<(&str, u32)> =
+        SHARED_CONSTANTS.iter().copied().filter(|(n, _)| n.starts_with("TECHNIQUE_")).collect();
+    // The shader: a case per technique in `shadow_visibility`, and the same impossible value.
+    let camera = shaders::camera();
+    let start = camera.source.find("fn shadow_visibility(").expect("the dispatcher");
+    let body = &camera.source[start..][..camera.source[start..].find("\n}\n").expect("its end")];
+    for (name, _) in &techniques {
+        assert!(body.contains(&format!("case {name}:")), "shadow_visibility has no case {name}");
+    }
+    assert!(body.contains("default: {\n            out.visibility = VISIBILITY_UNKNOWN_TECHNIQUE;"));
+    let (module, _) = validate(&camera);
+    let (_, constant) = module
+        .constants
+        .iter()
+        .find(|(_, c)| c.name.as_deref() == Some("VISIBILITY_UNKNOWN_TECHNIQUE"))
+        .expect("the constant");
+    match module.global_expressions[constant.init] {
+        naga::Expression::Literal(naga::Literal::F32(v)) => assert_eq!(v, VISIBILITY_UNKNOWN_TECHNIQUE),
+        ref other => panic!("not an f32 literal: {other:?}"),
+    }
+    // The twin: every technique gives a visibility, an unknown id the impossible one.
+    let scene = shadowlab::scene::load_scene(&shadowlab::shipped_path("assets/scenes/games202.toml"), &[])
+        .expect("the scene");
+    let light = LightGpu::new(&scene.lights[0], 0.0, 0, 64);
+    let map = DepthImage { size: 64, depth_ndc: vec![1.0; 64 * 64] };
+    let visibility_of = |technique: u32| {
+        let params = ShadowParamsGpu { technique, ..ShadowParamsGpu::new(&scene.shadow) };
+        let mut twin = Twin::new(&light, &params, &map);
+        let coord = twin.light_space_lookup(glam::Vec3::ZERO, glam::Vec3::Y);
+        twin.shadow_visibility(&coord, 0).visibility
+    };
+    for (name, id) in &techniques {
+        let v = visibility_of(*id);
+        assert!((0.0..=1.0).contains(&v), "{name}: the twin's visibility {v}");
+    }
+    assert_eq!(visibility_of(99), VISIBILITY_UNKNOWN_TECHNIQUE);
+}

@@ -53,8 +53,14 @@ pub struct Penumbra {
     pub filter_radius_texels: f32,
 }
 
+/// What [`Twin::shadow_visibility`] returns for a technique id it does not know: no visibility is
+/// negative, so a missing case shows (the shader's `VISIBILITY_UNKNOWN_TECHNIQUE`).
+pub const VISIBILITY_UNKNOWN_TECHNIQUE: f32 = -1.0;
+
+/// A lookup's visibility (0 shadowed .. 1 lit), with the blocker search and penumbra behind it
+/// where the technique has them (PCSS, VSSM; zeros otherwise).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct PcssResult {
+pub struct ShadowVisibility {
     pub visibility: f32,
     pub search: BlockerSearch,
     pub penumbra: Penumbra,
@@ -325,8 +331,8 @@ impl<'a> Twin<'a> {
         estimate_penumbra(self.light, self.params, coord.depth_linear, d_blocker)
     }
 
-    pub fn visibility_pcss(&mut self, coord: &ShadowCoord, seed: u32) -> PcssResult {
-        let mut out = PcssResult { search: self.search_blockers(coord, seed), ..Default::default() };
+    pub fn visibility_pcss(&mut self, coord: &ShadowCoord, seed: u32) -> ShadowVisibility {
+        let mut out = ShadowVisibility { search: self.search_blockers(coord, seed), ..Default::default() };
         if out.search.found == 0 {
             out.visibility = 1.0;
             return out;
@@ -336,20 +342,24 @@ impl<'a> Twin<'a> {
         out
     }
 
-    pub fn shadow_visibility(&mut self, coord: &ShadowCoord, seed: u32) -> PcssResult {
+    pub fn shadow_visibility(&mut self, coord: &ShadowCoord, seed: u32) -> ShadowVisibility {
         match self.params.technique {
-            TECHNIQUE_PCF => PcssResult {
+            TECHNIQUE_PCF => ShadowVisibility {
                 visibility: self.visibility_pcf(coord, self.params.radius_texels, seed),
                 ..Default::default()
             },
             TECHNIQUE_PCSS => self.visibility_pcss(coord, seed),
-            TECHNIQUE_NONE => PcssResult { visibility: 1.0, ..Default::default() },
-            TECHNIQUE_VSM => PcssResult {
+            TECHNIQUE_NONE => ShadowVisibility { visibility: 1.0, ..Default::default() },
+            TECHNIQUE_VSM => ShadowVisibility {
                 visibility: self.visibility_vsm(coord, self.params.radius_texels),
                 ..Default::default()
             },
             TECHNIQUE_VSSM => self.visibility_vssm(coord),
-            _ => PcssResult { visibility: self.visibility_hard(coord), ..Default::default() },
+            TECHNIQUE_HARD => {
+                ShadowVisibility { visibility: self.visibility_hard(coord), ..Default::default() }
+            }
+            // As the shader: an id no arm knows is an impossible visibility a test sees.
+            _ => ShadowVisibility { visibility: VISIBILITY_UNKNOWN_TECHNIQUE, ..Default::default() },
         }
     }
 
@@ -359,7 +369,7 @@ impl<'a> Twin<'a> {
         pixel: (u32, u32),
         world_pos: Vec3,
         normal: Vec3,
-    ) -> (ShadowCoord, PcssResult) {
+    ) -> (ShadowCoord, ShadowVisibility) {
         let seed = kernels::pixel_seed(pixel, self.params.noise_seed, self.params.rotate_per_pixel == 1);
         let coord = self.light_space_lookup(world_pos, normal);
         let result = self.shadow_visibility(&coord, seed);

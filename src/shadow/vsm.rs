@@ -147,8 +147,8 @@ impl Twin<'_> {
 
     /// VSSM (the shader's `visibility_vssm`): the average blocker depth from the moments over
     /// the search region, PCSS's similar triangles, a VSM filter of half the penumbra.
-    pub fn visibility_vssm(&mut self, coord: &ShadowCoord) -> PcssResult {
-        let mut out = PcssResult { visibility: 1.0, ..Default::default() };
+    pub fn visibility_vssm(&mut self, coord: &ShadowCoord) -> ShadowVisibility {
+        let mut out = ShadowVisibility { visibility: 1.0, ..Default::default() };
         if self.params.clamp_outside == 1 && outside_frustum(coord) {
             return out;
         }
