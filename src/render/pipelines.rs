@@ -182,7 +182,7 @@ pub enum CameraOutputs {
     FinalAndAnalysis,
 }
 
-/// What a camera pipeline is specialised for: the switch values of shaders/shadow_lookup.wgsl
+/// What a camera pipeline is specialised for: the switch values of shaders/specialisation.wgsl
 /// (as `ShadowParamsGpu` numbers them) and which fragment entry point it runs.
 #[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
 pub struct CameraPipelineKey {

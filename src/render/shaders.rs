@@ -1,6 +1,7 @@
 //! WGSL sources, composed from shaders/*.wgsl (one concern per file; no preprocessor).
 
 const COMMON: &str = include_str!("../../shaders/common.wgsl");
+const SPECIALISATION: &str = include_str!("../../shaders/specialisation.wgsl");
 const SHADOW_LOOKUP: &str = include_str!("../../shaders/shadow_lookup.wgsl");
 const SHADOW_FILTER: &str = include_str!("../../shaders/shadow_filter.wgsl");
 const SHADOW_PASS: &str = include_str!("../../shaders/shadow_pass.wgsl");
@@ -38,6 +39,7 @@ pub fn camera() -> ShaderSource {
         "camera",
         &[
             ("common.wgsl", COMMON),
+            ("specialisation.wgsl", SPECIALISATION),
             ("shadow_lookup.wgsl", SHADOW_LOOKUP),
             ("shadow_filter.wgsl", SHADOW_FILTER),
             ("camera.wgsl", CAMERA),
@@ -54,6 +56,7 @@ pub fn reference() -> ShaderSource {
         "reference",
         &[
             ("common.wgsl", COMMON),
+            ("specialisation.wgsl", SPECIALISATION),
             ("shadow_lookup.wgsl", SHADOW_LOOKUP),
             ("shadow_filter.wgsl", SHADOW_FILTER),
             ("reference.wgsl", REFERENCE),
