@@ -1,22 +1,14 @@
 // Pass 2: the camera view. `fs_final` shades with Blinn-Phong and every light's shadow;
 // `fs_analysis` writes floats for one light (visibility and PCSS intermediates) plus the
 // surface position and normal, which the CPU twin, the probe and the ground truth read.
+// What makes it fast on a software rasteriser (the albedo cache, the unrolled light loop,
+// `pow48`) is shaders/camera_fast_paths.wgsl; this file is the lighting.
 
 @group(0) @binding(0) var<uniform> frame: FrameGpu;
 @group(1) @binding(0) var<uniform> lights: array<LightGpu, MAX_LIGHTS>;
 @group(2) @binding(0) var<uniform> object: ObjectGpu;
 @group(2) @binding(1) var diffuse_texture: texture_2d<f32>;
 @group(2) @binding(2) var diffuse_sampler: sampler;
-// The camera view's albedo cache: the diffuse texture's value at each pixel, written by
-// `fs_albedo` for the still textured objects while the camera and those objects keep still.
-@group(3) @binding(0) var albedo_cache: texture_2d<f32>;
-
-// The pipeline that draws the still textured objects reads their albedo from the cache rather
-// than sampling it again: the floor's anisotropic lookup is most of the base cost on a software
-// rasteriser, and the cached value is the same sample (same triangle, same derivatives), so the
-// picture is unchanged. A constant, not a per-object switch: llvmpipe pays for a sample behind
-// any run-time branch.
-override ALBEDO_FROM_CACHE: bool = false;
 
 struct VertexOut {
     @builtin(position) clip_position: vec4<f32>,
@@ -47,27 +39,8 @@ fn shading_normal(in: VertexOut, front_facing: bool) -> vec3<f32> {
     return select(-n, n, front_facing);
 }
 
-// The scene's light count, fixed per pipeline so the light loop unrolls (SPECIALISED only).
-override SPEC_LIGHT_COUNT: u32 = 4294967295u;
-
-fn light_count() -> u32 {
-    if SPECIALISED && SPEC_LIGHT_COUNT <= MAX_LIGHTS {
-        return SPEC_LIGHT_COUNT;
-    }
-    return frame.light_count;
-}
-
 fn noise_seed_at(frag: vec4<f32>) -> u32 {
     return pixel_seed(vec2<u32>(frag.xy), params.noise_seed, params.rotate_per_pixel == 1u);
-}
-
-// x^48 by squaring (x^32 * x^16): five multiplies instead of pow's log2 and exp2 per pixel.
-fn pow48(x: f32) -> f32 {
-    let x2 = x * x;
-    let x4 = x2 * x2;
-    let x8 = x4 * x4;
-    let x16 = x8 * x8;
-    return x16 * x16 * x16;
 }
 
 // Spot lights light only inside their square frustum (soft 5% edge).
@@ -78,24 +51,6 @@ fn spot_falloff(light: LightGpu, world_pos: vec3<f32>) -> f32 {
     let s = project_to_light(light, world_pos);
     let edge = min(min(s.x, 1.0 - s.x), min(s.y, 1.0 - s.y));
     return smoothstep(0.0, 0.05, edge) * select(0.0, 1.0, s.z > 0.0 && s.z < 1.0);
-}
-
-fn surface_albedo(in: VertexOut) -> vec3<f32> {
-    var albedo = object.base_color.rgb;
-    if object.base_color.w > 0.5 {
-        if ALBEDO_FROM_CACHE {
-            albedo = albedo * textureLoad(albedo_cache, vec2<i32>(in.clip_position.xy), 0).rgb;
-        } else {
-            albedo = albedo * textureSample(diffuse_texture, diffuse_sampler, in.uv).rgb;
-        }
-    }
-    return albedo;
-}
-
-// The albedo cache pass: the texture's value, as `surface_albedo` samples it.
-@fragment
-fn fs_albedo(in: VertexOut) -> @location(0) vec4<f32> {
-    return vec4<f32>(textureSample(diffuse_texture, diffuse_sampler, in.uv).rgb, 1.0);
 }
 
 // Blinn-Phong with every light's shadow; the selected light's shadow terms on the side.

@@ -5,6 +5,7 @@ const SPECIALISATION: &str = include_str!("../../shaders/specialisation.wgsl");
 const SHADOW_LOOKUP: &str = include_str!("../../shaders/shadow_lookup.wgsl");
 const SHADOW_FILTER: &str = include_str!("../../shaders/shadow_filter.wgsl");
 const SHADOW_PASS: &str = include_str!("../../shaders/shadow_pass.wgsl");
+const CAMERA_FAST_PATHS: &str = include_str!("../../shaders/camera_fast_paths.wgsl");
 const CAMERA: &str = include_str!("../../shaders/camera.wgsl");
 const MOMENTS: &str = include_str!("../../shaders/moments.wgsl");
 const REFERENCE: &str = include_str!("../../shaders/reference.wgsl");
@@ -42,6 +43,7 @@ pub fn camera() -> ShaderSource {
             ("specialisation.wgsl", SPECIALISATION),
             ("shadow_lookup.wgsl", SHADOW_LOOKUP),
             ("shadow_filter.wgsl", SHADOW_FILTER),
+            ("camera_fast_paths.wgsl", CAMERA_FAST_PATHS),
             ("camera.wgsl", CAMERA),
         ],
     )

@@ -39,7 +39,7 @@ pub struct ViewTargets {
 }
 
 /// The albedo of the still textured objects at each pixel of this view, kept while the camera,
-/// the size and those objects stay the same (see `ALBEDO_FROM_CACHE` in shaders/camera.wgsl).
+/// the size and those objects stay the same (see `ALBEDO_FROM_CACHE` in shaders/camera_fast_paths.wgsl).
 pub struct AlbedoCache {
     pub view: wgpu::TextureView,
     /// Group 3 of the camera passes.
