@@ -227,3 +227,29 @@ impl std::fmt::Display for OneLine<'_> {
 pub fn path_line(path: &Path) -> String {
     OneLine(&path.to_string_lossy()).to_string()
 }
+
+/// FNV-1a, 64 bits: a content hash stable across builds and platforms (std's hasher promises
+/// neither), for fingerprints and cache folders' names.
+pub struct Fnv1a(u64);
+
+impl Fnv1a {
+    pub fn new() -> Self {
+        Fnv1a(0xcbf2_9ce4_8422_2325)
+    }
+
+    pub fn add(&mut self, bytes: &[u8]) {
+        for &b in bytes {
+            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
+        }
+    }
+
+    pub fn value(&self) -> u64 {
+        self.0
+    }
+}
+
+impl Default for Fnv1a {
+    fn default() -> Self {
+        Self::new()
+    }
+}

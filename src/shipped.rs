@@ -72,13 +72,13 @@ fn data_home() -> Option<PathBuf> {
 
 /// FNV-1a over every path and its bytes.
 fn content_hash() -> u64 {
-    let mut h: u64 = 0xcbf2_9ce4_8422_2325;
+    let mut h = crate::files::Fnv1a::new();
     for (path, bytes) in FILES {
-        for b in path.bytes().chain([0]).chain(bytes.iter().copied()) {
-            h = (h ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-        }
+        h.add(path.as_bytes());
+        h.add(&[0]);
+        h.add(bytes);
     }
-    h
+    h.value()
 }
 
 /// Writes every file that is missing or differs, each atomically (a crash leaves no half file):

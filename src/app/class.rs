@@ -57,12 +57,10 @@ impl ClassState {
         }
     }
 
-    /// Take the check's progress; read the report once it has ended. True where something
-    /// changed.
-    pub fn poll(&mut self) -> bool {
-        let Some(run) = self.run.as_mut() else { return false };
+    /// Take the check's progress; read the report once it has ended.
+    pub fn poll(&mut self) {
+        let Some(run) = self.run.as_mut() else { return };
         let (done, ended) = run.poll();
-        let changed = done.is_some_and(|d| d != self.done) || ended.is_some();
         if let Some(d) = done {
             self.done = d;
         }
@@ -73,7 +71,6 @@ impl ClassState {
                 Err(e) => self.error = Some(e),
             }
         }
-        changed
     }
 }
 
@@ -88,30 +85,27 @@ pub(super) fn checker() -> Option<PathBuf> {
     None
 }
 
-/// A folder the app opens as a class: a class report, or two or more submissions side by side
-/// where the folder is not one homework itself.
+/// A folder that is not one homework (asked only where it did not read as one) the app opens as a
+/// class: a class report, or two or more submissions side by side.
 pub fn is_class(path: &Path) -> bool {
     if !crate::files::exists(path) || crate::files::is_file(path) {
         return false;
     }
     class_report::is_class_report(path)
-        || (crate::homework::HomeworkSource::read(path).is_err()
-            && crate::homework::submission::class_members(path).is_ok_and(|m| m.len() >= 2))
+        || crate::homework::submission::class_members(path).is_ok_and(|m| m.len() >= 2)
 }
 
 /// Where the app keeps the class report of the class in `dir`: one folder per class, so opening
 /// it again checks only the submissions that changed.
 fn report_folder(dir: &Path) -> PathBuf {
     let at = std::fs::canonicalize(dir).unwrap_or_else(|_| dir.to_path_buf());
-    let mut hash: u64 = 0xcbf2_9ce4_8422_2325;
-    for b in at.to_string_lossy().bytes() {
-        hash = (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-    }
+    let mut hash = crate::files::Fnv1a::new();
+    hash.add(at.to_string_lossy().as_bytes());
     let name: String = at
         .file_name()
         .map(|n| n.to_string_lossy().chars().filter(|c| c.is_alphanumeric() || *c == '-').take(40).collect())
         .unwrap_or_default();
-    std::env::temp_dir().join("shadowlab-classes").join(format!("{name}-{hash:016x}"))
+    std::env::temp_dir().join("shadowlab-classes").join(format!("{name}-{:016x}", hash.value()))
 }
 
 impl AppState {

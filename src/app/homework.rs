@@ -253,14 +253,14 @@ impl AppState {
             self.error = Some(AppError::new("could not open the homework", detail));
             return;
         }
-        // A folder of several students' homeworks is a class.
-        if shadow_fragment.is_none() && super::class::is_class(path) {
-            return self.open_class(path);
-        }
-        // A folder or zip with no homework in it is refused here, the last state kept.
+        // A folder or zip with no homework in it is refused here, the last state kept; a folder of
+        // several students' homeworks is a class.
         if is_submission(path)
             && let Err(e) = HomeworkSource::read(path)
         {
+            if shadow_fragment.is_none() && super::class::is_class(path) {
+                return self.open_class(path);
+            }
             self.error = Some(AppError::new("could not open the homework", e.to_string()));
             return;
         }

@@ -87,8 +87,10 @@ fn open_file(file: &str, step: Option<u32>) -> Result<Opening, String> {
         // A homework folder or a .zip of one, as the student hands it in; or a class of them.
         _ if super::homework::is_submission(path) => {
             not_lesson(step)?;
-            if !super::class::is_class(path) {
-                crate::homework::HomeworkSource::read(path).map_err(|e| e.to_string())?;
+            if let Err(e) = crate::homework::HomeworkSource::read(path)
+                && !super::class::is_class(path)
+            {
+                return Err(e.to_string());
             }
             Ok(Opening::Homework(path.to_path_buf()))
         }

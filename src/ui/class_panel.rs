@@ -18,13 +18,10 @@ enum Action {
     Step(usize, usize),
 }
 
-/// The lesson step that teaches a finding, as "lesson title, step N".
+/// The lesson step that teaches a finding: (lesson, step from 0, "lesson title · step N: title").
 fn lesson_step(state: &AppState, id: &str, lang: Lang) -> Option<(usize, usize, String)> {
     let kind = crate::homework::findings::FINDINGS.iter().find(|k| k.id == id)?;
-    let index = state.lessons.iter().position(|l| l.id == kind.lesson)?;
-    let lesson = &state.lessons[index];
-    let title = lesson.steps.get(kind.step.checked_sub(1)?)?.title.get(lang);
-    let label = format!("{} · {} {}: {title}", lesson.title.get(lang), tr(lang, "step"), kind.step);
+    let (index, label) = super::homework_panel::lesson_link(state, kind.lesson, kind.step, lang)?;
     Some((index, kind.step - 1, label))
 }
 

@@ -13,7 +13,12 @@ fn figure(value: Option<f64>) -> String {
 }
 
 /// The lesson step a finding points at, as "lesson title, step N" in `lang`.
-fn lesson_link(state: &AppState, lesson: &str, step: usize, lang: Lang) -> Option<(usize, String)> {
+pub(super) fn lesson_link(
+    state: &AppState,
+    lesson: &str,
+    step: usize,
+    lang: Lang,
+) -> Option<(usize, String)> {
     let index = state.lessons.iter().position(|l| l.id == lesson)?;
     let l = &state.lessons[index];
     let step_title = l.steps.get(step.checked_sub(1)?)?.title.get(lang);

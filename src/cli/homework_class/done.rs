@@ -41,20 +41,6 @@ pub struct Done {
     pub message: String,
 }
 
-/// FNV-1a, 64 bits: stable across builds and platforms (std's hasher promises neither).
-struct Fnv(u64);
-
-impl Fnv {
-    fn new() -> Self {
-        Fnv(0xcbf2_9ce4_8422_2325)
-    }
-    fn add(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 = (self.0 ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-        }
-    }
-}
-
 /// Size and modification time (ns since 1970; 0 where the system has none) of a file.
 fn stamp(path: &Path) -> Option<(u64, u128)> {
     let meta = std::fs::symlink_metadata(path).ok()?;
@@ -79,7 +65,7 @@ pub fn fingerprint(path: &Path, size: (u32, u32), lang: &str) -> Option<Fingerpr
         vec![(String::new(), len, modified)]
     };
     files.sort();
-    let mut digest = Fnv::new();
+    let mut digest = crate::files::Fnv1a::new();
     for (rel, len, modified) in &files {
         digest.add(rel.as_bytes());
         digest.add(&[0]);
@@ -93,7 +79,7 @@ pub fn fingerprint(path: &Path, size: (u32, u32), lang: &str) -> Option<Fingerpr
         kind: if path.is_dir() { "folder" } else { "zip" }.to_string(),
         files: files.len(),
         bytes: files.iter().map(|f| f.1).fold(0, u64::saturating_add),
-        digest: format!("{:016x}", digest.0),
+        digest: format!("{:016x}", digest.value()),
     })
 }
 
