@@ -406,16 +406,27 @@ pub(crate) fn draw_canvas(
     }
     // Text grows towards `min_text_px` only as far as the canvas holds it: where a text column
     // is squeezed into a strip or texts meet, the diagram is drawn again with smaller text, down
-    // to its design size.
-    let mut min_text = min_text_px;
+    // to its design size. While a value is dragged the same panel is drawn again and again:
+    // start from the size that fitted it last time rather than try the larger ones again.
+    let key = (kind, [width_px, height_px], lang, min_text_px.to_bits());
+    let fitted = LAST_FIT.with(|last| last.get().filter(|(k, _)| *k == key).map(|(_, t)| t));
+    let mut min_text = fitted.unwrap_or(min_text_px);
     for _ in 0..MAX_SHRINKS {
         let c = draw_once(kind, inputs, lang, [width_px, height_px], min_text)?;
         if !c.cramped && c.overlapping_text().is_empty() {
+            LAST_FIT.with(|last| last.set(Some((key, min_text))));
             return Ok(c);
         }
         min_text *= SHRINK;
     }
     draw_once(kind, inputs, lang, [width_px, height_px], 0.0)
+}
+
+/// The text size that last fitted a panel: (kind, size, language, asked text size) and the
+/// text size drawn; per thread, so that what one thread draws never depends on another's.
+type FitKey = (DiagramKind, [u32; 2], Lang, u32);
+thread_local! {
+    static LAST_FIT: std::cell::Cell<Option<(FitKey, f32)>> = const { std::cell::Cell::new(None) };
 }
 
 /// Tries at a smaller text size before the design size, and the factor of each.
