@@ -37,8 +37,8 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
         let share = if class.members > 0 { class.done as f32 / class.members as f32 } else { 0.0 };
         ui.add(
             egui::ProgressBar::new(share)
-                .text(fill(lang, "{} of {} checked", &[&class.done, &class.members]))
-                .animate(true),
+                // No spinner: at the fill's edge it covers the count.
+                .text(fill(lang, "{} of {} checked", &[&class.done, &class.members])),
         );
         ui.label(RichText::new(tr(lang, "each submission is checked as a process of its own")).weak());
         return;
