@@ -6,6 +6,7 @@
 
 @group(0) @binding(0) var<uniform> frame: FrameGpu;
 @group(1) @binding(0) var<uniform> lights: array<LightGpu, MAX_LIGHTS>;
+@group(1) @binding(6) var<uniform> shadow_views: array<ShadowViewGpu, MAX_SHADOW_VIEWS>;
 @group(2) @binding(0) var<uniform> object: ObjectGpu;
 @group(2) @binding(1) var diffuse_texture: texture_2d<f32>;
 @group(2) @binding(2) var diffuse_sampler: sampler;
@@ -43,12 +44,18 @@ fn noise_seed_at(frag: vec4<f32>) -> u32 {
     return pixel_seed(vec2<u32>(frag.xy), params.noise_seed, params.rotate_per_pixel == 1u);
 }
 
+// The shadow view of `light` that covers a point. Every light owns one view today; a light with
+// several (a lamp's cube faces, a sun's cascades) chooses among them here.
+fn shadow_view_at(light: LightGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
+    return shadow_views[light.first_view];
+}
+
 // Spot lights light only inside their square frustum (soft 5% edge).
-fn spot_falloff(light: LightGpu, world_pos: vec3<f32>) -> f32 {
-    if is_orthographic(light) {
+fn spot_falloff(view: ShadowViewGpu, world_pos: vec3<f32>) -> f32 {
+    if is_orthographic(view) {
         return 1.0;
     }
-    let s = project_to_light(light, world_pos);
+    let s = project_to_light(view, world_pos);
     let edge = min(min(s.x, 1.0 - s.x), min(s.y, 1.0 - s.y));
     return smoothstep(0.0, 0.05, edge) * select(0.0, 1.0, s.z > 0.0 && s.z < 1.0);
 }
@@ -70,17 +77,18 @@ fn shade(in: VertexOut, front_facing: bool) -> Shaded {
     out.selected.visibility = 1.0;
     for (var i = 0u; i < light_count(); i++) {
         let light = lights[i];
+        let view = shadow_view_at(light, in.world_position);
         let l = light_dir_to(light, in.world_position);
         let n_dot_l = max(dot(n, l), 0.0);
         let h = normalize(l + v);
         let specular = 0.25 * pow48(max(dot(n, h), 0.0)) * select(0.0, 1.0, n_dot_l > 0.0);
-        let coord = light_space_lookup(light, in.world_position, n);
-        let result = shadow_visibility(light, coord, seed);
+        let coord = light_space_lookup(light, view, in.world_position, n);
+        let result = shadow_visibility(light, view, coord, seed);
         if i == frame.selected_light {
             out.selected = result;
             out.selected_coord = coord;
         }
-        let radiance = light.color.rgb * spot_falloff(light, in.world_position);
+        let radiance = light.color.rgb * spot_falloff(view, in.world_position);
         color += result.visibility * radiance * (albedo * n_dot_l + vec3<f32>(specular));
     }
     // Linear: the target's sRGB view encodes on store.
@@ -110,8 +118,8 @@ fn analysis_of(in: VertexOut, front_facing: bool, result: ShadowVisibility, coor
         out.shadow = vec4<f32>(1.0, 0.0, 0.0, 0.0);
         return out;
     }
-    let light = lights[frame.selected_light];
-    let penumbra_texels = result.penumbra.width_world / texel_world_at(light, coord.depth_linear);
+    let view = shadow_view_at(lights[frame.selected_light], in.world_position);
+    let penumbra_texels = result.penumbra.width_world / texel_world_at(view, coord.depth_linear);
     out.shadow = vec4<f32>(result.visibility, result.search.radius_texels, penumbra_texels, f32(result.search.found));
     return out;
 }
@@ -124,9 +132,10 @@ fn fs_analysis(in: VertexOut, @builtin(front_facing) front_facing: bool) -> Anal
         return analysis_of(in, front_facing, none, nowhere);
     }
     let light = lights[frame.selected_light];
+    let view = shadow_view_at(light, in.world_position);
     let n = shading_normal(in, front_facing);
-    let coord = light_space_lookup(light, in.world_position, n);
-    let result = shadow_visibility(light, coord, noise_seed_at(in.clip_position));
+    let coord = light_space_lookup(light, view, in.world_position, n);
+    let result = shadow_visibility(light, view, coord, noise_seed_at(in.clip_position));
     return analysis_of(in, front_facing, result, coord);
 }
 

@@ -5,6 +5,8 @@
 const PI: f32 = 3.14159265358979;
 const TAU: f32 = 6.28318530717959;
 const MAX_LIGHTS: u32 = 4u;
+// Shadow views of all lights together (a light owns one or more).
+const MAX_SHADOW_VIEWS: u32 = 24u;
 const MAX_TAPS: u32 = 128u;       // most filter or blocker-search taps (src/shadow/kernels.rs)
 
 // Bias modes, kernels, techniques and size models: numbered in src/shadow/gpu.rs (tests/shaders.rs checks).
@@ -39,23 +41,36 @@ struct FrameGpu {
     _pad1: u32,
 }
 
+// A light as all of its shadow views share it.
 struct LightGpu {
-    clip_from_world: mat4x4<f32>,
     position: vec4<f32>,          // xyz world, at the frame's time
     direction: vec4<f32>,         // xyz unit, from the light towards its target
     color: vec4<f32>,             // rgb linear times intensity
+    directional: u32,             // 1: parallel rays along direction; 0: rays from position
+    size_model: u32,              // SIZE_MODEL_*
+    light_width_world: f32,       // width model: area-light diameter
+    tan_half_angle: f32,          // angular model: tan(angular_diameter / 2)
+    first_view: u32,              // its shadow views: first_view .. first_view + view_count
+    view_count: u32,
+    _pad0: u32,
+    _pad1: u32,
+}
+
+// One depth map a light renders: its projection and where it lies in the shadow-map array.
+struct ShadowViewGpu {
+    clip_from_world: mat4x4<f32>,
     near: f32,                    // world units
     far: f32,
     frustum_width_world: f32,     // W: ortho width, or width at the near plane
     tan_half_fov: f32,            // perspective only; 0 for orthographic
     orthographic: u32,
-    size_model: u32,              // SIZE_MODEL_*
-    light_width_world: f32,       // width model: area-light diameter
-    tan_half_angle: f32,          // angular model: tan(angular_diameter / 2)
     map_size_texels: f32,
     layer: u32,                   // shadow-map array layer
     atlas_scale: f32,             // map_size / array texture size
     moments_block: u32,           // map texels per side of a level-0 VSM moments texel
+    light: u32,                   // the light that owns it
+    _pad0: u32,
+    _pad1: u32,
 }
 
 struct ShadowParamsGpu {

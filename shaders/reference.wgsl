@@ -13,7 +13,12 @@ struct ReferenceInfo {
 @group(0) @binding(1) var normals: texture_2d<f32>;
 @group(0) @binding(2) var<storage, read_write> accumulated: array<f32>;
 @group(0) @binding(3) var<uniform> info: ReferenceInfo;
-@group(1) @binding(0) var<uniform> sample_light: LightGpu;
+// One sample of the light's area: the light moved there, and its one view.
+struct LightViewGpu {
+    light: LightGpu,
+    view: ShadowViewGpu,
+}
+@group(1) @binding(0) var<uniform> sample: LightViewGpu;
 
 @compute @workgroup_size(8, 8)
 fn cs_accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
@@ -25,7 +30,7 @@ fn cs_accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let normal = textureLoad(normals, vec2<i32>(id.xy), 0).xyz;
-    let coord = light_space_lookup(sample_light, position.xyz, normal);
+    let coord = light_space_lookup(sample.light, sample.view, position.xyz, normal);
     let index = id.y * info.width + id.x;
-    accumulated[index] += info.weight * visibility_hard(sample_light, coord);
+    accumulated[index] += info.weight * visibility_hard(sample.view, coord);
 }

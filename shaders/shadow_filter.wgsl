@@ -4,7 +4,7 @@
 // formula in both.
 //
 // Units: `depth_ndc` is what the map stores (0..1); `depth_linear` is world units from the light
-// along its axis; `_uv` is shadow-map uv (0..1 over the light's map); `_texels` is map texels.
+// along its axis; `_uv` is shadow-map uv (0..1 over the shadow view's map); `_texels` is map texels.
 
 // ---------------------------------------------------------------- sample patterns
 
@@ -71,26 +71,26 @@ fn filter_taps(kernel: u32, samples: u32) -> u32 {
 // ---------------------------------------------------------------- how to filter
 
 // Hard shadow: one depth comparison [Williams-1978].
-fn visibility_hard(light: LightGpu, coord: ShadowCoord) -> f32 {
-    let bias = receiver_bias_ndc(light, coord, 0.0);
+fn visibility_hard(view: ShadowViewGpu, coord: ShadowCoord) -> f32 {
+    let bias = receiver_bias_ndc(view, coord, 0.0);
     if clamp_outside() == 1u && outside_frustum(coord) {
         return 1.0;
     }
-    let reference = tap_reference_ndc(light, coord, coord.uv, bias, true);
-    return select(0.0, 1.0, reference <= stored_depth_ndc(light, coord.uv));
+    let reference = tap_reference_ndc(view, coord, coord.uv, bias, true);
+    return select(0.0, 1.0, reference <= stored_depth_ndc(view, coord.uv));
 }
 
 // PCF [Reeves-1987]: V = (1/N) sum_i [d_receiver - bias <= map(uv + r * s_i)],
 // r in uv = radius_texels / map_size.
-fn visibility_pcf(light: LightGpu, coord: ShadowCoord, radius_texels: f32, seed: u32) -> f32 {
+fn visibility_pcf(view: ShadowViewGpu, coord: ShadowCoord, radius_texels: f32, seed: u32) -> f32 {
     let n = filter_taps(kernel(), params.samples);
-    let radius_uv = radius_texels / light.map_size_texels;
-    let bias = receiver_bias_ndc(light, coord, radius_texels);
+    let radius_uv = radius_texels / view.map_size_texels;
+    let bias = receiver_bias_ndc(view, coord, radius_texels);
     let rotation = pixel_rotation(seed);
     var lit = 0.0;
     for (var i = 0u; i < n; i++) {
         let uv = coord.uv + kernel_offset(kernel(), FILTER_TABLE, i, seed, rotation) * radius_uv;
-        lit += depth_test(light, coord, uv, bias);
+        lit += depth_test(view, coord, uv, bias);
     }
     return lit / f32(n);
 }
@@ -103,34 +103,34 @@ struct BlockerSearch {
 
 // The blocker search's radius in uv: the cone from the receiver to the light's area, cut at
 // the near plane, times `search_radius_scale`.
-fn blocker_search_radius_uv(light: LightGpu, coord: ShadowCoord) -> f32 {
+fn blocker_search_radius_uv(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord) -> f32 {
     let d_r = coord.depth_linear;
     var radius_world = 0.0;
     if is_angular(light) {
-        radius_world = (d_r - light.near) * light.tan_half_angle;
+        radius_world = (d_r - view.near) * light.tan_half_angle;
     } else {
-        radius_world = 0.5 * light.light_width_world * (d_r - light.near) / d_r;
+        radius_world = 0.5 * light.light_width_world * (d_r - view.near) / d_r;
     }
-    return max(radius_world, 0.0) * params.search_radius_scale / light.frustum_width_world;
+    return max(radius_world, 0.0) * params.search_radius_scale / view.frustum_width_world;
 }
 
-fn blocker_search_radius_texels(light: LightGpu, coord: ShadowCoord) -> f32 {
-    return blocker_search_radius_uv(light, coord) * light.map_size_texels;
+fn blocker_search_radius_texels(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord) -> f32 {
+    return blocker_search_radius_uv(light, view, coord) * view.map_size_texels;
 }
 
 // PCSS step 1: blocker search. The region is the cone from the receiver to the light's area,
 // cut at the near plane: w_search = w_light * (d_r - near) / d_r, in uv / W_near [NVIDIA-2008].
-fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSearch {
+fn search_blockers(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord, seed: u32) -> BlockerSearch {
     var out: BlockerSearch;
     // No map data for this receiver: nothing to search (and nothing to report).
     if clamp_outside() == 1u && outside_frustum(coord) {
         return out;
     }
-    let radius_uv = blocker_search_radius_uv(light, coord);
-    out.radius_texels = radius_uv * light.map_size_texels;
+    let radius_uv = blocker_search_radius_uv(light, view, coord);
+    out.radius_texels = radius_uv * view.map_size_texels;
     let search_kernel = select(kernel(), KERNEL_VOGEL, kernel() == KERNEL_HARDWARE);
     let n = filter_taps(search_kernel, params.blocker_samples);
-    let bias = receiver_bias_ndc(light, coord, 0.0);
+    let bias = receiver_bias_ndc(view, coord, 0.0);
     let rotation = pixel_rotation(seed);
     var sum = 0.0;
     for (var i = 0u; i < n; i++) {
@@ -138,10 +138,10 @@ fn search_blockers(light: LightGpu, coord: ShadowCoord, seed: u32) -> BlockerSea
         if clamp_outside() == 1u && outside_map(uv) {
             continue;
         }
-        let z = stored_depth_ndc(light, uv);
-        if z < tap_reference_ndc(light, coord, uv, bias, true) {
+        let z = stored_depth_ndc(view, uv);
+        if z < tap_reference_ndc(view, coord, uv, bias, true) {
             out.found += 1u;
-            sum += depth_linear_from_ndc(light, z);
+            sum += depth_linear_from_ndc(view, z);
         }
     }
     if out.found > 0u {
@@ -159,7 +159,7 @@ struct Penumbra {
 // Width model: w_p = w_light * (d_r - d_b) / d_b. Angular model: w_p = (d_r - d_b) * 2 tan(theta/2).
 // The filter radius is half the penumbra width, mapped to the map: orthographic / W,
 // perspective projected to the near plane first (* near / d_r) and then / W_near.
-fn estimate_penumbra(light: LightGpu, coord: ShadowCoord, d_blocker: f32) -> Penumbra {
+fn estimate_penumbra(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord, d_blocker: f32) -> Penumbra {
     var out: Penumbra;
     let d_r = coord.depth_linear;
     let gap = max(d_r - d_blocker, 0.0);
@@ -168,11 +168,11 @@ fn estimate_penumbra(light: LightGpu, coord: ShadowCoord, d_blocker: f32) -> Pen
     } else {
         out.width_world = light.light_width_world * gap / max(d_blocker, 1e-6);
     }
-    var radius_uv = 0.5 * out.width_world / light.frustum_width_world;
-    if !is_orthographic(light) || params.ortho_near_factor == 1u {
-        radius_uv = radius_uv * light.near / d_r;
+    var radius_uv = 0.5 * out.width_world / view.frustum_width_world;
+    if !is_orthographic(view) || params.ortho_near_factor == 1u {
+        radius_uv = radius_uv * view.near / d_r;
     }
-    out.filter_radius_texels = max(radius_uv * light.map_size_texels, params.min_filter_radius_texels);
+    out.filter_radius_texels = max(radius_uv * view.map_size_texels, params.min_filter_radius_texels);
     return out;
 }
 
@@ -183,15 +183,15 @@ struct ShadowVisibility {
 }
 
 // PCSS step 3: filter with the estimated radius. No blockers: fully lit (saves the filter).
-fn visibility_pcss(light: LightGpu, coord: ShadowCoord, seed: u32) -> ShadowVisibility {
+fn visibility_pcss(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord, seed: u32) -> ShadowVisibility {
     var out: ShadowVisibility;
-    out.search = search_blockers(light, coord, seed);
+    out.search = search_blockers(light, view, coord, seed);
     if out.search.found == 0u {
         out.visibility = 1.0;
         return out;
     }
-    out.penumbra = estimate_penumbra(light, coord, out.search.avg_depth_linear);
-    out.visibility = visibility_pcf(light, coord, out.penumbra.filter_radius_texels, seed);
+    out.penumbra = estimate_penumbra(light, view, coord, out.search.avg_depth_linear);
+    out.visibility = visibility_pcf(view, coord, out.penumbra.filter_radius_texels, seed);
     return out;
 }
 
@@ -201,23 +201,23 @@ fn visibility_pcss(light: LightGpu, coord: ShadowCoord, seed: u32) -> ShadowVisi
 // at the (fractional) level whose texels span r map texels (level 0 spans `moments_block` map
 // texels, each level twice the one before), bilinear within the two nearest levels and linear
 // between them; a tent about as wide as the disk PCF uses, without seams where the level changes.
-fn filtered_moments(light: LightGpu, uv: vec2<f32>, radius_texels: f32) -> vec2<f32> {
+fn filtered_moments(view: ShadowViewGpu, uv: vec2<f32>, radius_texels: f32) -> vec2<f32> {
     let widest = f32(textureNumLevels(moments) - 1u);
-    let level = clamp(log2(max(radius_texels / f32(light.moments_block), 1.0)), 0.0, widest);
+    let level = clamp(log2(max(radius_texels / f32(view.moments_block), 1.0)), 0.0, widest);
     let finer = floor(level);
     let coarser = min(finer + 1.0, widest);
-    return mix(moments_at_level(light, uv, finer), moments_at_level(light, uv, coarser), level - finer);
+    return mix(moments_at_level(view, uv, finer), moments_at_level(view, uv, coarser), level - finer);
 }
 
 // The moments at one level, bilinear between its four texels nearest to uv.
-fn moments_at_level(light: LightGpu, uv: vec2<f32>, level_f: f32) -> vec2<f32> {
+fn moments_at_level(view: ShadowViewGpu, uv: vec2<f32>, level_f: f32) -> vec2<f32> {
     let level = i32(level_f);
-    let texel_span = f32(light.moments_block) * exp2(level_f);
-    let p = uv * light.map_size_texels / texel_span - 0.5;
+    let texel_span = f32(view.moments_block) * exp2(level_f);
+    let p = uv * view.map_size_texels / texel_span - 0.5;
     let i0 = vec2<i32>(floor(p));
     let f = p - floor(p);
     let last = vec2<i32>(textureDimensions(moments, level)) - 1;
-    let layer = i32(light.layer);
+    let layer = i32(view.layer);
     let m00 = textureLoad(moments, clamp(i0, vec2<i32>(0), last), layer, level).xy;
     let m10 = textureLoad(moments, clamp(i0 + vec2<i32>(1, 0), vec2<i32>(0), last), layer, level).xy;
     let m01 = textureLoad(moments, clamp(i0 + vec2<i32>(0, 1), vec2<i32>(0), last), layer, level).xy;
@@ -230,12 +230,12 @@ fn moments_at_level(light: LightGpu, uv: vec2<f32>, level_f: f32) -> vec2<f32> {
 // VSM [Donnelly-2006]: with mean mu and variance sigma² of the depths around the
 // lookup, Chebyshev's one-sided bound P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu
 // is taken as the lit fraction; t <= mu is lit.
-fn visibility_vsm(light: LightGpu, coord: ShadowCoord, radius_texels: f32) -> f32 {
+fn visibility_vsm(view: ShadowViewGpu, coord: ShadowCoord, radius_texels: f32) -> f32 {
     if clamp_outside() == 1u && outside_frustum(coord) {
         return 1.0;
     }
-    let m = filtered_moments(light, coord.uv, radius_texels);
-    let t = coord.depth_ndc - receiver_bias_ndc(light, coord, radius_texels);
+    let m = filtered_moments(view, coord.uv, radius_texels);
+    let t = coord.depth_ndc - receiver_bias_ndc(view, coord, radius_texels);
     return reduce_light_bleeding(chebyshev_upper_bound(m, t));
 }
 
@@ -262,24 +262,24 @@ fn chebyshev_upper_bound(m: vec2<f32>, t: f32) -> f32 {
 // receiver's, z_avg = P t + (1 - P) z_occ gives z_occ = (z_avg - P t) / (1 - P), the average
 // blocker depth (NDC, then linear). Then PCSS's similar triangles, and a VSM filter of half the
 // penumbra. `found` is 1 where blockers were estimated (the count has no meaning here).
-fn visibility_vssm(light: LightGpu, coord: ShadowCoord) -> ShadowVisibility {
+fn visibility_vssm(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord) -> ShadowVisibility {
     var out: ShadowVisibility;
     out.visibility = 1.0;
     if clamp_outside() == 1u && outside_frustum(coord) {
         return out;
     }
-    out.search.radius_texels = blocker_search_radius_texels(light, coord);
-    let m = filtered_moments(light, coord.uv, out.search.radius_texels);
-    let t = coord.depth_ndc - receiver_bias_ndc(light, coord, 0.0);
+    out.search.radius_texels = blocker_search_radius_texels(light, view, coord);
+    let m = filtered_moments(view, coord.uv, out.search.radius_texels);
+    let t = coord.depth_ndc - receiver_bias_ndc(view, coord, 0.0);
     let unoccluded = chebyshev_upper_bound(m, t);
     if unoccluded >= 1.0 {
         return out;
     }
     let z_occ = (m.x - unoccluded * t) / (1.0 - unoccluded);
     out.search.found = 1u;
-    out.search.avg_depth_linear = depth_linear_from_ndc(light, clamp(z_occ, 0.0, 1.0));
-    out.penumbra = estimate_penumbra(light, coord, out.search.avg_depth_linear);
-    out.visibility = visibility_vsm(light, coord, out.penumbra.filter_radius_texels);
+    out.search.avg_depth_linear = depth_linear_from_ndc(view, clamp(z_occ, 0.0, 1.0));
+    out.penumbra = estimate_penumbra(light, view, coord, out.search.avg_depth_linear);
+    out.visibility = visibility_vsm(view, coord, out.penumbra.filter_radius_texels);
     return out;
 }
 
@@ -287,26 +287,26 @@ fn visibility_vssm(light: LightGpu, coord: ShadowCoord) -> ShadowVisibility {
 const VISIBILITY_UNKNOWN_TECHNIQUE: f32 = -1.0;
 
 // The selected technique, with PCSS's intermediate values for the debug views.
-fn shadow_visibility(light: LightGpu, coord: ShadowCoord, seed: u32) -> ShadowVisibility {
+fn shadow_visibility(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord, seed: u32) -> ShadowVisibility {
     var out: ShadowVisibility;
     switch technique() {
         case TECHNIQUE_PCF: {
-            out.visibility = visibility_pcf(light, coord, params.radius_texels, seed);
+            out.visibility = visibility_pcf(view, coord, params.radius_texels, seed);
         }
         case TECHNIQUE_PCSS: {
-            out = visibility_pcss(light, coord, seed);
+            out = visibility_pcss(light, view, coord, seed);
         }
         case TECHNIQUE_NONE: {
             out.visibility = 1.0;
         }
         case TECHNIQUE_VSM: {
-            out.visibility = visibility_vsm(light, coord, params.radius_texels);
+            out.visibility = visibility_vsm(view, coord, params.radius_texels);
         }
         case TECHNIQUE_VSSM: {
-            out = visibility_vssm(light, coord);
+            out = visibility_vssm(light, view, coord);
         }
         case TECHNIQUE_HARD: {
-            out.visibility = visibility_hard(light, coord);
+            out.visibility = visibility_hard(view, coord);
         }
         // An id no case knows is an impossible visibility that the GPU = twin test and the
         // views show, never a quiet hard shadow.

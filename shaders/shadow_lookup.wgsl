@@ -1,10 +1,10 @@
-// What to sample: where a surface point lands in a light's map (light-space lookup, normal
+// What to sample: where a surface point lands in a shadow view's map (light-space lookup, normal
 // offset), at which depth, with which bias, and one tap's depth test. How to filter those taps is
 // shaders/shadow_filter.wgsl. The CPU twin's src/shadow/light_space.rs has the same functions with
 // the same names; fix a formula in both.
 //
 // Units: `depth_ndc` is what the map stores (0..1); `depth_linear` is world units from the light
-// along its axis; `_uv` is shadow-map uv (0..1 over the light's map); `_texels` is map texels.
+// along its axis; `_uv` is shadow-map uv (0..1 over the shadow view's map); `_texels` is map texels.
 // `technique()`, `kernel()`, `bias_mode()` and the like are shaders/specialisation.wgsl's.
 
 @group(1) @binding(1) var<uniform> params: ShadowParamsGpu;
@@ -30,58 +30,58 @@ struct ShadowCoord {
     depth_gradient: vec2<f32>,
 }
 
-fn depth_linear_from_ndc(light: LightGpu, z: f32) -> f32 {
-    if is_orthographic(light) {
-        return light.near + z * (light.far - light.near);
+fn depth_linear_from_ndc(view: ShadowViewGpu, z: f32) -> f32 {
+    if is_orthographic(view) {
+        return view.near + z * (view.far - view.near);
     }
-    return light.near * light.far / (light.far - z * (light.far - light.near));
+    return view.near * view.far / (view.far - z * (view.far - view.near));
 }
 
 // dz/dd at distance d: turns a world-unit bias into NDC depth units.
-fn ndc_per_world(light: LightGpu, depth_linear: f32) -> f32 {
-    if is_orthographic(light) {
-        return 1.0 / (light.far - light.near);
+fn ndc_per_world(view: ShadowViewGpu, depth_linear: f32) -> f32 {
+    if is_orthographic(view) {
+        return 1.0 / (view.far - view.near);
     }
-    return light.far * light.near / (depth_linear * depth_linear * (light.far - light.near));
+    return view.far * view.near / (depth_linear * depth_linear * (view.far - view.near));
 }
 
 // One texel's footprint on a surface facing the light at distance d, world units.
-fn texel_world_at(light: LightGpu, depth_linear: f32) -> f32 {
-    if is_orthographic(light) {
-        return light.frustum_width_world / light.map_size_texels;
+fn texel_world_at(view: ShadowViewGpu, depth_linear: f32) -> f32 {
+    if is_orthographic(view) {
+        return view.frustum_width_world / view.map_size_texels;
     }
-    return 2.0 * depth_linear * light.tan_half_fov / light.map_size_texels;
+    return 2.0 * depth_linear * view.tan_half_fov / view.map_size_texels;
 }
 
 fn light_dir_to(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
-    if is_orthographic(light) {
+    if is_directional(light) {
         return -light.direction.xyz;
     }
     return normalize(light.position.xyz - world_pos);
 }
 
-fn project_to_light(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
-    let clip = light.clip_from_world * vec4<f32>(world_pos, 1.0);
+fn project_to_light(view: ShadowViewGpu, world_pos: vec3<f32>) -> vec3<f32> {
+    let clip = view.clip_from_world * vec4<f32>(world_pos, 1.0);
     let ndc = clip.xyz / clip.w;
     return vec3<f32>(ndc.xy * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5), ndc.z);
 }
 
 // Light-space lookup of a surface point, with the normal offset applied: move along the normal
 // by k texels in world units [ThreeJS-NormalBias] [Bevy-DirectionalLight].
-fn light_space_lookup(light: LightGpu, world_pos: vec3<f32>, normal: vec3<f32>) -> ShadowCoord {
+fn light_space_lookup(light: LightGpu, view: ShadowViewGpu, world_pos: vec3<f32>, normal: vec3<f32>) -> ShadowCoord {
     var out: ShadowCoord;
     out.n_dot_l = dot(normal, light_dir_to(light, world_pos));
     var p = world_pos;
     if params.normal_offset_texels > 0.0 {
-        let d = depth_linear_from_ndc(light, project_to_light(light, world_pos).z);
-        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(light, d));
+        let d = depth_linear_from_ndc(view, project_to_light(view, world_pos).z);
+        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(view, d));
     }
-    let s = project_to_light(light, p);
+    let s = project_to_light(view, p);
     out.uv = s.xy;
     out.depth_ndc = s.z;
-    out.depth_linear = depth_linear_from_ndc(light, s.z);
+    out.depth_linear = depth_linear_from_ndc(view, s.z);
     if bias_mode() == BIAS_RECEIVER_PLANE {
-        out.depth_gradient = receiver_plane_gradient(light, p, normal, s);
+        out.depth_gradient = receiver_plane_gradient(view, p, normal, s);
     }
     return out;
 }
@@ -101,11 +101,11 @@ fn tangents_of(n: vec3<f32>) -> array<vec3<f32>, 2> {
 // points of the plane a texel from p, projected like p (at s), fix it. A light's projection maps
 // planes to planes, so this is exact for spot lights too. Edge-on to the light (the two projected
 // steps parallel) there is no such plane: 0, the constant bias alone.
-fn receiver_plane_gradient(light: LightGpu, p: vec3<f32>, n: vec3<f32>, s: vec3<f32>) -> vec2<f32> {
-    let step = texel_world_at(light, depth_linear_from_ndc(light, s.z));
+fn receiver_plane_gradient(view: ShadowViewGpu, p: vec3<f32>, n: vec3<f32>, s: vec3<f32>) -> vec2<f32> {
+    let step = texel_world_at(view, depth_linear_from_ndc(view, s.z));
     let t = tangents_of(n);
-    let a = project_to_light(light, p + t[0] * step) - s;
-    let b = project_to_light(light, p + t[1] * step) - s;
+    let a = project_to_light(view, p + t[0] * step) - s;
+    let b = project_to_light(view, p + t[1] * step) - s;
     let det = a.x * b.y - a.y * b.x;
     if !(abs(det) > 1e-3 * length(a.xy) * length(b.xy)) {
         return vec2<f32>(0.0);
@@ -114,7 +114,7 @@ fn receiver_plane_gradient(light: LightGpu, p: vec3<f32>, n: vec3<f32>, s: vec3<
 }
 
 // Depth bias in NDC units. `filter_radius_texels` grows the adaptive bias.
-fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: f32) -> f32 {
+fn receiver_bias_ndc(view: ShadowViewGpu, coord: ShadowCoord, filter_radius_texels: f32) -> f32 {
     switch bias_mode() {
         case BIAS_CONSTANT: {
             return params.bias;
@@ -133,10 +133,10 @@ fn receiver_bias_ndc(light: LightGpu, coord: ShadowCoord, filter_radius_texels: 
             // units, grown with the filter; B = 1 - N.L; bias = c * max(A, A * B). As published,
             // max(A, A*B) is A wherever the light reaches (N.L >= 0, so B <= 1): texel-aware,
             // not slope-aware.
-            let a = (1.0 + ceil(filter_radius_texels)) * 0.5 * texel_world_at(light, coord.depth_linear);
+            let a = (1.0 + ceil(filter_radius_texels)) * 0.5 * texel_world_at(view, coord.depth_linear);
             let b = 1.0 - coord.n_dot_l;
             let bias_world = params.adaptive_c * max(a, a * b);
-            return bias_world * ndc_per_world(light, coord.depth_linear);
+            return bias_world * ndc_per_world(view, coord.depth_linear);
         }
         default: {
             return 0.0;
@@ -181,14 +181,14 @@ fn rgba8_round_trip(depth_ndc: f32) -> f32 {
 }
 
 // Stored depth at a uv, point-sampled. Without clamping the lookup wraps, the classic bug.
-fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
+fn stored_depth_ndc(view: ShadowViewGpu, uv: vec2<f32>) -> f32 {
     var lookup = uv;
     if clamp_outside() == 0u {
         lookup = fract(uv);
     }
-    let size = i32(light.map_size_texels);
-    let texel = clamp(vec2<i32>(floor(lookup * light.map_size_texels)), vec2<i32>(0), vec2<i32>(size - 1));
-    let depth = textureLoad(shadow_maps, texel, i32(light.layer), 0);
+    let size = i32(view.map_size_texels);
+    let texel = clamp(vec2<i32>(floor(lookup * view.map_size_texels)), vec2<i32>(0), vec2<i32>(size - 1));
+    let depth = textureLoad(shadow_maps, texel, i32(view.layer), 0);
     if depth_storage() == DEPTH_RGBA8 {
         return rgba8_round_trip(depth);
     }
@@ -201,7 +201,7 @@ fn stored_depth_ndc(light: LightGpu, uv: vec2<f32>) -> f32 {
 // lands from the pixel; a bilinear tap of the sampler (not `point_sampled`) uses the plane at the
 // tap itself.
 fn tap_reference_ndc(
-    light: LightGpu,
+    view: ShadowViewGpu,
     coord: ShadowCoord,
     uv: vec2<f32>,
     bias_ndc: f32,
@@ -210,7 +210,7 @@ fn tap_reference_ndc(
     if bias_mode() == BIAS_RECEIVER_PLANE {
         var at = uv;
         if point_sampled {
-            at = (floor(uv * light.map_size_texels) + 0.5) / light.map_size_texels;
+            at = (floor(uv * view.map_size_texels) + 0.5) / view.map_size_texels;
         }
         return coord.depth_ndc + dot(coord.depth_gradient, at - coord.uv) - bias_ndc;
     }
@@ -218,20 +218,20 @@ fn tap_reference_ndc(
 }
 
 // 1 = lit, 0 = shadowed, for one tap. Outside the light frustum counts as lit when clamped.
-fn depth_test(light: LightGpu, coord: ShadowCoord, uv: vec2<f32>, bias_ndc: f32) -> f32 {
+fn depth_test(view: ShadowViewGpu, coord: ShadowCoord, uv: vec2<f32>, bias_ndc: f32) -> f32 {
     if clamp_outside() == 1u && (outside_map(uv) || outside_depth(coord.depth_ndc)) {
         return 1.0;
     }
     let bilinear = kernel() == KERNEL_HARDWARE && technique() != TECHNIQUE_HARD;
-    let reference = tap_reference_ndc(light, coord, uv, bias_ndc, !bilinear);
+    let reference = tap_reference_ndc(view, coord, uv, bias_ndc, !bilinear);
     if bilinear {
         var lookup = uv;
         if clamp_outside() == 0u {
             lookup = fract(uv);
         }
         // Bilinear 2x2 comparison in the sampler (LessEqual: lit where reference <= stored).
-        return textureSampleCompareLevel(shadow_maps, shadow_compare_sampler, lookup * light.atlas_scale,
-                                         i32(light.layer), reference);
+        return textureSampleCompareLevel(shadow_maps, shadow_compare_sampler, lookup * view.atlas_scale,
+                                         i32(view.layer), reference);
     }
-    return select(0.0, 1.0, reference <= stored_depth_ndc(light, uv));
+    return select(0.0, 1.0, reference <= stored_depth_ndc(view, uv));
 }

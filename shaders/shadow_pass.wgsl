@@ -1,10 +1,6 @@
 // Pass 1: depth from the light [Williams-1978]. Only the depth attachment is written (no
 // fragment stage).
 
-struct ShadowViewGpu {
-    clip_from_world: mat4x4<f32>,
-}
-
 @group(0) @binding(0) var<uniform> shadow_view: ShadowViewGpu;
 @group(1) @binding(0) var<uniform> object: ObjectGpu;
 

@@ -56,11 +56,19 @@ fn depth_storage() -> u32 {
     return params.depth_storage;
 }
 
-fn is_orthographic(light: LightGpu) -> bool {
+fn is_orthographic(view: ShadowViewGpu) -> bool {
     if SPECIALISED && SPEC_PROJECTION != SPEC_MIXED {
         return SPEC_PROJECTION == SPEC_ALL_ORTHOGRAPHIC;
     }
-    return light.orthographic == 1u;
+    return view.orthographic == 1u;
+}
+
+// A sun's views are orthographic, every other light's perspective: one constant says both.
+fn is_directional(light: LightGpu) -> bool {
+    if SPECIALISED && SPEC_PROJECTION != SPEC_MIXED {
+        return SPEC_PROJECTION == SPEC_ALL_ORTHOGRAPHIC;
+    }
+    return light.directional == 1u;
 }
 
 fn is_angular(light: LightGpu) -> bool {

@@ -20,6 +20,8 @@ pub struct TapReport {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct LightProbe {
     pub light: usize,
+    /// The shadow view (of the frame's views) the pixel was looked up in: the light's own map.
+    pub shadow_view: usize,
     pub shadow_map_uv: [f32; 2],
     pub shadow_map_texel: [i32; 2],
     pub inside_light_frustum: bool,
@@ -261,9 +263,9 @@ fn submit_light(
     };
     let rendered = renderer.render(scene, &frame)?;
     let here = renderer.analysis_pixel_readback(pixel.0, pixel.1)?;
-    let map = match scene.lights.is_empty() {
-        true => Readback::ready(None),
-        false => renderer.shadow_map_readback(light)?.map(|map| Ok(Some(map))),
+    let map = match rendered.first_view_of(light) {
+        None => Readback::ready(None),
+        Some((view, _)) => renderer.shadow_map_readback(view)?.map(|map| Ok(Some(map))),
     };
     Ok((rendered, here.zip(map)))
 }
@@ -281,19 +283,22 @@ fn light_probe(
     let position = Vec3::from_slice(&here.position[..3]);
     let normal = Vec3::from_slice(&here.normal[..3]);
     let light_gpu = rendered.lights[light_index];
+    let view_index = light_gpu.first_view as usize;
+    let view = rendered.views[view_index];
     let params = rendered.params;
-    let mut twin = Twin::new(&light_gpu, &params, map);
+    let mut twin = Twin::new(&light_gpu, &view, &params, map);
     twin.trace = Some(Vec::new());
     let (coord, result) = twin.analysis_at(pixel, position, normal);
     let penumbra = (result.search.found > 0).then_some(&result.penumbra);
     let filter_radius_texels = crate::shadow::filter_radius_texels(&params, penumbra);
-    let map_size = light_gpu.map_size_texels;
+    let map_size = view.map_size_texels;
     let stored = twin.stored_depth_ndc(coord.uv);
     let taps = twin.trace.take().unwrap_or_default();
     let vssm = (scene.shadow.technique == Technique::Vssm && result.search.found > 0)
         .then(|| vssm_probe(&mut twin, &coord, &result, pixel));
     LightProbe {
         light: light_index,
+        shadow_view: view_index,
         shadow_map_uv: coord.uv.to_array(),
         shadow_map_texel: [(coord.uv.x * map_size).floor() as i32, (coord.uv.y * map_size).floor() as i32],
         inside_light_frustum: !crate::shadow::outside_frustum(&coord),
@@ -301,7 +306,7 @@ fn light_probe(
         receiver_depth_ndc: coord.depth_ndc,
         receiver_depth_linear: coord.depth_linear,
         stored_depth_ndc: stored,
-        stored_depth_linear: crate::shadow::depth_linear_from_ndc(&light_gpu, stored),
+        stored_depth_linear: crate::shadow::depth_linear_from_ndc(&view, stored),
         bias_ndc: twin.receiver_bias_ndc(&coord, filter_radius_texels),
         vsm: match scene.shadow.technique {
             Technique::Vsm => Some(vsm_probe(&twin, &coord, (position, normal), scene.shadow.radius_texels)),
@@ -317,7 +322,7 @@ fn light_probe(
             || {
                 coord.depth_gradient.length()
                     / map_size
-                    / crate::shadow::ndc_per_world(&light_gpu, coord.depth_linear)
+                    / crate::shadow::ndc_per_world(&view, coord.depth_linear)
             },
         ),
         blocker_search_radius_uv: result.search.radius_texels / map_size,
@@ -412,11 +417,11 @@ fn vssm_probe(
     result: &crate::shadow::ShadowVisibility,
     pixel: (u32, u32),
 ) -> VssmProbe {
-    let (light, params) = (*twin.light, *twin.params);
+    let (view, params) = (*twin.view, *twin.params);
     // As the shader's search: the bias of a zero radius.
     let radius = result.search.radius_texels;
     let t = coord.depth_ndc - twin.receiver_bias_ndc(coord, 0.0);
-    let unoccluded_bound = twin.chebyshev_upper_bound(twin.moments().filtered(&light, coord.uv, radius), t);
+    let unoccluded_bound = twin.chebyshev_upper_bound(twin.moments().filtered(&view, coord.uv, radius), t);
     let (mut sum, mut weight) = (0.0f64, 0.0f64);
     twin.for_each_footprint_depth(coord, radius, |_, z, w| {
         if z < t {
@@ -425,7 +430,7 @@ fn vssm_probe(
         }
     });
     let footprint_blocker_depth_linear =
-        (weight > 0.0).then(|| crate::shadow::depth_linear_from_ndc(&light, (sum / weight) as f32));
+        (weight > 0.0).then(|| crate::shadow::depth_linear_from_ndc(&view, (sum / weight) as f32));
     let seed = kernels::pixel_seed(pixel, params.noise_seed, params.rotate_per_pixel == 1);
     let pcss = twin.search_blockers(coord, seed);
     VssmProbe {

@@ -29,9 +29,9 @@ fn compare_scene(
     let frame = renderer.render(scene, &request).expect("render");
     let analysis = renderer.read_analysis().expect("analysis");
     let map = renderer.read_shadow_map(0).expect("shadow map");
-    let light = frame.lights[0];
+    let light = frame.light_view(0).expect("light 0");
     let params = frame.params;
-    let mut twin = Twin::new(&light, &params, &map);
+    let mut twin = Twin::new(&light.light, &light.view, &params, &map);
     let mut out = Agreement { compared: 0, within: 0, max_diff: 0.0, shadowed: 0, partial: 0 };
     // Every 3rd pixel in both directions: ~3600 pixels, edges included.
     for y in (0..analysis.height).step_by(3) {
@@ -215,10 +215,10 @@ fn twin_disagrees_when_its_parameters_differ() {
     let frame = renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
     let analysis = renderer.read_analysis().expect("analysis");
     let map = renderer.read_shadow_map(0).expect("shadow map");
-    let light = frame.lights[0];
+    let light = frame.light_view(0).expect("light 0");
     let mut params = frame.params;
     params.radius_texels = 2.0;
-    let mut twin = Twin::new(&light, &params, &map);
+    let mut twin = Twin::new(&light.light, &light.view, &params, &map);
     let mut differing = 0;
     for i in 0..analysis.shadow.len() {
         if analysis.hit(i) {
@@ -267,8 +267,8 @@ fn the_blocker_depth_view_gives_the_twins_average_blocker_depth() {
         let frame = renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
         let analysis = renderer.read_analysis().expect("analysis");
         let map = renderer.read_shadow_map(0).expect("shadow map");
-        let (light, params) = (frame.lights[0], frame.params);
-        let mut twin = Twin::new(&light, &params, &map);
+        let (light, params) = (frame.light_view(0).expect("light 0"), frame.params);
+        let mut twin = Twin::new(&light.light, &light.view, &params, &map);
         let (mut compared, mut worst) = (0, 0.0f32);
         for y in 0..analysis.height {
             for x in 0..analysis.width {
@@ -337,8 +337,8 @@ fn vsm_is_never_below_the_true_lit_fraction() {
     let frame = renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
     let analysis = renderer.read_analysis().expect("analysis");
     let map = renderer.read_shadow_map(0).expect("shadow map");
-    let (light, params) = (frame.lights[0], frame.params);
-    let mut twin = Twin::new(&light, &params, &map);
+    let (light, params) = (frame.light_view(0).expect("light 0"), frame.params);
+    let mut twin = Twin::new(&light.light, &light.view, &params, &map);
     let mut compared = 0;
     for y in (0..analysis.height).step_by(2) {
         for x in (0..analysis.width).step_by(2) {
@@ -391,13 +391,13 @@ fn the_moments_read_back_are_the_twins_chain() {
     let scene = common::scene("bleeding", &[]);
     let frame = renderer.render(&scene, &common::analysis_request((160, 90), 0)).expect("render");
     let map = renderer.read_shadow_map(0).expect("map");
-    let (light, params) = (frame.lights[0], frame.params);
-    let twin = Twin::new(&light, &params, &map);
+    let (light, params) = (frame.light_view(0).expect("light 0"), frame.params);
+    let twin = Twin::new(&light.light, &light.view, &params, &map);
     let chain = twin.moments();
     for radius in [1.0, 6.0, 40.0] {
         let level = renderer.read_moments_for_radius(0, radius).expect("moments");
         let (side, texels) = &chain.levels[level.level as usize];
-        assert_eq!(level.span_texels, light.moments_block << level.level);
+        assert_eq!(level.span_texels, light.view.moments_block << level.level);
         let mut max_diff = 0.0f32;
         for y in 0..level.side {
             for x in 0..level.side {

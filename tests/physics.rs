@@ -470,16 +470,17 @@ fn vsm_light_bleeding_appears_where_two_occluders_share_a_window_and_nowhere_els
         let frame = renderer.render(scene, &common::analysis_request(size, 0)).expect("render");
         let analysis = renderer.read_analysis().expect("analysis");
         let map = renderer.read_shadow_map(0).expect("map");
-        let bleeding = vsm_light_bleeding(&analysis, &map, &frame.lights[0], &frame.params);
-        (analysis, map, frame.lights[0], frame.params, bleeding)
+        let light = frame.light_view(0).expect("light 0");
+        let bleeding = vsm_light_bleeding(&analysis, &map, &light, &frame.params);
+        (analysis, map, light, frame.params, bleeding)
     };
     let both = common::scene("bleeding", &[]);
     let (analysis, map, light, params, bleeding) = bleeding_of(&mut renderer, &both);
-    let twin = shadowlab::shadow::Twin::new(&light, &params, &map);
+    let twin = shadowlab::shadow::Twin::new(&light.light, &light.view, &params, &map);
     // The height of the surface a map texel stores: its light-space point taken back to the world.
-    let world_from_clip = glam::Mat4::from_cols_array_2d(&light.clip_from_world).inverse();
+    let world_from_clip = glam::Mat4::from_cols_array_2d(&light.view.clip_from_world).inverse();
     let height_of = |[x, y]: [u32; 2], z: f32| {
-        let uv = (glam::Vec2::new(x as f32, y as f32) + 0.5) / light.map_size_texels;
+        let uv = (glam::Vec2::new(x as f32, y as f32) + 0.5) / light.view.map_size_texels;
         world_from_clip.project_point3(Vec3::new(uv.x * 2.0 - 1.0, 1.0 - uv.y * 2.0, z)).y
     };
     let mut strong = 0;
@@ -491,7 +492,8 @@ fn vsm_light_bleeding_appears_where_two_occluders_share_a_window_and_nowhere_els
         // Every strongly bleeding window holds texels of both slabs.
         let position = Vec3::from_slice(&analysis.position[i][..3]);
         let normal = Vec3::from_slice(&analysis.normal[i][..3]);
-        let coord = shadowlab::shadow::light_space_lookup(&light, &params, position, normal);
+        let coord =
+            shadowlab::shadow::light_space_lookup(&light.light, &light.view, &params, position, normal);
         let (mut high, mut wide) = (0.0, 0.0);
         twin.for_each_footprint_depth(&coord, params.radius_texels, |texel, z, w| {
             match height_of(texel, z) {

@@ -2,7 +2,7 @@
 //! same size in WGSL as in Rust.
 
 use shadowlab::render::shaders;
-use shadowlab::shadow::{LightGpu, ShadowParamsGpu};
+use shadowlab::shadow::{LightGpu, LightViewGpu, ShadowParamsGpu, ShadowViewGpu};
 
 fn validate(source: &shaders::ShaderSource) -> (naga::Module, naga::valid::ModuleInfo) {
     let module = naga::front::wgsl::parse_str(&source.source)
@@ -36,6 +36,9 @@ fn struct_size(module: &naga::Module, name: &str) -> u32 {
 fn gpu_structs_match_their_rust_mirrors() {
     let (module, _) = validate(&shaders::camera());
     assert_eq!(struct_size(&module, "LightGpu") as usize, std::mem::size_of::<LightGpu>());
+    assert_eq!(struct_size(&module, "ShadowViewGpu") as usize, std::mem::size_of::<ShadowViewGpu>());
+    let (reference, _) = validate(&shaders::reference());
+    assert_eq!(struct_size(&reference, "LightViewGpu") as usize, std::mem::size_of::<LightViewGpu>());
     assert_eq!(struct_size(&module, "ShadowParamsGpu") as usize, std::mem::size_of::<ShadowParamsGpu>());
     assert_eq!(struct_size(&module, "FrameGpu"), 112);
     assert_eq!(struct_size(&module, "ObjectGpu"), 160);
@@ -105,11 +108,11 @@ fn every_technique_is_dispatched_and_an_unknown_id_is_visible_on_both_sides() {
     // The twin: every technique gives a visibility, an unknown id the impossible one.
     let scene = shadowlab::scene::load_scene(&shadowlab::shipped_path("assets/scenes/games202.toml"), &[])
         .expect("the scene");
-    let light = LightGpu::new(&scene.lights[0], 0.0, 0, 64);
+    let light = LightViewGpu::single(&scene.lights[0], 0.0, 64);
     let map = DepthImage { size: 64, depth_ndc: vec![1.0; 64 * 64] };
     let visibility_of = |technique: u32| {
         let params = ShadowParamsGpu { technique, ..ShadowParamsGpu::new(&scene.shadow) };
-        let mut twin = Twin::new(&light, &params, &map);
+        let mut twin = Twin::new(&light.light, &light.view, &params, &map);
         let coord = twin.light_space_lookup(glam::Vec3::ZERO, glam::Vec3::Y);
         twin.shadow_visibility(&coord, 0).visibility
     };

@@ -10,7 +10,7 @@ use glam::{Vec2, Vec3};
 use super::{DiagramInputs, LightTopView};
 use crate::probe::LightProbe;
 use crate::scene::{BiasMode, LightKind, LightSize, Scene, Technique};
-use crate::shadow::{self, LightGpu, ShadowParamsGpu, kernels};
+use crate::shadow::{self, LightViewGpu, ShadowParamsGpu, kernels};
 
 /// Objects flatter than this fraction of their width are receivers (floors), not drawn in the
 /// top view: a floor would be one disc covering the whole picture.
@@ -139,18 +139,19 @@ pub fn inputs_from_scene(
             out.penumbra_width_world = 0.0;
             // The twin's formulas for a lit receiver there (no blockers: PCSS's filter is its
             // minimum), with the light and parameters a render of this scene would use.
-            let light_gpu = LightGpu::new(light, time_s, 0, light.shadow_map_size.max(1));
+            let light_gpu = LightViewGpu::single(light, time_s, light.shadow_map_size.max(1));
             let params = ShadowParamsGpu::new(shadow);
             let no_blockers =
                 shadow::Penumbra { width_world: 0.0, filter_radius_texels: params.min_filter_radius_texels };
             out.filter_radius_texels = shadow::filter_radius_texels(&params, Some(&no_blockers));
             out.search_radius_texels = if searches_blockers(shadow.technique) {
-                shadow::blocker_search_radius_uv(&light_gpu, &params, d) * map
+                shadow::blocker_search_radius_uv(&light_gpu.light, &light_gpu.view, &params, d) * map
             } else {
                 0.0
             };
             let coord = shadow::ShadowCoord { depth_linear: d, n_dot_l, ..Default::default() };
-            out.bias_ndc = shadow::receiver_bias_ndc(&light_gpu, &params, &coord, out.filter_radius_texels);
+            out.bias_ndc =
+                shadow::receiver_bias_ndc(&light_gpu.view, &params, &coord, out.filter_radius_texels);
             let seed = kernels::pixel_seed((0, 0), shadow.noise_seed, false);
             out.pcf_samples = match shadow.technique {
                 Technique::None | Technique::Hard | Technique::Vsm | Technique::Vssm => vec![[0.0, 0.0]],
@@ -276,6 +277,7 @@ normal_offset_texels = 0.5
         let r = 4.0 / 1024.0;
         LightProbe {
             light: 0,
+            shadow_view: 0,
             shadow_map_uv: uv,
             shadow_map_texel: [512, 512],
             inside_light_frustum: true,

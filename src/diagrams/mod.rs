@@ -312,9 +312,9 @@ fn planes(inputs: &DiagramInputs) -> (f32, f32) {
     (near, far)
 }
 
-/// The light as the twin's formulas take it, from the diagram's numbers made safe to draw
-/// (finite, near > 0, far > near, a map at least one texel wide).
-pub(crate) fn light_gpu(inputs: &DiagramInputs) -> crate::shadow::LightGpu {
+/// The light and its view as the twin's formulas take them, from the diagram's numbers made safe
+/// to draw (finite, near > 0, far > near, a map at least one texel wide).
+pub(crate) fn light_gpu(inputs: &DiagramInputs) -> crate::shadow::LightViewGpu {
     let (near, far) = planes(inputs);
     let width = style::fin(inputs.frustum_width_world, 200.0).abs().max(1e-6);
     let (size_model, light_width_world, tan_half_angle) = match inputs.light_angular_diameter_deg {
@@ -324,10 +324,15 @@ pub(crate) fn light_gpu(inputs: &DiagramInputs) -> crate::shadow::LightGpu {
         }
         None => (0, style::fin(inputs.light_width_world.unwrap_or(0.0), 0.0).abs().min(1e9), 0.0),
     };
-    crate::shadow::LightGpu {
+    let light = crate::shadow::LightGpu {
+        directional: u32::from(inputs.orthographic),
         size_model,
         light_width_world,
         tan_half_angle,
+        view_count: 1,
+        ..bytemuck::Zeroable::zeroed()
+    };
+    let view = crate::shadow::ShadowViewGpu {
         near,
         far,
         frustum_width_world: width,
@@ -336,15 +341,17 @@ pub(crate) fn light_gpu(inputs: &DiagramInputs) -> crate::shadow::LightGpu {
         orthographic: u32::from(inputs.orthographic),
         map_size_texels: inputs.shadow_map_size_texels.max(1) as f32,
         atlas_scale: 1.0,
+        moments_block: 1,
         ..bytemuck::Zeroable::zeroed()
-    }
+    };
+    crate::shadow::LightViewGpu { light, view }
 }
 
 /// NDC depth in [0, 1] (wgpu range) of linear depth `d` for the light described by `inputs`.
 fn ndc_from_linear(inputs: &DiagramInputs, d: f32) -> f32 {
     let (near, far) = planes(inputs);
     let d = style::fin(d, far).clamp(near * 1e-3, 1e12);
-    style::fin(crate::shadow::depth_ndc_from_linear(&light_gpu(inputs), d), 1.0)
+    style::fin(crate::shadow::depth_ndc_from_linear(&light_gpu(inputs).view, d), 1.0)
 }
 
 /// World length of the NDC bias at linear depth `d` (exact for orthographic; the local slope of
@@ -356,13 +363,13 @@ fn bias_world(inputs: &DiagramInputs, d: f32) -> f32 {
 /// World width of one shadow-map texel at linear depth `d` (the twin's `texel_world_at`).
 fn texel_world(inputs: &DiagramInputs, d: f32) -> f32 {
     let (near, _) = planes(inputs);
-    crate::shadow::texel_world_at(&light_gpu(inputs), style::fin(d, near).abs())
+    crate::shadow::texel_world_at(&light_gpu(inputs).view, style::fin(d, near).abs())
 }
 
 /// NDC depth per world unit at linear depth `d` (constant for orthographic), within the planes.
 fn ndc_per_world(inputs: &DiagramInputs, d: f32) -> f32 {
     let (near, far) = planes(inputs);
-    crate::shadow::ndc_per_world(&light_gpu(inputs), style::fin(d, near).clamp(near, far))
+    crate::shadow::ndc_per_world(&light_gpu(inputs).view, style::fin(d, near).clamp(near, far))
 }
 
 /// Draws `kind` from `inputs` with labels in `lang` onto a new `width_px` x `height_px`

@@ -43,8 +43,10 @@ fn numbers(inp: &DiagramInputs) -> Numbers {
     // The twin's similar triangles (search region and penumbra), unscaled and unclamped.
     let light = super::light_gpu(inp);
     let params = ShadowParamsGpu { search_radius_scale: 1.0, ..bytemuck::Zeroable::zeroed() };
-    let w_pen = shadow::estimate_penumbra(&light, &params, d_r, d_b).width_world;
-    let w_search = 2.0 * shadow::blocker_search_radius_uv(&light, &params, d_r) * light.frustum_width_world;
+    let (view, light) = (light.view, light.light);
+    let w_pen = shadow::estimate_penumbra(&light, &view, &params, d_r, d_b).width_world;
+    let w_search =
+        2.0 * shadow::blocker_search_radius_uv(&light, &view, &params, d_r) * view.frustum_width_world;
     let top_w = match theta {
         Some(t) => d_b * 2.0 * (t * 0.5).tan(),
         None => w_light,

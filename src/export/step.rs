@@ -197,12 +197,12 @@ pub fn render_step(
         if let Some(reference) = &reference {
             frame.mean_abs_error = Some(views::mean_abs_error(&analysis, reference));
         }
-        let light_gpu = rendered_frame.lights.get(light).copied();
+        let light_view = rendered_frame.first_view_of(light).map(|(_, view)| *view);
         let (image, legends) = views::overlays::compose(
             lang,
             &analysis_overlays,
             &analysis,
-            light_gpu.as_ref(),
+            light_view.as_ref(),
             reference.as_deref(),
         );
         views::overlays::blend_onto(&mut camera, &image);
@@ -210,25 +210,24 @@ pub fn render_step(
         camera_summary = Some(lines.collect::<Vec<_>>().join("\n")).filter(|s| !s.is_empty());
     }
     if has_lights && overlays.contains(&Overlay::LightFrustum) {
-        let lights = renderer.last_frame().map(|f| f.lights.clone()).unwrap_or_default();
+        let shadow_views = renderer.last_frame().map(|f| f.views.clone()).unwrap_or_default();
         let aspect = size.0 as f32 / size.1.max(1) as f32;
         views::overlays::draw_light_frusta(
             &mut camera,
             &scene.camera.clip_from_world(aspect),
-            &lights,
+            &shadow_views,
             light,
         );
         let legend = tr(lang, "frusta: yellow = this light, blue = the others").to_string();
         camera_summary = Some(camera_summary.map_or(legend.clone(), |s| format!("{s}\n{legend}")));
     }
     let shadow_map = if has_lights {
-        let map = renderer.read_shadow_map(light)?;
-        let light_gpu = renderer
+        let (index, shadow_view) = renderer
             .last_frame()
-            .and_then(|f| f.lights.get(light))
-            .copied()
+            .and_then(|f| f.first_view_of(light).map(|(i, v)| (i, *v)))
             .ok_or_else(|| RenderError::Usage(format!("light {light} was not rendered")))?;
-        Some(views::shadow_map_image(&map, &light_gpu))
+        let map = renderer.read_shadow_map(index)?;
+        Some(views::shadow_map_image(&map, &shadow_view))
     } else {
         None
     };

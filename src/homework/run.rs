@@ -16,7 +16,7 @@ use super::{
 use crate::i18n::Lang;
 use crate::render::{Analysis, Batches, FrameRequest, GpuWait, GroundTruth, Readback, Renderer};
 use crate::scene::{LightSize, Scene, Technique};
-use crate::shadow::{DepthImage, LightGpu};
+use crate::shadow::{DepthImage, ShadowViewGpu};
 use glam::Vec3;
 
 /// A check under way.
@@ -68,8 +68,8 @@ struct Shadowlab {
     picture: image::RgbaImage,
     analysis: Analysis,
     map: DepthImage,
-    /// The light as the GPU had it (where the twin projects the receivers).
-    light: LightGpu,
+    /// The light's shadow view as the GPU had it (where the twin projects the receivers).
+    view: ShadowViewGpu,
 }
 
 /// shadowlab's technique for the function `main` used (1 useShadowMap, 2 PCF, 3 PCSS).
@@ -153,13 +153,13 @@ impl CheckRun {
                             return Ok(None);
                         }
                     }
-                    let light = renderer
+                    let view = renderer
                         .last_frame()
-                        .and_then(|f| f.lights.get(self.request.light).copied())
+                        .and_then(|f| f.first_view_of(self.request.light).map(|(_, v)| *v))
                         .ok_or_else(|| HomeworkGpuError("shadowlab's frame has no light".into()))?;
                     let truth =
                         renderer.start_ground_truth(&compared.scene, self.request.light, Batches::whole())?;
-                    let shadowlab = Shadowlab { picture, analysis, map, light };
+                    let shadowlab = Shadowlab { picture, analysis, map, view };
                     (Stage::GroundTruth(compared, Box::new(shadowlab), Box::new(truth)), None)
                 }
             }
@@ -243,11 +243,14 @@ impl CheckRun {
             timestamps: false,
             only_pixel: None,
         };
-        renderer.render(scene, &frame)?;
+        let rendered = renderer.render(scene, &frame)?;
+        let (view, _) = rendered
+            .first_view_of(self.request.light)
+            .ok_or_else(|| HomeworkGpuError("shadowlab's frame has no light".into()))?;
         Ok(renderer
             .color_readback()?
             .zip(renderer.analysis_readback()?)
-            .zip(renderer.shadow_map_readback(self.request.light)?))
+            .zip(renderer.shadow_map_readback(view)?))
     }
 
     /// The figures and findings, from everything rendered.
@@ -274,7 +277,7 @@ impl CheckRun {
         let object_names: Vec<String> = self.scene.objects.iter().map(|o| o.name.clone()).collect();
         let map_size = scene.lights[self.request.light].shadow_map_size;
         let white_map_change = super::findings::white_map_change(&student, &white);
-        let twin = TwinInputs { map: &shadowlab.map, light: &shadowlab.light, normals: &normals };
+        let twin = TwinInputs { map: &shadowlab.map, view: &shadowlab.view, normals: &normals };
         let evidence = |student| Evidence {
             student,
             lossless: &lossless,

@@ -404,6 +404,7 @@ mod tests {
     fn light_probe(light: usize, visibility: f32) -> LightProbe {
         LightProbe {
             light,
+            shadow_view: light,
             shadow_map_uv: [0.25, 0.75],
             shadow_map_texel: [512, 1536],
             inside_light_frustum: true,

@@ -5,7 +5,7 @@
 //! A published comparison averages 1024 hard shadows [Guennebaud-2006].
 
 use crate::scene::{BiasMode, DepthStorage, Light, LightKind, LightSize, ShadowSettings, Technique};
-use crate::shadow::LightGpu;
+use crate::shadow::{LightGpu, LightViewGpu, ShadowViewGpu};
 use glam::{Mat4, Vec2, Vec3};
 
 const GOLDEN_ANGLE: f32 = 2.399_963_2;
@@ -26,9 +26,9 @@ fn light_basis(light: &Light, t_s: f32) -> (Vec3, Vec3, Vec3) {
     (forward, right, right.cross(forward))
 }
 
-/// The hard-shadow lights whose average is the ground truth, as the GPU reads them
-/// (layer 0 of a map of the light's own size). A light of size 0 gives itself.
-pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightGpu> {
+/// The hard-shadow lights whose average is the ground truth, each with its one view as the GPU
+/// reads it (layer 0 of a map of the light's own size). A light of size 0 gives itself.
+pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightViewGpu> {
     let size = light.shadow_map_size;
     let (forward, right, up) = light_basis(light, t_s);
     let position = light.position_at(t_s);
@@ -50,7 +50,10 @@ pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightGpu> {
                 let p = disk_point(k, count) * (0.5 * width_world);
                 let eye = position + right * p.x + up * p.y;
                 let clip = light.clip_from_view() * Mat4::look_to_rh(eye, forward, up);
-                LightGpu::with_transform(light, clip, eye, forward, 0, size)
+                LightViewGpu {
+                    light: LightGpu::new(light, eye, forward, 0, 1),
+                    view: ShadowViewGpu::new(light, clip, 0, size),
+                }
             })
             .collect(),
         (_, Some(angular_diameter_deg)) if angular_diameter_deg > 0.0 && count > 1 => {
@@ -62,11 +65,14 @@ pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightGpu> {
                     let eye = light.target - direction * distance;
                     let sample_up = crate::scene::safe_up_for(direction, up);
                     let clip = light.clip_from_view() * Mat4::look_to_rh(eye, direction, sample_up);
-                    LightGpu::with_transform(light, clip, eye, direction, 0, size)
+                    LightViewGpu {
+                        light: LightGpu::new(light, eye, direction, 0, 1),
+                        view: ShadowViewGpu::new(light, clip, 0, size),
+                    }
                 })
                 .collect()
         }
-        _ => vec![LightGpu::new(light, t_s, 0, size)],
+        _ => vec![LightViewGpu::single(light, t_s, size)],
     }
 }
 

@@ -150,8 +150,8 @@ impl Renderer {
         }))
     }
 
-    /// Level `level` of light `index`'s VSM moments as the last frame left them: the side of
-    /// the light's part in texels, and (mean depth, mean squared depth) per texel, NDC, rows
+    /// Level `level` of shadow view `index`'s VSM moments as the last frame left them: the side of
+    /// the view's part in texels, and (mean depth, mean squared depth) per texel, NDC, rows
     /// first. Each texel covers `moments_block << level` map texels per side.
     pub fn read_moments(&self, index: usize, level: u32) -> Result<(u32, Vec<[f32; 2]>), RenderError> {
         self.moments_readback(index, level)?.wait(&self.device)
@@ -170,9 +170,9 @@ impl Renderer {
         let moments = moments.ok_or_else(|| {
             RenderError::Usage("the moments exist for the vsm and vssm techniques only".into())
         })?;
-        let lights = self.last_frame.as_ref().map_or(&[][..], |f| &f.lights[..]);
-        let light = lights.get(index).ok_or_else(|| {
-            RenderError::Usage(format!("light {index} does not exist (the scene has {})", lights.len()))
+        let views = self.last_frame.as_ref().map_or(&[][..], |f| &f.views[..]);
+        let view = views.get(index).ok_or_else(|| {
+            RenderError::Usage(format!("shadow view {index} does not exist (the frame has {})", views.len()))
         })?;
         let levels = moments.texture.mip_level_count();
         if level >= levels {
@@ -182,10 +182,10 @@ impl Renderer {
             )));
         }
         let level_side = (moments.texture.width() >> level).max(1);
-        let side = (light.map_size_texels as u32).div_ceil(moments.block << level).clamp(1, level_side);
+        let side = (view.map_size_texels as u32).div_ceil(moments.block << level).clamp(1, level_side);
         let region = readback::Region {
             mip_level: level,
-            ..readback::Region::whole(index as u32, (side, side), 8, wgpu::TextureAspect::All)
+            ..readback::Region::whole(view.layer, (side, side), 8, wgpu::TextureAspect::All)
         };
         Ok(Readback::texture(&self.device, &self.queue, &moments.texture, region, move |mapped| {
             let mut texels = Vec::with_capacity((side * side) as usize);

@@ -1,7 +1,7 @@
 //! What a render is asked for and what it drew: the request, and the lights and parameters
 //! exactly as the GPU saw them (everything downstream of a render reads these, never the scene).
 
-use crate::shadow::{LightGpu, ShadowParamsGpu};
+use crate::shadow::{LightGpu, LightViewGpu, ShadowParamsGpu, ShadowViewGpu};
 
 /// What to render for one frame.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -34,12 +34,14 @@ impl Default for FrameRequest {
     }
 }
 
-/// What one `render` drew: the request, and the lights and parameters exactly as the GPU saw
-/// them (the CPU twin and the probe use these).
+/// What one `render` drew: the request, and the lights, their shadow views and the parameters
+/// exactly as the GPU saw them (the CPU twin and the probe use these).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Frame {
     pub request: FrameRequest,
     pub lights: Vec<LightGpu>,
+    /// Every light's shadow views (`LightGpu::first_view` and `view_count` index them).
+    pub views: Vec<ShadowViewGpu>,
     pub params: ShadowParamsGpu,
     /// The still textured objects' albedo came from the view's cache (the camera, the size and
     /// those objects were as in the frame before), not from sampling their textures again.
@@ -48,4 +50,19 @@ pub struct Frame {
     pub shadow_maps_kept: bool,
     /// The VSM moments were rebuilt this frame.
     pub moments_built: bool,
+}
+
+impl Frame {
+    /// The shadow view a light's map pictures and probe read first (each light owns at least one),
+    /// with its index in `views`.
+    pub fn first_view_of(&self, light: usize) -> Option<(usize, &ShadowViewGpu)> {
+        let index = self.lights.get(light)?.first_view as usize;
+        self.views.get(index).map(|view| (index, view))
+    }
+
+    /// Light `light` with its first view: what the twin of one of its lookups needs.
+    pub fn light_view(&self, light: usize) -> Option<LightViewGpu> {
+        let (_, view) = self.first_view_of(light)?;
+        Some(LightViewGpu { light: self.lights[light], view: *view })
+    }
 }

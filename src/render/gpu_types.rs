@@ -27,12 +27,6 @@ pub struct ObjectGpu {
 
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable)]
-pub struct ShadowViewGpu {
-    pub clip_from_world: [[f32; 4]; 4],
-}
-
-#[repr(C)]
-#[derive(Clone, Copy, Debug, Pod, Zeroable)]
 pub struct ReferenceInfoGpu {
     pub width: u32,
     pub height: u32,
@@ -42,7 +36,6 @@ pub struct ReferenceInfoGpu {
 
 const _: () = assert!(std::mem::size_of::<FrameGpu>() == 112);
 const _: () = assert!(std::mem::size_of::<ObjectGpu>() == 160);
-const _: () = assert!(std::mem::size_of::<ShadowViewGpu>() == 64);
 const _: () = assert!(std::mem::size_of::<ReferenceInfoGpu>() == 16);
 
 /// Uniform buffers indexed with dynamic offsets use this stride (wgpu's minimum alignment limit).

@@ -17,7 +17,8 @@ mod shadow_pass;
 mod targets;
 mod timing;
 
-use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
+use crate::shadow::gpu::MAX_SHADOW_VIEWS;
+use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu, ShadowViewGpu, frame_lights, views_needed};
 pub use analysis::{Analysis, AnalysisPixel, MomentsLevel};
 pub(crate) use context::scope_error;
 #[cfg(not(target_arch = "wasm32"))]
@@ -32,7 +33,7 @@ pub use timing::PassTimes;
 
 use crate::scene::{MAX_LIGHTS, Scene, ShadowSettings, Technique};
 use crate::shadow::kernels::{MAX_TAPS, filter_taps, kernel_table};
-use gpu_types::{DYNAMIC_STRIDE, FrameGpu, ShadowViewGpu};
+use gpu_types::{DYNAMIC_STRIDE, FrameGpu};
 use moments::Moments;
 use pipelines::{CameraOutputs, CameraPipelineKey, Layouts, Pipelines, ShadowPipelineKey};
 use scene_gpu::SceneGpu;
@@ -61,6 +62,8 @@ pub struct Renderer {
     pipelines: Pipelines,
     frame_buffer: wgpu::Buffer,
     lights_buffer: wgpu::Buffer,
+    /// Every light's shadow views, as the camera pass indexes them.
+    views_buffer: wgpu::Buffer,
     params_buffer: wgpu::Buffer,
     shadow_view_buffer: wgpu::Buffer,
     /// Unit-disk patterns, unrotated: tap i of the filter in xy, of the blocker search in zw.
@@ -124,7 +127,13 @@ impl Renderer {
             uniform_buffer(device, "lights", (std::mem::size_of::<LightGpu>() * MAX_LIGHTS) as u64);
         let params_buffer =
             uniform_buffer(device, "shadow params", std::mem::size_of::<ShadowParamsGpu>() as u64);
-        let shadow_view_buffer = uniform_buffer(device, "shadow views", DYNAMIC_STRIDE * MAX_LIGHTS as u64);
+        let views_buffer = uniform_buffer(
+            device,
+            "shadow views",
+            (std::mem::size_of::<ShadowViewGpu>() * MAX_SHADOW_VIEWS) as u64,
+        );
+        let shadow_view_buffer =
+            uniform_buffer(device, "shadow pass views", DYNAMIC_STRIDE * MAX_SHADOW_VIEWS as u64);
         let kernel_table_buffer = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("kernel table"),
             size: u64::from(MAX_TAPS) * 16,
@@ -151,6 +160,7 @@ impl Renderer {
             pipelines,
             frame_buffer,
             lights_buffer,
+            views_buffer,
             params_buffer,
             shadow_view_buffer,
             kernel_table_buffer,
@@ -242,7 +252,7 @@ impl Renderer {
                 scene.lights.len()
             )));
         }
-        let (lights, params) = self.prepare(scene, request);
+        let (lights, views, params) = self.prepare(scene, request);
         let (albedo_from_cache, fill_albedo_cache) = self.plan_albedo_cache(scene, request);
         let unprepared = || RenderError::Usage("the renderer's resources were not made".into());
         let scene_gpu = self.scene_gpu.as_ref().ok_or_else(unprepared)?;
@@ -258,10 +268,10 @@ impl Renderer {
         };
         let shadow_pipeline = self.pipelines.shadow(&self.device, key).clone();
         let maps_key = ShadowMapsKey {
-            lights: (lights.iter().zip(&scene.lights))
-                .map(|(gpu, light)| {
-                    let matrix: [f32; 16] = bytemuck::cast(gpu.clip_from_world);
-                    (matrix.map(f32::to_bits), light.shadow_map_size)
+            views: (views.iter())
+                .map(|view| {
+                    let matrix: [f32; 16] = bytemuck::cast(view.clip_from_world);
+                    (matrix.map(f32::to_bits), view.map_size_texels as u32)
                 })
                 .collect(),
             object_transforms: SceneGpu::object_transforms(scene, request.time_s),
@@ -281,7 +291,7 @@ impl Renderer {
         let cheap = matches!(scene.shadow.technique, Technique::None | Technique::Hard);
         let depth_prepass = !(cheap && request.final_color && request.only_pixel.is_none());
         let mut pipeline = |outputs, from_cache| {
-            let key = CameraPipelineKey::new(&params, &lights, outputs, from_cache);
+            let key = CameraPipelineKey::new(&params, &lights, &views, outputs, from_cache);
             let key = CameraPipelineKey { after_prepass: depth_prepass, ..key };
             self.pipelines.camera(&self.device, key).clone()
         };
@@ -296,7 +306,7 @@ impl Renderer {
         if !shadow_maps_kept {
             shadow_pass::encode(
                 &mut encoder,
-                scene,
+                &views,
                 scene_gpu,
                 maps,
                 &shadow_pipeline,
@@ -335,8 +345,15 @@ impl Renderer {
         if let Some(maps) = &mut self.shadow_maps {
             maps.drawn_for = Some(maps_key);
         }
-        let frame =
-            Frame { request: *request, lights, params, albedo_from_cache, shadow_maps_kept, moments_built };
+        let frame = Frame {
+            request: *request,
+            lights,
+            views,
+            params,
+            albedo_from_cache,
+            shadow_maps_kept,
+            moments_built,
+        };
         self.last_frame = Some(frame.clone());
         Ok(frame)
     }
@@ -389,7 +406,7 @@ impl Renderer {
         }))
     }
 
-    /// The shadow map of light `index` as rendered in the last frame.
+    /// The map of shadow view `index` (of the last frame's `views`) as rendered in that frame.
     pub fn read_shadow_map(&self, index: usize) -> Result<DepthImage, RenderError> {
         self.shadow_map_readback(index)?.wait(&self.device)
     }
@@ -398,15 +415,15 @@ impl Renderer {
     pub fn shadow_map_readback(&self, index: usize) -> Result<Readback<DepthImage>, RenderError> {
         let maps =
             self.shadow_maps.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
-        let lights = self.last_frame.as_ref().map_or(&[][..], |f| &f.lights[..]);
-        let light = lights.get(index).ok_or_else(|| {
-            RenderError::Usage(format!("light {index} does not exist (the scene has {})", lights.len()))
+        let views = self.last_frame.as_ref().map_or(&[][..], |f| &f.views[..]);
+        let view = views.get(index).ok_or_else(|| {
+            RenderError::Usage(format!("shadow view {index} does not exist (the frame has {})", views.len()))
         })?;
-        // A light with a smaller map uses the top-left corner of its layer. Depth textures are
+        // A view with a smaller map uses the top-left corner of its layer. Depth textures are
         // copied whole (wgpu allows no partial depth copy), the corner is kept.
-        let size = light.map_size_texels as u32;
+        let size = view.map_size_texels as u32;
         let atlas = maps.atlas_size;
-        let region = readback::Region::whole(index as u32, (atlas, atlas), 4, wgpu::TextureAspect::DepthOnly);
+        let region = readback::Region::whole(view.layer, (atlas, atlas), 4, wgpu::TextureAspect::DepthOnly);
         Ok(Readback::texture(&self.device, &self.queue, &maps.texture, region, move |mapped| {
             let mut depth_ndc = Vec::with_capacity((size * size) as usize);
             for row in mapped.rows().take(size as usize) {

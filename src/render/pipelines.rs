@@ -4,7 +4,7 @@
 use super::moments::MomentsPipelines;
 use super::shaders;
 use crate::scene::Vertex;
-use crate::shadow::{LightGpu, ShadowParamsGpu};
+use crate::shadow::{LightGpu, ShadowParamsGpu, ShadowViewGpu};
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicU64, Ordering};
 
@@ -68,12 +68,12 @@ fn sampler_entry(
 }
 
 /// Group 1 of the camera and reference shaders: light(s), params, shadow maps, compare sampler,
-/// kernel table, and for the camera (`with_moments`) the maps' VSM moments.
+/// kernel table, and for the camera (`camera_inputs`) the maps' VSM moments and the shadow views.
 fn shadow_inputs_layout(
     device: &wgpu::Device,
     label: &str,
     dynamic_light: bool,
-    with_moments: bool,
+    camera_inputs: bool,
 ) -> wgpu::BindGroupLayout {
     let all = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
     let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
@@ -94,8 +94,9 @@ fn shadow_inputs_layout(
             count: None,
         },
         moments,
+        uniform_entry(6, all, false),
     ];
-    let used = if with_moments { &entries[..] } else { &entries[..5] };
+    let used = if camera_inputs { &entries[..] } else { &entries[..5] };
     device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor { label: Some(label), entries: used })
 }
 
@@ -209,14 +210,18 @@ impl CameraPipelineKey {
     pub fn new(
         params: &ShadowParamsGpu,
         lights: &[LightGpu],
+        views: &[ShadowViewGpu],
         outputs: CameraOutputs,
         albedo_from_cache: bool,
     ) -> Self {
-        // 1 or 2 where every light agrees (SPEC_ALL_*), 0 where they differ or there are none.
-        let shared = |value: fn(&LightGpu) -> u32| match lights.split_first() {
-            Some((first, rest)) if rest.iter().all(|l| value(l) == value(first)) => value(first) + 1,
-            _ => 0,
-        };
+        // 1 or 2 where every light (or view) agrees (SPEC_ALL_*), 0 where they differ or there
+        // are none.
+        fn shared<T>(items: &[T], value: fn(&T) -> u32) -> u32 {
+            match items.split_first() {
+                Some((first, rest)) if rest.iter().all(|l| value(l) == value(first)) => value(first) + 1,
+                _ => 0,
+            }
+        }
         Self {
             technique: params.technique,
             kernel: params.kernel,
@@ -224,9 +229,10 @@ impl CameraPipelineKey {
             clamp_outside: params.clamp_outside,
             depth_storage: params.depth_storage,
             // SPEC_ALL_ORTHOGRAPHIC = 1, SPEC_ALL_PERSPECTIVE = 2.
-            projection: shared(|l| 1 - l.orthographic.min(1)),
+            // A directional light's views are orthographic, every other light's perspective.
+            projection: shared(views, |v| 1 - v.orthographic.min(1)),
             // SPEC_ALL_WIDTH = 1, SPEC_ALL_ANGULAR = 2.
-            size_model: shared(|l| l.size_model.min(1)),
+            size_model: shared(lights, |l| l.size_model.min(1)),
             light_count: lights.len() as u32,
             outputs,
             albedo_from_cache: albedo_from_cache && outputs != CameraOutputs::Analysis,
@@ -376,9 +382,9 @@ impl Pipelines {
         // Build the default variants now, so that a device that cannot compile them fails here.
         let defaults = ShadowParamsGpu::new(&Default::default());
         for outputs in [CameraOutputs::Final, CameraOutputs::Analysis, CameraOutputs::FinalAndAnalysis] {
-            pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], outputs, false));
+            pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], &[], outputs, false));
         }
-        pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], CameraOutputs::Final, true));
+        pipelines.camera(device, CameraPipelineKey::new(&defaults, &[], &[], CameraOutputs::Final, true));
         pipelines
     }
 

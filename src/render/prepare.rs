@@ -31,13 +31,13 @@ impl Renderer {
         &mut self,
         scene: &Scene,
         request: &FrameRequest,
-    ) -> (Vec<LightGpu>, ShadowParamsGpu) {
+    ) -> (Vec<LightGpu>, Vec<ShadowViewGpu>, ShadowParamsGpu) {
         let device = &self.device;
         if !self.scene_gpu.as_ref().is_some_and(|s| s.matches(scene)) {
             self.scene_gpu = Some(SceneGpu::new(device, &self.queue, &self.layouts, scene));
         }
         let atlas_size = scene.lights.iter().map(|l| l.shadow_map_size).max().unwrap_or(256);
-        let layers = scene.lights.len().max(1) as u32;
+        let layers = views_needed(&scene.lights).max(1);
         let maps_changed =
             !self.shadow_maps.as_ref().is_some_and(|m| m.atlas_size == atlas_size && m.layers == layers);
         if maps_changed {
@@ -69,17 +69,19 @@ impl Renderer {
             self.spare_targets = self.targets.replace(targets);
         }
         let t = request.time_s;
-        let frame_lights: Vec<LightGpu> =
-            scene.lights.iter().enumerate().map(|(i, l)| LightGpu::new(l, t, i as u32, atlas_size)).collect();
+        let (frame_lights, frame_views) = frame_lights(&scene.lights, t, atlas_size);
         let mut lights = [bytemuck::Zeroable::zeroed(); MAX_LIGHTS];
         lights[..frame_lights.len()].copy_from_slice(&frame_lights);
         self.queue.write_buffer(&self.lights_buffer, 0, bytemuck::cast_slice(&lights));
-        for (i, light) in frame_lights.iter().enumerate() {
-            let view = ShadowViewGpu { clip_from_world: light.clip_from_world };
+        let mut views = [bytemuck::Zeroable::zeroed(); MAX_SHADOW_VIEWS];
+        views[..frame_views.len()].copy_from_slice(&frame_views);
+        self.queue.write_buffer(&self.views_buffer, 0, bytemuck::cast_slice(&views));
+        // The shadow pass binds one view at a time (a dynamic offset per view).
+        for (i, view) in frame_views.iter().enumerate() {
             self.queue.write_buffer(
                 &self.shadow_view_buffer,
                 i as u64 * DYNAMIC_STRIDE,
-                bytemuck::bytes_of(&view),
+                bytemuck::bytes_of(view),
             );
         }
         let params = ShadowParamsGpu::new(&scene.shadow);
@@ -98,7 +100,7 @@ impl Renderer {
         if let Some(scene_gpu) = &self.scene_gpu {
             scene_gpu.update(&self.queue, scene, t);
         }
-        (frame_lights, params)
+        (frame_lights, frame_views, params)
     }
 
     /// The filter's and the blocker search's patterns for these settings (what `kernel_offset`
@@ -119,7 +121,8 @@ impl Renderer {
     }
 
     /// Group 1 of the camera and reference shaders: light(s), parameters, maps, compare sampler,
-    /// kernel table, and the VSM moments where the layout has them (the camera's).
+    /// kernel table, and where the layout has them (the camera's) the VSM moments and the
+    /// lights' shadow views.
     pub(super) fn shadow_inputs_group(
         &self,
         layout: &wgpu::BindGroupLayout,
@@ -128,9 +131,11 @@ impl Renderer {
         maps: &ShadowMaps,
         moments: Option<&Moments>,
     ) -> wgpu::BindGroup {
-        let moments = moments.map(|m| wgpu::BindGroupEntry {
-            binding: 5,
-            resource: wgpu::BindingResource::TextureView(&m.view),
+        let moments = moments.map(|m| {
+            [
+                wgpu::BindGroupEntry { binding: 5, resource: wgpu::BindingResource::TextureView(&m.view) },
+                wgpu::BindGroupEntry { binding: 6, resource: self.views_buffer.as_entire_binding() },
+            ]
         });
         let entries: Vec<_> = [
             wgpu::BindGroupEntry { binding: 0, resource: lights },
@@ -146,7 +151,7 @@ impl Renderer {
             wgpu::BindGroupEntry { binding: 4, resource: self.kernel_table_buffer.as_entire_binding() },
         ]
         .into_iter()
-        .chain(moments)
+        .chain(moments.into_iter().flatten())
         .collect();
         self.device.create_bind_group(&wgpu::BindGroupDescriptor {
             label: Some("shadow inputs"),

@@ -3,14 +3,14 @@
 //! [`GroundTruth`] is one under way, a batch of samples at a time: a caller that cannot wait for
 //! the GPU (a browser's frame) submits a batch, returns, and collects its sums on a later call.
 
-use super::gpu_types::{DYNAMIC_STRIDE, ReferenceInfoGpu, ShadowViewGpu};
+use super::gpu_types::{DYNAMIC_STRIDE, ReferenceInfoGpu};
 use super::pipelines::ShadowPipelineKey;
 use super::readback::{self, GpuWait, Readback};
 use super::targets::ShadowMaps;
 use super::{RenderError, Renderer, shadow_view_group};
 use crate::reference;
 use crate::scene::Scene;
-use crate::shadow::{LightGpu, ShadowParamsGpu};
+use crate::shadow::{LightViewGpu, ShadowParamsGpu};
 
 /// Samples recorded per command buffer where only the finished average is read (keeps a
 /// submission's size bounded).
@@ -219,7 +219,7 @@ impl Renderer {
                 scene.lights.len()
             ))
         })?;
-        let samples: Vec<LightGpu> =
+        let samples: Vec<LightViewGpu> =
             reference::sample_lights(light, request.time_s, scene.shadow.reference_samples as usize);
         let device = self.device.clone();
         let (width, height) = request.size;
@@ -239,8 +239,7 @@ impl Renderer {
         for (i, sample) in samples.iter().enumerate() {
             let offset = i as u64 * DYNAMIC_STRIDE;
             self.queue.write_buffer(&light_buffer, offset, bytemuck::bytes_of(sample));
-            let view = ShadowViewGpu { clip_from_world: sample.clip_from_world };
-            self.queue.write_buffer(&view_buffer, offset, bytemuck::bytes_of(&view));
+            self.queue.write_buffer(&view_buffer, offset, bytemuck::bytes_of(&sample.view));
         }
         let accumulated = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("reference sum"),
@@ -286,7 +285,7 @@ impl Renderer {
             wgpu::BindingResource::Buffer(wgpu::BufferBinding {
                 buffer: &light_buffer,
                 offset: 0,
-                size: std::num::NonZeroU64::new(std::mem::size_of::<LightGpu>() as u64),
+                size: std::num::NonZeroU64::new(std::mem::size_of::<LightViewGpu>() as u64),
             }),
             &params,
             &maps,

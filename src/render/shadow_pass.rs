@@ -1,5 +1,5 @@
-//! Pass 1 (shaders/shadow_pass.wgsl): each light's depth from its own view, into one layer of
-//! the shadow-map array. Re-rendered whenever a light, an object or the shadow pipeline has
+//! Pass 1 (shaders/shadow_pass.wgsl): each shadow view's depth (a light owns one or more), into
+//! the view's layer of the shadow-map array. Re-rendered whenever a light, an object or the shadow pipeline has
 //! changed (every frame while lights orbit and objects spin; not while a slider that only the
 //! camera pass reads is dragged).
 
@@ -7,15 +7,15 @@ use super::gpu_types::DYNAMIC_STRIDE;
 use super::scene_gpu::SceneGpu;
 use super::targets::ShadowMaps;
 use super::timing::Timer;
-use crate::scene::Scene;
+use crate::shadow::ShadowViewGpu;
 
-/// Record one depth pass per light: clear to far (1.0), draw every object. `view_group` holds
-/// the lights' view matrices at DYNAMIC_STRIDE apart. The passes begin span 0 of `timer`, and
+/// Record one depth pass per shadow view: clear to far (1.0), draw every object. `view_group`
+/// holds the views at DYNAMIC_STRIDE apart, in the order of `views`. The passes begin span 0 of `timer`, and
 /// end it unless the VSM moments built from the maps do (`ends_span`).
 #[allow(clippy::too_many_arguments)]
 pub fn encode(
     encoder: &mut wgpu::CommandEncoder,
-    scene: &Scene,
+    views: &[ShadowViewGpu],
     scene_gpu: &SceneGpu,
     maps: &ShadowMaps,
     pipeline: &wgpu::RenderPipeline,
@@ -23,8 +23,11 @@ pub fn encode(
     timer: Option<&Timer>,
     ends_span: bool,
 ) {
-    let layers = scene.lights.len().max(1);
-    for layer in 0..layers {
+    // A frame without views still clears layer 0 (the shaders bind the array).
+    let passes = views.len().max(1);
+    for pass_index in 0..passes {
+        let view = views.get(pass_index);
+        let layer = view.map_or(0, |v| v.layer as usize);
         let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
             label: Some("shadow pass"),
             color_attachments: &[],
@@ -37,16 +40,15 @@ pub fn encode(
                 stencil_ops: None,
             }),
             timestamp_writes: timer
-                .and_then(|t| t.span_writes(0, layer == 0, ends_span && layer + 1 == layers)),
+                .and_then(|t| t.span_writes(0, pass_index == 0, ends_span && pass_index + 1 == passes)),
             occlusion_query_set: None,
             multiview_mask: None,
         });
-        // A scene without lights still clears its one layer (the shaders bind the array).
-        if let Some(light) = scene.lights.get(layer) {
-            let size = light.shadow_map_size as f32;
+        if let Some(view) = view {
+            let size = view.map_size_texels;
             pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
             pass.set_pipeline(pipeline);
-            pass.set_bind_group(0, view_group, &[(layer as u64 * DYNAMIC_STRIDE) as u32]);
+            pass.set_bind_group(0, view_group, &[(pass_index as u64 * DYNAMIC_STRIDE) as u32]);
             scene_gpu.draw(&mut pass, 1);
         }
     }

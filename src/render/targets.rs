@@ -146,11 +146,11 @@ pub struct ShadowMaps {
     pub layer_views: Vec<wgpu::TextureView>,
 }
 
-/// Everything the shadow maps depend on, as bits: each light's view and map size, every
+/// Everything the shadow maps depend on, as bits: each shadow view's matrix and map size, every
 /// object's transform, the uploaded meshes and the shadow pipeline (hardware bias, culling).
 #[derive(Clone, Debug, PartialEq)]
 pub struct ShadowMapsKey {
-    pub lights: Vec<([u32; 16], u32)>,
+    pub views: Vec<([u32; 16], u32)>,
     pub object_transforms: Vec<[u32; 16]>,
     pub scene_upload: u64,
     pub pipeline: super::pipelines::ShadowPipelineKey,

@@ -27,9 +27,13 @@ pub const KERNEL_GRID: u32 = 3;
 pub const KERNEL_HARDWARE: u32 = 4;
 pub const SIZE_MODEL_WIDTH: u32 = 0;
 pub const SIZE_MODEL_ANGULAR: u32 = 1;
+/// Shadow views of all lights together (a light owns one or more), the size of the shaders' array.
+pub const MAX_SHADOW_VIEWS: usize = 24;
 
 /// Every shared constant by its WGSL name, for the test that holds shaders/common.wgsl to them.
-pub const SHARED_CONSTANTS: [(&str, u32); 20] = [
+pub const SHARED_CONSTANTS: [(&str, u32); 22] = [
+    ("MAX_LIGHTS", crate::scene::MAX_LIGHTS as u32),
+    ("MAX_SHADOW_VIEWS", MAX_SHADOW_VIEWS as u32),
     ("TECHNIQUE_HARD", TECHNIQUE_HARD),
     ("TECHNIQUE_PCF", TECHNIQUE_PCF),
     ("TECHNIQUE_PCSS", TECHNIQUE_PCSS),
@@ -101,26 +105,58 @@ pub fn kernel_from_id(id: u32) -> Kernel {
     }
 }
 
+/// A light as all of its shadow views share it: where it is, its colour, its size (the PCSS
+/// light), and which of the frame's shadow views are its own.
 #[repr(C)]
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct LightGpu {
-    pub clip_from_world: [[f32; 4]; 4],
     pub position: [f32; 4],
     pub direction: [f32; 4],
     pub color: [f32; 4],
-    pub near: f32,
-    pub far: f32,
-    pub frustum_width_world: f32,
-    pub tan_half_fov: f32,
-    pub orthographic: u32,
+    /// 1: a sun (parallel rays along `direction`); 0: rays from `position`.
+    pub directional: u32,
     pub size_model: u32,
     pub light_width_world: f32,
     pub tan_half_angle: f32,
+    /// Its shadow views are the frame's `first_view .. first_view + view_count`.
+    pub first_view: u32,
+    pub view_count: u32,
+    pub _pad: [u32; 2],
+}
+
+/// One depth map a light renders: where from and how it projects (`clip_from_world`, near and
+/// far, width), how many texels it has and where it lies in the shadow-map array. A light owns
+/// one or more; the shadow pass draws views, the lookup reads the view that covers a point.
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct ShadowViewGpu {
+    pub clip_from_world: [[f32; 4]; 4],
+    pub near: f32, // world units
+    pub far: f32,
+    /// W: the orthographic width, or the width at the near plane, world units.
+    pub frustum_width_world: f32,
+    /// Perspective only; 0 for orthographic.
+    pub tan_half_fov: f32,
+    pub orthographic: u32,
     pub map_size_texels: f32,
+    /// Its layer of the shadow-map array.
     pub layer: u32,
+    /// map_size / the array texture's size (a smaller map uses the layer's top-left corner).
     pub atlas_scale: f32,
     /// Map texels per side of one level-0 texel of the VSM moments (1 up to MOMENTS_MAX_SIDE).
     pub moments_block: u32,
+    /// The light that owns it (index into the frame's lights).
+    pub light: u32,
+    pub _pad: [u32; 2],
+}
+
+/// A light and one of its shadow views: what one lookup reads (the twin of a pixel, a view of the
+/// analysis; the ground truth binds one per sample of an area light).
+#[repr(C)]
+#[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
+pub struct LightViewGpu {
+    pub light: LightGpu,
+    pub view: ShadowViewGpu,
 }
 
 #[repr(C)]
@@ -148,7 +184,9 @@ pub struct ShadowParamsGpu {
     pub _pad: u32,
 }
 
-const _: () = assert!(std::mem::size_of::<LightGpu>() == 160);
+const _: () = assert!(std::mem::size_of::<LightGpu>() == 80);
+const _: () = assert!(std::mem::size_of::<ShadowViewGpu>() == 112);
+const _: () = assert!(std::mem::size_of::<LightViewGpu>() == 192);
 const _: () = assert!(std::mem::size_of::<ShadowParamsGpu>() == 80);
 
 impl ShadowParamsGpu {
@@ -192,55 +230,119 @@ pub fn moments_block(atlas_size: u32) -> u32 {
     atlas_size.div_ceil(MOMENTS_MAX_SIDE).max(1)
 }
 
-impl LightGpu {
-    /// The light at time `t`, in shadow-map `layer` of an array texture `atlas_size` texels wide.
-    pub fn new(light: &Light, t_s: f32, layer: u32, atlas_size: u32) -> Self {
-        Self::with_transform(
-            light,
-            light.clip_from_world(t_s),
-            light.position_at(t_s),
-            light.direction_at(t_s),
-            layer,
-            atlas_size,
-        )
+/// The lights of a frame at time `t` and their shadow views, one layer of an array texture
+/// `atlas_size` texels wide each, in order (light 0's views first). The one place views are laid
+/// out in the array.
+pub fn frame_lights(lights: &[Light], t_s: f32, atlas_size: u32) -> (Vec<LightGpu>, Vec<ShadowViewGpu>) {
+    let mut frame_lights = Vec::with_capacity(lights.len());
+    let mut views = Vec::with_capacity(lights.len());
+    for (index, light) in lights.iter().enumerate() {
+        let first_view = views.len() as u32;
+        // Spot and directional lights: the one frustum of `Light::clip_from_world`.
+        let mut view = ShadowViewGpu::new(light, light.clip_from_world(t_s), first_view, atlas_size);
+        view.light = index as u32;
+        views.push(view);
+        let count = views.len() as u32 - first_view;
+        let (position, direction) = (light.position_at(t_s), light.direction_at(t_s));
+        frame_lights.push(LightGpu::new(light, position, direction, first_view, count));
     }
+    (frame_lights, views)
+}
 
-    /// The light with an explicit transform (the ground truth moves it over its area).
-    pub fn with_transform(
-        light: &Light,
-        clip_from_world: Mat4,
-        position: Vec3,
-        direction: Vec3,
-        layer: u32,
-        atlas_size: u32,
-    ) -> Self {
+/// How many shadow views (maps) a light of this kind renders (`frame_lights` makes them).
+pub fn shadow_view_count(light: &Light) -> u32 {
+    match light.kind {
+        // One frustum covers what they light.
+        LightKind::Directional { .. } | LightKind::Spot { .. } => 1,
+    }
+}
+
+/// How many shadow-map layers these lights' views take.
+pub fn views_needed(lights: &[Light]) -> u32 {
+    lights.iter().map(shadow_view_count).sum()
+}
+
+impl LightGpu {
+    /// The light placed at `position`, facing `direction` (the ground truth moves it over its area).
+    pub fn new(light: &Light, position: Vec3, direction: Vec3, first_view: u32, view_count: u32) -> Self {
         let (size_model, light_width_world, tan_half_angle) = match light.size {
             LightSize::Width { width_world } => (SIZE_MODEL_WIDTH, width_world, 0.0),
             LightSize::AngularDiameter { angular_diameter_deg } => {
                 (SIZE_MODEL_ANGULAR, 0.0, (0.5 * angular_diameter_deg.to_radians()).tan())
             }
         };
+        Self {
+            position: position.extend(1.0).to_array(),
+            direction: direction.extend(0.0).to_array(),
+            color: (light.color * light.intensity).extend(1.0).to_array(),
+            directional: u32::from(light.is_orthographic()),
+            size_model,
+            light_width_world,
+            tan_half_angle,
+            first_view,
+            view_count,
+            _pad: [0; 2],
+        }
+    }
+}
+
+impl ShadowViewGpu {
+    /// The light's one map seen through `clip_from_world`, in `layer` of an array texture
+    /// `atlas_size` texels wide.
+    pub fn new(light: &Light, clip_from_world: Mat4, layer: u32, atlas_size: u32) -> Self {
         let tan_half_fov = match light.kind {
             LightKind::Directional { .. } => 0.0,
             LightKind::Spot { fov_deg } => (0.5 * fov_deg.to_radians()).tan(),
         };
         Self {
             clip_from_world: clip_from_world.to_cols_array_2d(),
-            position: position.extend(1.0).to_array(),
-            direction: direction.extend(0.0).to_array(),
-            color: (light.color * light.intensity).extend(1.0).to_array(),
             near: light.near,
             far: light.far,
             frustum_width_world: light.frustum_width_world(),
             tan_half_fov,
             orthographic: u32::from(light.is_orthographic()),
-            size_model,
-            light_width_world,
-            tan_half_angle,
             map_size_texels: light.shadow_map_size as f32,
             layer,
             atlas_scale: light.shadow_map_size as f32 / atlas_size as f32,
             moments_block: moments_block(atlas_size),
+            light: 0,
+            _pad: [0; 2],
+        }
+    }
+}
+
+impl LightViewGpu {
+    /// The light at time `t` with its first view, alone in layer 0 of an array `atlas_size` wide
+    /// (a twin of one light: the diagrams, the homework check).
+    pub fn single(light: &Light, t_s: f32, atlas_size: u32) -> Self {
+        Self {
+            light: LightGpu::new(light, light.position_at(t_s), light.direction_at(t_s), 0, 1),
+            view: ShadowViewGpu::new(light, light.clip_from_world(t_s), 0, atlas_size),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every light owns the views `frame_lights` gave it, each in a layer of its own, and the
+    /// array has as many layers as `views_needed` says.
+    #[test]
+    fn each_light_owns_its_views_and_each_view_its_layer() {
+        let scene = crate::scene::load_scene(&crate::shipped_path("assets/scenes/multi_light.toml"), &[])
+            .expect("scene");
+        assert!(scene.lights.len() > 1);
+        let (lights, views) = frame_lights(&scene.lights, 1.5, 2048);
+        assert_eq!(views.len() as u32, views_needed(&scene.lights));
+        let mut layers: Vec<u32> = views.iter().map(|v| v.layer).collect();
+        layers.dedup();
+        assert_eq!(layers, (0..views.len() as u32).collect::<Vec<_>>());
+        for (index, (light, gpu)) in scene.lights.iter().zip(&lights).enumerate() {
+            assert_eq!(gpu.view_count, shadow_view_count(light));
+            let owned = &views[gpu.first_view as usize..][..gpu.view_count as usize];
+            assert!(owned.iter().all(|v| v.light == index as u32));
+            assert_eq!(owned[0].clip_from_world, light.clip_from_world(1.5).to_cols_array_2d());
         }
     }
 }

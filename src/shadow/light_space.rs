@@ -1,29 +1,29 @@
 //! What to sample (the twin of shaders/shadow_lookup.wgsl): where a surface
-//! point lands in a light's map, at which depth, with which bias; and the light-space formulas
+//! point lands in a light's shadow view, at which depth, with which bias; and the light-space formulas
 //! every other part of shadowlab (probe, views, overlays, diagrams) calls rather than copies.
 
 use super::{
     BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, LightGpu, SIZE_MODEL_ANGULAR, ShadowCoord,
-    ShadowParamsGpu,
+    ShadowParamsGpu, ShadowViewGpu,
 };
 use glam::{Vec2, Vec3, Vec4};
 
-fn orthographic(light: &LightGpu) -> bool {
-    light.orthographic == 1
+fn orthographic(view: &ShadowViewGpu) -> bool {
+    view.orthographic == 1
 }
 
-pub fn depth_linear_from_ndc(light: &LightGpu, z: f32) -> f32 {
-    if orthographic(light) {
-        return light.near + z * (light.far - light.near);
+pub fn depth_linear_from_ndc(view: &ShadowViewGpu, z: f32) -> f32 {
+    if orthographic(view) {
+        return view.near + z * (view.far - view.near);
     }
-    light.near * light.far / (light.far - z * (light.far - light.near))
+    view.near * view.far / (view.far - z * (view.far - view.near))
 }
 
 /// The inverse of [`depth_linear_from_ndc`]: the NDC depth (0..1, wgpu's range) the map stores
 /// for a surface `depth_linear` world units from the light along its axis.
-pub fn depth_ndc_from_linear(light: &LightGpu, depth_linear: f32) -> f32 {
-    let (n, f) = (light.near, light.far);
-    if orthographic(light) {
+pub fn depth_ndc_from_linear(view: &ShadowViewGpu, depth_linear: f32) -> f32 {
+    let (n, f) = (view.near, view.far);
+    if orthographic(view) {
         (depth_linear - n) / (f - n)
     } else {
         f * (depth_linear - n) / (depth_linear * (f - n))
@@ -31,30 +31,30 @@ pub fn depth_ndc_from_linear(light: &LightGpu, depth_linear: f32) -> f32 {
 }
 
 /// dz/dd at distance d: turns a world-unit bias into NDC depth units.
-pub fn ndc_per_world(light: &LightGpu, depth_linear: f32) -> f32 {
-    if orthographic(light) {
-        return 1.0 / (light.far - light.near);
+pub fn ndc_per_world(view: &ShadowViewGpu, depth_linear: f32) -> f32 {
+    if orthographic(view) {
+        return 1.0 / (view.far - view.near);
     }
-    light.far * light.near / (depth_linear * depth_linear * (light.far - light.near))
+    view.far * view.near / (depth_linear * depth_linear * (view.far - view.near))
 }
 
 /// One texel's footprint on a surface facing the light at distance d, world units.
-pub fn texel_world_at(light: &LightGpu, depth_linear: f32) -> f32 {
-    if orthographic(light) {
-        return light.frustum_width_world / light.map_size_texels;
+pub fn texel_world_at(view: &ShadowViewGpu, depth_linear: f32) -> f32 {
+    if orthographic(view) {
+        return view.frustum_width_world / view.map_size_texels;
     }
-    2.0 * depth_linear * light.tan_half_fov / light.map_size_texels
+    2.0 * depth_linear * view.tan_half_fov / view.map_size_texels
 }
 
 pub fn light_dir_to(light: &LightGpu, world_pos: Vec3) -> Vec3 {
-    if orthographic(light) {
+    if light.directional == 1 {
         return -Vec4::from(light.direction).truncate();
     }
     (Vec4::from(light.position).truncate() - world_pos).normalize()
 }
 
-pub fn project_to_light(light: &LightGpu, world_pos: Vec3) -> Vec3 {
-    let clip = glam::Mat4::from_cols_array_2d(&light.clip_from_world) * world_pos.extend(1.0);
+pub fn project_to_light(view: &ShadowViewGpu, world_pos: Vec3) -> Vec3 {
+    let clip = glam::Mat4::from_cols_array_2d(&view.clip_from_world) * world_pos.extend(1.0);
     let ndc = clip.truncate() / clip.w;
     Vec3::new(ndc.x * 0.5 + 0.5, ndc.y * -0.5 + 0.5, ndc.z)
 }
@@ -85,11 +85,11 @@ fn tangents_of(n: Vec3) -> [Vec3; 2] {
 
 /// The receiver's plane (through p, normal n, projected at s) as NDC depth per uv of the map,
 /// from two points of the plane a texel from p; 0 edge-on to the light [Isidoro-2006].
-pub fn receiver_plane_gradient(light: &LightGpu, p: Vec3, n: Vec3, s: Vec3) -> Vec2 {
-    let step = texel_world_at(light, depth_linear_from_ndc(light, s.z));
+pub fn receiver_plane_gradient(view: &ShadowViewGpu, p: Vec3, n: Vec3, s: Vec3) -> Vec2 {
+    let step = texel_world_at(view, depth_linear_from_ndc(view, s.z));
     let t = tangents_of(n);
-    let a = project_to_light(light, p + t[0] * step) - s;
-    let b = project_to_light(light, p + t[1] * step) - s;
+    let a = project_to_light(view, p + t[0] * step) - s;
+    let b = project_to_light(view, p + t[1] * step) - s;
     let det = a.x * b.y - a.y * b.x;
     let (a_uv, b_uv) = (Vec2::new(a.x, a.y), Vec2::new(b.x, b.y));
     // Also false for NaN, as in the shader.
@@ -115,10 +115,11 @@ pub fn rgba8_round_trip(depth_ndc: f32) -> f32 {
     ((parts.x + parts.y) + parts.z) + parts.w
 }
 
-/// The light-space lookup of a surface point (the shader's `light_space_lookup`): it needs the
-/// light and the parameters, not the map.
+/// The light-space lookup of a surface point in one of the light's views (the shader's
+/// `light_space_lookup`): it needs the light, the view and the parameters, not the map.
 pub fn light_space_lookup(
     light: &LightGpu,
+    view: &ShadowViewGpu,
     params: &ShadowParamsGpu,
     world_pos: Vec3,
     normal: Vec3,
@@ -126,15 +127,15 @@ pub fn light_space_lookup(
     let mut out = ShadowCoord { n_dot_l: normal.dot(light_dir_to(light, world_pos)), ..Default::default() };
     let mut p = world_pos;
     if params.normal_offset_texels > 0.0 {
-        let d = depth_linear_from_ndc(light, project_to_light(light, world_pos).z);
-        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(light, d));
+        let d = depth_linear_from_ndc(view, project_to_light(view, world_pos).z);
+        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(view, d));
     }
-    let s = project_to_light(light, p);
+    let s = project_to_light(view, p);
     out.uv = Vec2::new(s.x, s.y);
     out.depth_ndc = s.z;
-    out.depth_linear = depth_linear_from_ndc(light, s.z);
+    out.depth_linear = depth_linear_from_ndc(view, s.z);
     if params.bias_mode == BIAS_RECEIVER_PLANE {
-        out.depth_gradient = receiver_plane_gradient(light, p, normal, s);
+        out.depth_gradient = receiver_plane_gradient(view, p, normal, s);
     }
     out
 }
@@ -143,7 +144,7 @@ pub fn light_space_lookup(
 /// docs/REFERENCES.md): `filter_radius_texels` grows the adaptive bias with the filter it has to
 /// cover [DrFlower-HW1].
 pub fn receiver_bias_ndc(
-    light: &LightGpu,
+    view: &ShadowViewGpu,
     params: &ShadowParamsGpu,
     coord: &ShadowCoord,
     filter_radius_texels: f32,
@@ -154,10 +155,10 @@ pub fn receiver_bias_ndc(
         BIAS_SLOPE => (p.slope_bias * (1.0 - coord.n_dot_l)).max(p.bias),
         BIAS_RECEIVER_PLANE => p.bias,
         BIAS_ADAPTIVE => {
-            let a = (1.0 + filter_radius_texels.ceil()) * 0.5 * texel_world_at(light, coord.depth_linear);
+            let a = (1.0 + filter_radius_texels.ceil()) * 0.5 * texel_world_at(view, coord.depth_linear);
             let b = 1.0 - coord.n_dot_l;
             let bias_world = p.adaptive_c * a.max(a * b);
-            bias_world * ndc_per_world(light, coord.depth_linear)
+            bias_world * ndc_per_world(view, coord.depth_linear)
         }
         _ => 0.0,
     }
@@ -165,14 +166,19 @@ pub fn receiver_bias_ndc(
 
 /// PCSS step 1's region (the shader's `blocker_search_radius_uv`): the part of the map between
 /// the light's area and a receiver at `depth_linear`, in uv of the map.
-pub fn blocker_search_radius_uv(light: &LightGpu, params: &ShadowParamsGpu, depth_linear: f32) -> f32 {
+pub fn blocker_search_radius_uv(
+    light: &LightGpu,
+    view: &ShadowViewGpu,
+    params: &ShadowParamsGpu,
+    depth_linear: f32,
+) -> f32 {
     let d_r = depth_linear;
     let radius_world = if light.size_model == SIZE_MODEL_ANGULAR {
-        (d_r - light.near) * light.tan_half_angle
+        (d_r - view.near) * light.tan_half_angle
     } else {
-        0.5 * light.light_width_world * (d_r - light.near) / d_r
+        0.5 * light.light_width_world * (d_r - view.near) / d_r
     };
-    radius_world.max(0.0) * params.search_radius_scale / light.frustum_width_world
+    radius_world.max(0.0) * params.search_radius_scale / view.frustum_width_world
 }
 
 #[cfg(test)]

@@ -12,9 +12,9 @@ mod vsm;
 use crate::scene::Kernel;
 use glam::{Vec2, Vec3};
 pub use gpu::{
-    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, DEPTH_RGBA8, LightGpu, SIZE_MODEL_ANGULAR,
-    ShadowParamsGpu, TECHNIQUE_HARD, TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS, TECHNIQUE_VSM,
-    TECHNIQUE_VSSM, kernel_from_id,
+    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, DEPTH_RGBA8, LightGpu, LightViewGpu,
+    SIZE_MODEL_ANGULAR, ShadowParamsGpu, ShadowViewGpu, TECHNIQUE_HARD, TECHNIQUE_NONE, TECHNIQUE_PCF,
+    TECHNIQUE_PCSS, TECHNIQUE_VSM, TECHNIQUE_VSSM, frame_lights, kernel_from_id, views_needed,
 };
 use kernels::{filter_taps, kernel_offset};
 pub use light_space::{
@@ -99,9 +99,10 @@ pub struct Tap {
     pub value: f32,
 }
 
-/// One light's shadow map and parameters, as the GPU had them.
+/// One light, the shadow view a lookup reads, its map and the parameters, as the GPU had them.
 pub struct Twin<'a> {
     pub light: &'a LightGpu,
+    pub view: &'a ShadowViewGpu,
     pub params: &'a ShadowParamsGpu,
     pub map: &'a DepthImage,
     /// When Some, every lookup is recorded.
@@ -120,6 +121,7 @@ fn wgsl_fract(v: Vec2) -> Vec2 {
 /// triangles [Fernando-2005], and the filter radius in map texels that covers it.
 pub fn estimate_penumbra(
     light: &LightGpu,
+    view: &ShadowViewGpu,
     params: &ShadowParamsGpu,
     d_receiver: f32,
     d_blocker: f32,
@@ -130,13 +132,13 @@ pub fn estimate_penumbra(
     } else {
         light.light_width_world * gap / d_blocker.max(1e-6)
     };
-    let mut radius_uv = 0.5 * width_world / light.frustum_width_world;
-    if light.orthographic == 0 || params.ortho_near_factor == 1 {
-        radius_uv = radius_uv * light.near / d_receiver;
+    let mut radius_uv = 0.5 * width_world / view.frustum_width_world;
+    if view.orthographic == 0 || params.ortho_near_factor == 1 {
+        radius_uv = radius_uv * view.near / d_receiver;
     }
     Penumbra {
         width_world,
-        filter_radius_texels: (radius_uv * light.map_size_texels).max(params.min_filter_radius_texels),
+        filter_radius_texels: (radius_uv * view.map_size_texels).max(params.min_filter_radius_texels),
     }
 }
 
@@ -171,8 +173,13 @@ pub fn search_kernel(filter_kernel: Kernel) -> Kernel {
 }
 
 impl<'a> Twin<'a> {
-    pub fn new(light: &'a LightGpu, params: &'a ShadowParamsGpu, map: &'a DepthImage) -> Self {
-        Self { light, params, map, trace: None, moments: std::cell::OnceCell::new() }
+    pub fn new(
+        light: &'a LightGpu,
+        view: &'a ShadowViewGpu,
+        params: &'a ShadowParamsGpu,
+        map: &'a DepthImage,
+    ) -> Self {
+        Self { light, view, params, map, trace: None, moments: std::cell::OnceCell::new() }
     }
 
     fn record(&mut self, kind: TapKind, uv: Vec2, value: f32) {
@@ -182,19 +189,19 @@ impl<'a> Twin<'a> {
     }
 
     pub fn light_space_lookup(&self, world_pos: Vec3, normal: Vec3) -> ShadowCoord {
-        light_space_lookup(self.light, self.params, world_pos, normal)
+        light_space_lookup(self.light, self.view, self.params, world_pos, normal)
     }
 
-    /// Texels per side of the array the light's map shares (its map is the top-left corner).
+    /// Texels per side of the array the view's map shares (its map is the top-left corner).
     fn atlas_size(&self) -> u32 {
-        (self.light.map_size_texels / self.light.atlas_scale).round() as u32
+        (self.view.map_size_texels / self.view.atlas_scale).round() as u32
     }
 
     pub fn receiver_bias_ndc(&self, coord: &ShadowCoord, filter_radius_texels: f32) -> f32 {
-        receiver_bias_ndc(self.light, self.params, coord, filter_radius_texels)
+        receiver_bias_ndc(self.view, self.params, coord, filter_radius_texels)
     }
 
-    /// Texel (x, y) of the light's map; texels of the array layer beyond the light's map size
+    /// Texel (x, y) of the view's map; texels of the array layer beyond the view's map size
     /// hold the clear value 1.
     fn texel(&self, x: i32, y: i32) -> f32 {
         let size = self.map.size as i32;
@@ -212,15 +219,15 @@ impl<'a> Twin<'a> {
     /// The depth the shadow pass wrote at a uv, before any RGBA8 round trip.
     pub fn stored_depth_float_ndc(&self, uv: Vec2) -> f32 {
         let lookup = if self.params.clamp_outside == 0 { wgsl_fract(uv) } else { uv };
-        let size = self.light.map_size_texels as i32;
-        let t = (lookup * self.light.map_size_texels).floor();
+        let size = self.view.map_size_texels as i32;
+        let t = (lookup * self.view.map_size_texels).floor();
         self.texel((t.x as i32).clamp(0, size - 1), (t.y as i32).clamp(0, size - 1))
     }
 
     /// The comparison sampler's bilinear 2x2 test (clamp to edge over the whole array layer).
     fn hardware_compare(&self, uv: Vec2, reference: f32) -> f32 {
         let atlas = self.atlas_size() as f32;
-        let p = uv * self.light.atlas_scale * atlas - Vec2::splat(0.5);
+        let p = uv * self.view.atlas_scale * atlas - Vec2::splat(0.5);
         let i0 = p.floor();
         let f = p - i0;
         let max = atlas as i32 - 1;
@@ -243,7 +250,7 @@ impl<'a> Twin<'a> {
         point_sampled: bool,
     ) -> f32 {
         if self.params.bias_mode == BIAS_RECEIVER_PLANE {
-            let size = self.light.map_size_texels;
+            let size = self.view.map_size_texels;
             let at = if point_sampled { ((uv * size).floor() + Vec2::splat(0.5)) / size } else { uv };
             return coord.depth_ndc + coord.depth_gradient.dot(at - coord.uv) - bias_ndc;
         }
@@ -278,7 +285,7 @@ impl<'a> Twin<'a> {
     pub fn visibility_pcf(&mut self, coord: &ShadowCoord, radius_texels: f32, seed: u32) -> f32 {
         let kernel = kernel_from_id(self.params.kernel);
         let n = filter_taps(kernel, self.params.samples);
-        let radius_uv = radius_texels / self.light.map_size_texels;
+        let radius_uv = radius_texels / self.view.map_size_texels;
         let bias = self.receiver_bias_ndc(coord, radius_texels);
         let mut lit = 0.0;
         for i in 0..n {
@@ -292,17 +299,17 @@ impl<'a> Twin<'a> {
 
     /// The blocker search's radius in uv (the shader's `blocker_search_radius_uv`).
     pub fn blocker_search_radius_uv(&self, coord: &ShadowCoord) -> f32 {
-        blocker_search_radius_uv(self.light, self.params, coord.depth_linear)
+        blocker_search_radius_uv(self.light, self.view, self.params, coord.depth_linear)
     }
 
     pub fn search_blockers(&mut self, coord: &ShadowCoord, seed: u32) -> BlockerSearch {
-        let light = self.light;
+        let view = self.view;
         let mut out = BlockerSearch::default();
         if self.params.clamp_outside == 1 && outside_frustum(coord) {
             return out;
         }
         let radius_uv = self.blocker_search_radius_uv(coord);
-        out.radius_texels = radius_uv * light.map_size_texels;
+        out.radius_texels = radius_uv * view.map_size_texels;
         let kernel = search_kernel(kernel_from_id(self.params.kernel));
         let n = filter_taps(kernel, self.params.blocker_samples);
         let bias = self.receiver_bias_ndc(coord, 0.0);
@@ -318,7 +325,7 @@ impl<'a> Twin<'a> {
             self.record(TapKind::BlockerSearch, uv, if blocker { 1.0 } else { 0.0 });
             if blocker {
                 out.found += 1;
-                sum += depth_linear_from_ndc(light, z);
+                sum += depth_linear_from_ndc(view, z);
             }
         }
         if out.found > 0 {
@@ -328,7 +335,7 @@ impl<'a> Twin<'a> {
     }
 
     pub fn estimate_penumbra(&self, coord: &ShadowCoord, d_blocker: f32) -> Penumbra {
-        estimate_penumbra(self.light, self.params, coord.depth_linear, d_blocker)
+        estimate_penumbra(self.light, self.view, self.params, coord.depth_linear, d_blocker)
     }
 
     pub fn visibility_pcss(&mut self, coord: &ShadowCoord, seed: u32) -> ShadowVisibility {

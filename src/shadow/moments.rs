@@ -1,7 +1,7 @@
 //! The twin of the VSM moments (shaders/moments.wgsl) and of `filtered_moments` in
 //! shaders/shadow_filter.wgsl: the same chain, built the same way from the read-back map.
 
-use super::{DepthImage, LightGpu};
+use super::{DepthImage, ShadowViewGpu};
 use glam::Vec2;
 
 /// Texel (x, y) of the array layer holding `map` in its top-left corner, as the moments pass
@@ -65,9 +65,9 @@ impl MomentsChain {
 
     /// The lookup of `filtered_moments`: the fractional level for a filter radius in map texels,
     /// and the two levels it blends with their weights.
-    pub fn levels_for(&self, light: &LightGpu, radius_texels: f32) -> [(usize, f32); 2] {
+    pub fn levels_for(&self, view: &ShadowViewGpu, radius_texels: f32) -> [(usize, f32); 2] {
         let widest = (self.levels.len() - 1) as f32;
-        let level = level_for_radius(radius_texels, light.moments_block, self.levels.len() as u32);
+        let level = level_for_radius(radius_texels, view.moments_block, self.levels.len() as u32);
         let finer = level.floor();
         let coarser = (finer + 1.0).min(widest);
         [(finer as usize, 1.0 - (level - finer)), (coarser as usize, level - finer)]
@@ -75,9 +75,9 @@ impl MomentsChain {
 
     /// Which texels a lookup reads at one level: its span in map texels per side, and the four
     /// texels with their bilinear weights (00, 10, 01, 11).
-    pub fn footprint(&self, light: &LightGpu, uv: Vec2, level: usize) -> Footprint {
-        let span = light.moments_block << level;
-        let p = uv * light.map_size_texels / (light.moments_block as f32 * (level as f32).exp2())
+    pub fn footprint(&self, view: &ShadowViewGpu, uv: Vec2, level: usize) -> Footprint {
+        let span = view.moments_block << level;
+        let p = uv * view.map_size_texels / (view.moments_block as f32 * (level as f32).exp2())
             - Vec2::splat(0.5);
         let i0 = p.floor();
         let f = p - i0;
@@ -93,8 +93,8 @@ impl MomentsChain {
         }
     }
 
-    fn at_level(&self, light: &LightGpu, uv: Vec2, level: usize) -> Vec2 {
-        let fp = self.footprint(light, uv, level);
+    fn at_level(&self, view: &ShadowViewGpu, uv: Vec2, level: usize) -> Vec2 {
+        let fp = self.footprint(view, uv, level);
         let (side, texels) = &self.levels[level];
         let m = |i: usize| texels[(fp.texels[i][1] * side + fp.texels[i][0]) as usize];
         // In the shader's order: across, then down.
@@ -105,10 +105,10 @@ impl MomentsChain {
     }
 
     /// What `filtered_moments` reads at `uv` for a filter radius in map texels.
-    pub fn filtered(&self, light: &LightGpu, uv: Vec2, radius_texels: f32) -> Vec2 {
-        let [(finer, _), (coarser, t)] = self.levels_for(light, radius_texels);
+    pub fn filtered(&self, view: &ShadowViewGpu, uv: Vec2, radius_texels: f32) -> Vec2 {
+        let [(finer, _), (coarser, t)] = self.levels_for(view, radius_texels);
         // WGSL mix(a, b, t) = a * (1 - t) + b * t.
-        self.at_level(light, uv, finer) * (1.0 - t) + self.at_level(light, uv, coarser) * t
+        self.at_level(view, uv, finer) * (1.0 - t) + self.at_level(view, uv, coarser) * t
     }
 }
 

@@ -5,7 +5,7 @@ use super::*;
 impl Twin<'_> {
     /// The VSM moments of the map, built on first use.
     pub fn moments(&self) -> &moments::MomentsChain {
-        let (atlas, map, block) = (self.atlas_size(), self.map, self.light.moments_block);
+        let (atlas, map, block) = (self.atlas_size(), self.map, self.view.moments_block);
         self.moments.get_or_init(|| moments::MomentsChain::new(map, atlas, block))
     }
 
@@ -24,7 +24,7 @@ impl Twin<'_> {
     /// One VSM filter: the filtered moments, the depth tested (the receiver's less the bias) and
     /// Chebyshev's bound (before any bleed reduction).
     fn vsm_filter(&self, coord: &ShadowCoord, radius_texels: f32) -> (Vec2, f32, f32) {
-        let m = self.moments().filtered(self.light, coord.uv, radius_texels);
+        let m = self.moments().filtered(self.view, coord.uv, radius_texels);
         let t = coord.depth_ndc - self.receiver_bias_ndc(coord, radius_texels);
         (m, t, self.chebyshev_upper_bound(m, t))
     }
@@ -66,8 +66,8 @@ impl Twin<'_> {
         bias_ndc: f32,
     ) -> f32 {
         let plane_params = ShadowParamsGpu { bias_mode: BIAS_RECEIVER_PLANE, ..*self.params };
-        let coord = light_space_lookup(self.light, &plane_params, world_pos, normal);
-        let size = self.light.map_size_texels;
+        let coord = light_space_lookup(self.light, self.view, &plane_params, world_pos, normal);
+        let size = self.view.map_size_texels;
         let mut lit = 0.0f64;
         self.for_each_footprint_depth(&coord, radius_texels, |[x, y], z, w| {
             let centre = Vec2::new(x as f32 + 0.5, y as f32 + 0.5) / size;
@@ -95,12 +95,12 @@ impl Twin<'_> {
         radius_texels: f32,
         mut visit: impl FnMut([u32; 2], f32, f32),
     ) {
-        let (light, chain, atlas) = (self.light, self.moments(), self.atlas_size());
-        for (level, level_weight) in chain.levels_for(light, radius_texels) {
+        let (view, chain, atlas) = (self.view, self.moments(), self.atlas_size());
+        for (level, level_weight) in chain.levels_for(view, radius_texels) {
             if level_weight == 0.0 {
                 continue;
             }
-            let fp = chain.footprint(light, coord.uv, level);
+            let fp = chain.footprint(view, coord.uv, level);
             let per_texel = 1.0 / (fp.span * fp.span) as f32;
             for (texel, (wx, wy)) in fp.texels.iter().zip(fp.weights) {
                 let w = level_weight * wx * wy * per_texel;
@@ -152,9 +152,9 @@ impl Twin<'_> {
         if self.params.clamp_outside == 1 && outside_frustum(coord) {
             return out;
         }
-        let light = self.light;
-        out.search.radius_texels = self.blocker_search_radius_uv(coord) * light.map_size_texels;
-        let m = self.moments().filtered(light, coord.uv, out.search.radius_texels);
+        let view = self.view;
+        out.search.radius_texels = self.blocker_search_radius_uv(coord) * view.map_size_texels;
+        let m = self.moments().filtered(view, coord.uv, out.search.radius_texels);
         let t = coord.depth_ndc - self.receiver_bias_ndc(coord, 0.0);
         let unoccluded = self.chebyshev_upper_bound(m, t);
         self.record(TapKind::BlockerSearch, coord.uv, 1.0 - unoccluded);
@@ -163,7 +163,7 @@ impl Twin<'_> {
         }
         let z_occ = (m.x - unoccluded * t) / (1.0 - unoccluded);
         out.search.found = 1;
-        out.search.avg_depth_linear = depth_linear_from_ndc(light, z_occ.clamp(0.0, 1.0));
+        out.search.avg_depth_linear = depth_linear_from_ndc(view, z_occ.clamp(0.0, 1.0));
         out.penumbra = self.estimate_penumbra(coord, out.search.avg_depth_linear);
         out.visibility = self.visibility_vsm(coord, out.penumbra.filter_radius_texels);
         out

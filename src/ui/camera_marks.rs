@@ -130,12 +130,12 @@ pub(super) fn render_progress(
     }
 }
 
-/// Every light's frustum as the frame shown had it, projected into the camera view in `rect`.
+/// Every shadow view's frustum as the frame shown had it, projected into the camera view in `rect`.
 pub(super) fn draw_light_frusta(painter: &egui::Painter, rect: Rect, state: &AppState, shown: &Shown) {
     use crate::views::overlays::{FRUSTUM_OTHER, FRUSTUM_SELECTED, light_frustum_edges};
     let camera = state.scene.camera.clip_from_world(rect.width() / rect.height().max(1.0));
     let at = |p: [f32; 2]| pos2(rect.left() + p[0] * rect.width(), rect.top() + p[1] * rect.height());
-    for (a, b, selected) in light_frustum_edges(&camera, &shown.lights, state.selected_light) {
+    for (a, b, selected) in light_frustum_edges(&camera, &shown.views, state.selected_light) {
         let [r, g, bl] = if selected { FRUSTUM_SELECTED } else { FRUSTUM_OTHER };
         painter.line_segment([at(a), at(b)], Stroke::new(1.5, Color32::from_rgb(r, g, bl)));
     }

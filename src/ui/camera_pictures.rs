@@ -43,7 +43,7 @@ impl CameraPictures {
             return;
         }
         self.made_from = Some((shown.changes, state.lang));
-        let light = shown.lights.get(state.selected_light).copied();
+        let light = shown.light_view(state.selected_light);
         // The debug view from the analysis pass (and the ground truth).
         self.view_image = None;
         self.view_legend = None;
@@ -85,7 +85,7 @@ impl CameraPictures {
                 state.lang,
                 &overlays,
                 analysis,
-                light.as_ref(),
+                light.as_ref().map(|l| &l.view),
                 state.reference.as_deref(),
             );
             self.legends = legends;

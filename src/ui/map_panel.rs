@@ -77,7 +77,7 @@ impl MapPanel {
             ui.label(tr(lang, "no light in this scene"));
             return;
         };
-        let (map, light) = (&shown_map.depth, &shown_map.light);
+        let (map, shadow_view) = (&shown_map.depth, &shown_map.view);
         let avail = ui.available_rect_before_wrap();
         // The column's own width: a long legend line must not widen the map past it.
         let side = rect.width().min(avail.height() - 60.0).max(64.0);
@@ -100,9 +100,10 @@ impl MapPanel {
             )
         };
 
-        // The probe on the map, at its real size.
-        let probe =
-            state.probe.as_ref().and_then(|r| r.lights.iter().find(|l| l.light == state.selected_light));
+        // The probe on the map, at its real size, where it looked up this very view.
+        let probe = state.probe.as_ref().and_then(|r| {
+            r.lights.iter().find(|l| l.light == state.selected_light && l.shadow_view == shown_map.index)
+        });
         if let Some(l) = probe {
             let centre = to_rect(l.shadow_map_uv);
             if l.blocker_search_radius_uv > 0.0 {
@@ -143,9 +144,9 @@ impl MapPanel {
             let z = map.depth_ndc[(ty * map.size + tx) as usize];
             if z < 1.0 {
                 let ndc = Vec4::new(u * 2.0 - 1.0, 1.0 - v * 2.0, z, 1.0);
-                let w = Mat4::from_cols_array_2d(&light.clip_from_world).inverse() * ndc;
+                let w = Mat4::from_cols_array_2d(&shadow_view.clip_from_world).inverse() * ndc;
                 let p = w.truncate() / w.w;
-                let d = depth_linear_from_ndc(light, z);
+                let d = depth_linear_from_ndc(shadow_view, z);
                 info = fill(
                     lang,
                     "texel {},{} · stored {} NDC = {} world · point ({}, {}, {})",

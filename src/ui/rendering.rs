@@ -6,7 +6,7 @@ use super::{ProbeAt, ShadowlabApp};
 use crate::app::scheduler::{HomeworkJob, ProbeSpot, RenderEvent, RenderJob, RenderOutput, RenderScheduler};
 use crate::render::{Analysis, FrameRequest, PassTimes};
 use crate::scene::Technique;
-use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
+use crate::shadow::{DepthImage, LightGpu, LightViewGpu, ShadowParamsGpu, ShadowViewGpu};
 use crate::views::View;
 use crate::views::overlays::Overlay;
 use std::time::Duration;
@@ -38,8 +38,9 @@ pub struct Shown {
     pub thumbnails: Vec<egui::TextureHandle>,
     /// The overlays' analysis of the frame shown, once it came.
     pub analysis: Option<Analysis>,
-    /// The lights as the GPU saw them in that frame.
+    /// The lights and their shadow views as the GPU saw them in that frame.
     pub lights: Vec<LightGpu>,
+    pub views: Vec<ShadowViewGpu>,
     /// The shadow parameters of that frame (the views read these, not the scene's newer ones).
     pub params: ShadowParamsGpu,
     /// Resolution it was rendered at, pixels.
@@ -58,12 +59,14 @@ pub struct Shown {
     pub changes: u64,
 }
 
-/// The shadow map shown: its picture, its depths, the light it was rendered for and its linear
-/// depth range (world units).
+/// The shadow map shown: its picture, its depths, the shadow view it was rendered from and its
+/// linear depth range (world units).
 pub struct MapPicture {
     pub texture: egui::TextureHandle,
     pub depth: DepthImage,
-    pub light: LightGpu,
+    pub view: ShadowViewGpu,
+    /// Which of the frame's shadow views it is.
+    pub index: usize,
     pub range: (f32, f32),
 }
 
@@ -72,6 +75,14 @@ impl Shown {
     /// waiting for its details): they would be about other settings.
     pub fn overlays_stale(&self) -> bool {
         self.preview || self.details_pending.is_some()
+    }
+
+    /// Light `light` of the frame shown with its first shadow view (what the views of one light
+    /// read).
+    pub fn light_view(&self, light: usize) -> Option<LightViewGpu> {
+        let light = *self.lights.get(light)?;
+        let view = *self.views.get(light.first_view as usize)?;
+        Some(LightViewGpu { light, view })
     }
 }
 
@@ -235,6 +246,7 @@ impl ShadowlabApp {
         self.render.shown.color = Some(out.color);
         self.render.shown.color_b = out.color_b;
         self.render.shown.lights = out.lights;
+        self.render.shown.views = out.views;
         self.render.shown.params = out.params;
         self.render.shown.size = out.size;
         self.render.shown.preview = out.preview;
@@ -268,8 +280,13 @@ impl ShadowlabApp {
         if let Some(map) = maps.map {
             let texture =
                 ctx.load_texture("shadow map", color_image(&map.image), egui::TextureOptions::NEAREST);
-            self.render.shown.map =
-                Some(MapPicture { texture, depth: map.depth, light: map.light, range: map.range });
+            self.render.shown.map = Some(MapPicture {
+                texture,
+                depth: map.depth,
+                view: map.view,
+                index: map.index,
+                range: map.range,
+            });
         }
         if !maps.thumbnails.is_empty() || self.render.shown.lights.len() < 2 {
             self.render.shown.thumbnails = maps

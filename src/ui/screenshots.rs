@@ -74,7 +74,7 @@ impl ShadowlabApp {
             images.push(("camera", img));
         }
         if let Some(map) = &self.render.shown.map {
-            images.push(("shadow-map", crate::views::shadow_map_image(&map.depth, &map.light).0));
+            images.push(("shadow-map", crate::views::shadow_map_image(&map.depth, &map.view).0));
         }
         images
     }

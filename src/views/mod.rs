@@ -6,7 +6,7 @@ pub mod overlays;
 use crate::i18n::Lang;
 use crate::render::Analysis;
 use crate::shadow::depth_linear_from_ndc;
-use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
+use crate::shadow::{DepthImage, LightViewGpu, ShadowParamsGpu, ShadowViewGpu};
 use image::{Rgba, RgbaImage};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -140,16 +140,16 @@ pub fn heat_image(
 
 /// The shadow map as linear depth (near = dark, far = light), stretched over the range of
 /// depths actually stored (texels still at the clear value are shown in the no-surface colour).
-pub fn shadow_map_image(map: &DepthImage, light: &LightGpu) -> (RgbaImage, Legend) {
+pub fn shadow_map_image(map: &DepthImage, view: &ShadowViewGpu) -> (RgbaImage, Legend) {
     let linear: Vec<Option<f32>> =
-        map.depth_ndc.iter().map(|&z| (z < 1.0).then(|| depth_linear_from_ndc(light, z))).collect();
+        map.depth_ndc.iter().map(|&z| (z < 1.0).then(|| depth_linear_from_ndc(view, z))).collect();
     let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
     for d in linear.iter().flatten() {
         lo = lo.min(*d);
         hi = hi.max(*d);
     }
     if !lo.is_finite() {
-        (lo, hi) = (light.near, light.far);
+        (lo, hi) = (view.near, view.far);
     }
     let span = (hi - lo).max(1e-6);
     let image = RgbaImage::from_fn(map.size, map.size, |x, y| match linear[(y * map.size + x) as usize] {
@@ -180,7 +180,7 @@ const NO_BLOCKER: Rgba<u8> = Rgba([120, 120, 120, 255]);
 pub fn blocker_depth_at(
     analysis: &Analysis,
     i: usize,
-    light: &LightGpu,
+    light: &LightViewGpu,
     params: &ShadowParamsGpu,
 ) -> Option<f32> {
     if !analysis.hit(i) || analysis.shadow[i][3] < 0.5 {
@@ -188,15 +188,16 @@ pub fn blocker_depth_at(
     }
     let position = glam::Vec3::from_slice(&analysis.position[i][..3]);
     let normal = glam::Vec3::from_slice(&analysis.normal[i][..3]);
-    let d_r = crate::shadow::light_space_lookup(light, params, position, normal).depth_linear;
-    let w_p = analysis.shadow[i][2] * crate::shadow::texel_world_at(light, d_r);
-    crate::shadow::blocker_depth_from_penumbra(light, d_r, w_p)
+    let d_r =
+        crate::shadow::light_space_lookup(&light.light, &light.view, params, position, normal).depth_linear;
+    let w_p = analysis.shadow[i][2] * crate::shadow::texel_world_at(&light.view, d_r);
+    crate::shadow::blocker_depth_from_penumbra(&light.light, d_r, w_p)
 }
 
 /// The blocker-depth view: d_blocker as a heatmap over its own range, grey where none was found.
 pub fn blocker_depth_image(
     analysis: &Analysis,
-    light: &LightGpu,
+    light: &LightViewGpu,
     params: &ShadowParamsGpu,
 ) -> (RgbaImage, Legend) {
     let depths: Vec<Option<f32>> =
@@ -226,15 +227,18 @@ pub fn blocker_depth_image(
 /// depth (left) and the standard deviation of the depths each texel averages (right), both as
 /// world units along the light (sigma through the depth curve's slope at the mean, exact for an
 /// orthographic light). Panels are enlarged to at least 256 px a side, texels kept square.
-pub fn moments_image(moments: &crate::render::MomentsLevel, light: &LightGpu) -> (RgbaImage, Legend, Legend) {
+pub fn moments_image(
+    moments: &crate::render::MomentsLevel,
+    view: &ShadowViewGpu,
+) -> (RgbaImage, Legend, Legend) {
     let side = moments.side.max(1);
     let stats: Vec<(f32, f32)> = moments
         .texels
         .iter()
         .map(|&[m1, m2]| {
-            let mean = depth_linear_from_ndc(light, m1.clamp(0.0, 1.0));
+            let mean = depth_linear_from_ndc(view, m1.clamp(0.0, 1.0));
             let sigma_ndc = (m2 - m1 * m1).max(0.0).sqrt();
-            (mean, sigma_ndc / crate::shadow::ndc_per_world(light, mean))
+            (mean, sigma_ndc / crate::shadow::ndc_per_world(view, mean))
         })
         .collect();
     let (mut lo, mut hi, mut sigma_max) = (f32::INFINITY, f32::NEG_INFINITY, 0.0f32);
@@ -244,7 +248,7 @@ pub fn moments_image(moments: &crate::render::MomentsLevel, light: &LightGpu) ->
         sigma_max = sigma_max.max(*sigma);
     }
     if !lo.is_finite() {
-        (lo, hi) = (light.near, light.far);
+        (lo, hi) = (view.near, view.far);
     }
     let span = (hi - lo).max(1e-6);
     let scale = 256u32.div_ceil(side).max(1);
@@ -336,23 +340,30 @@ pub fn render_view_measured(
         ..Default::default()
     };
     let frame = renderer.render(scene, &request)?;
+    let no_light = || {
+        let count = frame.lights.len();
+        crate::render::RenderError::Usage(format!("light {light} does not exist (the scene has {count})"))
+    };
     let plain = |image, summary| RenderedView { image, summary, mean_abs_error: None };
     Ok(match view {
         View::Final => plain(renderer.read_color()?, None),
         View::ShadowMap => {
-            let map = renderer.read_shadow_map(light)?;
-            let (image, legend) = shadow_map_image(&map, &frame.lights[light]);
+            let (index, shadow_view) = frame.first_view_of(light).ok_or_else(no_light)?;
+            let map = renderer.read_shadow_map(index)?;
+            let (image, legend) = shadow_map_image(&map, shadow_view);
             plain(image, Some(legend.to_string()))
         }
         _ => {
             let mut a = renderer.read_analysis()?;
             if view == View::Moments {
-                a.moments = Some(renderer.read_moments_for_radius(light, frame.params.radius_texels)?);
+                let (index, _) = frame.first_view_of(light).ok_or_else(no_light)?;
+                a.moments = Some(renderer.read_moments_for_radius(index, frame.params.radius_texels)?);
             }
             let reference =
                 if view.needs_reference() { Some(renderer.render_reference(scene, light)?) } else { None };
             let samples = scene.shadow.reference_samples;
-            let light_and_params = frame.lights.get(light).map(|l| (l, &frame.params));
+            let light_view = frame.light_view(light);
+            let light_and_params = light_view.as_ref().map(|l| (l, &frame.params));
             let (image, legend) =
                 analysis_view(view, &a, reference.as_deref(), samples, light_and_params, lang).ok_or_else(
                     || crate::render::RenderError::Usage(format!("view {} has no image", view.name())),
@@ -372,7 +383,7 @@ pub fn analysis_view(
     a: &Analysis,
     reference: Option<&[f32]>,
     reference_samples: u32,
-    light: Option<(&LightGpu, &ShadowParamsGpu)>,
+    light: Option<(&LightViewGpu, &ShadowParamsGpu)>,
     lang: Lang,
 ) -> Option<(RgbaImage, String)> {
     use crate::i18n::{fill, tr};
@@ -381,7 +392,7 @@ pub fn analysis_view(
         View::Moments => {
             let (light, _) = light?;
             let moments = a.moments.as_ref()?;
-            let (image, mean, sigma) = moments_image(moments, light);
+            let (image, mean, sigma) = moments_image(moments, &light.view);
             let text = fill(
                 lang,
                 "VSM moments, level {} (each texel averages {}x{} map texels), read by a filter of {} texels, dark blue .. yellow\nleft: mean depth {} .. {} world units from the light; right: standard deviation 0 .. {} world units",

@@ -5,7 +5,7 @@
 use crate::i18n::{Lang, fill, tr};
 use crate::render::{Analysis, Readback, RenderError, Renderer};
 use crate::shadow::project_to_light;
-use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
+use crate::shadow::{DepthImage, LightViewGpu, ShadowParamsGpu, ShadowViewGpu};
 use crate::views::heat_color;
 use glam::Vec3;
 use image::{Rgba, RgbaImage};
@@ -60,7 +60,7 @@ pub fn compose(
     lang: Lang,
     overlays: &[Overlay],
     analysis: &Analysis,
-    light: Option<&LightGpu>,
+    light_view: Option<&ShadowViewGpu>,
     reference: Option<&[f32]>,
 ) -> (RgbaImage, Vec<String>) {
     let mut image = RgbaImage::new(analysis.width, analysis.height);
@@ -89,8 +89,8 @@ pub fn compose(
                 });
             }
             Overlay::TexelGrid => {
-                let Some(light) = light else { continue };
-                let size = light.map_size_texels;
+                let Some(view) = light_view else { continue };
+                let size = view.map_size_texels;
                 legends.push(fill(
                     lang,
                     "texel grid: lines where the shadow-map texel changes ({}² map)",
@@ -98,11 +98,8 @@ pub fn compose(
                 ));
                 let texel = |i: usize| {
                     let p = Vec3::from_slice(&analysis.position[i][..3]);
-                    let s = project_to_light(light, p);
-                    (
-                        (s.x * light.map_size_texels).floor() as i64,
-                        (s.y * light.map_size_texels).floor() as i64,
-                    )
+                    let s = project_to_light(view, p);
+                    ((s.x * view.map_size_texels).floor() as i64, (s.y * view.map_size_texels).floor() as i64)
                 };
                 let w = analysis.width as usize;
                 paint(&mut image, analysis, |i| {
@@ -118,10 +115,10 @@ pub fn compose(
                 });
             }
             Overlay::OutsideFrustum => {
-                let Some(light) = light else { continue };
+                let Some(view) = light_view else { continue };
                 legends.push(tr(lang, "orange: outside the light's frustum (no map data)").into());
                 paint(&mut image, analysis, |i| {
-                    let s = project_to_light(light, Vec3::from_slice(&analysis.position[i][..3]));
+                    let s = project_to_light(view, Vec3::from_slice(&analysis.position[i][..3]));
                     // The twin's rule: NaN (a point in a spot light's own plane) is outside too.
                     let outside = crate::shadow::outside_map(glam::Vec2::new(s.x, s.y))
                         || crate::shadow::outside_depth(s.z);
@@ -215,7 +212,7 @@ pub fn bleeding_of_last_frame(
 /// and the shadow parameters as the GPU had them.
 pub struct BleedingInputs {
     pub map: DepthImage,
-    pub light: LightGpu,
+    pub light: LightViewGpu,
     pub params: ShadowParamsGpu,
 }
 
@@ -233,12 +230,13 @@ pub fn bleeding_inputs_readback(
     light: usize,
 ) -> Result<Readback<Option<BleedingInputs>>, RenderError> {
     let Some(frame) = renderer.last_frame() else { return Ok(Readback::ready(None)) };
-    let Some(light_gpu) = frame.lights.get(light).copied().filter(|_| frame.params.uses_moments()) else {
+    let Some(light_gpu) = frame.light_view(light).filter(|_| frame.params.uses_moments()) else {
         return Ok(Readback::ready(None));
     };
     let params = frame.params;
+    let view_index = frame.lights[light].first_view as usize;
     Ok(renderer
-        .shadow_map_readback(light)?
+        .shadow_map_readback(view_index)?
         .map(move |map| Ok(Some(BleedingInputs { map, light: light_gpu, params }))))
 }
 
@@ -248,10 +246,10 @@ pub fn bleeding_inputs_readback(
 pub fn vsm_light_bleeding(
     analysis: &Analysis,
     map: &DepthImage,
-    light: &LightGpu,
+    light: &LightViewGpu,
     params: &ShadowParamsGpu,
 ) -> Vec<f32> {
-    let mut twin = crate::shadow::Twin::new(light, params, map);
+    let mut twin = crate::shadow::Twin::new(&light.light, &light.view, params, map);
     (0..analysis.shadow.len())
         .map(|i| {
             let v = analysis.shadow[i][0];
@@ -289,12 +287,12 @@ fn paint(image: &mut RgbaImage, analysis: &Analysis, color: impl Fn(usize) -> Op
     }
 }
 
-/// The edges of every light's frustum as seen by a camera (`clip_from_world` of the view), in
-/// fractions of the view (0..1 across, 0..1 down), with whether the light is `selected`. Edges
-/// behind the camera are left out.
+/// The edges of every shadow view's frustum as seen by a camera (`clip_from_world` of the
+/// camera), in fractions of the camera's view (0..1 across, 0..1 down), with whether the view's
+/// light is `selected`. Edges behind the camera are left out.
 pub fn light_frustum_edges(
     clip_from_world: &glam::Mat4,
-    lights: &[LightGpu],
+    views: &[ShadowViewGpu],
     selected: usize,
 ) -> Vec<([f32; 2], [f32; 2], bool)> {
     let to_view = |p: Vec3| {
@@ -305,8 +303,8 @@ pub fn light_frustum_edges(
         })
     };
     let mut edges = Vec::new();
-    for (i, light) in lights.iter().enumerate() {
-        let world_from_clip = glam::Mat4::from_cols_array_2d(&light.clip_from_world).inverse();
+    for view in views {
+        let world_from_clip = glam::Mat4::from_cols_array_2d(&view.clip_from_world).inverse();
         let corner = |x: f32, y: f32, z: f32| {
             let w = world_from_clip * glam::Vec4::new(x, y, z, 1.0);
             w.truncate() / w.w
@@ -328,7 +326,7 @@ pub fn light_frustum_edges(
             [(0, 1), (1, 2), (2, 3), (3, 0), (4, 5), (5, 6), (6, 7), (7, 4), (0, 4), (1, 5), (2, 6), (3, 7)]
         {
             if let (Some(pa), Some(pb)) = (to_view(c[a]), to_view(c[b])) {
-                edges.push((pa, pb, i == selected));
+                edges.push((pa, pb, view.light as usize == selected));
             }
         }
     }
@@ -368,11 +366,11 @@ pub fn blend_onto(picture: &mut RgbaImage, overlay: &RgbaImage) {
     }
 }
 
-/// Draw the lights' frustum edges onto a picture of the camera view (slides, screenshots).
+/// Draw the shadow views' frustum edges onto a picture of the camera view (slides, screenshots).
 pub fn draw_light_frusta(
     picture: &mut RgbaImage,
     clip_from_world: &glam::Mat4,
-    lights: &[LightGpu],
+    views: &[ShadowViewGpu],
     selected: usize,
 ) {
     let (w, h) = picture.dimensions();
@@ -384,7 +382,7 @@ pub fn draw_light_frusta(
     };
     let width = (w.max(h) as f32 / 640.0).max(1.5);
     let stroke = tiny_skia::Stroke { width, ..Default::default() };
-    for (a, b, is_selected) in light_frustum_edges(clip_from_world, lights, selected) {
+    for (a, b, is_selected) in light_frustum_edges(clip_from_world, views, selected) {
         let mut path = tiny_skia::PathBuilder::new();
         path.move_to(a[0] * w as f32, a[1] * h as f32);
         path.line_to(b[0] * w as f32, b[1] * h as f32);

@@ -3,7 +3,7 @@
 
 use crate::render::FrameRequest;
 use crate::scene::{Camera, Light, Mesh, Scene, ShadowSettings};
-use crate::shadow::LightGpu;
+use crate::shadow::ShadowViewGpu;
 use std::sync::Arc;
 
 /// Everything a ground truth depends on: the surface under each pixel (camera, frame, pixel,
@@ -72,9 +72,10 @@ fn placement(o: &crate::scene::Object) -> [f32; 12] {
 /// leaves the map alone (the light's width, a filter setting) then skips its read-back.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct MapKey {
-    /// The light's view and depth range (not its colour or size, which the map does not see).
-    light_clip_from_world: [[f32; 4]; 4],
-    light_depth: (f32, f32, u32, f32),
+    /// The shadow view's matrix and depth range (not the light's colour or size, which the map
+    /// does not see).
+    view_clip_from_world: [[f32; 4]; 4],
+    view_depth: (f32, f32, u32, f32),
     time_bits: u32,
     depth_bias: (i32, u32, bool),
     /// Per object: the mesh and its placement and spin.
@@ -83,13 +84,13 @@ pub(super) struct MapKey {
 }
 
 impl MapKey {
-    pub(super) fn new(scene: &Scene, light: &LightGpu, time_s: f32, picture_texels: u32) -> Self {
+    pub(super) fn new(scene: &Scene, view: &ShadowViewGpu, time_s: f32, picture_texels: u32) -> Self {
         let objects =
             scene.objects.iter().map(|o| (std::sync::Arc::as_ptr(&o.mesh) as usize, placement(o))).collect();
         let s = &scene.shadow;
         Self {
-            light_clip_from_world: light.clip_from_world,
-            light_depth: (light.near, light.far, light.orthographic, light.map_size_texels),
+            view_clip_from_world: view.clip_from_world,
+            view_depth: (view.near, view.far, view.orthographic, view.map_size_texels),
             time_bits: time_s.to_bits(),
             depth_bias: (s.depth_bias_constant, s.depth_bias_slope.to_bits(), s.cull_front_faces),
             objects,
@@ -108,8 +109,9 @@ mod tests {
         let path = crate::shipped_path("assets/scenes/games202.toml");
         let scene = crate::scene::load_scene(&path, &[]).expect("scene");
         let key = |scene: &Scene, time_s: f32| {
-            let light = LightGpu::new(&scene.lights[0], time_s, 0, scene.lights[0].shadow_map_size);
-            MapKey::new(scene, &light, time_s, 1024)
+            let (_, views) =
+                crate::shadow::frame_lights(&scene.lights, time_s, scene.lights[0].shadow_map_size);
+            MapKey::new(scene, &views[0], time_s, 1024)
         };
         let base = key(&scene, 0.0);
         // The light's width and the filter do not change the map: no new read-back.

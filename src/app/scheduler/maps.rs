@@ -5,7 +5,7 @@ use super::keys::MapKey;
 use super::renderers::{Renderers, Stage};
 use super::{MapView, Maps, RenderEvent, RenderJob};
 use crate::render::{GpuWait, Readback, RenderError};
-use crate::shadow::{DepthImage, LightGpu};
+use crate::shadow::{DepthImage, ShadowViewGpu};
 use crate::views;
 use std::collections::VecDeque;
 
@@ -34,8 +34,8 @@ enum Made {
 pub(super) struct MapsComing {
     /// What is sent once every picture is there.
     maps: Maps,
-    /// The pictures still to read: the light and which picture.
-    to_read: VecDeque<(usize, LightGpu, Picture)>,
+    /// The pictures still to read: the shadow view (its index in the frame) and which picture.
+    to_read: VecDeque<(usize, ShadowViewGpu, Picture)>,
     /// The one being read.
     reading: Option<Readback<Made>>,
     /// What the selected light's picture is drawn from: the views have it once it is sent.
@@ -46,17 +46,21 @@ impl Renderers {
     /// The pictures the frame `submit_image` just rendered needs: the selected light's map
     /// (unless it is the one sent last) and the thumbnails.
     pub(super) fn maps_to_read(&mut self, id: u64, job: &RenderJob) -> MapsComing {
-        let lights = self.a.last_frame().map(|f| f.lights.clone()).unwrap_or_default();
         let texels = if job.preview { MAP_PREVIEW_TEXELS.min(job.map_texels) } else { job.map_texels };
         let selected = job.request.selected_light;
-        let map_key = lights.get(selected).map(|l| MapKey::new(&job.scene, l, job.request.time_s, texels));
+        // A light's picture is its first view's map.
+        let first_views: Vec<(usize, ShadowViewGpu)> = self.a.last_frame().map_or_else(Vec::new, |f| {
+            (0..f.lights.len()).filter_map(|l| f.first_view_of(l).map(|(i, v)| (i, *v))).collect()
+        });
+        let map_key =
+            first_views.get(selected).map(|(_, v)| MapKey::new(&job.scene, v, job.request.time_s, texels));
         let map_unchanged = map_key.is_some() && map_key == self.last_map;
         let mut to_read = VecDeque::new();
-        if let Some(light) = lights.get(selected).filter(|_| !map_unchanged) {
-            to_read.push_back((selected, *light, Picture::Selected { texels }));
+        if let Some(&(index, view)) = first_views.get(selected).filter(|_| !map_unchanged) {
+            to_read.push_back((index, view, Picture::Selected { texels }));
         }
-        if job.thumbnails && lights.len() > 1 {
-            to_read.extend(lights.iter().enumerate().map(|(i, light)| (i, *light, Picture::Thumbnail)));
+        if job.thumbnails && first_views.len() > 1 {
+            to_read.extend(first_views.iter().map(|&(index, view)| (index, view, Picture::Thumbnail)));
         }
         let maps = Maps { job: id, map: None, thumbnails: Vec::new() };
         MapsComing { maps, to_read, reading: None, map_key }
@@ -81,8 +85,9 @@ impl Renderers {
                 Made::Thumbnail(image) => coming.maps.thumbnails.push(image),
             }
         }
-        if let Some((index, light, picture)) = coming.to_read.pop_front() {
-            let made = self.a.shadow_map_readback(index)?.map(move |depth| Ok(make(depth, light, picture)));
+        if let Some((index, view, picture)) = coming.to_read.pop_front() {
+            let made =
+                self.a.shadow_map_readback(index)?.map(move |depth| Ok(make(depth, (index, view), picture)));
             coming.reading = Some(made);
             return Ok(Stage::Maps(Box::new(coming)));
         }
@@ -93,14 +98,14 @@ impl Renderers {
     }
 }
 
-fn make(depth: DepthImage, light: LightGpu, picture: Picture) -> Made {
+fn make(depth: DepthImage, (index, view): (usize, ShadowViewGpu), picture: Picture) -> Made {
     match picture {
         Picture::Selected { texels } => {
-            let (image, legend) = views::shadow_map_image(&subsample(&depth, texels), &light);
-            Made::Selected(MapView { depth, light, image, range: (legend.min, legend.max) })
+            let (image, legend) = views::shadow_map_image(&subsample(&depth, texels), &view);
+            Made::Selected(MapView { depth, view, index, image, range: (legend.min, legend.max) })
         }
         Picture::Thumbnail => {
-            let (image, _) = views::shadow_map_image(&subsample(&depth, 4 * THUMBNAIL_TEXELS), &light);
+            let (image, _) = views::shadow_map_image(&subsample(&depth, 4 * THUMBNAIL_TEXELS), &view);
             Made::Thumbnail(image::imageops::resize(
                 &image,
                 THUMBNAIL_TEXELS,

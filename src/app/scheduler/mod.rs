@@ -31,7 +31,7 @@ pub use thread::WorkerThread;
 use crate::probe::ProbeReport;
 use crate::render::{Analysis, FrameRequest, PassTimes};
 use crate::scene::{Scene, Technique};
-use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu};
+use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu, ShadowViewGpu};
 use std::time::Duration;
 
 /// Something that renders the app's jobs and reports back. `submit` never waits for the GPU;
@@ -91,11 +91,13 @@ pub struct ProbeSpot {
     pub frame: (u32, u32),
 }
 
-/// The selected light's shadow map: the depths (for the hover readout and the probe picture)
-/// and the picture shown, with the depth range of its colour bar (world units).
+/// The selected light's shadow map (its first view's): the depths (for the hover readout and the
+/// probe picture) and the picture shown, with the depth range of its colour bar (world units).
 pub struct MapView {
     pub depth: DepthImage,
-    pub light: LightGpu,
+    pub view: ShadowViewGpu,
+    /// Which of the frame's shadow views it is.
+    pub index: usize,
     pub image: image::RgbaImage,
     pub range: (f32, f32),
 }
@@ -108,8 +110,9 @@ pub struct RenderOutput {
     pub size: (u32, u32),
     pub color: image::RgbaImage,
     pub color_b: Option<image::RgbaImage>,
-    /// The lights and the shadow parameters as the GPU had them.
+    /// The lights, their shadow views and the shadow parameters as the GPU had them.
     pub lights: Vec<LightGpu>,
+    pub views: Vec<ShadowViewGpu>,
     pub params: ShadowParamsGpu,
     /// A `Details` event for this job follows (the probe, the overlays' analysis).
     pub details_follow: bool,

@@ -203,6 +203,7 @@ impl Renderers {
             color,
             color_b,
             lights: coming.frame.lights,
+            views: coming.frame.views,
             params: coming.frame.params,
             details_follow: job.wants_details(),
             pass_times,

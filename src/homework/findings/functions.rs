@@ -4,7 +4,7 @@
 
 use super::{FindingKind, Found, Judged, median};
 use crate::i18n::{Lang, fill};
-use crate::shadow::{DepthImage, LightGpu, project_to_light, receiver_plane_gradient};
+use crate::shadow::{DepthImage, ShadowViewGpu, project_to_light, receiver_plane_gradient};
 use glam::{Vec2, Vec3};
 use std::collections::BTreeMap;
 
@@ -57,7 +57,7 @@ const ROUND_TRIP_POINTS_MAX: usize = 20_000;
 /// What the twin needs to search shadowlab's map where the student's findBlocker searched.
 pub struct TwinInputs<'a> {
     pub map: &'a DepthImage,
-    pub light: &'a LightGpu,
+    pub view: &'a ShadowViewGpu,
     pub normals: &'a [Option<Vec3>],
 }
 
@@ -199,10 +199,10 @@ pub(crate) struct TwinSearch {
 
 /// The twin's search at one pixel, over a disk of `radius_uv` around the receiver.
 fn twin_search(twin: &TwinInputs<'_>, p: Vec3, n: Vec3, radius_uv: f32) -> Option<TwinSearch> {
-    let s = project_to_light(twin.light, p);
+    let s = project_to_light(twin.view, p);
     let size = twin.map.size as i32;
     let texel = 1.0 / size as f32;
-    let gradient = receiver_plane_gradient(twin.light, p, n, s);
+    let gradient = receiver_plane_gradient(twin.view, p, n, s);
     // A texel blocks where it lies in front of the receiver's own plane by more than the plane
     // moves over one and a half texels.
     let tolerance = (gradient.length() * 1.5 * texel).max(1e-4);
