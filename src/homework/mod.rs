@@ -48,9 +48,9 @@ pub use light_width::{LightWidthFit, SlabShadow};
 pub use pass::{FRAMEWORK_LIGHT_INTENSITY, HomeworkRenderer, HomeworkRequest, MapKind};
 pub use program::{HomeworkFiles, HomeworkProgram, HomeworkSource, ShaderSource, TranslatedProgram, is_zip};
 pub use rewrite::{FRAG_COLOR, Rewritten, rewrite};
-pub use run::CheckRun;
+pub use run::{CheckRun, run_check};
 pub use session::{
-    CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, SubmissionReport, homework_picture, run_check,
+    CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, SubmissionReport, homework_picture,
 };
 pub use translate::{Translated, translate, translate_rewritten};
 
