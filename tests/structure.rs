@@ -1,7 +1,9 @@
-//! The shape ARCHITECTURE.md describes, held: the top-level modules of src/ depend on each other
-//! without cycles, no source file is past 500 lines (test code aside), the twin's formulas
-//! and the GPU parameters are made in one place each, and every source a comment cites is an entry
-//! of docs/REFERENCES.md.
+//! The shape ARCHITECTURE.md describes, held: the modules of each folder of src/ (the top-level
+//! ones too) name each other without circles, no source file is past 500 lines (test code aside),
+//! the twin's formulas and the GPU parameters are made in one place each, and every source a
+//! comment cites is an entry of docs/REFERENCES.md.
+
+mod module_graph;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -38,14 +40,6 @@ fn code_of(path: &Path) -> String {
     }
 }
 
-/// The top-level module a file belongs to (`render` for src/render/mod.rs and src/render/x.rs).
-fn module_of(path: &Path) -> String {
-    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    let rel = path.strip_prefix(&src).expect("under src");
-    let first = rel.components().next().expect("a file").as_os_str().to_string_lossy().to_string();
-    first.trim_end_matches(".rs").to_string()
-}
-
 #[test]
 fn no_source_file_is_past_500_lines_of_code() {
     let long: Vec<String> = sources()
@@ -57,45 +51,80 @@ fn no_source_file_is_past_500_lines_of_code() {
     assert!(long.is_empty(), "split these by concern: {long:?}");
 }
 
+/// Folders whose circles are let stand for now. Temporary (issue 31): `cli` until its bench_*
+/// files move; then this list is empty.
+const CIRCLES_LET_STAND: &[&str] = &["cli"];
+
+/// Within each folder of src/ (src itself too), its files and subfolders name each other without
+/// a circle: a child naming its parent's own items, or the parent its children, is no edge.
 #[test]
-fn the_top_level_modules_form_no_cycle() {
-    let files = sources();
-    let modules: BTreeSet<String> =
-        files.iter().map(|p| module_of(p)).filter(|m| m != "lib" && m != "main").collect();
-    let mut uses: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    for path in &files {
-        let from = module_of(path);
-        let code = code_of(path);
-        for (at, _) in code.match_indices("crate::") {
-            let name: String =
-                code[at + 7..].chars().take_while(|c| c.is_ascii_alphanumeric() || *c == '_').collect();
-            if name != from && modules.contains(&name) {
-                uses.entry(from.clone()).or_default().insert(name);
+fn no_folder_has_an_import_circle() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let graph = module_graph::Graph::of_crate(&root.join("src/lib.rs"));
+    let mut problems = Vec::new();
+    for (folder, edges) in graph.sibling_edges() {
+        let shown = if folder.is_empty() { "src".to_string() } else { folder.join("/") };
+        let circles = module_graph::circles(&edges);
+        if CIRCLES_LET_STAND.contains(&shown.as_str()) {
+            if circles.is_empty() {
+                problems.push(format!("{shown} has no circle now: take it out of CIRCLES_LET_STAND"));
             }
+            continue;
+        }
+        for circle in circles {
+            let mut lines = vec![format!("{shown}: {} -> {}", circle.join(" -> "), circle[0])];
+            for (i, from) in circle.iter().enumerate() {
+                let to = &circle[(i + 1) % circle.len()];
+                let site = edges[from][to]
+                    .strip_prefix(&format!("{}/", root.display()))
+                    .unwrap_or(&edges[from][to])
+                    .to_string();
+                lines.push(format!("    {from} -> {to}: {site}"));
+            }
+            problems.push(lines.join("\n"));
         }
     }
-    // Depth-first search for a path back to where it started.
-    fn path_back(
-        uses: &BTreeMap<String, BTreeSet<String>>,
-        start: &str,
-        at: &str,
-        seen: &mut BTreeSet<String>,
-        trail: &mut Vec<String>,
-    ) -> bool {
-        for next in uses.get(at).into_iter().flatten() {
-            trail.push(next.clone());
-            if next == start || (seen.insert(next.clone()) && path_back(uses, start, next, seen, trail)) {
-                return true;
-            }
-            trail.pop();
-        }
-        false
+    assert!(problems.is_empty(), "{} import circles:\n{}", problems.len(), problems.join("\n"));
+}
+
+/// The circle check on a crate made for it: a path in code, a parent's re-export and a glob
+/// import each make an edge; a parent's own items, comments, strings and tests do not.
+#[test]
+fn the_circle_check_sees_what_siblings_name() {
+    let dir = std::env::temp_dir().join(format!("shadowlab-module-graph-{}", std::process::id()));
+    let files = [
+        ("src/lib.rs", "pub mod a;\npub mod b;\n"),
+        ("src/a/mod.rs", "mod w;\nmod x;\nmod y;\nmod z;\npub use z::Thing;\npub struct Parent;\n"),
+        ("src/a/w.rs", "use super::*;\npub struct Inner(Parent);\nfn f(_: Thing) {}\n"),
+        (
+            "src/a/x.rs",
+            "use super::Parent;\n// super::z::Thing\nfn f() -> &'static str { super::y::g(); \"super::z\" }\n\
+             #[cfg(test)]\nmod tests {\n    use crate::a::z::Thing;\n}\n",
+        ),
+        ("src/a/y.rs", "pub fn g() -> super::Thing {\n    todo!()\n}\n"),
+        ("src/a/z.rs", "pub struct Thing(crate::a::w::Inner, super::x::X);\n"),
+        ("src/b/mod.rs", "mod p;\nmod q;\npub struct Parent;\n"),
+        ("src/b/p.rs", "use super::Parent;\nuse super::q::Q;\n"),
+        ("src/b/q.rs", "pub struct Q(super::Parent);\n"),
+    ];
+    for (path, text) in files {
+        std::fs::create_dir_all(dir.join(path).parent().expect("a folder")).expect("a temporary folder");
+        std::fs::write(dir.join(path), text).expect("a fixture file");
     }
-    for start in uses.keys() {
-        let mut trail = vec![start.clone()];
-        let cycle = path_back(&uses, start, start, &mut BTreeSet::new(), &mut trail);
-        assert!(!cycle, "a cycle between modules: {}", trail.join(" -> "));
-    }
+    let edges = module_graph::Graph::of_crate(&dir.join("src/lib.rs")).sibling_edges();
+    let _ = std::fs::remove_dir_all(&dir);
+    let (a, b) = (&edges[&vec!["a".to_string()]], &edges[&vec!["b".to_string()]]);
+    let names = |m: &BTreeMap<String, String>| m.keys().cloned().collect::<Vec<_>>();
+    assert_eq!(module_graph::circles(a), [vec!["w", "z"], vec!["x", "y", "z"]]);
+    assert_eq!(names(&a["x"]), ["y"], "only the call in code counts");
+    assert!(a["x"]["y"].ends_with("a/x.rs:3"), "{}", a["x"]["y"]);
+    assert!(a["y"]["z"].ends_with("a/y.rs:1"), "through the parent's re-export: {}", a["y"]["z"]);
+    assert!(a["w"]["z"].ends_with("a/w.rs:3"), "through `use super::*`: {}", a["w"]["z"]);
+    assert_eq!(names(&a["z"]), ["w", "x"]);
+    assert!(module_graph::circles(b).is_empty());
+    assert_eq!(b.len(), 1);
+    assert_eq!(names(&b["p"]), ["q"]);
+    assert!(!edges.contains_key(&Vec::<String>::new()), "the top level names nothing across");
 }
 
 /// Where the code outside the twin names a formula the twin defines, it calls it: no second

@@ -37,7 +37,7 @@ pub struct HomeworkArgs {
         long,
         value_name = "SECONDS",
         default_value = "120",
-        value_parser = super::homework_class::parse_timeout,
+        value_parser = super::parse::parse_timeout,
         requires = "class"
     )]
     pub timeout: std::time::Duration,
@@ -110,9 +110,6 @@ fn report_json(report: &HomeworkReport) -> Result<String, CliError> {
 }
 
 pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
-    if let Some(class) = &args.class {
-        return super::homework_class::run(class, &args);
-    }
     let Some(shader_path) = args.shader.clone() else {
         return Err(CliError::input("give the homework's PATH, or --class DIR"));
     };

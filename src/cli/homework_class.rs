@@ -32,15 +32,6 @@ const MAX_STDOUT_BYTES: u64 = done::MAX_REPORT_BYTES;
 const MAX_STDERR_BYTES: u64 = 1 << 20;
 /// A message is one line of at most this many characters.
 const MAX_MESSAGE_CHARS: usize = 400;
-/// The longest --timeout (a day).
-const MAX_TIMEOUT_S: f64 = 86_400.0;
-
-pub fn parse_timeout(s: &str) -> Result<Duration, String> {
-    match s.trim().parse::<f64>() {
-        Ok(v) if v > 0.0 && v <= MAX_TIMEOUT_S => Ok(Duration::from_secs_f64(v)),
-        _ => Err(format!("`{s}` is not a number of seconds above 0 and at most {MAX_TIMEOUT_S}")),
-    }
-}
 
 /// One submission of the class.
 struct Member {

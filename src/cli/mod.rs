@@ -357,7 +357,10 @@ pub fn run(command: Command) -> Result<(), CliError> {
         Command::Bench(args) => bench::run(args),
         Command::Lessons => list_lessons(),
         Command::Export(args) => export_cmd::run(args),
-        Command::Homework(args) => homework::run(args),
+        Command::Homework(args) => match &args.class {
+            Some(class) => homework_class::run(class, &args),
+            None => homework::run(args),
+        },
     }
 }
 

@@ -1,7 +1,8 @@
-//! The command line's values: KEY=VALUE, WIDTHxHEIGHT, X,Y, seconds and view names, each
-//! refused with a message that says what was expected.
+//! The command line's values: KEY=VALUE, WIDTHxHEIGHT, X,Y, seconds, timeouts and view names,
+//! each refused with a message that says what was expected.
 
 use crate::views::View;
+use std::time::Duration;
 
 pub(super) fn parse_key_value(s: &str) -> Result<(String, String), String> {
     let (k, v) = s.split_once('=').ok_or_else(|| format!("`{s}` is not KEY=VALUE"))?;
@@ -43,4 +44,14 @@ pub(super) fn parse_view(s: &str) -> Result<View, String> {
         let names: Vec<_> = View::ALL.iter().map(|v| v.name()).collect();
         format!("unknown view `{s}` (expected one of {})", names.join(", "))
     })
+}
+
+/// The longest --timeout (a day).
+const MAX_TIMEOUT_S: f64 = 86_400.0;
+
+pub(super) fn parse_timeout(s: &str) -> Result<Duration, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v > 0.0 && v <= MAX_TIMEOUT_S => Ok(Duration::from_secs_f64(v)),
+        _ => Err(format!("`{s}` is not a number of seconds above 0 and at most {MAX_TIMEOUT_S}")),
+    }
 }

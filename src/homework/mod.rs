@@ -45,12 +45,12 @@ pub use interface::{
 };
 pub use light::{HomeworkLight, LightFrom, ModelMatrixError, ReadLight, gl_from_wgpu_clip, read_light};
 pub use light_width::{LightWidthFit, SlabShadow};
-pub use pass::{FRAMEWORK_LIGHT_INTENSITY, HomeworkGpuError, HomeworkRenderer, HomeworkRequest, MapKind};
+pub use pass::{FRAMEWORK_LIGHT_INTENSITY, HomeworkRenderer, HomeworkRequest, MapKind};
 pub use program::{HomeworkFiles, HomeworkProgram, HomeworkSource, ShaderSource, TranslatedProgram, is_zip};
 pub use rewrite::{FRAG_COLOR, Rewritten, rewrite};
-pub use run::CheckRun;
+pub use run::{CheckRun, run_check};
 pub use session::{
-    CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, SubmissionReport, homework_picture, run_check,
+    CheckOutcome, HomeworkReport, NAN_COLOR, ShaderErrorReport, SubmissionReport, homework_picture,
 };
 pub use translate::{Translated, translate, translate_rewritten};
 
@@ -99,5 +99,16 @@ impl HomeworkError {
             HomeworkError::Rewrite { line, .. } => Some(*line),
             HomeworkError::Shader { line, .. } => *line,
         }
+    }
+}
+
+/// A GPU error in a homework's pipeline or draw, on one line.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("{0}")]
+pub struct HomeworkGpuError(pub String);
+
+impl From<crate::render::RenderError> for HomeworkGpuError {
+    fn from(e: crate::render::RenderError) -> Self {
+        HomeworkGpuError(e.to_string())
     }
 }

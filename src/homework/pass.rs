@@ -9,9 +9,11 @@ use super::images::{HomeworkImages, PackedMap, TapImages, decode, decode_taps};
 use super::instrument::TAPS_OUTPUT;
 use super::interface::STUDENT_BLOCK_BINDING;
 use super::light::{HomeworkLight, gl_from_wgpu_clip};
-use super::pipeline::Pass;
+use super::pipeline::{DEPTH_FORMAT, Pass};
 use super::program::HomeworkProgram;
-use super::{BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS_SIZE_BYTES, SamplerFilter};
+use super::{
+    BindingKind, CLIP_Y_SIGN_OFFSET_BYTES, FRAMEWORK_UNIFORMS_SIZE_BYTES, HomeworkGpuError, SamplerFilter,
+};
 use crate::render::readback;
 use crate::scene::Scene;
 use glam::Vec3;
@@ -29,7 +31,6 @@ const MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
 /// The map kept without loss: the packed channels as floats, so the student's own `unpack` reads
 /// back the depth their `pack` was given (8 bits a channel round it, a bias of its own).
 const LOSSLESS_MAP_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
-pub(super) const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// The shadow map a homework's camera pass reads.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -65,17 +66,6 @@ pub struct HomeworkRenderer {
     camera_taps: Pass,
     linear: wgpu::Sampler,
     nearest: wgpu::Sampler,
-}
-
-/// A GPU error in a homework's pipeline or draw, on one line.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("{0}")]
-pub struct HomeworkGpuError(pub String);
-
-impl From<crate::render::RenderError> for HomeworkGpuError {
-    fn from(e: crate::render::RenderError) -> Self {
-        HomeworkGpuError(e.to_string())
-    }
 }
 
 /// Object `index`'s uniforms for one pass, std140 as `FRAMEWORK_UNIFORMS` lays them out.

@@ -3,9 +3,11 @@
 //! culling, depth test LESS). A shader wgpu refuses is an error on one line, not a panic.
 
 use super::interface::STUDENT_BLOCK_BINDING;
-use super::pass::DEPTH_FORMAT;
 use super::program::TranslatedProgram;
 use super::{BindingKind, HomeworkGpuError, SamplerFilter};
+
+/// The depth buffer of the light and camera passes.
+pub(super) const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
 
 /// One pass's pipeline with the bindings its two stages declare.
 pub(super) struct Pass {

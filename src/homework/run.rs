@@ -11,13 +11,32 @@ use super::light_width::{LightWidthFit, WidthInputs};
 use super::session::{CheckOutcome, HomeworkReport};
 use super::{
     HomeworkGpuError, HomeworkImages, HomeworkLight, HomeworkRenderer, HomeworkRequest, MapKind,
-    RECORDED_FUNCTIONS, TapImages,
+    RECORDED_FUNCTIONS, ShaderSource, TapImages,
 };
 use crate::i18n::Lang;
 use crate::render::{Analysis, Batches, FrameRequest, GpuWait, GroundTruth, Readback, Renderer};
 use crate::scene::{LightSize, Scene, Technique};
 use crate::shadow::{DepthImage, ShadowViewGpu};
 use glam::Vec3;
+
+/// Run a compiled homework and compare it, a step at a time, waiting for the GPU at each.
+/// `renderer` renders shadowlab's side on the same device.
+pub fn run_check(
+    homework: &HomeworkRenderer,
+    renderer: &mut Renderer,
+    shader: &ShaderSource,
+    scene: &Scene,
+    light: &HomeworkLight,
+    request: &HomeworkRequest,
+    lang: Lang,
+) -> Result<CheckOutcome, HomeworkGpuError> {
+    let mut run = CheckRun::start(homework, &shader.name, scene, light, request, lang)?;
+    loop {
+        if let Some(outcome) = run.step(renderer, GpuWait::Block)? {
+            return Ok(outcome);
+        }
+    }
+}
 
 /// A check under way.
 pub struct CheckRun {

@@ -1,15 +1,12 @@
-//! A whole homework check: the student's passes (over the framework's map and over a white one),
-//! shadowlab's own technique at the same settings and the ground truth, compared; and the
-//! pictures that show it.
+//! What a whole homework check found (the student's passes over the framework's map and over a
+//! white one, shadowlab's own technique at the same settings and the ground truth, compared) and
+//! the pictures that show it.
 
-use super::run::CheckRun;
 use super::{Figures, Finding};
 use super::{
-    HomeworkError, HomeworkGpuError, HomeworkImages, HomeworkLight, HomeworkRenderer, HomeworkRequest,
-    MapKind, ShaderSource, TapImages,
+    HomeworkError, HomeworkImages, HomeworkLight, HomeworkRenderer, HomeworkRequest, MapKind, TapImages,
 };
-use crate::i18n::Lang;
-use crate::render::{GpuWait, Renderer};
+use crate::render::Renderer;
 use crate::scene::Scene;
 use serde::Serialize;
 
@@ -129,25 +126,6 @@ pub struct CheckOutcome {
     pub ground_truth: Vec<f32>,
     /// The world position under each pixel (None: no surface).
     pub positions: Vec<Option<glam::Vec3>>,
-}
-
-/// Run a compiled homework and compare it (see the module documentation), waiting for the GPU.
-/// `renderer` renders shadowlab's side on the same device.
-pub fn run_check(
-    homework: &HomeworkRenderer,
-    renderer: &mut Renderer,
-    shader: &ShaderSource,
-    scene: &Scene,
-    light: &HomeworkLight,
-    request: &HomeworkRequest,
-    lang: Lang,
-) -> Result<CheckOutcome, HomeworkGpuError> {
-    let mut run = CheckRun::start(homework, &shader.name, scene, light, request, lang)?;
-    loop {
-        if let Some(outcome) = run.step(renderer, GpuWait::Block)? {
-            return Ok(outcome);
-        }
-    }
 }
 
 /// The student's picture of a homework (`fragment`, with `shadow_fragment` for the light pass or

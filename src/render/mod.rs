@@ -6,6 +6,7 @@ mod camera_pass;
 mod context;
 mod frame;
 pub mod gpu_types;
+mod layouts;
 mod moments;
 mod pipelines;
 mod prepare;
@@ -26,18 +27,20 @@ pub use context::{GpuContext, headless_adapter};
 pub use context::{ScopeAnswer, error_line};
 pub use context::{describe_adapter, device_descriptor, optional_features};
 pub use frame::{Frame, FrameRequest};
-pub use pipelines::{COLOR_FORMAT, pipelines_built};
+pub use pipelines::pipelines_built;
 pub use readback::{GpuWait, Readback};
 pub use reference_pass::{Batches, GroundTruth, GroundTruthProgress};
+pub use targets::COLOR_FORMAT;
 pub use timing::PassTimes;
 
 use crate::scene::{MAX_LIGHTS, Scene, ShadowSettings, Technique};
 use crate::shadow::kernels::{MAX_TAPS, filter_taps, kernel_table};
 use gpu_types::{DYNAMIC_STRIDE, FrameGpu};
+use layouts::Layouts;
 use moments::Moments;
-use pipelines::{CameraOutputs, CameraPipelineKey, Layouts, Pipelines, ShadowPipelineKey};
+use pipelines::{CameraOutputs, CameraPipelineKey, Pipelines};
 use scene_gpu::SceneGpu;
-use targets::{ShadowMaps, ShadowMapsKey, ViewTargets};
+use targets::{ShadowMaps, ShadowMapsKey, ShadowPipelineKey, ViewTargets};
 
 #[derive(Debug, thiserror::Error)]
 pub enum RenderError {

@@ -1,7 +1,7 @@
 //! The VSM moments (shaders/moments.wgsl): (depth, depth²) per block of shadow-map texels, as a
 //! mip chain built by compute passes after the shadow pass, for frames that use VSM.
 
-use super::pipelines::texture_entry;
+use super::layouts::texture_entry;
 use super::targets::ShadowMaps;
 use super::timing::Timer;
 use crate::shadow::gpu::moments_block;

@@ -4,9 +4,9 @@
 //! the GPU (a browser's frame) submits a batch, returns, and collects its sums on a later call.
 
 use super::gpu_types::{DYNAMIC_STRIDE, ReferenceInfoGpu};
-use super::pipelines::ShadowPipelineKey;
 use super::readback::{self, GpuWait, Readback};
 use super::targets::ShadowMaps;
+use super::targets::ShadowPipelineKey;
 use super::{RenderError, Renderer, shadow_view_group};
 use crate::reference;
 use crate::scene::Scene;

@@ -1,7 +1,7 @@
 //! The scene's meshes, textures and per-object uniforms on the GPU.
 
 use super::gpu_types::ObjectGpu;
-use super::pipelines::Layouts;
+use super::layouts::Layouts;
 use crate::scene::{Mesh, Scene, TextureImage};
 use glam::Vec3;
 use std::collections::HashMap;

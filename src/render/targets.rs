@@ -1,9 +1,18 @@
 //! Offscreen targets the renderer owns: the camera view (colour, depth, analysis floats) and
 //! the shadow-map array (one layer per light).
 
-use super::pipelines::{
-    ALBEDO_CACHE_FORMAT, ANALYSIS_FORMAT, ANALYSIS_TARGETS, COLOR_FORMAT, COLOR_TARGET_FORMAT, DEPTH_FORMAT,
-};
+/// The camera view's texture: sRGB-encoded bytes in an Rgba8Unorm texture (what egui's native
+/// textures expect and what is read back to PNG)...
+pub const COLOR_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8Unorm;
+/// ...written through an sRGB view, so the encoding happens at the store and the shader
+/// returns linear colour (no per-pixel `pow`).
+pub const COLOR_TARGET_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba8UnormSrgb;
+pub const ANALYSIS_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+/// The albedo cache keeps the texture's samples as the shader computed them (f32, exact).
+pub const ALBEDO_CACHE_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Rgba32Float;
+pub const DEPTH_FORMAT: wgpu::TextureFormat = wgpu::TextureFormat::Depth32Float;
+/// Number of float targets of the analysis pass: shadow terms, position, normal.
+pub const ANALYSIS_TARGETS: usize = 3;
 
 fn texture(
     device: &wgpu::Device,
@@ -146,6 +155,15 @@ pub struct ShadowMaps {
     pub layer_views: Vec<wgpu::TextureView>,
 }
 
+/// How the maps are rasterised, what the shadow pipeline is built for: hardware depth bias and
+/// face culling.
+#[derive(Clone, Copy, PartialEq, Eq, Hash, Debug)]
+pub struct ShadowPipelineKey {
+    pub depth_bias_constant: i32,
+    pub depth_bias_slope_bits: u32,
+    pub cull_front_faces: bool,
+}
+
 /// Everything the shadow maps depend on, as bits: each shadow view's matrix and map size, every
 /// object's transform, the uploaded meshes and the shadow pipeline (hardware bias, culling).
 #[derive(Clone, Debug, PartialEq)]
@@ -153,7 +171,7 @@ pub struct ShadowMapsKey {
     pub views: Vec<([u32; 16], u32)>,
     pub object_transforms: Vec<[u32; 16]>,
     pub scene_upload: u64,
-    pub pipeline: super::pipelines::ShadowPipelineKey,
+    pub pipeline: ShadowPipelineKey,
 }
 
 impl ShadowMaps {

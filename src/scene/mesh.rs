@@ -118,8 +118,6 @@ impl Mesh {
     }
 }
 
-pub use super::primitives::{PRIMITIVES, primitive};
-
 /// Loads a Wavefront OBJ file and its MTL material libraries.
 ///
 /// - Polygons are triangulated (fan); points and lines are ignored. The

@@ -1,4 +1,5 @@
 use super::*;
+use crate::scene::primitives::{PRIMITIVES, primitive};
 
 fn fixture(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/obj").join(name)

@@ -2,7 +2,7 @@
 //! divider, light frusta, the probe's crosshair; orbit, pan and zoom, click to pin the probe.
 
 use super::camera_marks::{self, CameraPaint};
-use super::camera_pictures::CameraPictures;
+use super::camera_pictures::{CameraPictures, view_kind};
 use super::homework_view::HomeworkTextures;
 use super::rendering::Shown;
 use super::{AppState, ProbeAt};
@@ -68,12 +68,6 @@ fn letterbox(area: Rect, (frame_w, frame_h): (u32, u32)) -> Rect {
 /// Views of the light's map rather than of the camera's picture.
 fn is_light_space(view: View) -> bool {
     matches!(view, View::ShadowMap | View::Moments)
-}
-
-/// The view the camera panel is set to show: the chosen one, or the shaded picture while the A/B
-/// split compares two of them.
-pub(super) fn view_kind(state: &AppState) -> View {
-    if state.ab.is_some() { View::Final } else { state.view }
 }
 
 /// Lines of legend the view and the overlays will take (wrapping aside).

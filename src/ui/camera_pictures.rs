@@ -2,11 +2,16 @@
 //! their legends, and the pictures behind them (for the per-view screenshot).
 
 use super::AppState;
-use super::camera_panel::view_kind;
 use super::rendering::{Shown, color_image};
 use crate::i18n::{Lang, tr};
 use crate::views::View;
 use crate::views::overlays::Overlay;
+
+/// The view the camera panel is set to show: the chosen one, or the shaded picture while the A/B
+/// split compares two of them.
+pub(super) fn view_kind(state: &AppState) -> View {
+    if state.ab.is_some() { View::Final } else { state.view }
+}
 
 /// The debug view (visibility, heatmaps, reference, error) and the overlays, made again when
 /// what is shown changes, the language changes or another view is picked.

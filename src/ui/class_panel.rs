@@ -123,13 +123,3 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
         None => {}
     }
 }
-
-/// The homework panel's way back to the class its student was opened from.
-pub fn back_to_class(state: &mut AppState, ui: &mut Ui) {
-    let lang = state.lang;
-    let Some(class) = state.class.as_mut() else { return };
-    let label = fill(lang, "← class {} ({} submissions)", &[&class.name(), &class.members]);
-    if ui.link(label).clicked() {
-        class.showing = true;
-    }
-}

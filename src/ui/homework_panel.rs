@@ -30,12 +30,22 @@ fn file_and_line(from: &str) -> String {
     from.rsplit(['/', '\\']).next().unwrap_or(from).to_string()
 }
 
+/// The way back to the class the student was opened from.
+fn back_to_class(state: &mut AppState, ui: &mut Ui) {
+    let lang = state.lang;
+    let Some(class) = state.class.as_mut() else { return };
+    let label = fill(lang, "← class {} ({} submissions)", &[&class.name(), &class.members]);
+    if ui.link(label).clicked() {
+        class.showing = true;
+    }
+}
+
 pub fn show(state: &mut AppState, ui: &mut Ui) {
     let lang = state.lang;
     if state.homework.is_none() {
         return;
     }
-    super::class_panel::back_to_class(state, ui);
+    back_to_class(state, ui);
     let Some(homework) = state.homework.as_ref() else { return };
     ui.heading(RichText::new(tr(lang, "Your homework")).size(20.0));
     ui.label(RichText::new(homework.name()).monospace().strong())

@@ -81,8 +81,7 @@ impl Shown {
     /// read).
     pub fn light_view(&self, light: usize) -> Option<LightViewGpu> {
         let light = *self.lights.get(light)?;
-        let view = *self.views.get(light.first_view as usize)?;
-        Some(LightViewGpu { light, view })
+        Some(LightViewGpu { light, view: *self.views.get(light.first_view as usize)? })
     }
 }
 

@@ -3,8 +3,8 @@
 //! time (one pixel of the analysis pass per light, which leaves the probe's frame as the last one
 //! rendered).
 
-use super::renderers::{Renderers, Stage};
-use super::{Details, ProbeOutcome, RenderEvent, RenderJob};
+use super::renderers::Renderers;
+use super::{Details, ProbeOutcome, RenderEvent, RenderJob, Stage};
 use crate::probe::{Probed, Probing};
 use crate::render::{Analysis, FrameRequest, GpuWait, Readback, RenderError};
 use crate::views::overlays::bleeding_inputs_readback;

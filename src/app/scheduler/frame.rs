@@ -6,8 +6,8 @@
 //! time. What is submitted in a poll is collected on a later one (a browser maps a buffer only
 //! after the frame returns). A newer job replaces the one in progress between polls.
 
-use super::renderers::{Renderers, Stage};
-use super::{JobBook, RenderEvent, RenderJob, RenderScheduler};
+use super::renderers::Renderers;
+use super::{JobBook, RenderEvent, RenderJob, RenderScheduler, Stage};
 use crate::render::{GpuWait, RenderError};
 use std::time::Duration;
 use web_time::Instant;

@@ -2,8 +2,8 @@
 //! thumbnails, read back one after another (a depth map of 8192 texels a side is 256 MB).
 
 use super::keys::MapKey;
-use super::renderers::{Renderers, Stage};
-use super::{MapView, Maps, RenderEvent, RenderJob};
+use super::renderers::Renderers;
+use super::{MapView, Maps, RenderEvent, RenderJob, Stage};
 use crate::render::{GpuWait, Readback, RenderError};
 use crate::shadow::{DepthImage, ShadowViewGpu};
 use crate::views;

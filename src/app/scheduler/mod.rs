@@ -3,9 +3,9 @@
 //! renders on a thread and device of its own, so that a slow render never holds up the window
 //! (native); [`FrameDriven`] renders on the caller's thread a step at a time, from the UI's frame
 //! callback, and never waits for the GPU (what a browser, which has no threads to give and maps a
-//! buffer only between frames, needs; tested natively too). Both run the same stages
-//! (`renderers.rs`): each submits its work and collects its read-backs on a later call, waiting
-//! for them on the thread, asking after them in the frames.
+//! buffer only between frames, needs; tested natively too). Both run the same stages (`Stage`,
+//! a file each, on the `Renderers` of `renderers.rs`): each submits its work and collects its
+//! read-backs on a later call, waiting for them on the thread, asking after them in the frames.
 //!
 //! Newest request wins: requests still waiting when a render ends are dropped, all but the last;
 //! a ground truth in progress stops at its next batch when a newer request arrives, and reports
@@ -16,6 +16,7 @@
 mod details;
 mod frame;
 mod homework;
+mod image_stage;
 mod keys;
 mod maps;
 mod renderers;
@@ -28,11 +29,18 @@ pub use homework::HomeworkJob;
 #[cfg(not(target_arch = "wasm32"))]
 pub use thread::WorkerThread;
 
+use details::DetailsComing;
+use image_stage::ImageComing;
+use maps::MapsComing;
+use renderers::Renderers;
+use truths::{ProbeTruths, ViewTruth};
+
 use crate::probe::ProbeReport;
-use crate::render::{Analysis, FrameRequest, PassTimes};
+use crate::render::{Analysis, FrameRequest, GpuWait, PassTimes};
 use crate::scene::{Scene, Technique};
 use crate::shadow::{DepthImage, LightGpu, ShadowParamsGpu, ShadowViewGpu};
 use std::time::Duration;
+use web_time::Instant;
 
 /// Something that renders the app's jobs and reports back. `submit` never waits for the GPU;
 /// `poll` returns what has finished since the last call (a frame-driven scheduler does the next
@@ -217,5 +225,106 @@ impl JobBook {
 
     fn waiting_for(&self) -> Option<Duration> {
         self.submitted_at.filter(|_| self.busy()).map(|t| t.elapsed())
+    }
+}
+
+/// Where a job is: the stage to run next, with the work it has under way. A stage never waits
+/// for the GPU unless told to: it submits its work and returns, and the next call collects the
+/// read-backs once they are there (`GpuWait::Poll`, a page's frames) or waits for them
+/// (`GpuWait::Block`, the render thread).
+enum Stage {
+    /// The image (and the A/B side) to render: what goes on screen first.
+    Image,
+    /// The image rendered, its bytes on their way.
+    ImageComing(Box<ImageComing>),
+    /// The shadow-map pictures, read one after another.
+    Maps(Box<MapsComing>),
+    /// The analysis the overlays draw and the probe, to start.
+    Details,
+    /// The analysis's read-backs and the probe under way.
+    DetailsComing(Box<DetailsComing>),
+    /// The ground truths at the probe (from the probe's frame, the last one rendered).
+    ProbeReference(Box<ProbeTruths>),
+    /// The homework check, where the job carries one (on renderers of its own, so the view's
+    /// keeps its frame for the view's ground truth), a piece at a time.
+    Homework,
+    /// The view's ground truth, to start.
+    ViewReference,
+    /// The view's ground truth under way.
+    ViewReferenceComing(Box<ViewTruth>),
+    Done,
+}
+
+impl Stage {
+    fn is_done(&self) -> bool {
+        matches!(self, Stage::Done)
+    }
+}
+
+impl Renderers {
+    /// Run `stage` of job `id`, telling `send` what it finished; returns the stage to run next
+    /// (the same one where read-backs are still on their way). `cancelled` says a newer job is
+    /// waiting (the details and ground truths are then moot); `wait` whether to wait for the GPU.
+    #[allow(clippy::too_many_arguments)]
+    fn run_stage(
+        &mut self,
+        id: u64,
+        job: &RenderJob,
+        stage: Stage,
+        started: Instant,
+        send: &mut dyn FnMut(RenderEvent),
+        cancelled: &dyn Fn() -> bool,
+        wait: GpuWait,
+    ) -> Stage {
+        let shows_image = matches!(stage, Stage::Image | Stage::ImageComing(_) | Stage::Maps(_));
+        let next = match stage {
+            Stage::Image => self.submit_image(job).map(|coming| Stage::ImageComing(Box::new(coming))),
+            Stage::ImageComing(coming) => self.image_step(id, job, *coming, started, send, wait),
+            Stage::Maps(maps) => self.maps_step(job, *maps, send, wait),
+            // A newer request makes these details moot: it brings its own.
+            Stage::Details if cancelled() => Ok(Stage::Done),
+            Stage::Details => self.start_details(job).map(|d| Stage::DetailsComing(Box::new(d))),
+            Stage::DetailsComing(details) => self.details_step(id, job, *details, started, send, wait),
+            Stage::ProbeReference(truths) => self.probe_truths_step(id, job, *truths, send, cancelled, wait),
+            Stage::Homework if cancelled() => Ok(Stage::Done),
+            Stage::Homework => {
+                let Some(homework) = &job.homework else { return Stage::ViewReference };
+                let (size, time_s) = (job.request.size, job.request.time_s);
+                let stepped =
+                    self.homework.step(&self.device, &self.queue, homework, &job.scene, size, time_s, wait);
+                match stepped.transpose() {
+                    None => Ok(Stage::Homework),
+                    Some(outcome) => {
+                        send(RenderEvent::Homework { job: id, generation: homework.generation, outcome });
+                        Ok(Stage::ViewReference)
+                    }
+                }
+            }
+            Stage::ViewReference if !(job.reference && job.analysis) || cancelled() => Ok(Stage::Done),
+            Stage::ViewReference => self.start_view_truth(id, job, send),
+            Stage::ViewReferenceComing(truth) => self.view_truth_step(id, *truth, send, cancelled, wait),
+            Stage::Done => Ok(Stage::Done),
+        };
+        next.unwrap_or_else(|e| {
+            if shows_image {
+                // The views may not have what was last read back: read it all next time.
+                self.last_map = None;
+            }
+            send(RenderEvent::Failed { job: id, message: e.to_string() });
+            Stage::Done
+        })
+    }
+}
+
+impl RenderJob {
+    /// The stage after the probe's: the homework check where there is one, then the view's
+    /// ground truth.
+    fn after_probe(&self) -> Stage {
+        if self.homework.is_some() { Stage::Homework } else { Stage::ViewReference }
+    }
+
+    /// A probe or overlays to work out after the image.
+    fn wants_details(&self) -> bool {
+        !self.scene.lights.is_empty() && (self.probe.is_some() || self.analysis)
     }
 }

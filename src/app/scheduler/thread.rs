@@ -2,8 +2,8 @@
 //! that a slow render never holds up the window (on a software rasteriser each device has its own
 //! queue; egui's frames do not wait behind a 300 ms PCSS frame).
 
-use super::renderers::{Stage, open};
-use super::{JobBook, RenderEvent, RenderJob, RenderScheduler};
+use super::renderers::open;
+use super::{JobBook, RenderEvent, RenderJob, RenderScheduler, Stage};
 use crate::render::GpuWait;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU64, Ordering};

@@ -3,8 +3,8 @@
 //! depends on nothing that has changed since.
 
 use super::keys::ReferenceKey;
-use super::renderers::{Renderers, Stage};
-use super::{RenderEvent, RenderJob};
+use super::renderers::Renderers;
+use super::{RenderEvent, RenderJob, Stage};
 use crate::render::{Batches, FrameRequest, GpuWait, GroundTruth, RenderError};
 
 /// Ground-truth samples in the first batch; each later batch doubles, up to `REFERENCE_BATCH_MAX`.

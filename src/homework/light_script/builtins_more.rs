@@ -2,10 +2,10 @@
 
 use std::sync::Arc;
 
-use super::builtins::{length_arg, namespace, native_value};
-use super::interp::{GLOBAL, Interp};
+use super::interp::GLOBAL;
+use super::natives::{length_arg, namespace, native_value};
 use super::ops::num_to_string;
-use super::value::{Abort, Key, NativeCall, NativeFn, ObjKind, Value};
+use super::value::{Abort, Interp, Key, NativeCall, NativeFn, ObjKind, Value};
 
 type R<T> = Result<T, Abort>;
 

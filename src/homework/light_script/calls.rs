@@ -4,8 +4,9 @@
 use std::sync::Arc;
 
 use super::ast::{ClassDef, FuncBody, FuncDef, MemberKind, PropKey};
-use super::interp::Interp;
-use super::value::{Abort, ClassData, Closure, Flow, FnCtx, Key, NativeCall, ObjId, ObjKind, ScopeId, Value};
+use super::value::{
+    Abort, ClassData, Closure, Flow, FnCtx, Interp, Key, NativeCall, ObjId, ObjKind, ScopeId, Value,
+};
 
 type R<T> = Result<T, Abort>;
 

@@ -3,11 +3,12 @@
 //! the sandbox, resolving a name to its nearest preceding `NAME = EXPR` in the file.
 
 use super::ast::{Expr, ExprKind, Item, Name, ObjProp};
-use super::interp::{GLOBAL, Interp};
+use super::builtins;
+use super::interp::GLOBAL;
 use super::lex::{self, Tok, Token};
 use super::ops::num_to_string;
 use super::parse;
-use super::value::{ObjKind, Value};
+use super::value::{Interp, ObjKind, Value};
 use super::{EngineLight, Limits, MAX_SOURCE_BYTES, Sourced};
 
 /// How many definitions deep a value may refer to others (`a = b * 2; b = c; ...`).
@@ -61,7 +62,7 @@ pub fn engine_light(source: &str, file: &str, limits: Limits) -> EngineLight {
         }
     };
     let mut reader =
-        Reader { it: Interp::new(file, limits), toks, file, nesting: limits.nesting, resolves: 0 };
+        Reader { it: builtins::interpreter(file, limits), toks, file, nesting: limits.nesting, resolves: 0 };
     for (i, what) in WHAT.iter().enumerate() {
         let read = match call.get(i) {
             Some(Item::Plain(e)) => {

@@ -4,9 +4,8 @@
 use std::sync::Arc;
 
 use super::ast::{AssignOp, Expr, ExprKind, FuncDef, Item, LogicOp, Name, ObjProp, UnaryOp};
-use super::interp::Interp;
 use super::ops::{to_int32, truthy};
-use super::value::{Abort, FnCtx, Key, ObjKind, Prop, ScopeId, Value};
+use super::value::{Abort, FnCtx, Interp, Key, ObjKind, Prop, ScopeId, Value};
 
 type R<T> = Result<T, Abort>;
 

@@ -3,9 +3,8 @@
 
 use super::ast::{Case, DeclKind, Expr, Pattern, Stmt, StmtKind};
 use super::calls::BindMode;
-use super::interp::Interp;
 use super::ops::{strict_eq, truthy};
-use super::value::{Abort, Flow, Key, ObjKind, Prop, ScopeId, Value};
+use super::value::{Abort, Flow, Interp, Key, ObjKind, Prop, ScopeId, Value};
 
 type R<T> = Result<T, Abort>;
 type StmtFn = fn(&mut Interp, &Stmt, ScopeId) -> R<Flow>;

@@ -3,10 +3,10 @@
 //! browser), and a record of every call while a light matrix is computed.
 
 use super::GlCall;
-use super::builtins::namespace;
 use super::glmatrix::{self as gm, M4, V3};
-use super::interp::{GLOBAL, Interp, MAX_GL_CALLS};
-use super::value::{Abort, Key, NativeCall, NativeFn, ObjKind, Value};
+use super::interp::{GLOBAL, MAX_GL_CALLS};
+use super::natives::namespace;
+use super::value::{Abort, Interp, Key, NativeCall, NativeFn, ObjKind, Value};
 
 type R<T> = Result<T, Abort>;
 

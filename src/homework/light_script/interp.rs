@@ -1,12 +1,15 @@
-//! The interpreter's state: the object and scope arenas, the step budget, depth
-//! counters, and variable lookup. Property access is in `props.rs`, calls in `calls.rs`,
-//! statements in `exec.rs`, expressions in `eval.rs`.
+//! What the interpreter does with its state (`Interp`, in `value.rs` beside the objects and
+//! scopes it owns): allocation, the step budget, depth counters, and variable lookup. Property
+//! access is in `props.rs`, calls in `calls.rs`, statements in `exec.rs`, expressions in
+//! `eval.rs`, the globals in `builtins.rs`.
 
 use std::collections::BTreeMap;
 
 use super::ast::Name;
-use super::value::{Abort, Binding, FnCtx, ObjId, ObjKind, Object, Prop, PropMap, Scope, ScopeId, Value};
-use super::{GlCall, Limits, ScriptError};
+use super::value::{
+    Abort, Binding, FnCtx, Interp, ObjId, ObjKind, Object, Prop, PropMap, Scope, ScopeId, Value,
+};
+use super::{Limits, ScriptError};
 
 type R<T> = Result<T, Abort>;
 
@@ -40,30 +43,8 @@ const VALUE_BYTES: usize = std::mem::size_of::<Value>();
 /// Most gl-matrix calls a single `light_matrix` run records.
 pub(super) const MAX_GL_CALLS: usize = 4096;
 
-pub(super) struct Interp {
-    pub heap: Vec<Object>,
-    pub scopes: Vec<Scope>,
-    pub limits: Limits,
-    pub steps_left: u64,
-    pub call_depth: usize,
-    /// Rust recursion in the tree walker (expressions + statements), capped so any
-    /// input the parser accepted still cannot overflow the stack: the cap allows two
-    /// levels per parser nesting level and six per call, enough for recursion written
-    /// plainly to meet `call_depth` first.
-    pub eval_depth: usize,
-    pub max_eval_depth: usize,
-    /// Where the stack was when the current run began.
-    pub stack_base: usize,
-    /// Bytes allocated so far (see `MEMORY_BUDGET_BYTES`).
-    pub memory_used: usize,
-    pub file: String,
-    pub gl_log: Option<Vec<GlCall>>,
-    pub method_cache: BTreeMap<&'static str, ObjId>,
-    /// The one inert value framework stand-ins hand out.
-    pub sink: ObjId,
-}
-
 impl Interp {
+    /// The state alone, without globals: `builtins::interpreter` installs them.
     pub(super) fn new(file: &str, limits: Limits) -> Interp {
         let global = Scope {
             vars: BTreeMap::new(),
@@ -90,7 +71,6 @@ impl Interp {
             sink: ObjId(0),
         };
         it.sink = it.alloc_raw(ObjKind::Inert, None);
-        super::builtins::install(&mut it);
         it
     }
 

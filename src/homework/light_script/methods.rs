@@ -2,10 +2,9 @@
 //! `string_methods`). Work that
 //! walks elements or characters is charged to the step budget in proportion.
 
-use super::builtins::{int_arg, rel_index};
-use super::interp::Interp;
+use super::natives::{int_arg, rel_index, short};
 use super::ops::{num_to_string, strict_eq};
-use super::value::{Abort, NativeCall, NativeFn, ObjId, ObjKind, Value};
+use super::value::{Abort, Interp, NativeCall, NativeFn, ObjId, ObjKind, Value};
 
 type R<T> = Result<T, Abort>;
 
@@ -71,10 +70,6 @@ pub(super) fn lookup(table: &str, name: &str) -> Option<(&'static str, NativeFn)
         _ => return None,
     };
     list.iter().find(|(full, _)| full.rsplit('.').next() == Some(name)).copied()
-}
-
-pub(super) fn short(c: &NativeCall<'_>) -> &'static str {
-    c.name.rsplit('.').next().unwrap_or(c.name)
 }
 
 fn this_list(it: &mut Interp, c: &NativeCall<'_>) -> R<ObjId> {

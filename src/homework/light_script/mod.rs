@@ -28,6 +28,7 @@ mod glmatrix;
 mod interp;
 mod lex;
 mod methods;
+mod natives;
 mod ops;
 mod parse;
 mod parse_expr;
@@ -50,8 +51,8 @@ mod tests_light;
 pub use engine_js::engine_light;
 
 use ast::Pattern;
-use interp::{GLOBAL, Interp};
-use value::{Key, ObjKind, Value};
+use interp::GLOBAL;
+use value::{Interp, Key, ObjKind, Value};
 
 /// Sources larger than this are refused (bytes).
 pub const MAX_SOURCE_BYTES: usize = 1 << 20;
@@ -192,7 +193,7 @@ impl LightScript {
             return Err(e);
         }
         let program = parse::parse_program(&lexed.tokens, file, limits.nesting)?;
-        let mut it = Interp::new(file, limits);
+        let mut it = builtins::interpreter(file, limits);
         for name in &program.var_names {
             if !it.has_own_var(GLOBAL, name) {
                 it.declare(GLOBAL, name.clone(), Value::Undefined, true);

@@ -4,8 +4,7 @@
 use std::sync::Arc;
 
 use super::ast::{BinOp, Name};
-use super::interp::Interp;
-use super::value::{Abort, Key, ObjKind, Value};
+use super::value::{Abort, Interp, Key, MAX_PROTO_HOPS, ObjKind, Value};
 
 type R<T> = Result<T, Abort>;
 
@@ -407,7 +406,7 @@ impl Interp {
                 return Ok(true);
             }
             hops += 1;
-            if hops > super::props::MAX_PROTO_HOPS {
+            if hops > MAX_PROTO_HOPS {
                 break;
             }
             cur = self.obj(p).proto;

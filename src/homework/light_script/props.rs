@@ -3,14 +3,9 @@
 //! numbers and functions.
 
 use super::ast::Name;
-use super::interp::Interp;
-use super::value::{Abort, Key, ObjId, ObjKind, Prop, Value};
+use super::value::{Abort, Interp, Key, MAX_PROTO_HOPS, ObjId, ObjKind, Prop, Value};
 
 type R<T> = Result<T, Abort>;
-
-/// Prototype chains are followed this far at most: a script can grow one by one link per
-/// step (`F.prototype = new F()` in a loop), and each look-up must stay cheap.
-pub(super) const MAX_PROTO_HOPS: usize = 100;
 
 impl Interp {
     pub(super) fn is_callable(&self, v: &Value) -> bool {

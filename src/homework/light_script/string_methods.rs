@@ -1,10 +1,8 @@
 //! Built-in methods of strings. Work that walks characters is charged to the step budget in
 //! proportion.
 
-use super::builtins::{int_arg, num_arg, rel_index};
-use super::interp::Interp;
-use super::methods::short;
-use super::value::{Abort, NativeCall, NativeFn, Value};
+use super::natives::{int_arg, num_arg, rel_index, short};
+use super::value::{Abort, Interp, NativeCall, NativeFn, Value};
 
 type R<T> = Result<T, Abort>;
 

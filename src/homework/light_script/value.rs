@@ -1,13 +1,13 @@
-//! Values, heap objects and scopes. Objects and scopes live in arenas owned by the
-//! interpreter and are named by index: no reference cycles, no `RefCell` borrows to
+//! Values, heap objects and scopes, and the interpreter's state that owns them (`Interp`: a
+//! native function is called with it, so the two are defined together). Objects and scopes
+//! live in its arenas and are named by index: no reference cycles, no `RefCell` borrows to
 //! panic on, and dropping the interpreter frees everything at once.
 
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use super::ScriptError;
 use super::ast::{ClassDef, FuncDef, Name};
-use super::interp::Interp;
+use super::{GlCall, Limits, ScriptError};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
 pub(super) struct ObjId(pub usize);
@@ -194,4 +194,33 @@ pub(super) enum Flow {
     Return(Value, usize),
     Break,
     Continue,
+}
+
+/// Prototype chains are followed this far at most: a script can grow one by one link per
+/// step (`F.prototype = new F()` in a loop), and each look-up must stay cheap.
+pub(super) const MAX_PROTO_HOPS: usize = 100;
+
+/// The interpreter's state: the arenas every object and scope lives in, its budgets and
+/// counters (what it does with them is in `interp.rs` and the files beside it).
+pub(super) struct Interp {
+    pub heap: Vec<Object>,
+    pub scopes: Vec<Scope>,
+    pub limits: Limits,
+    pub steps_left: u64,
+    pub call_depth: usize,
+    /// Rust recursion in the tree walker (expressions + statements), capped so any
+    /// input the parser accepted still cannot overflow the stack: the cap allows two
+    /// levels per parser nesting level and six per call, enough for recursion written
+    /// plainly to meet `call_depth` first.
+    pub eval_depth: usize,
+    pub max_eval_depth: usize,
+    /// Where the stack was when the current run began.
+    pub stack_base: usize,
+    /// Bytes allocated so far (see `interp::MEMORY_BUDGET_BYTES`).
+    pub memory_used: usize,
+    pub file: String,
+    pub gl_log: Option<Vec<GlCall>>,
+    pub method_cache: BTreeMap<&'static str, ObjId>,
+    /// The one inert value framework stand-ins hand out.
+    pub sink: ObjId,
 }

@@ -2,6 +2,7 @@
 //! and, where it can be found, the line named), the meshes resolved and loaded once.
 
 use super::*;
+use crate::scene::primitives::{PRIMITIVES, primitive};
 
 /// A problem found while building, before we know whether the file or an override caused it.
 pub(super) enum BuildError {
@@ -316,14 +317,14 @@ fn resolve_mesh(
     base_dir: &Path,
     cache: &mut HashMap<PathBuf, Arc<Mesh>>,
 ) -> Result<Arc<Mesh>, BuildError> {
-    if let Some(mesh) = mesh::primitive(name) {
+    if let Some(mesh) = primitive(name) {
         let key = PathBuf::from(format!("<primitive {name}>"));
         return Ok(cache.entry(key).or_insert_with(|| Arc::new(mesh)).clone());
     }
     if !name.to_ascii_lowercase().ends_with(".obj") {
         return Err(BuildError::Invalid(format!(
             "`{key}`: unknown mesh `{name}` (expected one of {} or a path to an .obj file)",
-            mesh::PRIMITIVES.join(", ")
+            PRIMITIVES.join(", ")
         )));
     }
     let path = base_dir.join(name);
