@@ -61,7 +61,8 @@ fn hinted(lang: Lang, row: &Parameter, response: Response) -> Response {
     if row.named { response.on_hover_text(key_hint(lang, row.key)) } else { response }
 }
 
-/// The slider of a row over a number, from `lo` to `hi`.
+/// The slider of a row over a number, from `lo` to `hi`. A value the loader took beyond the span
+/// (a scene's or a lesson's) is kept as it is: only the user's own edits stay within the span.
 fn slider<'a, N: egui::emath::Numeric>(
     lang: Lang,
     row: &Parameter,
@@ -70,7 +71,10 @@ fn slider<'a, N: egui::emath::Numeric>(
     log: bool,
 ) -> Slider<'a> {
     let (lo, hi) = (N::from_f64(f64::from(lo)), N::from_f64(f64::from(hi)));
-    Slider::new(value, lo..=hi).logarithmic(log).text(translate(lang, row.label))
+    Slider::new(value, lo..=hi)
+        .logarithmic(log)
+        .clamping(egui::SliderClamping::Edits)
+        .text(translate(lang, row.label))
 }
 
 /// The slider of a light's or the camera's row over `value`: the row's span (a near plane's up to
@@ -237,7 +241,11 @@ fn lights(state: &mut AppState, ui: &mut Ui) -> bool {
         ui.horizontal(|ui| {
             let name = hinted(lang, row, ui.label(tr(row.label)));
             for (axis, prefix) in ["x ", "y ", "z "].into_iter().enumerate() {
-                let value = egui::DragValue::new(&mut point[axis]).speed(0.5).max_decimals(2).prefix(prefix);
+                let value = egui::DragValue::new(&mut point[axis])
+                    .speed(0.5)
+                    .max_decimals(2)
+                    .range(-params::MAX_COORDINATE..=params::MAX_COORDINATE)
+                    .prefix(prefix);
                 changed |= ui.add(value).labelled_by(name.id).changed();
             }
         });
