@@ -1,72 +1,13 @@
 //! The lessons, scenes, meshes and textures shadowlab ships, as bytes built into the binary: the
 //! copy an installed binary unpacks (`shipped.rs`) and the files a page reads (`files.rs`).
+//! `build.rs` finds them in the folders `list.rs` names, so a file dropped into one ships.
 
-macro_rules! shipped_files {
-    ($($path:literal),* $(,)?) => {
-        /// Every shipped file, by its path relative to the checkout, with its bytes.
-        pub const FILES: &[(&str, &[u8])] =
-            &[$(($path, include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/", $path)))),*];
-    };
-}
+mod list;
 
-shipped_files![
-    "lessons/01_hard_shadows.toml",
-    "lessons/02_bias.toml",
-    "lessons/03_pcf.toml",
-    "lessons/04_pcss.toml",
-    "lessons/05_multi_light.toml",
-    "lessons/06_vsm.toml",
-    "lessons/07_homework.toml",
-    "assets/README.md",
-    "assets/meshes/bunny.obj",
-    "assets/meshes/floor.mtl",
-    "assets/meshes/floor.obj",
-    "assets/scenes/acne.toml",
-    "assets/scenes/bleeding.toml",
-    "assets/scenes/contact.toml",
-    "assets/scenes/games202.toml",
-    "assets/scenes/homework.toml",
-    "assets/scenes/homework_check.toml",
-    "assets/homework/README.md",
-    "assets/homework/DirectionalLight.js",
-    "assets/homework/DirectionalLight_narrow.js",
-    "assets/homework/DirectionalLight_no_model.js",
-    "assets/homework/phongFragment.glsl",
-    "assets/homework/phongFragment_bias_too_large.glsl",
-    "assets/homework/phongFragment_constant_filter.glsl",
-    "assets/homework/phongFragment_divided_twice.glsl",
-    "assets/homework/phongFragment_light_size_world.glsl",
-    "assets/homework/phongFragment_nan_blocker.glsl",
-    "assets/homework/phongFragment_ndc_coordinates.glsl",
-    "assets/homework/phongFragment_no_bias.glsl",
-    "assets/homework/phongFragment_no_bias_hidden.glsl",
-    "assets/homework/phongFragment_random_walk.glsl",
-    "assets/homework/phongFragment_receiver_blocker.glsl",
-    "assets/homework/phongFragment_search_radius.glsl",
-    "assets/homework/phongFragment_tiny_light.glsl",
-    "assets/homework/phongFragment_undivided.glsl",
-    "assets/homework/phongFragment_zero_blocker.glsl",
-    "assets/homework/phongFragment_divided_by_blockers.glsl",
-    "assets/homework/shadowFragment_255.glsl",
-    "assets/homework/shadowFragment_carry.glsl",
-    "assets/homework/framework/phongVertex.glsl",
-    "assets/homework/framework/shadowFragment.glsl",
-    "assets/homework/framework/shadowVertex.glsl",
-    "assets/scenes/lesson_bias_cull.toml",
-    "assets/scenes/lesson_pcss_sun.toml",
-    "assets/scenes/multi_light.toml",
-    "assets/textures/checker.png",
-];
+pub use list::{SHIPPED_DIRS, SHIPPED_FILES, ships};
 
-/// Folders whose files ship (the test that keeps [`FILES`] complete walks them).
-pub const SHIPPED_DIRS: [&str; 6] = [
-    "lessons",
-    "assets/meshes",
-    "assets/scenes",
-    "assets/textures",
-    "assets/homework",
-    "assets/homework/framework",
-];
+// `FILES`: every file of the shipped folders and the shipped files, as `build.rs` found them.
+include!(concat!(env!("OUT_DIR"), "/shipped_files.rs"));
 
 /// `path` as a key of [`FILES`]: `.` left out, `..` taken back, `\` read as `/`.
 fn key(path: &std::path::Path) -> String {
@@ -116,7 +57,8 @@ mod tests {
 
     #[test]
     fn shipped_files_are_found_by_relative_paths_with_dots() {
-        assert_eq!(file(Path::new("lessons/02_bias.toml")), Some(FILES[1].1));
+        let bias = std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons/02_bias.toml"));
+        assert_eq!(file(Path::new("lessons/02_bias.toml")), bias.ok().as_deref());
         assert!(file(Path::new("./assets/scenes/../meshes/bunny.obj")).is_some());
         assert!(file(Path::new("assets/meshes")).is_none());
         assert!(file(Path::new("Cargo.toml")).is_none());
@@ -124,6 +66,13 @@ mod tests {
         assert!(!is_folder(Path::new("assets/home")) && !is_folder(Path::new("lessons/02_bias.toml")));
         let textures = files_in(Path::new("assets/textures"));
         assert_eq!(textures, vec![PathBuf::from("assets/textures/checker.png")]);
-        assert_eq!(files_in(Path::new("assets/homework")).len(), 22);
+        let homework = files_in(Path::new("assets/homework"));
+        let on_disk = std::fs::read_dir(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/homework"))
+            .expect("the homework folder")
+            .flatten()
+            .filter(|e| e.path().is_file() && ships(&e.file_name().to_string_lossy()))
+            .count();
+        assert_eq!(homework.len(), on_disk, "{homework:?}");
+        assert!(homework.iter().all(|p| p.parent() == Some(Path::new("assets/homework"))));
     }
 }

@@ -10,7 +10,7 @@ use std::sync::OnceLock;
 /// Set to 1 to use the copy built into the binary even where files are found on disk.
 pub const BUILT_IN_ENV: &str = "SHADOWLAB_BUILT_IN_DATA";
 
-pub use crate::built_in::{FILES, SHIPPED_DIRS};
+pub use crate::built_in::{FILES, SHIPPED_DIRS, SHIPPED_FILES};
 
 /// A shipped file or folder, found from any working folder: relative to the working folder
 /// first, then beside the executable (and up to three folders above it, which covers
@@ -100,12 +100,11 @@ fn unpack(root: &Path) -> Result<(), String> {
 mod tests {
     use super::*;
 
-    /// A lesson, scene, mesh or texture added to the checkout but not to [`FILES`] would be
-    /// missing from an installed binary.
+    /// What `build.rs` built in is every shipped file as it is on disk, sorted, and no junk.
     #[test]
     fn the_built_in_copy_holds_every_shipped_file_as_it_is_on_disk() {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-        let mut on_disk: Vec<String> = vec!["assets/README.md".into()];
+        let mut on_disk: Vec<String> = SHIPPED_FILES.iter().map(|f| f.to_string()).collect();
         for dir in SHIPPED_DIRS {
             for entry in std::fs::read_dir(root.join(dir)).expect("a shipped folder") {
                 let entry = entry.expect("an entry");
@@ -113,15 +112,29 @@ mod tests {
                     continue; // shipped folders are listed on their own
                 }
                 let name = entry.file_name().to_string_lossy().into_owned();
-                on_disk.push(format!("{dir}/{name}"));
+                if crate::built_in::ships(&name) {
+                    on_disk.push(format!("{dir}/{name}"));
+                }
             }
         }
         on_disk.sort();
-        let mut built_in: Vec<String> = FILES.iter().map(|(p, _)| p.to_string()).collect();
-        built_in.sort();
+        let built_in: Vec<String> = FILES.iter().map(|(p, _)| p.to_string()).collect();
         assert_eq!(built_in, on_disk);
         for (path, bytes) in FILES {
             assert_eq!(std::fs::read(root.join(path)).expect("readable").as_slice(), *bytes, "{path}");
+        }
+    }
+
+    #[test]
+    fn editor_junk_and_hidden_files_do_not_ship() {
+        use crate::built_in::ships;
+        for name in ["04_pcss.toml", "bunny.obj", "README.md", "phongFragment_no_bias.glsl"] {
+            assert!(ships(name), "{name}");
+        }
+        for name in
+            [".04_pcss.toml.swp", ".DS_Store", "04_pcss.toml~", "#04_pcss.toml#", "a.toml.bak", "a.orig"]
+        {
+            assert!(!ships(name), "{name}");
         }
     }
 
@@ -133,9 +146,9 @@ mod tests {
         for (path, bytes) in FILES {
             assert_eq!(std::fs::read(root.join(path)).expect("unpacked").as_slice(), *bytes, "{path}");
         }
-        let lesson = root.join(FILES[0].0);
-        std::fs::write(&lesson, "edited").expect("edit");
+        let edited = root.join(FILES[0].0);
+        std::fs::write(&edited, "edited").expect("edit");
         unpack(&root).expect("unpack again");
-        assert_eq!(std::fs::read(&lesson).expect("repaired").as_slice(), FILES[0].1);
+        assert_eq!(std::fs::read(&edited).expect("repaired").as_slice(), FILES[0].1);
     }
 }

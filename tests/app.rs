@@ -149,6 +149,22 @@ fn changing_a_parameter_changes_the_image() {
     assert!(changed > 100, "only {changed} pixels changed");
 }
 
+/// A scene or a lesson may set a value past the span a slider covers (the loader takes the whole
+/// range of its row in src/scene/parameters): the inspector keeps it as it was given.
+#[test]
+fn a_value_beyond_a_sliders_span_is_kept_as_the_scene_gave_it() {
+    let mut h = harness();
+    h.state_mut().scene.lights[0].intensity = 10.0;
+    h.state_mut().scene.shadow.radius_texels = 40.0;
+    h.state_mut().scene.shadow.depth_bias_constant = -100;
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    let state = h.state();
+    assert_eq!(state.scene.lights[0].intensity, 10.0, "the intensity slider spans 0..=4");
+    assert_eq!(state.scene.shadow.radius_texels, 40.0, "the radius slider spans 0..=32");
+    assert_eq!(state.scene.shadow.depth_bias_constant, -100, "the hardware bias slider spans 0..=20000");
+}
+
 #[test]
 fn a_malformed_scene_shows_the_error_and_keeps_the_old_scene() {
     let mut h = harness();

@@ -170,6 +170,30 @@ fn each_example_gets_exactly_its_findings_and_the_correct_one_none() {
     }
 }
 
+/// An example dropped into assets/homework ships by itself (build.rs); what it must be found to
+/// be is stated here, in `example_cases`.
+#[test]
+fn every_example_in_the_folder_has_its_case() {
+    let cases = example_cases();
+    let named = |file: &str| {
+        cases.iter().any(|(name, extra, _)| {
+            *name == file || extra.iter().any(|a| Path::new(a).file_name().is_some_and(|n| n == file))
+        })
+    };
+    let folder = repo_path("assets/homework");
+    let mut files: Vec<String> = std::fs::read_dir(&folder)
+        .expect("the examples' folder")
+        .map(|entry| entry.expect("a folder entry").path())
+        .filter(|p| p.is_file())
+        .filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned()))
+        .filter(|name| shadowlab::built_in::ships(name) && name != "README.md")
+        .collect();
+    files.sort();
+    assert!(!files.is_empty(), "no examples in {}", folder.display());
+    let without: Vec<&String> = files.iter().filter(|f| !named(f)).collect();
+    assert!(without.is_empty(), "examples without their case in example_cases: {without:?}");
+}
+
 /// The examples' table in assets/homework/README.md says what the test above checks.
 #[test]
 fn the_examples_readme_lists_every_example_with_its_findings() {

@@ -24,17 +24,37 @@ fn check_text(text: &Text, what: &str) {
     assert!(!text.zh.trim().is_empty(), "{what}: Chinese text is empty");
 }
 
+/// The lesson files in lessons/, sorted by name: what ships (src/built_in/list.rs), `.toml`.
+fn shipped_lesson_files() -> Vec<PathBuf> {
+    let dir = lessons::default_dir();
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|entry| entry.expect("a folder entry").path())
+        .filter(|p| p.is_file() && p.extension().is_some_and(|e| e == "toml"))
+        .filter(|p| p.file_name().is_some_and(|n| shadowlab::built_in::ships(&n.to_string_lossy())))
+        .collect();
+    paths.sort();
+    paths
+}
+
 #[test]
-fn every_lesson_loads_with_unique_ids_and_orders() {
+fn every_lesson_file_loads_with_a_unique_id_in_the_order_of_the_file_names() {
+    let files = shipped_lesson_files();
+    assert!(!files.is_empty(), "no lessons in {}", lessons::default_dir().display());
+    for file in &files {
+        lessons::load_lesson(file).unwrap_or_else(|e| panic!("{e}"));
+    }
     let lessons = shipped();
-    assert_eq!(lessons.len(), 7, "expected 7 lessons, found {}", lessons.len());
+    let loaded: Vec<&std::path::Path> = lessons.iter().map(|l| l.path.as_path()).collect();
+    assert_eq!(loaded.len(), files.len(), "every file is a lesson: {loaded:?}");
     let ids: HashSet<&str> = lessons.iter().map(|l| l.id.as_str()).collect();
     assert_eq!(ids.len(), lessons.len(), "lesson ids must be unique");
+    // `--lesson N` and the lesson picker count from 1 in `order`; the folder lists them so too.
     let orders: Vec<u32> = lessons.iter().map(|l| l.order).collect();
-    assert_eq!(orders, vec![1, 2, 3, 4, 5, 6, 7], "lessons must be ordered 1..7");
-    let expected = ["hard-shadows", "bias", "pcf", "pcss", "multi-light", "vsm", "homework"];
-    let found: Vec<&str> = lessons.iter().map(|l| l.id.as_str()).collect();
-    assert_eq!(found, expected);
+    let expected: Vec<u32> = (1..=lessons.len() as u32).collect();
+    assert_eq!(orders, expected, "lessons must be ordered 1..={}", lessons.len());
+    let by_name: Vec<&std::path::Path> = files.iter().map(|p| p.as_path()).collect();
+    assert_eq!(loaded, by_name, "the file names sort as the lessons' `order` does");
 }
 
 #[test]

@@ -432,12 +432,14 @@ pub fn load_lesson(path: &Path) -> Result<Lesson, LessonError> {
     })
 }
 
-/// Every `*.toml` lesson in `dir`, in their `order`.
+/// Every `*.toml` lesson in `dir` (an editor's hidden, backup or lock files left out, as the
+/// built-in copy leaves them out), in their `order`.
 pub fn load_all(dir: &Path) -> Result<Vec<Lesson>, LessonError> {
     let entries = crate::files::folder_entries(dir)
         .map_err(|e| LessonError::Io { path: dir.display().to_string(), reason: e.to_string() })?;
+    let ships = |p: &Path| p.file_name().is_some_and(|n| crate::built_in::ships(&n.to_string_lossy()));
     let mut paths: Vec<PathBuf> =
-        entries.into_iter().filter(|p| p.extension().is_some_and(|x| x == "toml")).collect();
+        entries.into_iter().filter(|p| p.extension().is_some_and(|x| x == "toml") && ships(p)).collect();
     paths.sort();
     let mut lessons = paths.iter().map(|p| load_lesson(p)).collect::<Result<Vec<_>, _>>()?;
     let mut ids: Vec<&str> = lessons.iter().map(|l| l.id.as_str()).collect();

@@ -8,6 +8,7 @@ mod checks;
 mod file;
 mod light;
 pub mod mesh;
+pub mod parameters;
 mod primitives;
 mod settings;
 

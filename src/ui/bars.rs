@@ -144,7 +144,8 @@ impl ShadowlabApp {
             // Tall enough for the shipped scenes and the recent files without scrolling.
             egui::ComboBox::from_id_salt("source").selected_text(current).width(130.0).height(520.0).show_ui(ui, |ui| {
                 let mut scenes: Vec<PathBuf> = crate::files::folder_entries(&shipped_path("assets/scenes")).unwrap_or_default();
-                scenes.retain(|p| p.extension().is_some_and(|e| e == "toml"));
+                let ships = |p: &PathBuf| p.file_name().is_some_and(|n| crate::built_in::ships(&n.to_string_lossy()));
+                scenes.retain(|p| p.extension().is_some_and(|e| e == "toml") && ships(p));
                 scenes.sort();
                 for path in scenes {
                     let name = path.file_name().map(|n| n.to_string_lossy().to_string()).unwrap_or_default();

@@ -2,6 +2,7 @@
 //! and, where it can be found, the line named), the meshes resolved and loaded once.
 
 use super::*;
+use crate::scene::parameters::{self, MAX_COORDINATE, Parameter};
 use crate::scene::primitives::{PRIMITIVES, primitive};
 
 /// A problem found while building, before we know whether the file or an override caused it.
@@ -63,12 +64,6 @@ fn key_line(text: &str, message: &str) -> Option<usize> {
     line
 }
 
-/// Farthest a camera, light or object may be placed from the origin, world units. The frusta end
-/// at most 1e7 away (`far`), and near 1e6 an f32 coordinate moves in steps of 1/16: beyond it
-/// depths and shadow-map texel centres quantise visibly, and a scene of metres drawn there is a
-/// few pixels of noise or nothing. The shipped scenes stay within 200.
-const MAX_COORDINATE: f32 = 1e6;
-
 /// Largest and smallest scale factor on an axis: a unit mesh scaled past 1e6 outgrows
 /// `MAX_COORDINATE`; one scaled below 1e-6 is far smaller than a shadow-map texel of any scene.
 const SCALE_RANGE: (f32, f32) = (1e-6, 1e6);
@@ -121,20 +116,16 @@ fn far_plane(
     factor: f32,
     hi: f32,
 ) -> Result<f32, BuildError> {
-    if far.is_finite() && far <= near * factor {
-        return Err(BuildError::Invalid(format!(
-            "`{name}` = {far} must be greater than `{near_name}` = {near}"
-        )));
-    }
-    ranged(name, far, near * factor, hi)
+    parameters::far_plane(name, far, near_name, near, factor, hi).map_err(BuildError::Invalid)
 }
 
 fn ranged(name: &str, v: f32, lo: f32, hi: f32) -> Result<f32, BuildError> {
-    if v.is_finite() && v >= lo && v <= hi {
-        Ok(v)
-    } else {
-        Err(BuildError::Invalid(format!("`{name}` = {v} is out of range {lo}..={hi}")))
-    }
+    parameters::in_range(name, v, lo, hi).map_err(BuildError::Invalid)
+}
+
+/// `v`, the value of `key`, if `row` of the parameters' table accepts it.
+fn real(row: &Parameter, key: &str, v: f32) -> Result<f32, BuildError> {
+    row.check_real(key, v).map_err(BuildError::Invalid)
 }
 
 pub(super) fn build_scene(
@@ -145,7 +136,7 @@ pub(super) fn build_scene(
     let c = &file.camera;
     let projection = match c.projection {
         ProjectionName::Perspective => Projection::Perspective {
-            fov_deg: ranged("camera.fov_deg", c.fov_deg.unwrap_or(45.0), 1.0, 170.0)?,
+            fov_deg: real(&parameters::CAMERA_FOV, "camera.fov_deg", c.fov_deg.unwrap_or(45.0))?,
         },
         ProjectionName::Orthographic => Projection::Orthographic {
             height_world: ranged("camera.height", c.height.unwrap_or(10.0), 1e-4, 1e6)?,
@@ -244,7 +235,7 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
             let extent = l.extent.ok_or_else(|| {
                 BuildError::Invalid(format!("`{}` is required for a directional light", key("extent")))
             })?;
-            LightKind::Directional { extent_world: ranged(&key("extent"), extent, 1e-3, 1e6)? }
+            LightKind::Directional { extent_world: real(&parameters::LIGHT_EXTENT, &key("extent"), extent)? }
         }
         LightKindName::Spot => {
             if l.extent.is_some() {
@@ -256,7 +247,7 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
             let fov = l.fov_deg.ok_or_else(|| {
                 BuildError::Invalid(format!("`{}` is required for a spot light", key("fov_deg")))
             })?;
-            LightKind::Spot { fov_deg: ranged(&key("fov_deg"), fov, 1.0, 160.0)? }
+            LightKind::Spot { fov_deg: real(&parameters::LIGHT_FOV, &key("fov_deg"), fov)? }
         }
     };
     let size = match (l.width, l.angular_diameter_deg) {
@@ -275,21 +266,25 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
                 )));
             }
             LightSize::AngularDiameter {
-                angular_diameter_deg: ranged(&key("angular_diameter_deg"), a, 0.0, 30.0)?,
+                angular_diameter_deg: real(
+                    &parameters::LIGHT_ANGULAR_DIAMETER,
+                    &key("angular_diameter_deg"),
+                    a,
+                )?,
             }
         }
-        (w, None) => LightSize::Width { width_world: ranged(&key("width"), w.unwrap_or(0.0), 0.0, 1e4)? },
+        (w, None) => {
+            LightSize::Width { width_world: real(&parameters::LIGHT_WIDTH, &key("width"), w.unwrap_or(0.0))? }
+        }
     };
     let default_near = if l.kind == LightKindName::Spot { 1.0 } else { 0.01 };
-    let near = ranged(&key("near"), l.near.unwrap_or(default_near), 1e-4, 1e6)?;
-    let far = far_plane(&key("far"), l.far, &key("near"), near, 1.001, 1e7)?;
-    if !(256..=8192).contains(&l.shadow_map_size) {
-        return Err(BuildError::Invalid(format!(
-            "`{}` = {} is out of range 256..=8192",
-            key("shadow_map_size"),
-            l.shadow_map_size
-        )));
-    }
+    let near = real(&parameters::LIGHT_NEAR, &key("near"), l.near.unwrap_or(default_near))?;
+    let far = parameters::LIGHT_FAR
+        .check_far(&key("far"), l.far, &key("near"), near)
+        .map_err(BuildError::Invalid)?;
+    parameters::LIGHT_SHADOW_MAP_SIZE
+        .check_whole(&key("shadow_map_size"), i64::from(l.shadow_map_size))
+        .map_err(BuildError::Invalid)?;
     let position = coordinates(&key("position"), l.position)?;
     let target = coordinates(&key("target"), l.target)?;
     if (target - position).length() < 1e-6 {
@@ -302,12 +297,12 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
         target,
         up: vec3(&key("up"), l.up)?,
         color,
-        intensity: ranged(&key("intensity"), l.intensity, 0.0, 1e4)?,
+        intensity: real(&parameters::LIGHT_INTENSITY, &key("intensity"), l.intensity)?,
         shadow_map_size: l.shadow_map_size,
         near,
         far,
         size,
-        orbit_deg_per_s: ranged(&key("orbit_deg_per_s"), l.orbit_deg_per_s, -3600.0, 3600.0)?,
+        orbit_deg_per_s: real(&parameters::LIGHT_ORBIT, &key("orbit_deg_per_s"), l.orbit_deg_per_s)?,
     })
 }
 
