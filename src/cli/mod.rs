@@ -2,10 +2,6 @@
 //! values, no adapter), 1 for a rendering failure. Errors are one line naming what and where.
 
 mod bench;
-mod bench_app;
-mod bench_diagrams;
-mod bench_soak;
-mod bench_window;
 #[path = "export.rs"]
 mod export_cmd;
 mod homework;
@@ -352,8 +348,6 @@ pub fn run(command: Command) -> Result<(), CliError> {
     match command {
         Command::Render(args) => render(args),
         Command::Probe(args) => probe(args),
-        Command::Bench(args) if args.app => bench_app::run(&args),
-        Command::Bench(args) if args.diagrams => bench_diagrams::run(&args),
         Command::Bench(args) => bench::run(args),
         Command::Lessons => list_lessons(),
         Command::Export(args) => export_cmd::run(args),

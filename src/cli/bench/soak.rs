@@ -5,8 +5,8 @@
 //! changes, and playback goes on. It reports how much was rendered, how far scene time went, and
 //! the process's memory a minute in and at the end, and fails where the scene stopped moving.
 
-use super::bench_app::{SETTLE_LIMIT, WINDOW};
-use super::{BenchArgs, CliError};
+use super::session::{SETTLE_LIMIT, WINDOW};
+use crate::cli::{BenchArgs, CliError};
 use crate::ui::{PLAYBACK_RANGE_S, Settings, ShadowlabApp, app_for_test};
 use crate::views::View;
 use crate::views::overlays::Overlay;
