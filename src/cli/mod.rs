@@ -148,7 +148,8 @@ pub struct BenchArgs {
     pub json: bool,
     /// Drive the app instead (offscreen, 1600x900): drag the light-width slider, then the light
     /// on the shadow map, in the PCSS lesson with a probe pinned; report UI frames per second,
-    /// view refreshes per second and the time from release to the full-quality frame.
+    /// view refreshes per second and the time from release to the full-quality frame. Needs a
+    /// build with `--features bench-app`.
     #[arg(long, conflicts_with_all = ["scene", "set", "time", "still", "only", "frames"])]
     pub app: bool,
     /// Time the diagrams instead (CPU), in English and Chinese at --size: --frames draws with

@@ -356,7 +356,8 @@ fn lights(state: &mut AppState, ui: &mut Ui) -> bool {
             let slider = ui
                 .add(Slider::new(width_world, 0.0..=40.0).text(tr("light width (world units)")))
                 .on_hover_text(key_hint(lang, "light.N.width"));
-            super::set_landmark(ui.ctx(), super::LANDMARK_LIGHT_WIDTH, slider.rect);
+            #[cfg(feature = "test-hooks")]
+            super::hooks::set_landmark(ui.ctx(), super::hooks::LANDMARK_LIGHT_WIDTH, slider.rect);
             changed |= slider.changed();
             if directional && ui.small_button(tr("use an angular diameter instead")).clicked() {
                 light.size = LightSize::AngularDiameter { angular_diameter_deg: 0.53 };
