@@ -51,10 +51,6 @@ fn no_source_file_is_past_500_lines_of_code() {
     assert!(long.is_empty(), "split these by concern: {long:?}");
 }
 
-/// Folders whose circles are let stand for now. Temporary (issue 31): `cli` until its bench_*
-/// files move; then this list is empty.
-const CIRCLES_LET_STAND: &[&str] = &["cli"];
-
 /// Within each folder of src/ (src itself too), its files and subfolders name each other without
 /// a circle: a child naming its parent's own items, or the parent its children, is no edge.
 #[test]
@@ -64,14 +60,7 @@ fn no_folder_has_an_import_circle() {
     let mut problems = Vec::new();
     for (folder, edges) in graph.sibling_edges() {
         let shown = if folder.is_empty() { "src".to_string() } else { folder.join("/") };
-        let circles = module_graph::circles(&edges);
-        if CIRCLES_LET_STAND.contains(&shown.as_str()) {
-            if circles.is_empty() {
-                problems.push(format!("{shown} has no circle now: take it out of CIRCLES_LET_STAND"));
-            }
-            continue;
-        }
-        for circle in circles {
+        for circle in module_graph::circles(&edges) {
             let mut lines = vec![format!("{shown}: {} -> {}", circle.join(" -> "), circle[0])];
             for (i, from) in circle.iter().enumerate() {
                 let to = &circle[(i + 1) % circle.len()];

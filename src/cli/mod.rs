@@ -2,10 +2,6 @@
 //! values, no adapter), 1 for a rendering failure. Errors are one line naming what and where.
 
 mod bench;
-mod bench_app;
-mod bench_diagrams;
-mod bench_soak;
-mod bench_window;
 #[path = "export.rs"]
 mod export_cmd;
 mod homework;
@@ -152,7 +148,8 @@ pub struct BenchArgs {
     pub json: bool,
     /// Drive the app instead (offscreen, 1600x900): drag the light-width slider, then the light
     /// on the shadow map, in the PCSS lesson with a probe pinned; report UI frames per second,
-    /// view refreshes per second and the time from release to the full-quality frame.
+    /// view refreshes per second and the time from release to the full-quality frame. Needs a
+    /// build with `--features bench-app`.
     #[arg(long, conflicts_with_all = ["scene", "set", "time", "still", "only", "frames"])]
     pub app: bool,
     /// Time the diagrams instead (CPU), in English and Chinese at --size: --frames draws with
@@ -352,8 +349,6 @@ pub fn run(command: Command) -> Result<(), CliError> {
     match command {
         Command::Render(args) => render(args),
         Command::Probe(args) => probe(args),
-        Command::Bench(args) if args.app => bench_app::run(&args),
-        Command::Bench(args) if args.diagrams => bench_diagrams::run(&args),
         Command::Bench(args) => bench::run(args),
         Command::Lessons => list_lessons(),
         Command::Export(args) => export_cmd::run(args),

@@ -11,13 +11,12 @@ pub struct GpuContext {
     pub adapter_info: wgpu::AdapterInfo,
 }
 
-/// Features used when the adapter has them (timestamps make the benchmark show per-pass times).
 /// What every device shadowlab opens asks for: the adapter's limits, the optional features it
-/// has, and memory in small blocks. wgpu's default sub-allocates from blocks of 128-256 MB; on a
-/// software adapter device memory is the process's own, and as targets and read-backs come and
-/// go their pages, once touched, stay resident: a ten-minute soak's resident size rose by about
-/// 100 MB after its first minute and held there. Blocks of 8-64 MB, freed when empty, follow
-/// what is alive.
+/// has, and memory in small blocks. On a software adapter device memory is the process's own,
+/// and a page of a block, once touched, stays resident while the block lives. wgpu's default
+/// blocks (128-256 MB) outlive the targets and read-backs that come and go in them, so the
+/// process would keep the most it ever used; blocks of 8-64 MB, freed when empty, follow what
+/// is alive.
 pub fn device_descriptor(adapter: &wgpu::Adapter, label: &'static str) -> wgpu::DeviceDescriptor<'static> {
     wgpu::DeviceDescriptor {
         label: Some(label),
@@ -29,6 +28,7 @@ pub fn device_descriptor(adapter: &wgpu::Adapter, label: &'static str) -> wgpu::
     }
 }
 
+/// Features used when the adapter has them (timestamps make the benchmark show per-pass times).
 pub fn optional_features() -> wgpu::Features {
     wgpu::Features::TIMESTAMP_QUERY
 }

@@ -133,7 +133,8 @@ impl CameraPanel {
         self.painted = CameraPaint { area: layout.area, ..Default::default() };
         let rect = layout.picture;
         let response = ui.interact(rect, ui.scope_id().with("camera view"), Sense::click_and_drag());
-        super::set_landmark(ui.ctx(), super::LANDMARK_CAMERA_VIEW, rect);
+        #[cfg(feature = "test-hooks")]
+        super::hooks::set_landmark(ui.ctx(), super::hooks::LANDMARK_CAMERA_VIEW, rect);
         self.picture(ui, rect, state, shown, slow);
         self.view_selector(ui, state, rect);
         let dragging = interact(ui, &response, rect, state);

@@ -284,7 +284,8 @@ fn lights(state: &mut AppState, ui: &mut Ui) -> bool {
     match &mut light.size {
         LightSize::Width { width_world } => {
             let slider = number(lang, ui, &params::LIGHT_WIDTH, width_world, 0.0);
-            super::set_landmark(ui.ctx(), super::LANDMARK_LIGHT_WIDTH, slider.rect);
+            #[cfg(feature = "test-hooks")]
+            super::hooks::set_landmark(ui.ctx(), super::hooks::LANDMARK_LIGHT_WIDTH, slider.rect);
             changed |= slider.changed();
             if directional && ui.small_button(tr("use an angular diameter instead")).clicked() {
                 light.size = LightSize::AngularDiameter { angular_diameter_deg: 0.53 };

@@ -83,7 +83,8 @@ impl MapPanel {
         let side = rect.width().min(avail.height() - 60.0).max(64.0);
         let map_rect = Rect::from_min_size(avail.min, vec2(side, side));
         let response = ui.allocate_rect(map_rect, Sense::click_and_drag());
-        super::set_landmark(ui.ctx(), super::LANDMARK_SHADOW_MAP, map_rect);
+        #[cfg(feature = "test-hooks")]
+        super::hooks::set_landmark(ui.ctx(), super::hooks::LANDMARK_SHADOW_MAP, map_rect);
         let painter = ui.painter_at(map_rect);
         // The part of the map shown: all of it, or a window of 1/zoom around the zoom centre.
         let half = 0.5 / zoom;

@@ -2,10 +2,11 @@
 //!
 //! A session churns through large buffers: the camera and analysis read-backs and the depth
 //! maps (4-48 MB each), made and dropped on every frame and view switch. glibc keeps what is
-//! freed inside its arenas for reuse and returns pages only from an arena's top. Over a
-//! ten-minute soak that kept 30-40 MB resident that nothing used (480 MB against 435-450 MB
-//! with free pages handed back every 2 s). `malloc_trim` returns every arena's free pages;
-//! once every 2 s is plenty. (The larger part of that soak's growth was device memory: see
+//! freed inside its arenas for reuse and returns pages only from an arena's top, so a long
+//! session would hold memory nothing uses, and a reading of the process's memory could not tell
+//! it from a leak. `malloc_trim` returns every arena's free pages. Every 2 s is often enough to
+//! keep up with the churn and rare enough that its cost stays out of the UI's frames. (Device
+//! memory, the process's own on a software adapter, is kept in check by
 //! `render::device_descriptor`.)
 
 use std::cell::Cell;

@@ -10,6 +10,8 @@ mod class_panel;
 mod dialog;
 mod homework_panel;
 mod homework_view;
+#[cfg(feature = "test-hooks")]
+mod hooks;
 mod inspector;
 mod lesson_panel;
 mod map_panel;
@@ -28,6 +30,11 @@ mod window;
 pub use crate::app::launch;
 pub use crate::app::{
     AbSplit, AppError, AppState, PLAYBACK_RANGE_S, ProbeAt, Settings, Source, scene_for_obj,
+};
+#[cfg(feature = "test-hooks")]
+pub use hooks::{
+    LANDMARK_CAMERA_VIEW, LANDMARK_LIGHT_WIDTH, LANDMARK_SHADOW_MAP, app_for_test, app_with_scheduler,
+    landmark,
 };
 pub use inspector::{control_label, value_label};
 pub use memory::{TrimStats, return_free_pages, trim_stats};
@@ -299,20 +306,6 @@ pub enum SchedulerKind {
     FrameDriven,
 }
 
-/// Where some widgets were last drawn, for tools that drive the app (`bench --app --window`).
-pub const LANDMARK_LIGHT_WIDTH: &str = "light-width slider";
-pub const LANDMARK_SHADOW_MAP: &str = "shadow-map picture";
-pub const LANDMARK_CAMERA_VIEW: &str = "camera view";
-
-fn set_landmark(ctx: &egui::Context, name: &'static str, rect: egui::Rect) {
-    ctx.data_mut(|d| d.insert_temp(egui::Id::NULL.with(("landmark", name)), rect));
-}
-
-/// The rectangle a landmark widget occupied in the last frame that drew it.
-pub fn landmark(ctx: &egui::Context, name: &'static str) -> Option<egui::Rect> {
-    ctx.data(|d| d.get_temp::<egui::Rect>(egui::Id::NULL.with(("landmark", name))))
-}
-
 fn install_cjk_font(ctx: &egui::Context) {
     // The same face the diagrams and slides fall back to: the system's (Simplified Chinese in a
     // collection), else the subset built in.
@@ -448,20 +441,4 @@ impl eframe::App for ShadowlabApp {
         self.state.settings.lang = self.state.lang;
         eframe::set_value(storage, crate::app::settings::STORAGE_KEY, &self.state.settings);
     }
-}
-
-/// Build the app for tests and tools, with explicit settings (no storage).
-pub fn app_for_test(cc: &eframe::CreationContext<'_>, settings: Settings) -> ShadowlabApp {
-    app_with_scheduler(cc, settings, SchedulerKind::Thread)
-}
-
-/// [`app_for_test`] with the render scheduler of one's choice.
-pub fn app_with_scheduler(
-    cc: &eframe::CreationContext<'_>,
-    settings: Settings,
-    kind: SchedulerKind,
-) -> ShadowlabApp {
-    install_cjk_font(&cc.egui_ctx);
-    let (worker, gpu_error) = spawn_worker(cc, kind);
-    ShadowlabApp::with_settings(worker, gpu_error, settings)
 }

@@ -5,8 +5,8 @@
 //! changes, and playback goes on. It reports how much was rendered, how far scene time went, and
 //! the process's memory a minute in and at the end, and fails where the scene stopped moving.
 
-use super::bench_app::{SETTLE_LIMIT, WINDOW};
-use super::{BenchArgs, CliError};
+use super::session::{SETTLE_LIMIT, WINDOW};
+use crate::cli::{BenchArgs, CliError};
 use crate::ui::{PLAYBACK_RANGE_S, Settings, ShadowlabApp, app_for_test};
 use crate::views::View;
 use crate::views::overlays::Overlay;
@@ -25,9 +25,9 @@ const VIEWS: [View; 5] =
 /// The tour's stops: every lesson in every view, each played then paused for its full detail:
 /// the soak's own cycle once in each lesson and view.
 const TOUR: usize = LESSONS.len() * VIEWS.len();
-/// Playback between two pauses, seconds of wall-clock time, on the tour as after it. (A shorter
-/// play on the tour left the multi-light lesson's steady state, the frames and read-backs in
-/// flight while it plays, to the soak proper: 25-60 MB after the first reading.)
+/// Playback between two pauses, seconds of wall-clock time, on the tour as after it: a tour stop
+/// must play long enough to reach its lesson's steady state (the frames and read-backs in flight
+/// while it plays), or the soak proper would count reaching it as growth.
 const PLAY: Duration = Duration::from_secs(4);
 /// Cycles (play, pause for the full detail, switch the view) per lesson before the next one.
 const CYCLES_PER_LESSON: u32 = 5;

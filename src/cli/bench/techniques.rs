@@ -4,7 +4,7 @@
 //! Each timed frame advances scene time by 1/30 s, so lights orbit and objects spin and every
 //! shadow map is redrawn as it would be in the app; `--still` keeps the time fixed.
 
-use super::{BenchArgs, CliError, gpu};
+use crate::cli::{BenchArgs, CliError, DEFAULT_BENCH_SCENE, gpu};
 use crate::render::FrameRequest;
 use crate::scene::{BiasMode, Scene, Technique, load_scene};
 use serde::Serialize;
@@ -48,7 +48,7 @@ struct BenchReport {
     rows: Vec<BenchRow>,
 }
 
-pub(super) fn median(values: &[f64]) -> f64 {
+pub fn median(values: &[f64]) -> f64 {
     let mut sorted = values.to_vec();
     sorted.sort_by(f64::total_cmp);
     sorted[sorted.len() / 2]
@@ -120,7 +120,7 @@ fn selected(case: &Case, only: &[String]) -> bool {
 }
 
 pub fn run(args: BenchArgs) -> Result<(), CliError> {
-    let scene_path = args.scene.clone().unwrap_or_else(|| crate::shipped_path(super::DEFAULT_BENCH_SCENE));
+    let scene_path = args.scene.clone().unwrap_or_else(|| crate::shipped_path(DEFAULT_BENCH_SCENE));
     let base = load_scene(&scene_path, &args.set)?;
     let cases: Vec<Case> = cases(&base).into_iter().filter(|c| selected(c, &args.only)).collect();
     if cases.is_empty() {

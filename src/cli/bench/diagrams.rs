@@ -8,8 +8,8 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use super::bench::median;
-use super::{BenchArgs, CliError};
+use super::techniques::median;
+use crate::cli::{BenchArgs, CliError};
 use crate::diagrams::{self, DiagramInputs, DiagramKind};
 use crate::i18n::Lang;
 use crate::ui::DIAGRAM_MIN_TEXT_PT;

@@ -2,11 +2,11 @@
 //! window with the painter the app would use here (OpenGL on a software rasteriser), the input
 //! injected frame by frame. Needs a display (`xvfb-run -a` where there is none).
 
-use super::bench_app::{
+use super::session::{
     AppReport, Driven, IDLE_FRAMES, PHASES, Phase, SETTLE_LIMIT, STILL_FRAMES, WINDOW, check_phase,
     keep_dragging, start_session,
 };
-use super::{BenchArgs, CliError};
+use crate::cli::{BenchArgs, CliError};
 use crate::ui::{LANDMARK_LIGHT_WIDTH, LANDMARK_SHADOW_MAP, Settings, ShadowlabApp, app_for_test, landmark};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
