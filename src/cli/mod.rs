@@ -167,7 +167,8 @@ pub struct BenchArgs {
     pub seconds: f32,
     /// With --app --window: play the PCSS and multi-light lessons this many seconds instead, a
     /// probe pinned, overlays on, the view switched every few seconds; report images rendered,
-    /// scene time played and memory a minute in and at the end.
+    /// scene time played and memory from a settled baseline to the end (the verdict: its trend
+    /// over the second half).
     #[arg(long, value_name = "SECONDS", requires = "app")]
     pub soak: Option<f32>,
 }

@@ -2,8 +2,9 @@
 //! multi-light lessons are first toured (each shown once in every view), then play in turn with a
 //! probe pinned and overlays on; every few seconds the
 //! playback pauses until the full-detail frame is in (probe, overlays, read-backs), the view
-//! changes, and playback goes on. It reports how much was rendered, how far scene time went, and
-//! the process's memory a minute in and at the end, and fails where the scene stopped moving.
+//! changes, and playback goes on. It reports how much was rendered, how far scene time went and
+//! the process's memory every 30 s from a baseline taken once no pipeline has been built for a
+//! minute, and fails where the scene stopped moving or memory trends up over the second half.
 
 use super::session::{SETTLE_LIMIT, WINDOW};
 use crate::cli::{BenchArgs, CliError};
