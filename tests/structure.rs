@@ -90,7 +90,7 @@ fn the_circle_check_sees_what_siblings_name() {
             "use super::Parent;\n// super::z::Thing\nfn f() -> &'static str { super::y::g(); \"super::z\" }\n\
              #[cfg(test)]\nmod tests {\n    use crate::a::z::Thing;\n}\n",
         ),
-        ("src/a/y.rs", "pub fn g() -> super::Thing {\n    todo!()\n}\n"),
+        ("src/a/y.rs", "pub fn g(thing: super::Thing) -> super::Thing {\n    thing\n}\n"),
         ("src/a/z.rs", "pub struct Thing(crate::a::w::Inner, super::x::X);\n"),
         ("src/b/mod.rs", "mod p;\nmod q;\npub struct Parent;\n"),
         ("src/b/p.rs", "use super::Parent;\nuse super::q::Q;\n"),

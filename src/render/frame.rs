@@ -56,13 +56,12 @@ impl Frame {
     /// The shadow view a light's map pictures and probe read first (each light owns at least one),
     /// with its index in `views`.
     pub fn first_view_of(&self, light: usize) -> Option<(usize, &ShadowViewGpu)> {
-        let index = self.lights.get(light)?.first_view as usize;
-        self.views.get(index).map(|view| (index, view))
+        let (index, _) = crate::shadow::gpu::first_view_of(&self.lights, &self.views, light)?;
+        Some((index, &self.views[index]))
     }
 
     /// Light `light` with its first view: what the twin of one of its lookups needs.
     pub fn light_view(&self, light: usize) -> Option<LightViewGpu> {
-        let (_, view) = self.first_view_of(light)?;
-        Some(LightViewGpu { light: self.lights[light], view: *view })
+        crate::shadow::gpu::first_view_of(&self.lights, &self.views, light).map(|(_, lv)| lv)
     }
 }

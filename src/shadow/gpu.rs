@@ -311,6 +311,18 @@ impl ShadowViewGpu {
     }
 }
 
+/// Light `light` of a frame's `lights` with the first of its shadow views (each light owns at
+/// least one), and that view's index in `views`: what a light's map picture, probe and views read.
+pub fn first_view_of(
+    lights: &[LightGpu],
+    views: &[ShadowViewGpu],
+    light: usize,
+) -> Option<(usize, LightViewGpu)> {
+    let light = *lights.get(light)?;
+    let index = light.first_view as usize;
+    Some((index, LightViewGpu { light, view: *views.get(index)? }))
+}
+
 impl LightViewGpu {
     /// The light at time `t` with its first view, alone in layer 0 of an array `atlas_size` wide
     /// (a twin of one light: the diagrams, the homework check).

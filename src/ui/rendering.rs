@@ -80,8 +80,7 @@ impl Shown {
     /// Light `light` of the frame shown with its first shadow view (what the views of one light
     /// read).
     pub fn light_view(&self, light: usize) -> Option<LightViewGpu> {
-        let light = *self.lights.get(light)?;
-        Some(LightViewGpu { light, view: *self.views.get(light.first_view as usize)? })
+        crate::shadow::gpu::first_view_of(&self.lights, &self.views, light).map(|(_, lv)| lv)
     }
 }
 

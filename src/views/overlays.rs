@@ -60,7 +60,7 @@ pub fn compose(
     lang: Lang,
     overlays: &[Overlay],
     analysis: &Analysis,
-    light_view: Option<&ShadowViewGpu>,
+    shadow_view: Option<&ShadowViewGpu>,
     reference: Option<&[f32]>,
 ) -> (RgbaImage, Vec<String>) {
     let mut image = RgbaImage::new(analysis.width, analysis.height);
@@ -89,7 +89,7 @@ pub fn compose(
                 });
             }
             Overlay::TexelGrid => {
-                let Some(view) = light_view else { continue };
+                let Some(view) = shadow_view else { continue };
                 let size = view.map_size_texels;
                 legends.push(fill(
                     lang,
@@ -115,7 +115,7 @@ pub fn compose(
                 });
             }
             Overlay::OutsideFrustum => {
-                let Some(view) = light_view else { continue };
+                let Some(view) = shadow_view else { continue };
                 legends.push(tr(lang, "orange: outside the light's frustum (no map data)").into());
                 paint(&mut image, analysis, |i| {
                     let s = project_to_light(view, Vec3::from_slice(&analysis.position[i][..3]));
@@ -230,11 +230,11 @@ pub fn bleeding_inputs_readback(
     light: usize,
 ) -> Result<Readback<Option<BleedingInputs>>, RenderError> {
     let Some(frame) = renderer.last_frame() else { return Ok(Readback::ready(None)) };
-    let Some(light_gpu) = frame.light_view(light).filter(|_| frame.params.uses_moments()) else {
+    let first = crate::shadow::gpu::first_view_of(&frame.lights, &frame.views, light);
+    let Some((view_index, light_gpu)) = first.filter(|_| frame.params.uses_moments()) else {
         return Ok(Readback::ready(None));
     };
     let params = frame.params;
-    let view_index = frame.lights[light].first_view as usize;
     Ok(renderer
         .shadow_map_readback(view_index)?
         .map(move |map| Ok(Some(BleedingInputs { map, light: light_gpu, params }))))
