@@ -44,15 +44,14 @@ fn noise_seed_at(frag: vec4<f32>) -> u32 {
     return pixel_seed(vec2<u32>(frag.xy), params.noise_seed, params.rotate_per_pixel == 1u);
 }
 
-// The shadow view of `light` that covers a point. Every light owns one view today; a light with
-// several (a lamp's cube faces, a sun's cascades) chooses among them here.
+// The shadow view of `light` that covers a point (a point light: the cube face towards it).
 fn shadow_view_at(light: LightGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
-    return shadow_views[light.first_view];
+    return view_covering(shadow_views[light.first_view], world_pos);
 }
 
-// Spot lights light only inside their square frustum (soft 5% edge).
+// Spot lights light only inside their square frustum (soft 5% edge); a point light everywhere.
 fn spot_falloff(view: ShadowViewGpu, world_pos: vec3<f32>) -> f32 {
-    if is_orthographic(view) {
+    if is_orthographic(view) || is_cube(view) {
         return 1.0;
     }
     let s = project_to_light(view, world_pos);

@@ -59,6 +59,7 @@ struct LightGpu {
 // One depth map a light renders: its projection and where it lies in the shadow-map array.
 struct ShadowViewGpu {
     clip_from_world: mat4x4<f32>,
+    origin: vec4<f32>,            // xyz world: where a perspective view looks from
     near: f32,                    // world units
     far: f32,
     frustum_width_world: f32,     // W: ortho width, or width at the near plane
@@ -69,8 +70,8 @@ struct ShadowViewGpu {
     atlas_scale: f32,             // map_size / array texture size
     moments_block: u32,           // map texels per side of a level-0 VSM moments texel
     light: u32,                   // the light that owns it
-    _pad0: u32,
-    _pad1: u32,
+    cube: u32,                    // 1: a cube face (stores distance; projects with the face's axes)
+    face: u32,                    // 0..6: +X, -X, +Y, -Y, +Z, -Z; the faces lie in layers layer - face ..
 }
 
 struct ShadowParamsGpu {

@@ -73,11 +73,12 @@ fn filter_taps(kernel: u32, samples: u32) -> u32 {
 // Hard shadow: one depth comparison [Williams-1978].
 fn visibility_hard(view: ShadowViewGpu, coord: ShadowCoord) -> f32 {
     let bias = receiver_bias_ndc(view, coord, 0.0);
-    if clamp_outside() == 1u && outside_frustum(coord) {
+    let tap = map_tap(view, coord.uv);
+    if clamp_outside() == 1u && (no_map_data(view, coord) || outside_map(tap.uv)) {
         return 1.0;
     }
     let reference = tap_reference_ndc(view, coord, coord.uv, bias, true);
-    return select(0.0, 1.0, reference <= stored_depth_ndc(view, coord.uv));
+    return select(0.0, 1.0, reference <= stored_depth_ndc(tap.view, tap.uv));
 }
 
 // PCF [Reeves-1987]: V = (1/N) sum_i [d_receiver - bias <= map(uv + r * s_i)],
@@ -123,7 +124,7 @@ fn blocker_search_radius_texels(light: LightGpu, view: ShadowViewGpu, coord: Sha
 fn search_blockers(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord, seed: u32) -> BlockerSearch {
     var out: BlockerSearch;
     // No map data for this receiver: nothing to search (and nothing to report).
-    if clamp_outside() == 1u && outside_frustum(coord) {
+    if clamp_outside() == 1u && no_map_data(view, coord) {
         return out;
     }
     let radius_uv = blocker_search_radius_uv(light, view, coord);
@@ -135,10 +136,11 @@ fn search_blockers(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord, see
     var sum = 0.0;
     for (var i = 0u; i < n; i++) {
         let uv = coord.uv + kernel_offset(search_kernel, SEARCH_TABLE, i, seed, rotation) * radius_uv;
-        if clamp_outside() == 1u && outside_map(uv) {
+        let tap = map_tap(view, uv);
+        if clamp_outside() == 1u && outside_map(tap.uv) {
             continue;
         }
-        let z = stored_depth_ndc(view, uv);
+        let z = stored_depth_ndc(tap.view, tap.uv);
         if z < tap_reference_ndc(view, coord, uv, bias, true) {
             out.found += 1u;
             sum += depth_linear_from_ndc(view, z);
@@ -231,7 +233,7 @@ fn moments_at_level(view: ShadowViewGpu, uv: vec2<f32>, level_f: f32) -> vec2<f3
 // lookup, Chebyshev's one-sided bound P(depth >= t) <= sigma² / (sigma² + (t - mu)²) for t > mu
 // is taken as the lit fraction; t <= mu is lit.
 fn visibility_vsm(view: ShadowViewGpu, coord: ShadowCoord, radius_texels: f32) -> f32 {
-    if clamp_outside() == 1u && outside_frustum(coord) {
+    if clamp_outside() == 1u && no_map_data(view, coord) {
         return 1.0;
     }
     let m = filtered_moments(view, coord.uv, radius_texels);
@@ -265,7 +267,7 @@ fn chebyshev_upper_bound(m: vec2<f32>, t: f32) -> f32 {
 fn visibility_vssm(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord) -> ShadowVisibility {
     var out: ShadowVisibility;
     out.visibility = 1.0;
-    if clamp_outside() == 1u && outside_frustum(coord) {
+    if clamp_outside() == 1u && no_map_data(view, coord) {
         return out;
     }
     out.search.radius_texels = blocker_search_radius_texels(light, view, coord);

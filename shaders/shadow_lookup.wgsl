@@ -30,8 +30,13 @@ struct ShadowCoord {
     depth_gradient: vec2<f32>,
 }
 
+// A cube face stores (distance - near) / (far - near): linear, like an orthographic map.
+fn stores_linear_depth(view: ShadowViewGpu) -> bool {
+    return is_orthographic(view) || is_cube(view);
+}
+
 fn depth_linear_from_ndc(view: ShadowViewGpu, z: f32) -> f32 {
-    if is_orthographic(view) {
+    if stores_linear_depth(view) {
         return view.near + z * (view.far - view.near);
     }
     return view.near * view.far / (view.far - z * (view.far - view.near));
@@ -39,7 +44,7 @@ fn depth_linear_from_ndc(view: ShadowViewGpu, z: f32) -> f32 {
 
 // dz/dd at distance d: turns a world-unit bias into NDC depth units.
 fn ndc_per_world(view: ShadowViewGpu, depth_linear: f32) -> f32 {
-    if is_orthographic(view) {
+    if stores_linear_depth(view) {
         return 1.0 / (view.far - view.near);
     }
     return view.far * view.near / (depth_linear * depth_linear * (view.far - view.near));
@@ -60,7 +65,92 @@ fn light_dir_to(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
     return normalize(light.position.xyz - world_pos);
 }
 
+// ---------------------------------------------------------------- cube faces
+
+// Face `face`'s axes as columns (forward, up, right = forward x up): src/scene/light.rs's
+// CUBE_FACES.
+fn cube_face_axes(face: u32) -> mat3x3<f32> {
+    switch face {
+        case 0u: { return mat3x3<f32>(vec3<f32>(1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 0.0, 1.0)); }
+        case 1u: { return mat3x3<f32>(vec3<f32>(-1.0, 0.0, 0.0), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 0.0, -1.0)); }
+        case 2u: { return mat3x3<f32>(vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(0.0, 0.0, -1.0), vec3<f32>(-1.0, 0.0, 0.0)); }
+        case 3u: { return mat3x3<f32>(vec3<f32>(0.0, -1.0, 0.0), vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(-1.0, 0.0, 0.0)); }
+        case 4u: { return mat3x3<f32>(vec3<f32>(0.0, 0.0, 1.0), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(-1.0, 0.0, 0.0)); }
+        default: { return mat3x3<f32>(vec3<f32>(0.0, 0.0, -1.0), vec3<f32>(0.0, 1.0, 0.0), vec3<f32>(1.0, 0.0, 0.0)); }
+    }
+}
+
+// The face a direction from the light falls in: its largest axis, signed (ties: the earlier axis).
+fn cube_face_of(direction: vec3<f32>) -> u32 {
+    let a = abs(direction);
+    if a.x >= a.y && a.x >= a.z {
+        return select(0u, 1u, direction.x < 0.0);
+    }
+    if a.y >= a.z {
+        return select(2u, 3u, direction.y < 0.0);
+    }
+    return select(4u, 5u, direction.z < 0.0);
+}
+
+// The same light's view on face `face` (its layer follows; lookups of a cube face read its axes,
+// never clip_from_world).
+fn cube_face_view(view: ShadowViewGpu, face: u32) -> ShadowViewGpu {
+    var out = view;
+    out.layer = view.layer - view.face + face;
+    out.face = face;
+    return out;
+}
+
+// The view of a light's maps that covers a point: a cube's face towards it, else the view itself.
+fn view_covering(view: ShadowViewGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
+    if is_cube(view) {
+        return cube_face_view(view, cube_face_of(world_pos - view.origin.xyz));
+    }
+    return view;
+}
+
+// Where direction d from the light lands on face `face`'s map (uv; behind the face: outside).
+fn cube_face_uv(face: u32, d: vec3<f32>) -> vec2<f32> {
+    let axes = cube_face_axes(face);
+    let ahead = dot(d, axes[0]);
+    if !(ahead > 0.0) {
+        return vec2<f32>(-1.0);
+    }
+    return vec2<f32>(0.5 + 0.5 * dot(d, axes[2]) / ahead, 0.5 - 0.5 * dot(d, axes[1]) / ahead);
+}
+
+// A tap of a lookup: which view's map it reads, at which uv.
+struct MapTap {
+    view: ShadowViewGpu,
+    uv: vec2<f32>,
+}
+
+// A tap at `uv` of `view`'s map. On a cube face, a tap past the face's edge is a direction from
+// the light, read on the face it falls in: a filter crosses the seam instead of stopping there.
+fn map_tap(view: ShadowViewGpu, uv: vec2<f32>) -> MapTap {
+    if !is_cube(view) || !outside_map(uv) {
+        return MapTap(view, uv);
+    }
+    let axes = cube_face_axes(view.face);
+    let d = axes[0] + axes[2] * (2.0 * uv.x - 1.0) + axes[1] * (1.0 - 2.0 * uv.y);
+    let face = cube_face_of(d);
+    return MapTap(cube_face_view(view, face), clamp(cube_face_uv(face, d), vec2<f32>(0.0), vec2<f32>(1.0)));
+}
+
+// The receiver has no map data: outside the view's map or past its depth range. A cube face's
+// neighbours hold what lies past its edge, so there only the depth range counts.
+fn no_map_data(view: ShadowViewGpu, coord: ShadowCoord) -> bool {
+    if is_cube(view) {
+        return outside_depth(coord.depth_ndc);
+    }
+    return outside_frustum(coord);
+}
+
 fn project_to_light(view: ShadowViewGpu, world_pos: vec3<f32>) -> vec3<f32> {
+    if is_cube(view) {
+        let d = world_pos - view.origin.xyz;
+        return vec3<f32>(cube_face_uv(view.face, d), (length(d) - view.near) / (view.far - view.near));
+    }
     let clip = view.clip_from_world * vec4<f32>(world_pos, 1.0);
     let ndc = clip.xyz / clip.w;
     return vec3<f32>(ndc.xy * vec2<f32>(0.5, -0.5) + vec2<f32>(0.5), ndc.z);
@@ -218,20 +308,23 @@ fn tap_reference_ndc(
 }
 
 // 1 = lit, 0 = shadowed, for one tap. Outside the light frustum counts as lit when clamped.
+// The receiver-plane reference is taken at the tap's uv on the receiver's own view (a cube
+// face's plane goes on past its edge); the map read is the tap's (`map_tap`).
 fn depth_test(view: ShadowViewGpu, coord: ShadowCoord, uv: vec2<f32>, bias_ndc: f32) -> f32 {
-    if clamp_outside() == 1u && (outside_map(uv) || outside_depth(coord.depth_ndc)) {
+    let tap = map_tap(view, uv);
+    if clamp_outside() == 1u && (outside_map(tap.uv) || outside_depth(coord.depth_ndc)) {
         return 1.0;
     }
     let bilinear = kernel() == KERNEL_HARDWARE && technique() != TECHNIQUE_HARD;
     let reference = tap_reference_ndc(view, coord, uv, bias_ndc, !bilinear);
     if bilinear {
-        var lookup = uv;
+        var lookup = tap.uv;
         if clamp_outside() == 0u {
-            lookup = fract(uv);
+            lookup = fract(tap.uv);
         }
         // Bilinear 2x2 comparison in the sampler (LessEqual: lit where reference <= stored).
-        return textureSampleCompareLevel(shadow_maps, shadow_compare_sampler, lookup * view.atlas_scale,
-                                         i32(view.layer), reference);
+        return textureSampleCompareLevel(shadow_maps, shadow_compare_sampler, lookup * tap.view.atlas_scale,
+                                         i32(tap.view.layer), reference);
     }
-    return select(0.0, 1.0, reference <= stored_depth_ndc(view, uv));
+    return select(0.0, 1.0, reference <= stored_depth_ndc(tap.view, tap.uv));
 }

@@ -18,6 +18,7 @@ override SPEC_SIZE_MODEL: u32 = 0u;
 const SPEC_MIXED: u32 = 0u;
 const SPEC_ALL_ORTHOGRAPHIC: u32 = 1u;
 const SPEC_ALL_PERSPECTIVE: u32 = 2u;
+const SPEC_ALL_CUBE: u32 = 3u;
 const SPEC_ALL_WIDTH: u32 = 1u;
 const SPEC_ALL_ANGULAR: u32 = 2u;
 
@@ -61,6 +62,14 @@ fn is_orthographic(view: ShadowViewGpu) -> bool {
         return SPEC_PROJECTION == SPEC_ALL_ORTHOGRAPHIC;
     }
     return view.orthographic == 1u;
+}
+
+// A point light's views are cube faces: perspective, storing the distance to the light.
+fn is_cube(view: ShadowViewGpu) -> bool {
+    if SPECIALISED && SPEC_PROJECTION != SPEC_MIXED {
+        return SPEC_PROJECTION == SPEC_ALL_CUBE;
+    }
+    return view.cube == 1u;
 }
 
 // A sun's views are orthographic, every other light's perspective: one constant says both.

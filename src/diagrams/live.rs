@@ -185,6 +185,8 @@ fn top_views(scene: &Scene, time_s: f32) -> Vec<LightTopView> {
             let half_width_world = match l.kind {
                 LightKind::Directional { extent_world } => extent_world,
                 LightKind::Spot { fov_deg } => (0.5 * fov_deg.to_radians()).tan() * (l.target - p).length(),
+                // The face towards the target, 90° wide.
+                LightKind::Point => (l.target - p).length(),
             };
             LightTopView {
                 position_xz: [p.x, p.z],

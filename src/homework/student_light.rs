@@ -162,12 +162,13 @@ fn frustum_report(light: &Light, focal_point: Vec3) -> FrustumReport {
     let (kind, width_world, fov_deg) = match light.kind {
         LightKind::Directional { extent_world } => ("orthographic", Some(2.0 * extent_world), None),
         LightKind::Spot { fov_deg } => ("perspective", None, Some(fov_deg)),
+        LightKind::Point => ("cube", None, Some(90.0)),
     };
     let distance = (focal_point - light.position).dot(light.direction_at(0.0)).max(light.near);
     let texel_world = match light.kind {
         LightKind::Directional { extent_world } => 2.0 * extent_world / light.shadow_map_size as f32,
-        LightKind::Spot { fov_deg } => {
-            2.0 * distance * (0.5 * fov_deg.to_radians()).tan() / light.shadow_map_size as f32
+        LightKind::Spot { .. } | LightKind::Point => {
+            2.0 * distance * light.tan_half_fov() / light.shadow_map_size as f32
         }
     };
     FrustumReport {

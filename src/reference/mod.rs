@@ -1,7 +1,9 @@
 //! Ground truth for soft shadows: the average of many hard shadows from sample points over the
 //! light's area (spot lights: point lights on a disk of diameter `width`, perspective maps) or
 //! from directions over its angular disk (directional lights: orthographic maps; a width is
-//! turned into the angle it subtends at the light's target).
+//! turned into the angle it subtends at the light's target; point lights: point lights inside a
+//! sphere of diameter `width`, spread so that every receiver sees them evenly over the sphere's
+//! disk, each with its six cube faces).
 //! A published comparison averages 1024 hard shadows [Guennebaud-2006].
 
 use crate::scene::{BiasMode, DepthStorage, Light, LightKind, LightSize, ShadowSettings, Technique};
@@ -41,9 +43,20 @@ pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightViewGpu>
         (LightSize::Width { width_world }, LightKind::Directional { .. }) => {
             Some((2.0 * (0.5 * width_world / distance).atan()).to_degrees())
         }
-        (LightSize::Width { .. }, LightKind::Spot { .. }) => None,
+        (LightSize::Width { .. }, LightKind::Spot { .. } | LightKind::Point) => None,
     };
     match (light.size, angle_deg) {
+        (LightSize::Width { width_world }, None) if light.stores_distance() && width_world > 0.0 && count > 1 => {
+            (0..count)
+                .map(|k| {
+                    let eye = position + sphere_point(k, count) * (0.5 * width_world);
+                    LightViewGpu {
+                        light: LightGpu::new(light, eye, forward, 0, 6),
+                        view: cube_face_view_at(light, eye, 0, size),
+                    }
+                })
+                .collect()
+        }
         (LightSize::Width { width_world }, None) if width_world > 0.0 && count > 1 => (0..count)
             .map(|k| {
                 // Point lights over the spot light's disk, each with the light's own frustum.
@@ -74,6 +87,55 @@ pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightViewGpu>
         }
         _ => vec![LightViewGpu::single(light, t_s, size)],
     }
+}
+
+/// A point light's cube face `face` seen from `eye`, in layer `face` of an array `atlas_size`
+/// wide.
+fn cube_face_view_at(light: &Light, eye: Vec3, face: usize, atlas_size: u32) -> ShadowViewGpu {
+    let (forward, up) = crate::scene::CUBE_FACES[face];
+    let clip = light.clip_from_view() * Mat4::look_to_rh(eye, forward, up);
+    ShadowViewGpu::new(light, clip, 0, atlas_size).on_face(face as u32)
+}
+
+/// The shadow views one sample renders: a point light's six faces (layers 0..6), else its one.
+pub fn sample_views(light: &Light, sample: &LightViewGpu) -> Vec<ShadowViewGpu> {
+    if sample.view.cube == 0 {
+        return vec![sample.view];
+    }
+    let eye = glam::Vec4::from(sample.view.origin).truncate();
+    let atlas = (sample.view.map_size_texels / sample.view.atlas_scale).round() as u32;
+    (0..6).map(|face| cube_face_view_at(light, eye, face, atlas)).collect()
+}
+
+/// Point `k` of `n` in the unit ball, spread so that its projection on every plane through the
+/// centre is even over the unit disk: a spherical light of uniform radiance looks like an evenly
+/// bright disk from anywhere, and averaging hard shadows from these points weighs each part of
+/// that disk alike. The radial density that does it is 1 / sqrt(1 - s²) (the inverse Abel
+/// transform of a uniform disk), whose share within radius s is
+/// F(s) = (2/pi) (asin s - s sqrt(1 - s²)). Directions on a Fibonacci sphere, radii at the
+/// van der Corput points of F, so the two are not in step.
+pub fn sphere_point(k: usize, n: usize) -> Vec3 {
+    let z = 1.0 - 2.0 * (k as f32 + 0.5) / n as f32;
+    let ring = (1.0 - z * z).max(0.0).sqrt();
+    let a = k as f32 * GOLDEN_ANGLE;
+    let direction = Vec3::new(ring * a.cos(), z, ring * a.sin());
+    direction * sphere_radius_at_share(van_der_corput(k as u32))
+}
+
+/// The radical inverse of k in base 2, offset half a step from 0: in (0, 1).
+fn van_der_corput(k: u32) -> f32 {
+    ((f64::from(k.reverse_bits()) + 0.5) / 2f64.powi(32)) as f32
+}
+
+/// The radius s at which F(s) = u (see `sphere_point`), by bisection: F rises from 0 to 1.
+fn sphere_radius_at_share(u: f32) -> f32 {
+    let share = |s: f64| (2.0 / std::f64::consts::PI) * (s.asin() - s * (1.0 - s * s).sqrt());
+    let (mut lo, mut hi) = (0.0f64, 1.0f64);
+    for _ in 0..40 {
+        let mid = 0.5 * (lo + hi);
+        if share(mid) < f64::from(u) { lo = mid } else { hi = mid }
+    }
+    (0.5 * (lo + hi)) as f32
 }
 
 /// Settings the ground truth's hard shadows use: the user's bias is replaced by a robust one

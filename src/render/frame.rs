@@ -60,6 +60,20 @@ impl Frame {
         Some((index, &self.views[index]))
     }
 
+    /// Every shadow view light `light` owns (a point light: its six cube faces), with the first's
+    /// index in `views`.
+    pub fn views_of(&self, light: usize) -> Option<(usize, &[ShadowViewGpu])> {
+        let l = self.lights.get(light)?;
+        let first = l.first_view as usize;
+        Some((first, self.views.get(first..first + l.view_count as usize)?))
+    }
+
+    /// Index into `views` of light `light`'s view that covers `world_pos` (a point light: the
+    /// cube face towards it): the one its lookups there read.
+    pub fn view_covering(&self, light: usize, world_pos: glam::Vec3) -> Option<usize> {
+        Some(crate::shadow::gpu::view_covering(self.lights.get(light)?, &self.views, world_pos))
+    }
+
     /// Light `light` with its first view: what the twin of one of its lookups needs.
     pub fn light_view(&self, light: usize) -> Option<LightViewGpu> {
         crate::shadow::gpu::first_view_of(&self.lights, &self.views, light).map(|(_, lv)| lv)

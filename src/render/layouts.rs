@@ -109,7 +109,7 @@ impl Layouts {
             }),
             shadow_view: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("shadow view"),
-                entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX, true)],
+                entries: &[uniform_entry(0, wgpu::ShaderStages::VERTEX_FRAGMENT, true)],
             }),
             reference_io: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("reference io"),

@@ -268,8 +268,11 @@ impl Renderer {
             depth_bias_constant: scene.shadow.depth_bias_constant,
             depth_bias_slope_bits: scene.shadow.depth_bias_slope.to_bits(),
             cull_front_faces: scene.shadow.cull_front_faces,
+            stores_distance: false,
         };
         let shadow_pipeline = self.pipelines.shadow(&self.device, key).clone();
+        let distance_pipeline = (views.iter().any(|v| v.cube == 1))
+            .then(|| self.pipelines.shadow(&self.device, ShadowPipelineKey { stores_distance: true, ..key }).clone());
         let maps_key = ShadowMapsKey {
             views: (views.iter())
                 .map(|view| {
@@ -312,7 +315,7 @@ impl Renderer {
                 &views,
                 scene_gpu,
                 maps,
-                &shadow_pipeline,
+                shadow_pass::Pipelines { projected: &shadow_pipeline, distance: distance_pipeline.as_ref() },
                 &self.shadow_view_bind_group,
                 timer,
                 !vsm,
@@ -412,6 +415,18 @@ impl Renderer {
     /// The map of shadow view `index` (of the last frame's `views`) as rendered in that frame.
     pub fn read_shadow_map(&self, index: usize) -> Result<DepthImage, RenderError> {
         self.shadow_map_readback(index)?.wait(&self.device)
+    }
+
+    /// Every map of light `light` of the last frame, in the order of its views (a point light's
+    /// six faces: what its twin reads, `Twin::for_views`).
+    pub fn read_light_maps(&self, light: usize) -> Result<Vec<DepthImage>, RenderError> {
+        let frame = self.last_frame.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
+        let (first, views) = frame
+            .views_of(light)
+            .ok_or_else(|| RenderError::Usage(format!("light {light} does not exist in the last frame")))?;
+        let readbacks: Vec<_> =
+            (first..first + views.len()).map(|i| self.shadow_map_readback(i)).collect::<Result<_, _>>()?;
+        readbacks.into_iter().map(|r| r.wait(&self.device)).collect()
     }
 
     /// `read_shadow_map`, on its way back.

@@ -67,9 +67,10 @@ impl CameraPipelineKey {
             bias_mode: params.bias_mode,
             clamp_outside: params.clamp_outside,
             depth_storage: params.depth_storage,
-            // SPEC_ALL_ORTHOGRAPHIC = 1, SPEC_ALL_PERSPECTIVE = 2.
-            // A directional light's views are orthographic, every other light's perspective.
-            projection: shared(views, |v| 1 - v.orthographic.min(1)),
+            // SPEC_ALL_ORTHOGRAPHIC = 1, SPEC_ALL_PERSPECTIVE = 2, SPEC_ALL_CUBE = 3.
+            // A directional light's views are orthographic, a spot light's perspective, a point
+            // light's cube faces.
+            projection: shared(views, |v| if v.cube == 1 { 2 } else { 1 - v.orthographic.min(1) }),
             // SPEC_ALL_WIDTH = 1, SPEC_ALL_ANGULAR = 2.
             size_model: shared(lights, |l| l.size_model.min(1)),
             light_count: lights.len() as u32,
@@ -298,7 +299,7 @@ impl Pipelines {
                 layout: Some(layout),
                 vertex: wgpu::VertexState {
                     module,
-                    entry_point: Some("vs_shadow"),
+                    entry_point: Some(if key.stores_distance { "vs_shadow_distance" } else { "vs_shadow" }),
                     compilation_options: Default::default(),
                     buffers: &[Some(vertex_layout())],
                 },
@@ -312,7 +313,12 @@ impl Pipelines {
                     clamp: 0.0,
                 })),
                 multisample: wgpu::MultisampleState::default(),
-                fragment: None,
+                fragment: key.stores_distance.then_some(wgpu::FragmentState {
+                    module,
+                    entry_point: Some("fs_shadow_distance"),
+                    compilation_options: Default::default(),
+                    targets: &[],
+                }),
                 multiview_mask: None,
                 cache: None,
             })

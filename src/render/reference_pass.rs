@@ -61,6 +61,8 @@ impl GroundTruthProgress {
 /// from must render nothing else until it is finished (its batches draw the uploaded scene).
 pub struct GroundTruth {
     samples: usize,
+    /// Shadow views each sample renders (a point light's six faces, else one).
+    views_per_sample: usize,
     /// Pixels of the frame, one sum each.
     pixels: u64,
     size: (u32, u32),
@@ -225,21 +227,26 @@ impl Renderer {
         let (width, height) = request.size;
         let pixels = u64::from(width) * u64::from(height);
 
-        let maps = ShadowMaps::new(&device, light.shadow_map_size, 1);
-        let dynamic_buffer = |label: &str| {
+        // Each sample's views (a point light's six faces) into layers 0.., one after the other.
+        let views_per_sample = samples.first().map_or(1, |s| reference::sample_views(light, s).len());
+        let maps = ShadowMaps::new(&device, light.shadow_map_size, views_per_sample as u32);
+        let dynamic_buffer = |label: &str, count: usize| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
-                size: DYNAMIC_STRIDE * samples.len() as u64,
+                size: DYNAMIC_STRIDE * count as u64,
                 usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })
         };
-        let light_buffer = dynamic_buffer("reference lights");
-        let view_buffer = dynamic_buffer("reference views");
+        let light_buffer = dynamic_buffer("reference lights", samples.len());
+        let view_buffer = dynamic_buffer("reference views", samples.len() * views_per_sample);
         for (i, sample) in samples.iter().enumerate() {
             let offset = i as u64 * DYNAMIC_STRIDE;
             self.queue.write_buffer(&light_buffer, offset, bytemuck::bytes_of(sample));
-            self.queue.write_buffer(&view_buffer, offset, bytemuck::bytes_of(&sample.view));
+            for (v, view) in reference::sample_views(light, sample).iter().enumerate() {
+                let offset = (i * views_per_sample + v) as u64 * DYNAMIC_STRIDE;
+                self.queue.write_buffer(&view_buffer, offset, bytemuck::bytes_of(view));
+            }
         }
         let accumulated = device.create_buffer(&wgpu::BufferDescriptor {
             label: Some("reference sum"),
@@ -295,12 +302,18 @@ impl Renderer {
         // The reference's own shadow pass: no hardware bias and no culling, whatever the user
         // set, so their effects show up as error rather than being copied into the truth.
         let key =
-            ShadowPipelineKey { depth_bias_constant: 0, depth_bias_slope_bits: 0, cull_front_faces: false };
+            ShadowPipelineKey {
+                depth_bias_constant: 0,
+                depth_bias_slope_bits: 0,
+                cull_front_faces: false,
+                stores_distance: light.stores_distance(),
+            };
         let shadow_pipeline = self.pipelines.shadow(&device, key).clone();
         let scene_upload =
             self.scene_gpu.as_ref().ok_or_else(|| RenderError::Usage("no scene uploaded".into()))?.generation;
         Ok(GroundTruth {
             samples: samples.len(),
+            views_per_sample,
             pixels,
             size: (width, height),
             batches,
@@ -337,12 +350,13 @@ impl Renderer {
             let end = (truth.recorded + truth.batch).min(truth.samples);
             for i in truth.recorded..end {
                 let offset = (i as u64 * DYNAMIC_STRIDE) as u32;
-                {
+                for v in 0..truth.views_per_sample {
+                    let view_offset = ((i * truth.views_per_sample + v) as u64 * DYNAMIC_STRIDE) as u32;
                     let mut pass = encoder.begin_render_pass(&wgpu::RenderPassDescriptor {
                         label: Some("reference shadow pass"),
                         color_attachments: &[],
                         depth_stencil_attachment: Some(wgpu::RenderPassDepthStencilAttachment {
-                            view: &truth.maps.layer_views[0],
+                            view: &truth.maps.layer_views[v],
                             depth_ops: Some(wgpu::Operations {
                                 load: wgpu::LoadOp::Clear(1.0),
                                 store: wgpu::StoreOp::Store,
@@ -354,7 +368,7 @@ impl Renderer {
                         multiview_mask: None,
                     });
                     pass.set_pipeline(&truth.shadow_pipeline);
-                    pass.set_bind_group(0, &truth.view_group, &[offset]);
+                    pass.set_bind_group(0, &truth.view_group, &[view_offset]);
                     scene_gpu.draw(&mut pass, 1);
                 }
                 let mut pass = encoder.begin_compute_pass(&wgpu::ComputePassDescriptor {

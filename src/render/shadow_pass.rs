@@ -9,6 +9,23 @@ use super::targets::ShadowMaps;
 use super::timing::Timer;
 use crate::shadow::ShadowViewGpu;
 
+/// The shadow pass's pipelines: projected depth, and for cube faces (where the frame has any)
+/// the distance to the light.
+#[derive(Clone, Copy)]
+pub struct Pipelines<'a> {
+    pub projected: &'a wgpu::RenderPipeline,
+    pub distance: Option<&'a wgpu::RenderPipeline>,
+}
+
+impl<'a> Pipelines<'a> {
+    fn for_view(&self, view: &ShadowViewGpu) -> &'a wgpu::RenderPipeline {
+        match self.distance {
+            Some(distance) if view.cube == 1 => distance,
+            _ => self.projected,
+        }
+    }
+}
+
 /// Record one depth pass per shadow view: clear to far (1.0), draw every object. `view_group`
 /// holds the views at DYNAMIC_STRIDE apart, in the order of `views`. The passes begin span 0 of `timer`, and
 /// end it unless the VSM moments built from the maps do (`ends_span`).
@@ -18,7 +35,7 @@ pub fn encode(
     views: &[ShadowViewGpu],
     scene_gpu: &SceneGpu,
     maps: &ShadowMaps,
-    pipeline: &wgpu::RenderPipeline,
+    pipelines: Pipelines<'_>,
     view_group: &wgpu::BindGroup,
     timer: Option<&Timer>,
     ends_span: bool,
@@ -47,7 +64,7 @@ pub fn encode(
         if let Some(view) = view {
             let size = view.map_size_texels;
             pass.set_viewport(0.0, 0.0, size, size, 0.0, 1.0);
-            pass.set_pipeline(pipeline);
+            pass.set_pipeline(pipelines.for_view(view));
             pass.set_bind_group(0, view_group, &[(pass_index as u64 * DYNAMIC_STRIDE) as u32]);
             scene_gpu.draw(&mut pass, 1);
         }

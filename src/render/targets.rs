@@ -162,6 +162,9 @@ pub struct ShadowPipelineKey {
     pub depth_bias_constant: i32,
     pub depth_bias_slope_bits: u32,
     pub cull_front_faces: bool,
+    /// Cube faces: the fragment stage writes the distance to the light (the rasteriser's depth
+    /// bias then has no effect: a written depth replaces the biased one).
+    pub stores_distance: bool,
 }
 
 /// Everything the shadow maps depend on, as bits: each shadow view's matrix and map size, every

@@ -13,6 +13,9 @@ pub enum LightKind {
     Directional { extent_world: f32 },
     /// Perspective shadow map with a square frustum of `fov_deg`.
     Spot { fov_deg: f32 },
+    /// A lamp shadowing in every direction: six 90° perspective views, the faces of a cube map,
+    /// whose maps store the distance to the light [LearnOpenGL-PointShadows].
+    Point,
 }
 
 /// The size model used by PCSS and the ground truth. Keep the two apart: their units differ.
@@ -46,6 +49,11 @@ impl Light {
         matches!(self.kind, LightKind::Directional { .. })
     }
 
+    /// Its maps store the distance to the light (a point light's cube), not projected depth.
+    pub fn stores_distance(&self) -> bool {
+        matches!(self.kind, LightKind::Point)
+    }
+
     /// The light's position at time `t`, after orbiting.
     pub fn position_at(&self, t_s: f32) -> Vec3 {
         // Wrapped in f64 so long times keep their precision.
@@ -76,11 +84,20 @@ impl Light {
             LightKind::Spot { fov_deg } => {
                 Mat4::perspective_rh(fov_deg.to_radians(), 1.0, self.near, self.far)
             }
+            LightKind::Point => Mat4::perspective_rh(90f32.to_radians(), 1.0, self.near, self.far),
         }
     }
 
+    /// The light's one view (a point light: the view towards its target; its shadow views are
+    /// the cube's faces, `cube_face_clip_from_world`).
     pub fn clip_from_world(&self, t_s: f32) -> Mat4 {
         self.clip_from_view() * self.view_from_world(t_s)
+    }
+
+    /// A point light's cube face `face` (0..6: +X, -X, +Y, -Y, +Z, -Z) at time `t`.
+    pub fn cube_face_clip_from_world(&self, face: usize, t_s: f32) -> Mat4 {
+        let (forward, up) = CUBE_FACES[face];
+        self.clip_from_view() * Mat4::look_to_rh(self.position_at(t_s), forward, up)
     }
 
     /// `W`: width of the shadow frustum where the map is measured, world units
@@ -89,7 +106,43 @@ impl Light {
         match self.kind {
             LightKind::Directional { extent_world } => 2.0 * extent_world,
             LightKind::Spot { fov_deg } => 2.0 * self.near * (0.5 * fov_deg.to_radians()).tan(),
+            LightKind::Point => 2.0 * self.near,
         }
+    }
+
+    /// tan(fov / 2) of a perspective view (1 for a cube face); 0 for orthographic.
+    pub fn tan_half_fov(&self) -> f32 {
+        match self.kind {
+            LightKind::Directional { .. } => 0.0,
+            LightKind::Spot { fov_deg } => (0.5 * fov_deg.to_radians()).tan(),
+            LightKind::Point => 1.0,
+        }
+    }
+}
+
+/// A cube map's faces as (forward, up), in the order +X, -X, +Y, -Y, +Z, -Z. The four around
+/// the horizon keep +Y up, so that a face's picture stands upright; the two poles have their up
+/// towards -Z (looking up) and +Z (looking down), which lines them up with the +Z face in the
+/// unfolded cross. shaders/shadow_lookup.wgsl's `cube_face_axes` is the same table.
+pub const CUBE_FACES: [(Vec3, Vec3); 6] = [
+    (Vec3::X, Vec3::Y),
+    (Vec3::NEG_X, Vec3::Y),
+    (Vec3::Y, Vec3::NEG_Z),
+    (Vec3::NEG_Y, Vec3::Z),
+    (Vec3::Z, Vec3::Y),
+    (Vec3::NEG_Z, Vec3::Y),
+];
+
+/// The cube face a direction from the light falls in: its largest axis, signed (ties go to the
+/// earlier axis, as in the shader's `cube_face_of`).
+pub fn cube_face_of(direction: Vec3) -> usize {
+    let a = direction.abs();
+    if a.x >= a.y && a.x >= a.z {
+        usize::from(direction.x < 0.0)
+    } else if a.y >= a.z {
+        2 + usize::from(direction.y < 0.0)
+    } else {
+        4 + usize::from(direction.z < 0.0)
     }
 }
 

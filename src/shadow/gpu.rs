@@ -131,6 +131,8 @@ pub struct LightGpu {
 #[derive(Clone, Copy, Debug, Pod, Zeroable, PartialEq)]
 pub struct ShadowViewGpu {
     pub clip_from_world: [[f32; 4]; 4],
+    /// Where the view looks from (a perspective view's eye), world units.
+    pub origin: [f32; 4],
     pub near: f32, // world units
     pub far: f32,
     /// W: the orthographic width, or the width at the near plane, world units.
@@ -147,7 +149,11 @@ pub struct ShadowViewGpu {
     pub moments_block: u32,
     /// The light that owns it (index into the frame's lights).
     pub light: u32,
-    pub _pad: [u32; 2],
+    /// 1: a cube face. Its map stores the distance to `origin`, (|p - origin| - near) / (far - near),
+    /// and lookups project with the face's axes (`CUBE_FACES`), not `clip_from_world`.
+    pub cube: u32,
+    /// Which face (0..6, `CUBE_FACES`); the light's six faces lie in layers `layer - face ..`.
+    pub face: u32,
 }
 
 /// A light and one of its shadow views: what one lookup reads (the twin of a pixel, a view of the
@@ -185,8 +191,8 @@ pub struct ShadowParamsGpu {
 }
 
 const _: () = assert!(std::mem::size_of::<LightGpu>() == 80);
-const _: () = assert!(std::mem::size_of::<ShadowViewGpu>() == 112);
-const _: () = assert!(std::mem::size_of::<LightViewGpu>() == 192);
+const _: () = assert!(std::mem::size_of::<ShadowViewGpu>() == 128);
+const _: () = assert!(std::mem::size_of::<LightViewGpu>() == 208);
 const _: () = assert!(std::mem::size_of::<ShadowParamsGpu>() == 80);
 
 impl ShadowParamsGpu {
@@ -238,10 +244,17 @@ pub fn frame_lights(lights: &[Light], t_s: f32, atlas_size: u32) -> (Vec<LightGp
     let mut views = Vec::with_capacity(lights.len());
     for (index, light) in lights.iter().enumerate() {
         let first_view = views.len() as u32;
-        // Spot and directional lights: the one frustum of `Light::clip_from_world`.
-        let mut view = ShadowViewGpu::new(light, light.clip_from_world(t_s), first_view, atlas_size);
-        view.light = index as u32;
-        views.push(view);
+        if light.stores_distance() {
+            for face in 0..6 {
+                let clip = light.cube_face_clip_from_world(face, t_s);
+                let view = ShadowViewGpu::new(light, clip, first_view, atlas_size);
+                views.push(ShadowViewGpu { light: index as u32, ..view.on_face(face as u32) });
+            }
+        } else {
+            // Spot and directional lights: the one frustum of `Light::clip_from_world`.
+            let view = ShadowViewGpu::new(light, light.clip_from_world(t_s), first_view, atlas_size);
+            views.push(ShadowViewGpu { light: index as u32, ..view });
+        }
         let count = views.len() as u32 - first_view;
         let (position, direction) = (light.position_at(t_s), light.direction_at(t_s));
         frame_lights.push(LightGpu::new(light, position, direction, first_view, count));
@@ -254,6 +267,7 @@ pub fn shadow_view_count(light: &Light) -> u32 {
     match light.kind {
         // One frustum covers what they light.
         LightKind::Directional { .. } | LightKind::Spot { .. } => 1,
+        LightKind::Point => 6,
     }
 }
 
@@ -289,25 +303,35 @@ impl LightGpu {
 impl ShadowViewGpu {
     /// The light's one map seen through `clip_from_world`, in `layer` of an array texture
     /// `atlas_size` texels wide.
+    /// (A point light's face: `new` with the face's matrix, then `on_face`.)
     pub fn new(light: &Light, clip_from_world: Mat4, layer: u32, atlas_size: u32) -> Self {
-        let tan_half_fov = match light.kind {
-            LightKind::Directional { .. } => 0.0,
-            LightKind::Spot { fov_deg } => (0.5 * fov_deg.to_radians()).tan(),
-        };
+        // A perspective view's eye is the one point its projection sends to w = 0: clip (0, 0, 1, 0)
+        // taken back to the world, homogeneous.
+        let eye = clip_from_world.inverse() * glam::Vec4::Z;
+        let origin = if light.is_orthographic() { Vec3::ZERO } else { eye.truncate() / eye.w };
         Self {
             clip_from_world: clip_from_world.to_cols_array_2d(),
+            origin: origin.extend(1.0).to_array(),
             near: light.near,
             far: light.far,
             frustum_width_world: light.frustum_width_world(),
-            tan_half_fov,
+            tan_half_fov: light.tan_half_fov(),
             orthographic: u32::from(light.is_orthographic()),
             map_size_texels: light.shadow_map_size as f32,
             layer,
             atlas_scale: light.shadow_map_size as f32 / atlas_size as f32,
             moments_block: moments_block(atlas_size),
             light: 0,
-            _pad: [0; 2],
+            cube: u32::from(light.stores_distance()),
+            face: 0,
         }
+    }
+
+    /// This cube view moved to face `face` of the same light: the layer follows, the axes are the
+    /// face's (`clip_from_world` is kept only where the shadow pass draws the face itself). The
+    /// shader's `cube_face_view`.
+    pub fn on_face(self, face: u32) -> Self {
+        Self { layer: self.layer - self.face + face, face, ..self }
     }
 }
 
@@ -325,8 +349,14 @@ pub fn first_view_of(
 
 /// Index into `views` of the shadow view of `light` that covers `world_pos` (the twin of the
 /// camera pass's `shadow_view_at`): what a lookup at that point reads.
-pub fn view_covering(light: &LightGpu, _views: &[ShadowViewGpu], _world_pos: Vec3) -> usize {
-    light.first_view as usize
+pub fn view_covering(light: &LightGpu, views: &[ShadowViewGpu], world_pos: Vec3) -> usize {
+    let first = light.first_view as usize;
+    match views.get(first) {
+        Some(view) if view.cube == 1 => {
+            first + crate::scene::cube_face_of(world_pos - glam::Vec4::from(view.origin).truncate())
+        }
+        _ => first,
+    }
 }
 
 impl LightViewGpu {

@@ -6,14 +6,24 @@ use super::{
     BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, LightGpu, SIZE_MODEL_ANGULAR, ShadowCoord,
     ShadowParamsGpu, ShadowViewGpu,
 };
+use crate::scene::{CUBE_FACES, cube_face_of};
 use glam::{Vec2, Vec3, Vec4};
 
 fn orthographic(view: &ShadowViewGpu) -> bool {
     view.orthographic == 1
 }
 
+fn is_cube(view: &ShadowViewGpu) -> bool {
+    view.cube == 1
+}
+
+/// A cube face stores (distance - near) / (far - near): linear, like an orthographic map.
+fn stores_linear_depth(view: &ShadowViewGpu) -> bool {
+    orthographic(view) || is_cube(view)
+}
+
 pub fn depth_linear_from_ndc(view: &ShadowViewGpu, z: f32) -> f32 {
-    if orthographic(view) {
+    if stores_linear_depth(view) {
         return view.near + z * (view.far - view.near);
     }
     view.near * view.far / (view.far - z * (view.far - view.near))
@@ -23,7 +33,7 @@ pub fn depth_linear_from_ndc(view: &ShadowViewGpu, z: f32) -> f32 {
 /// for a surface `depth_linear` world units from the light along its axis.
 pub fn depth_ndc_from_linear(view: &ShadowViewGpu, depth_linear: f32) -> f32 {
     let (n, f) = (view.near, view.far);
-    if orthographic(view) {
+    if stores_linear_depth(view) {
         (depth_linear - n) / (f - n)
     } else {
         f * (depth_linear - n) / (depth_linear * (f - n))
@@ -32,7 +42,7 @@ pub fn depth_ndc_from_linear(view: &ShadowViewGpu, depth_linear: f32) -> f32 {
 
 /// dz/dd at distance d: turns a world-unit bias into NDC depth units.
 pub fn ndc_per_world(view: &ShadowViewGpu, depth_linear: f32) -> f32 {
-    if orthographic(view) {
+    if stores_linear_depth(view) {
         return 1.0 / (view.far - view.near);
     }
     view.far * view.near / (depth_linear * depth_linear * (view.far - view.near))
@@ -53,7 +63,61 @@ pub fn light_dir_to(light: &LightGpu, world_pos: Vec3) -> Vec3 {
     (Vec4::from(light.position).truncate() - world_pos).normalize()
 }
 
+/// Face `face`'s axes (forward, up, right = forward x up), from `CUBE_FACES`.
+pub fn cube_face_axes(face: u32) -> [Vec3; 3] {
+    let (forward, up) = CUBE_FACES[face as usize];
+    [forward, up, forward.cross(up)]
+}
+
+/// The same light's view on face `face` (the shader's `cube_face_view`).
+pub fn cube_face_view(view: &ShadowViewGpu, face: u32) -> ShadowViewGpu {
+    view.on_face(face)
+}
+
+/// The view of a light's maps that covers a point: a cube's face towards it, else the view
+/// itself (the shader's `view_covering`).
+pub fn view_covering(view: &ShadowViewGpu, world_pos: Vec3) -> ShadowViewGpu {
+    if is_cube(view) {
+        let origin = Vec4::from(view.origin).truncate();
+        return cube_face_view(view, cube_face_of(world_pos - origin) as u32);
+    }
+    *view
+}
+
+/// Where direction `d` from the light lands on face `face`'s map (uv; behind the face: outside).
+pub fn cube_face_uv(face: u32, d: Vec3) -> Vec2 {
+    let [forward, up, right] = cube_face_axes(face);
+    let ahead = d.dot(forward);
+    if !(ahead > 0.0) {
+        return Vec2::splat(-1.0);
+    }
+    Vec2::new(0.5 + 0.5 * d.dot(right) / ahead, 0.5 - 0.5 * d.dot(up) / ahead)
+}
+
+/// A tap at `uv` of `view`'s map as read: on a cube face, a tap past the edge is a direction from
+/// the light, read on the face it falls in (the shader's `map_tap`).
+pub fn map_tap(view: &ShadowViewGpu, uv: Vec2) -> (ShadowViewGpu, Vec2) {
+    if !is_cube(view) || !outside_map(uv) {
+        return (*view, uv);
+    }
+    let [forward, up, right] = cube_face_axes(view.face);
+    let d = forward + right * (2.0 * uv.x - 1.0) + up * (1.0 - 2.0 * uv.y);
+    let face = cube_face_of(d) as u32;
+    (cube_face_view(view, face), cube_face_uv(face, d).clamp(Vec2::ZERO, Vec2::ONE))
+}
+
+/// The receiver has no map data (the shader's `no_map_data`): a cube face's neighbours hold what
+/// lies past its edge, so there only the depth range counts.
+pub fn no_map_data(view: &ShadowViewGpu, coord: &ShadowCoord) -> bool {
+    if is_cube(view) { outside_depth(coord.depth_ndc) } else { outside_frustum(coord) }
+}
+
 pub fn project_to_light(view: &ShadowViewGpu, world_pos: Vec3) -> Vec3 {
+    if is_cube(view) {
+        let d = world_pos - Vec4::from(view.origin).truncate();
+        let uv = cube_face_uv(view.face, d);
+        return uv.extend((d.length() - view.near) / (view.far - view.near));
+    }
     let clip = glam::Mat4::from_cols_array_2d(&view.clip_from_world) * world_pos.extend(1.0);
     let ndc = clip.truncate() / clip.w;
     Vec3::new(ndc.x * 0.5 + 0.5, ndc.y * -0.5 + 0.5, ndc.z)

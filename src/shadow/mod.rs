@@ -18,9 +18,10 @@ pub use gpu::{
 };
 use kernels::{filter_taps, kernel_offset};
 pub use light_space::{
-    blocker_search_radius_uv, depth_linear_from_ndc, depth_ndc_from_linear, light_dir_to, light_space_lookup,
-    ndc_per_world, outside_depth, outside_frustum, outside_map, project_to_light, receiver_bias_ndc,
-    receiver_plane_gradient, rgba8_round_trip, texel_world_at,
+    blocker_search_radius_uv, cube_face_axes, cube_face_uv, cube_face_view, depth_linear_from_ndc,
+    depth_ndc_from_linear, light_dir_to, light_space_lookup, map_tap, ndc_per_world, no_map_data, outside_depth,
+    outside_frustum, outside_map, project_to_light, receiver_bias_ndc, receiver_plane_gradient, rgba8_round_trip,
+    texel_world_at, view_covering,
 };
 
 /// One light's shadow map read back: NDC depth per texel, row-major, top row first (uv.y = 0).
@@ -105,6 +106,8 @@ pub struct Twin<'a> {
     pub view: &'a ShadowViewGpu,
     pub params: &'a ShadowParamsGpu,
     pub map: &'a DepthImage,
+    /// A cube face's view: the light's six maps, by face (a filter's taps cross onto the others).
+    pub cube_maps: Option<&'a [DepthImage]>,
     /// When Some, every lookup is recorded.
     pub trace: Option<Vec<Tap>>,
     /// The VSM moments of `map`, built on first use.
@@ -179,7 +182,45 @@ impl<'a> Twin<'a> {
         params: &'a ShadowParamsGpu,
         map: &'a DepthImage,
     ) -> Self {
-        Self { light, view, params, map, trace: None, moments: std::cell::OnceCell::new() }
+        Self { light, view, params, map, cube_maps: None, trace: None, moments: std::cell::OnceCell::new() }
+    }
+
+    /// A point light's twin on cube face `view.face`, with all six of its maps (`maps[face]`).
+    pub fn cube(
+        light: &'a LightGpu,
+        view: &'a ShadowViewGpu,
+        params: &'a ShadowParamsGpu,
+        maps: &'a [DepthImage],
+    ) -> Self {
+        assert_eq!(maps.len(), 6, "a point light has six maps");
+        Self { cube_maps: Some(maps), ..Self::new(light, view, params, &maps[view.face as usize]) }
+    }
+
+    /// A twin for each of a light's `views` over its `maps` (the same order): one for a spot or
+    /// directional light, six for a point light's faces (each reading all six). Pick the one
+    /// that covers a point with `gpu::view_covering` (less the light's `first_view`).
+    pub fn for_views(
+        light: &'a LightGpu,
+        views: &'a [ShadowViewGpu],
+        params: &'a ShadowParamsGpu,
+        maps: &'a [DepthImage],
+    ) -> Vec<Self> {
+        assert_eq!(views.len(), maps.len(), "one map per view");
+        views
+            .iter()
+            .zip(maps)
+            .map(|(view, map)| {
+                if view.cube == 1 { Self::cube(light, view, params, maps) } else { Self::new(light, view, params, map) }
+            })
+            .collect()
+    }
+
+    /// The map a tap on `view` reads: a cube face's own, else the twin's one map.
+    fn map_of(&self, view: &ShadowViewGpu) -> &'a DepthImage {
+        match self.cube_maps {
+            Some(maps) => &maps[view.face as usize],
+            None => self.map,
+        }
     }
 
     fn record(&mut self, kind: TapKind, uv: Vec2, value: f32) {
@@ -201,31 +242,44 @@ impl<'a> Twin<'a> {
         receiver_bias_ndc(self.view, self.params, coord, filter_radius_texels)
     }
 
-    /// Texel (x, y) of the view's map; texels of the array layer beyond the view's map size
-    /// hold the clear value 1.
-    fn texel(&self, x: i32, y: i32) -> f32 {
-        let size = self.map.size as i32;
+    /// Texel (x, y) of a map; texels of the array layer beyond the view's map size hold the
+    /// clear value 1.
+    fn texel(map: &DepthImage, x: i32, y: i32) -> f32 {
+        let size = map.size as i32;
         if x < 0 || y < 0 || x >= size || y >= size {
             return 1.0;
         }
-        self.map.depth_ndc[(y * size + x) as usize]
+        map.depth_ndc[(y * size + x) as usize]
     }
 
+    /// The stored depth a tap at `uv` of the lookup's view reads (on a cube, past the face's edge:
+    /// on the face the tap's direction falls in, `map_tap`).
     pub fn stored_depth_ndc(&self, uv: Vec2) -> f32 {
-        let depth = self.stored_depth_float_ndc(uv);
+        let (view, uv) = map_tap(self.view, uv);
+        self.stored_depth_on(&view, uv)
+    }
+
+    /// The stored depth at `uv` of `view`'s own map.
+    fn stored_depth_on(&self, view: &ShadowViewGpu, uv: Vec2) -> f32 {
+        let depth = self.stored_depth_float_on(view, uv);
         if self.params.depth_storage == DEPTH_RGBA8 { rgba8_round_trip(depth) } else { depth }
     }
 
-    /// The depth the shadow pass wrote at a uv, before any RGBA8 round trip.
+    /// The depth the shadow pass wrote at a uv of the lookup's view, before any RGBA8 round trip.
     pub fn stored_depth_float_ndc(&self, uv: Vec2) -> f32 {
-        let lookup = if self.params.clamp_outside == 0 { wgsl_fract(uv) } else { uv };
-        let size = self.view.map_size_texels as i32;
-        let t = (lookup * self.view.map_size_texels).floor();
-        self.texel((t.x as i32).clamp(0, size - 1), (t.y as i32).clamp(0, size - 1))
+        self.stored_depth_float_on(self.view, uv)
     }
 
-    /// The comparison sampler's bilinear 2x2 test (clamp to edge over the whole array layer).
-    fn hardware_compare(&self, uv: Vec2, reference: f32) -> f32 {
+    fn stored_depth_float_on(&self, view: &ShadowViewGpu, uv: Vec2) -> f32 {
+        let lookup = if self.params.clamp_outside == 0 { wgsl_fract(uv) } else { uv };
+        let size = view.map_size_texels as i32;
+        let t = (lookup * view.map_size_texels).floor();
+        Self::texel(self.map_of(view), (t.x as i32).clamp(0, size - 1), (t.y as i32).clamp(0, size - 1))
+    }
+
+    /// The comparison sampler's bilinear 2x2 test on `map` (clamp to edge over the whole array
+    /// layer).
+    fn hardware_compare(&self, map: &DepthImage, uv: Vec2, reference: f32) -> f32 {
         let atlas = self.atlas_size() as f32;
         let p = uv * self.view.atlas_scale * atlas - Vec2::splat(0.5);
         let i0 = p.floor();
@@ -234,7 +288,7 @@ impl<'a> Twin<'a> {
         let test = |dx: i32, dy: i32| {
             let x = (i0.x as i32 + dx).clamp(0, max);
             let y = (i0.y as i32 + dy).clamp(0, max);
-            if reference <= self.texel(x, y) { 1.0 } else { 0.0 }
+            if reference <= Self::texel(map, x, y) { 1.0 } else { 0.0 }
         };
         let top = test(0, 0) * (1.0 - f.x) + test(1, 0) * f.x;
         let bottom = test(0, 1) * (1.0 - f.x) + test(1, 1) * f.x;
@@ -259,24 +313,26 @@ impl<'a> Twin<'a> {
 
     pub fn depth_test(&self, coord: &ShadowCoord, uv: Vec2, bias_ndc: f32) -> f32 {
         let p = self.params;
-        if p.clamp_outside == 1 && (outside_map(uv) || outside_depth(coord.depth_ndc)) {
+        let (tap_view, tap_uv) = map_tap(self.view, uv);
+        if p.clamp_outside == 1 && (outside_map(tap_uv) || outside_depth(coord.depth_ndc)) {
             return 1.0;
         }
         let bilinear = kernel_from_id(p.kernel) == Kernel::Hardware && p.technique != TECHNIQUE_HARD;
         let reference = self.tap_reference_ndc(coord, uv, bias_ndc, !bilinear);
         if bilinear {
-            let lookup = if p.clamp_outside == 0 { wgsl_fract(uv) } else { uv };
-            return self.hardware_compare(lookup, reference);
+            let lookup = if p.clamp_outside == 0 { wgsl_fract(tap_uv) } else { tap_uv };
+            return self.hardware_compare(self.map_of(&tap_view), lookup, reference);
         }
-        if reference <= self.stored_depth_ndc(uv) { 1.0 } else { 0.0 }
+        if reference <= self.stored_depth_on(&tap_view, tap_uv) { 1.0 } else { 0.0 }
     }
 
     pub fn visibility_hard(&mut self, coord: &ShadowCoord) -> f32 {
         let bias = self.receiver_bias_ndc(coord, 0.0);
         let p = self.params;
-        let outside = p.clamp_outside == 1 && outside_frustum(coord);
-        let lit =
-            outside || self.tap_reference_ndc(coord, coord.uv, bias, true) <= self.stored_depth_ndc(coord.uv);
+        let (tap_view, tap_uv) = map_tap(self.view, coord.uv);
+        let outside = p.clamp_outside == 1 && (no_map_data(self.view, coord) || outside_map(tap_uv));
+        let lit = outside
+            || self.tap_reference_ndc(coord, coord.uv, bias, true) <= self.stored_depth_on(&tap_view, tap_uv);
         let v = if lit { 1.0 } else { 0.0 };
         self.record(TapKind::Filter, coord.uv, v);
         v
@@ -305,7 +361,7 @@ impl<'a> Twin<'a> {
     pub fn search_blockers(&mut self, coord: &ShadowCoord, seed: u32) -> BlockerSearch {
         let view = self.view;
         let mut out = BlockerSearch::default();
-        if self.params.clamp_outside == 1 && outside_frustum(coord) {
+        if self.params.clamp_outside == 1 && no_map_data(view, coord) {
             return out;
         }
         let radius_uv = self.blocker_search_radius_uv(coord);
@@ -316,11 +372,12 @@ impl<'a> Twin<'a> {
         let mut sum = 0.0;
         for i in 0..n {
             let uv = coord.uv + kernel_offset(kernel, i, n, seed) * radius_uv;
-            if self.params.clamp_outside == 1 && outside_map(uv) {
+            let (tap_view, tap_uv) = map_tap(view, uv);
+            if self.params.clamp_outside == 1 && outside_map(tap_uv) {
                 self.record(TapKind::BlockerSearch, uv, 0.0);
                 continue;
             }
-            let z = self.stored_depth_ndc(uv);
+            let z = self.stored_depth_on(&tap_view, tap_uv);
             let blocker = z < self.tap_reference_ndc(coord, uv, bias, true);
             self.record(TapKind::BlockerSearch, uv, if blocker { 1.0 } else { 0.0 });
             if blocker {

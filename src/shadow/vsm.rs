@@ -12,7 +12,7 @@ impl Twin<'_> {
     /// VSM: Chebyshev's one-sided bound on the filtered moments (the shader's `visibility_vsm`)
     /// [Donnelly-2006].
     pub fn visibility_vsm(&mut self, coord: &ShadowCoord, radius_texels: f32) -> f32 {
-        if self.params.clamp_outside == 1 && outside_frustum(coord) {
+        if self.params.clamp_outside == 1 && no_map_data(self.view, coord) {
             return 1.0;
         }
         let (_, _, bound) = self.vsm_filter(coord, radius_texels);
@@ -128,7 +128,7 @@ impl Twin<'_> {
             TECHNIQUE_VSSM if result.search.found > 0 => result.penumbra.filter_radius_texels,
             _ => return 0.0,
         };
-        if self.params.clamp_outside == 1 && outside_frustum(&coord) {
+        if self.params.clamp_outside == 1 && no_map_data(self.view, &coord) {
             return 0.0;
         }
         let bias = self.receiver_bias_ndc(&coord, radius);
@@ -149,7 +149,7 @@ impl Twin<'_> {
     /// the search region, PCSS's similar triangles, a VSM filter of half the penumbra.
     pub fn visibility_vssm(&mut self, coord: &ShadowCoord) -> ShadowVisibility {
         let mut out = ShadowVisibility { visibility: 1.0, ..Default::default() };
-        if self.params.clamp_outside == 1 && outside_frustum(coord) {
+        if self.params.clamp_outside == 1 && no_map_data(self.view, coord) {
             return out;
         }
         let view = self.view;

@@ -275,6 +275,9 @@ fn lights(state: &mut AppState, ui: &mut Ui) -> bool {
             ui.label(tr("spot light, perspective map"));
             changed |= number(lang, ui, &params::LIGHT_FOV, fov_deg, 0.0).changed();
         }
+        LightKind::Point => {
+            ui.label(tr("point light, a cube map of six faces"));
+        }
     }
     let far = light.far;
     changed |= number(lang, ui, &params::LIGHT_NEAR, &mut light.near, far).changed();

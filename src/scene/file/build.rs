@@ -249,6 +249,17 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
             })?;
             LightKind::Spot { fov_deg: real(&parameters::LIGHT_FOV, &key("fov_deg"), fov)? }
         }
+        LightKindName::Point => {
+            for (given, name) in [(l.extent.is_some(), "extent"), (l.fov_deg.is_some(), "fov_deg")] {
+                if given {
+                    return Err(BuildError::Invalid(format!(
+                        "`{}` is not for point lights: they shadow in every direction (six 90° faces)",
+                        key(name)
+                    )));
+                }
+            }
+            LightKind::Point
+        }
     };
     let size = match (l.width, l.angular_diameter_deg) {
         (Some(_), Some(_)) => {
@@ -259,9 +270,9 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
             )));
         }
         (None, Some(a)) => {
-            if l.kind == LightKindName::Spot {
+            if l.kind != LightKindName::Directional {
                 return Err(BuildError::Invalid(format!(
-                    "`{}` is for directional lights only; spot lights use `width`",
+                    "`{}` is for directional lights only; spot and point lights use `width`",
                     key("angular_diameter_deg")
                 )));
             }
@@ -277,7 +288,11 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
             LightSize::Width { width_world: real(&parameters::LIGHT_WIDTH, &key("width"), w.unwrap_or(0.0))? }
         }
     };
-    let default_near = if l.kind == LightKindName::Spot { 1.0 } else { 0.01 };
+    let default_near = match l.kind {
+        LightKindName::Spot => 1.0,
+        LightKindName::Point => 0.1,
+        LightKindName::Directional => 0.01,
+    };
     let near = real(&parameters::LIGHT_NEAR, &key("near"), l.near.unwrap_or(default_near))?;
     let far = parameters::LIGHT_FAR
         .check_far(&key("far"), l.far, &key("near"), near)
@@ -287,7 +302,8 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
         .map_err(BuildError::Invalid)?;
     let position = coordinates(&key("position"), l.position)?;
     let target = coordinates(&key("target"), l.target)?;
-    if (target - position).length() < 1e-6 {
+    // A point light has no axis to aim (its target is only the centre it may orbit).
+    if l.kind != LightKindName::Point && (target - position).length() < 1e-6 {
         return Err(BuildError::Invalid(format!("`{}` coincides with `{}`", key("target"), key("position"))));
     }
     let color = rgb(&key("color"), l.color)?;

@@ -102,6 +102,7 @@ struct ObjectFile {
 enum LightKindName {
     Directional,
     Spot,
+    Point,
 }
 
 #[derive(Deserialize)]
