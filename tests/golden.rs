@@ -93,6 +93,14 @@ fn contact_pcss() {
     check("contact_pcss", "contact", &[]);
 }
 
+/// A lamp's six cube faces: hard shadows on the floor and both walls, and PCSS across the seam
+/// the torus hangs over.
+#[test]
+fn point_lamp_hard_and_pcss() {
+    check("point_lamp_hard", "point_lamp", &[("technique", "hard")]);
+    check("point_lamp_pcss", "point_lamp", &[("technique", "pcss"), ("bias_mode", "receiver_plane"), ("bias", "0.0002")]);
+}
+
 #[test]
 fn multi_light_at_two_seconds() {
     check_at("multi_light_t2", "multi_light", 2.0);
