@@ -20,8 +20,12 @@ pub struct TapReport {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct LightProbe {
     pub light: usize,
-    /// The shadow view (of the frame's views) the pixel was looked up in: the light's own map.
+    /// The shadow view (of the frame's views) the pixel was looked up in: the light's own map,
+    /// or a point light's cube face towards the pixel.
     pub shadow_view: usize,
+    /// A point light only: which face of its cube ("+X", "-X", "+Y", "-Y", "+Z", "-Z").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cube_face: Option<String>,
     pub shadow_map_uv: [f32; 2],
     pub shadow_map_texel: [i32; 2],
     pub inside_light_frustum: bool,
@@ -159,7 +163,11 @@ pub struct Probing {
 }
 
 /// The probed pixel's analysis and the light's map (None without lights), on their way.
-type LightReadbacks = Readback<(AnalysisPixel, Option<DepthImage>)>;
+/// The cube faces by number (`scene::CUBE_FACES`), as the probe and the map panel name them.
+pub const CUBE_FACE_NAMES: [&str; 6] = ["+X", "-X", "+Y", "-Y", "+Z", "-Z"];
+
+/// The pixel's analysis and every map of the light (a point light's six faces; none without a light).
+type LightReadbacks = Readback<(AnalysisPixel, Vec<DepthImage>)>;
 
 /// Where a probe is after `Probing::advance`.
 pub enum Probed {
@@ -210,7 +218,7 @@ impl Probing {
             return Ok(Probed::Waiting(Box::new(self)));
         }
         let Self { request, pixel, with_reference, mut report, light, frame, coming } = self;
-        let (here, map) = coming.finish()?;
+        let (here, maps) = coming.finish()?;
         if here.position[3] <= 0.5 {
             return Ok(Probed::Done(report));
         }
@@ -219,7 +227,9 @@ impl Probing {
         report.normal = Some([here.normal[0], here.normal[1], here.normal[2]]);
         report.object = scene.objects.get(here.normal[3] as usize).map(|o| o.name.clone());
         // Without lights there is only the surface to report.
-        let Some(map) = map else { return Ok(Probed::Done(report)) };
+        if maps.is_empty() {
+            return Ok(Probed::Done(report));
+        }
         // The ground truth starts from the light's own frame, the last one rendered.
         let reference = if with_reference {
             let i = (pixel.1 * request.size.0 + pixel.0) as usize;
@@ -227,7 +237,7 @@ impl Probing {
         } else {
             None
         };
-        report.lights.push(light_probe(scene, pixel, (light, &frame), &here, &map, reference));
+        report.lights.push(light_probe(scene, pixel, (light, &frame), &here, &maps, reference));
         let next = light + 1;
         if next >= scene.lights.len() {
             return Ok(Probed::Done(report));
@@ -263,11 +273,17 @@ fn submit_light(
     };
     let rendered = renderer.render(scene, &frame)?;
     let here = renderer.analysis_pixel_readback(pixel.0, pixel.1)?;
-    let map = match rendered.first_view_of(light) {
-        None => Readback::ready(None),
-        Some((view, _)) => renderer.shadow_map_readback(view)?.map(|map| Ok(Some(map))),
-    };
-    Ok((rendered, here.zip(map)))
+    // Every map of the light: which one the pixel reads is known once its position is back.
+    let mut maps = Readback::ready(Vec::new());
+    if let Some((first, views)) = rendered.views_of(light) {
+        for index in first..first + views.len() {
+            maps = maps.zip(renderer.shadow_map_readback(index)?).map(|(mut maps, map)| {
+                maps.push(map);
+                Ok(maps)
+            });
+        }
+    }
+    Ok((rendered, here.zip(maps)))
 }
 
 /// Everything about light `light` at the probed pixel, from its frame's lights and parameters,
@@ -277,16 +293,22 @@ fn light_probe(
     pixel: (u32, u32),
     (light_index, rendered): (usize, &Frame),
     here: &AnalysisPixel,
-    map: &DepthImage,
+    maps: &[DepthImage],
     reference: Option<f32>,
 ) -> LightProbe {
     let position = Vec3::from_slice(&here.position[..3]);
     let normal = Vec3::from_slice(&here.normal[..3]);
     let light_gpu = rendered.lights[light_index];
-    let view_index = light_gpu.first_view as usize;
+    // The view the pixel's lookup read (a point light: the cube face towards it).
+    let view_index = crate::shadow::gpu::view_covering(&light_gpu, &rendered.views, position);
     let view = rendered.views[view_index];
     let params = rendered.params;
-    let mut twin = Twin::new(&light_gpu, &view, &params, map);
+    let own = view_index - light_gpu.first_view as usize;
+    let mut twin = if view.cube == 1 {
+        Twin::cube(&light_gpu, &view, &params, maps)
+    } else {
+        Twin::new(&light_gpu, &view, &params, &maps[own])
+    };
     twin.trace = Some(Vec::new());
     let (coord, result) = twin.analysis_at(pixel, position, normal);
     let penumbra = (result.search.found > 0).then_some(&result.penumbra);
@@ -299,9 +321,10 @@ fn light_probe(
     LightProbe {
         light: light_index,
         shadow_view: view_index,
+        cube_face: (view.cube == 1).then(|| CUBE_FACE_NAMES[view.face as usize].to_string()),
         shadow_map_uv: coord.uv.to_array(),
         shadow_map_texel: [(coord.uv.x * map_size).floor() as i32, (coord.uv.y * map_size).floor() as i32],
-        inside_light_frustum: !crate::shadow::outside_frustum(&coord),
+        inside_light_frustum: !crate::shadow::no_map_data(&view, &coord),
         n_dot_l: coord.n_dot_l,
         receiver_depth_ndc: coord.depth_ndc,
         receiver_depth_linear: coord.depth_linear,

@@ -685,6 +685,38 @@ fn probe_at_the_centre_reports_a_hit_with_every_light_key() {
     assert!((0.0..=1.0).contains(&reference), "{reference}");
 }
 
+/// A point light's probe says which cube face the pixel read, and the distances it compared:
+/// a floor pixel in the torus's shadow reads the -X face (the torus hangs to the lamp's -X side
+/// and below it), where the stored distance is the torus's, nearer than the floor's.
+#[test]
+fn probe_of_a_lamp_names_the_cube_face_and_compares_distances() {
+    let scene = repo_path("assets/scenes/point_lamp.toml").display().to_string();
+    let run = shadowlab(&[
+        "probe",
+        "--scene",
+        &scene,
+        "--pixel",
+        "300,360",
+        "--no-reference",
+        "--set",
+        "technique=hard",
+    ]);
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value = serde_json::from_str(&run.stdout).expect("JSON");
+    let light = &json["lights"][0];
+    assert_light_report(light);
+    assert_eq!(light["cube_face"], "-X", "{light:#}");
+    assert_eq!(light["shadow_view"], 1, "the -X face is the lamp's second view: {light:#}");
+    let number = |key: &str| light[key].as_f64().unwrap_or_else(|| panic!("{key}: {light:#}"));
+    let lamp = glam::Vec3::new(0.0, 6.5, 0.0);
+    let at: Vec<f32> = (0..3).map(|i| json["world_position"][i].as_f64().expect("position") as f32).collect();
+    let distance = (glam::Vec3::from_slice(&at) - lamp).length();
+    assert!((number("receiver_depth_linear") - f64::from(distance)).abs() < 1e-3, "{light:#}");
+    assert!(number("stored_depth_linear") < number("receiver_depth_linear") - 1.0, "{light:#}");
+    assert_eq!(number("visibility_gpu"), 0.0);
+    assert_eq!(number("visibility_twin"), 0.0);
+}
+
 #[test]
 fn probe_without_reference_leaves_the_reference_null() {
     let json = probe_json(&["--pixel", "80,45", "--no-reference"]);

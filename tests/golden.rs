@@ -98,7 +98,11 @@ fn contact_pcss() {
 #[test]
 fn point_lamp_hard_and_pcss() {
     check("point_lamp_hard", "point_lamp", &[("technique", "hard")]);
-    check("point_lamp_pcss", "point_lamp", &[("technique", "pcss"), ("bias_mode", "receiver_plane"), ("bias", "0.0002")]);
+    check(
+        "point_lamp_pcss",
+        "point_lamp",
+        &[("technique", "pcss"), ("bias_mode", "receiver_plane"), ("bias", "0.0002")],
+    );
 }
 
 #[test]

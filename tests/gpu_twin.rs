@@ -379,7 +379,10 @@ fn point_light_matches_twin_for_every_technique() {
         ("pcf vogel", &[("technique", "pcf"), ("pcf_kernel", "vogel"), ("radius_texels", "6")]),
         ("pcf grid", &[("technique", "pcf"), ("pcf_kernel", "grid"), ("radius_texels", "3")]),
         ("pcss", &[("technique", "pcss")]),
-        ("pcss receiver plane", &[("technique", "pcss"), ("bias_mode", "receiver_plane"), ("bias", "0.0001")]),
+        (
+            "pcss receiver plane",
+            &[("technique", "pcss"), ("bias_mode", "receiver_plane"), ("bias", "0.0001")],
+        ),
         ("vsm", &[("technique", "vsm"), ("radius_texels", "6")]),
         ("vssm", &[("technique", "vssm")]),
     ];

@@ -323,15 +323,22 @@ fn a_spherical_lamps_penumbra_matches_the_ground_truth_and_similar_triangles() {
         let (shadow_x, shadow_z) = (x * scale, z_edge * scale);
         let pcss = measured_penumbra(&mut renderer, scene.clone(), shadow_x, shadow_z, false);
         let truth = measured_penumbra(&mut renderer, scene.clone(), shadow_x, shadow_z, true);
-        eprintln!("lamp, blocker at height {height}: formula {expected:.3}, ground truth {truth:.3}, PCSS {pcss:.3}");
+        eprintln!(
+            "lamp, blocker at height {height}: formula {expected:.3}, ground truth {truth:.3}, PCSS {pcss:.3}"
+        );
         results.push((height, expected, truth, pcss));
     }
     for (height, expected, truth, pcss) in results {
-        for (what, measured, against) in
-            [("ground truth", truth, expected), ("PCSS", pcss, expected), ("PCSS against the truth", pcss, truth)]
-        {
+        for (what, measured, against) in [
+            ("ground truth", truth, expected),
+            ("PCSS", pcss, expected),
+            ("PCSS against the truth", pcss, truth),
+        ] {
             let ratio = measured / against;
-            assert!((0.75..=1.25).contains(&ratio), "blocker at {height}: {what}: {measured:.3} vs {against:.3}");
+            assert!(
+                (0.75..=1.25).contains(&ratio),
+                "blocker at {height}: {what}: {measured:.3} vs {against:.3}"
+            );
         }
     }
 }

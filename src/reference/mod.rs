@@ -46,7 +46,9 @@ pub fn sample_lights(light: &Light, t_s: f32, count: usize) -> Vec<LightViewGpu>
         (LightSize::Width { .. }, LightKind::Spot { .. } | LightKind::Point) => None,
     };
     match (light.size, angle_deg) {
-        (LightSize::Width { width_world }, None) if light.stores_distance() && width_world > 0.0 && count > 1 => {
+        (LightSize::Width { width_world }, None)
+            if light.stores_distance() && width_world > 0.0 && count > 1 =>
+        {
             (0..count)
                 .map(|k| {
                     let eye = position + sphere_point(k, count) * (0.5 * width_world);

@@ -271,8 +271,9 @@ impl Renderer {
             stores_distance: false,
         };
         let shadow_pipeline = self.pipelines.shadow(&self.device, key).clone();
-        let distance_pipeline = (views.iter().any(|v| v.cube == 1))
-            .then(|| self.pipelines.shadow(&self.device, ShadowPipelineKey { stores_distance: true, ..key }).clone());
+        let distance_pipeline = (views.iter().any(|v| v.cube == 1)).then(|| {
+            self.pipelines.shadow(&self.device, ShadowPipelineKey { stores_distance: true, ..key }).clone()
+        });
         let maps_key = ShadowMapsKey {
             views: (views.iter())
                 .map(|view| {
@@ -420,7 +421,8 @@ impl Renderer {
     /// Every map of light `light` of the last frame, in the order of its views (a point light's
     /// six faces: what its twin reads, `Twin::for_views`).
     pub fn read_light_maps(&self, light: usize) -> Result<Vec<DepthImage>, RenderError> {
-        let frame = self.last_frame.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
+        let frame =
+            self.last_frame.as_ref().ok_or_else(|| RenderError::Usage("nothing rendered yet".into()))?;
         let (first, views) = frame
             .views_of(light)
             .ok_or_else(|| RenderError::Usage(format!("light {light} does not exist in the last frame")))?;

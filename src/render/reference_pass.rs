@@ -301,13 +301,12 @@ impl Renderer {
         let view_group = shadow_view_group(&device, &self.layouts, &view_buffer);
         // The reference's own shadow pass: no hardware bias and no culling, whatever the user
         // set, so their effects show up as error rather than being copied into the truth.
-        let key =
-            ShadowPipelineKey {
-                depth_bias_constant: 0,
-                depth_bias_slope_bits: 0,
-                cull_front_faces: false,
-                stores_distance: light.stores_distance(),
-            };
+        let key = ShadowPipelineKey {
+            depth_bias_constant: 0,
+            depth_bias_slope_bits: 0,
+            cull_front_faces: false,
+            stores_distance: light.stores_distance(),
+        };
         let shadow_pipeline = self.pipelines.shadow(&device, key).clone();
         let scene_upload =
             self.scene_gpu.as_ref().ok_or_else(|| RenderError::Usage("no scene uploaded".into()))?.generation;

@@ -19,9 +19,9 @@ pub use gpu::{
 use kernels::{filter_taps, kernel_offset};
 pub use light_space::{
     blocker_search_radius_uv, cube_face_axes, cube_face_uv, cube_face_view, depth_linear_from_ndc,
-    depth_ndc_from_linear, light_dir_to, light_space_lookup, map_tap, ndc_per_world, no_map_data, outside_depth,
-    outside_frustum, outside_map, project_to_light, receiver_bias_ndc, receiver_plane_gradient, rgba8_round_trip,
-    texel_world_at, view_covering,
+    depth_ndc_from_linear, light_dir_to, light_space_lookup, map_tap, ndc_per_world, no_map_data,
+    outside_depth, outside_frustum, outside_map, project_to_light, receiver_bias_ndc,
+    receiver_plane_gradient, rgba8_round_trip, texel_world_at, view_covering,
 };
 
 /// One light's shadow map read back: NDC depth per texel, row-major, top row first (uv.y = 0).
@@ -210,7 +210,11 @@ impl<'a> Twin<'a> {
             .iter()
             .zip(maps)
             .map(|(view, map)| {
-                if view.cube == 1 { Self::cube(light, view, params, maps) } else { Self::new(light, view, params, map) }
+                if view.cube == 1 {
+                    Self::cube(light, view, params, maps)
+                } else {
+                    Self::new(light, view, params, map)
+                }
             })
             .collect()
     }
