@@ -2,6 +2,7 @@
 //! the ground truth and the error against it. Heatmaps come with the value range they map.
 
 pub mod overlays;
+pub mod texel_density;
 
 use crate::i18n::Lang;
 use crate::render::Analysis;
