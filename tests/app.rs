@@ -1029,6 +1029,43 @@ fn every_try_this_apply_button_sets_what_its_prompt_says() {
     assert!(pressed >= 30, "only {pressed} Apply buttons pressed");
 }
 
+/// The texel-density view picked from the view menu: its legend gives the scale with its unit
+/// and the densities on screen, in the language shown, and a map twice as large on a side has
+/// twice the density.
+#[test]
+fn the_view_menu_shows_the_texel_density_and_a_larger_map_doubles_it() {
+    let mut h = harness();
+    h.state_mut()
+        .open(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/contact.toml")));
+    settle(&mut h);
+    h.get_by_value("view: final").click();
+    h.run_steps(2);
+    h.get_by_label("texel-density").click();
+    settle(&mut h);
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::TexelDensity);
+    let median = |legends: &[String]| -> f64 {
+        let line =
+            legends.iter().find_map(|l| l.strip_prefix("on screen: ")).expect("the densities on screen");
+        line.rsplit_once("median ").and_then(|(_, m)| m.parse().ok()).expect("a median")
+    };
+    let legends = h.state().legend_lines();
+    assert!(
+        legends[0].starts_with("texel density: 0.0625 .. 16 shadow-map texels per screen pixel"),
+        "{legends:?}"
+    );
+    let before = median(&legends);
+    h.state_mut().lang = Lang::Zh;
+    h.run_steps(2);
+    let legends = h.state().legend_lines();
+    assert!(legends[0].starts_with("纹素密度：0.0625 .. 16 阴影贴图纹素/屏幕像素"), "{legends:?}");
+    h.state_mut().lang = Lang::En;
+    h.state_mut().scene.lights[0].shadow_map_size *= 2;
+    h.state_mut().mark_dirty();
+    settle(&mut h);
+    let after = median(&h.state().legend_lines());
+    assert!((after / before - 2.0).abs() < 0.01, "{before} then {after}");
+}
+
 /// Lesson 6 as a student meets it: the bleeding overlay and its legend on the two-slab scene, the
 /// probe's Chebyshev rows, then the moments view picked from the view menu, and what it says
 /// once the technique has no moments.

@@ -424,7 +424,10 @@ fn set_without_equals_sign_is_a_usage_error() {
 
 #[test]
 fn unknown_view_lists_the_views() {
-    render_usage_error(&["--view", "sideways"], &["--view", "sideways", "shadow-map", "blocker-radius"]);
+    render_usage_error(
+        &["--view", "sideways"],
+        &["--view", "sideways", "shadow-map", "blocker-radius", "texel-density"],
+    );
 }
 
 #[test]
@@ -626,6 +629,64 @@ fn render_error_view_prints_the_mean_absolute_error() {
     let mae: f64 =
         line["mean absolute error:".len()..].trim().parse().unwrap_or_else(|e| panic!("{line:?}: {e}"));
     assert!((0.0..1.0).contains(&mae), "{line}");
+}
+
+/// The three numbers of the texel-density legend's second line, `on screen: MIN .. MAX, median M`.
+fn densities_on_screen(stdout: &str) -> [f64; 3] {
+    let line = stdout
+        .lines()
+        .find_map(|l| l.strip_prefix("on screen: "))
+        .unwrap_or_else(|| panic!("no `on screen:` line in:\n{stdout}"));
+    let numbers: Vec<f64> = line.split([' ', ',']).filter_map(|w| w.parse().ok()).collect::<Vec<_>>();
+    let [min, max, median] = numbers[..] else { panic!("three numbers in {line:?}") };
+    [min, median, max]
+}
+
+/// The texel-density view of the spot-lit contact scene: its legend gives the fixed log scale,
+/// its unit and where 1 lies; the floor beyond the spot's cone is grey (no texels there); and a
+/// map with four times the texels on a side has four times the density at every pixel.
+#[test]
+fn render_texel_density_prints_its_scale_and_follows_the_map_size() {
+    let (image, stdout) = render_view("texel-density", &["--set", "light.0.shadow_map_size=512"]);
+    assert_eq!(image.dimensions(), (160, 90));
+    assert_eq!(legend_range(&stdout, "texel density"), (0.0625, 16.0), "{stdout}");
+    let scale = stdout.lines().find(|l| l.starts_with("texel density")).unwrap_or_default();
+    assert!(scale.contains("shadow-map texels per screen pixel") && scale.contains("white: 1"), "{stdout}");
+    let off_the_map = image.pixels().filter(|p| p.0 == [120, 120, 120, 255]).count();
+    assert!(off_the_map > 100, "the floor beyond the cone is grey: {off_the_map} pixels");
+    let [min, median, max] = densities_on_screen(&stdout);
+    assert!(0.0 < min && min <= median && median <= max, "{stdout}");
+    let (_, larger) = render_view("texel-density", &["--set", "light.0.shadow_map_size=2048"]);
+    let [_, larger_median, _] = densities_on_screen(&larger);
+    assert!((larger_median / median - 4.0).abs() < 0.01, "{median} then {larger_median}");
+}
+
+/// A floor seen straight down by an orthographic camera, under a directional light shining
+/// straight down: a texel is 2 * extent / map size world units wide and a pixel the camera's
+/// height / the image's height, so the density is one number over the whole floor, the box's
+/// top too: 1024 / 40 * (10.8 / 54) = 5.12 texels per pixel.
+#[test]
+fn render_texel_density_of_a_floor_seen_head_on_under_a_directional_light_is_one_number() {
+    let scratch = Scratch::new();
+    let scene = scratch.scene(
+        "head_on.toml",
+        "[camera]\nprojection = \"orthographic\"\nposition = [0.0, 40.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n\
+         up = [0.0, 0.0, -1.0]\nheight = 10.8\nnear = 1.0\nfar = 100.0\n\n\
+         [[object]]\nmesh = \"plane\"\nscale = [80.0, 1.0, 80.0]\n\n\
+         [[object]]\nmesh = \"cube\"\ntranslate = [0.0, 2.0, 0.0]\nscale = [4.0, 4.0, 4.0]\n\n\
+         [[light]]\nkind = \"directional\"\nposition = [0.0, 50.0, 0.0]\ntarget = [0.0, 0.0, 0.0]\n\
+         up = [0.0, 0.0, -1.0]\nshadow_map_size = 1024\nextent = 20.0\nnear = 1.0\nfar = 100.0\n",
+    );
+    let run = render(&scratch, &scene, &["--view", "texel-density", "--size", "96x54"]);
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(run.stderr.is_empty(), "{run}");
+    let expected = 1024.0 / 40.0 * (10.8 / 54.0);
+    for density in densities_on_screen(&run.stdout) {
+        assert!((density - expected).abs() < 0.002, "{density}, expected {expected}:\n{run}");
+    }
+    let image = decode_png(&scratch.path("out.png"));
+    let first = *image.get_pixel(0, 0);
+    assert!(image.pixels().all(|p| *p == first), "one colour over the floor and the box");
 }
 
 #[test]

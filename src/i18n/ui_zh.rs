@@ -232,6 +232,14 @@ pub(super) const UI: &[(&str, &str)] = &[
         "average blocker depth: {:.4} .. {:.4} world units from the light (grey: no blocker) (dark blue .. yellow)",
         "平均遮挡深度：{:.2} .. {:.2} 到光源的世界单位（深蓝 .. 黄；灰：没有遮挡物）",
     ),
+    ("texel density", "纹素密度"),
+    ("shadow-map texels per screen pixel", "阴影贴图纹素/屏幕像素"),
+    (
+        "{}: {} .. {} {}, log scale (red: under 1, blocky edges; white: 1; blue: over 1, wasted; grey: off the light's map)",
+        "{}：{} .. {} {}，对数刻度（红：小于 1，边缘成块；白：1；蓝：大于 1，浪费；灰：在光源贴图之外）",
+    ),
+    ("on screen: {} .. {}, median {}", "画面上：{} .. {}，中位数 {}"),
+    ("on screen: no surface on the light's map", "画面上：没有落在光源贴图上的表面"),
     ("visibility: black = shadowed, white = lit", "可见性：黑 = 处于阴影中，白 = 受光"),
     ("reference: {} hard shadows averaged", "真实结果：{} 张硬阴影的平均"),
     (
@@ -285,6 +293,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("blockers", "找到的遮挡物"),
     ("blocker-depth", "平均遮挡深度"),
     ("moments", "VSM 矩"),
+    ("texel-density", "纹素密度"),
     ("reference", "真实结果"),
     ("error", "与真实结果的误差"),
     ("two-pass", "两遍绘制"),

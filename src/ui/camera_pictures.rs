@@ -65,6 +65,7 @@ impl CameraPictures {
                 state.reference.as_deref(),
                 samples,
                 light_and_params,
+                &shown.views,
                 state.lang,
             ) {
                 self.view_image =

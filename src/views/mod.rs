@@ -1,7 +1,9 @@
 //! Debug views as images: the camera view, the shadow term, the shadow map, PCSS heatmaps,
-//! the ground truth and the error against it. Heatmaps come with the value range they map.
+//! the shadow map's texels per screen pixel, the ground truth and the error against it.
+//! Heatmaps come with the value range they map.
 
 pub mod overlays;
+pub mod texel_density;
 
 use crate::i18n::Lang;
 use crate::render::Analysis;
@@ -21,12 +23,14 @@ pub enum View {
     BlockerDepth,
     /// The VSM moments the filter reads: mean depth and standard deviation per texel.
     Moments,
+    /// Shadow-map texels per screen pixel (perspective aliasing), on a log scale.
+    TexelDensity,
     Reference,
     Error,
 }
 
 impl View {
-    pub const ALL: [View; 10] = [
+    pub const ALL: [View; 11] = [
         View::Final,
         View::Visibility,
         View::ShadowMap,
@@ -35,6 +39,7 @@ impl View {
         View::Blockers,
         View::BlockerDepth,
         View::Moments,
+        View::TexelDensity,
         View::Reference,
         View::Error,
     ];
@@ -49,6 +54,7 @@ impl View {
             View::Blockers => "blockers",
             View::BlockerDepth => "blocker-depth",
             View::Moments => "moments",
+            View::TexelDensity => "texel-density",
             View::Reference => "reference",
             View::Error => "error",
         }
@@ -365,9 +371,10 @@ pub fn render_view_measured(
             let light_view = frame.light_view(light);
             let light_and_params = light_view.as_ref().map(|l| (l, &frame.params));
             let (image, legend) =
-                analysis_view(view, &a, reference.as_deref(), samples, light_and_params, lang).ok_or_else(
-                    || crate::render::RenderError::Usage(format!("view {} has no image", view.name())),
-                )?;
+                analysis_view(view, &a, reference.as_deref(), samples, light_and_params, &frame.views, lang)
+                    .ok_or_else(|| {
+                        crate::render::RenderError::Usage(format!("view {} has no image", view.name()))
+                    })?;
             let mean_abs_error =
                 reference.as_deref().filter(|_| view == View::Error).map(|r| mean_abs_error(&a, r));
             RenderedView { image, summary: Some(legend), mean_abs_error }
@@ -377,13 +384,15 @@ pub fn render_view_measured(
 
 /// A view made from the analysis pass (and the ground truth for `reference` and `error`), with
 /// its legend. None for the views that are not (final, shadow map), and for reference and error
-/// without a ground truth.
+/// without a ground truth. `views` are the frame's shadow views, of every light (a lookup reads
+/// the one of its light that covers the point).
 pub fn analysis_view(
     view: View,
     a: &Analysis,
     reference: Option<&[f32]>,
     reference_samples: u32,
     light: Option<(&LightViewGpu, &ShadowParamsGpu)>,
+    views: &[ShadowViewGpu],
     lang: Lang,
 ) -> Option<(RgbaImage, String)> {
     use crate::i18n::{fill, tr};
@@ -418,6 +427,24 @@ pub fn analysis_view(
                 &[&legend.min, &legend.max],
             );
             Some((image, text))
+        }
+        View::TexelDensity => {
+            let (light, _) = light?;
+            let (image, legend, on_screen) = texel_density::texel_density_image(a, &light.light, views);
+            let range = fill(
+                lang,
+                "{}: {} .. {} {}, log scale (red: under 1, blocky edges; white: 1; blue: over 1, wasted; grey: off the light's map)",
+                &[&tr(lang, legend.label), &legend.min, &legend.max, &tr(lang, legend.unit)],
+            );
+            let measured = match on_screen {
+                Some(d) => fill(
+                    lang,
+                    "on screen: {} .. {}, median {}",
+                    &[&format!("{:.3}", d.min), &format!("{:.3}", d.max), &format!("{:.3}", d.median)],
+                ),
+                None => tr(lang, "on screen: no surface on the light's map").into(),
+            };
+            Some((image, format!("{range}\n{measured}")))
         }
         View::Visibility => {
             let legend = tr(lang, "visibility: black = shadowed, white = lit");

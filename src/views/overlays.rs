@@ -346,9 +346,12 @@ pub fn hidden_by_view(view: crate::views::View, overlay: Overlay) -> bool {
         matches!(overlay, Overlay::BlockerRadius | Overlay::Penumbra | Overlay::Blockers | Overlay::Error);
     match view {
         View::ShadowMap | View::Moments => true,
-        View::BlockerRadius | View::Penumbra | View::Blockers | View::BlockerDepth | View::Error => {
-            heat_overlay
-        }
+        View::BlockerRadius
+        | View::Penumbra
+        | View::Blockers
+        | View::BlockerDepth
+        | View::TexelDensity
+        | View::Error => heat_overlay,
         View::Final | View::Visibility | View::Reference => false,
     }
 }

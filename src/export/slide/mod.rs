@@ -51,6 +51,7 @@ pub fn view_label(view: View, lang: Lang) -> &'static str {
             View::Blockers => "blockers found",
             View::BlockerDepth => "average blocker depth",
             View::Moments => "VSM moments",
+            View::TexelDensity => "texel density",
             View::Reference => "ground truth",
             View::Error => "error vs ground truth",
         },
