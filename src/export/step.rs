@@ -222,12 +222,12 @@ pub fn render_step(
         camera_summary = Some(camera_summary.map_or(legend.clone(), |s| format!("{s}\n{legend}")));
     }
     let shadow_map = if has_lights {
-        let (index, shadow_view) = renderer
+        let views = renderer
             .last_frame()
-            .and_then(|f| f.first_view_of(light).map(|(i, v)| (i, *v)))
+            .and_then(|f| f.views_of(light).map(|(_, v)| v.to_vec()))
             .ok_or_else(|| RenderError::Usage(format!("light {light} was not rendered")))?;
-        let map = renderer.read_shadow_map(index)?;
-        Some(views::shadow_map_image(&map, &shadow_view))
+        let maps = renderer.read_light_maps(light)?;
+        Some(views::light_maps_image(&maps, &views))
     } else {
         None
     };

@@ -173,6 +173,53 @@ pub fn shadow_map_image(map: &DepthImage, view: &ShadowViewGpu) -> (RgbaImage, L
     )
 }
 
+/// Where each cube face lies in the unfolded cross, (column, row) of a 4 x 3 grid: +Y above the
+/// +Z face, the four around the horizon in a row (+X, +Z, -X, -Z: each face's right edge meets
+/// the next one's left), -Y below. With `scene::CUBE_FACES`' up vectors every shared edge meets
+/// its neighbour's.
+pub const CUBE_CROSS_CELLS: [(u32, u32); 6] = [(0, 1), (2, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
+
+/// A light's maps as one picture with its legend: the one map of a spot or directional light, a
+/// point light's six faces unfolded into a cross (`CUBE_CROSS_CELLS`) on one depth scale.
+pub fn light_maps_image(maps: &[DepthImage], views: &[ShadowViewGpu]) -> (RgbaImage, Legend) {
+    let cube = views.len() == 6 && views.iter().all(|v| v.cube == 1) && maps.len() == 6;
+    if !cube {
+        return shadow_map_image(&maps[0], &views[0]);
+    }
+    let view = &views[0];
+    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
+    for z in maps.iter().flat_map(|m| &m.depth_ndc).filter(|&&z| z < 1.0) {
+        let d = depth_linear_from_ndc(view, *z);
+        (lo, hi) = (lo.min(d), hi.max(d));
+    }
+    if !lo.is_finite() {
+        (lo, hi) = (view.near, view.far);
+    }
+    let span = (hi - lo).max(1e-6);
+    let size = maps[0].size;
+    let mut image = RgbaImage::from_pixel(4 * size, 3 * size, Rgba([40, 42, 48, 255]));
+    for (map, &(column, row)) in maps.iter().zip(&CUBE_CROSS_CELLS) {
+        for y in 0..size.min(map.size) {
+            for x in 0..size.min(map.size) {
+                let z = map.depth_ndc[(y * map.size + x) as usize];
+                let color = if z < 1.0 {
+                    heat_color((depth_linear_from_ndc(view, z) - lo) / span)
+                } else {
+                    Rgba([250, 250, 250, 255])
+                };
+                image.put_pixel(column * size + x, row * size + y, color);
+            }
+        }
+    }
+    let legend = Legend {
+        label: "distance to the light, six cube faces unfolded (+Y above; +X, +Z, -X, -Z; -Y below)",
+        min: lo,
+        max: hi,
+        unit: "world units (white: nothing stored)",
+    };
+    (image, legend)
+}
+
 /// Pixels where the blocker search found nothing (or there was none) in the blocker-depth view.
 const NO_BLOCKER: Rgba<u8> = Rgba([120, 120, 120, 255]);
 
@@ -354,9 +401,9 @@ pub fn render_view_measured(
     Ok(match view {
         View::Final => plain(renderer.read_color()?, None),
         View::ShadowMap => {
-            let (index, shadow_view) = frame.first_view_of(light).ok_or_else(no_light)?;
-            let map = renderer.read_shadow_map(index)?;
-            let (image, legend) = shadow_map_image(&map, shadow_view);
+            let (_, views) = frame.views_of(light).ok_or_else(no_light)?;
+            let maps = renderer.read_light_maps(light)?;
+            let (image, legend) = light_maps_image(&maps, views);
             plain(image, Some(legend.to_string()))
         }
         _ => {
