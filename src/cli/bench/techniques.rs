@@ -61,6 +61,8 @@ struct Case {
     samples: Option<u32>,
     blocker_samples: Option<u32>,
     bias_mode: Option<BiasMode>,
+    /// Light 0 made a point light where it stands (six cube faces instead of its one map).
+    point_light: bool,
 }
 
 /// The rows: `none` (shading without any shadow lookup: the per-pixel floor), hard, PCF and PCSS
@@ -68,6 +70,8 @@ struct Case {
 /// then VSM, and PCF and PCSS again with the receiver-plane bias, where the scene uses another. With a bias
 /// that does not grow with the kernel, a floor tilted to the light finds itself in the blocker
 /// search, so PCSS filters every pixel; with the plane it filters only near real blockers.
+/// Last, hard and PCF with light 0 made a point light where it stands: what six maps cost
+/// against one.
 fn cases(scene: &Scene) -> Vec<Case> {
     let case = |label: String, technique, samples, blocker_samples| Case {
         label,
@@ -75,6 +79,7 @@ fn cases(scene: &Scene) -> Vec<Case> {
         samples,
         blocker_samples,
         bias_mode: None,
+        point_light: false,
     };
     let (n, nb) = (scene.shadow.samples, scene.shadow.blocker_samples);
     let mut out = vec![
@@ -106,6 +111,14 @@ fn cases(scene: &Scene) -> Vec<Case> {
         });
         let label = format!("pcss {nb}+{n} plane-bias");
         out.push(Case { bias_mode: plane, ..case(label, Technique::Pcss, None, None) });
+    }
+    // The cost of six maps: light 0 as a lamp where it stands, against its own rows above.
+    if scene.lights.first().is_some_and(|l| !l.stores_distance()) {
+        for (label, technique, samples) in
+            [("point-light hard".to_string(), Technique::Hard, None), (format!("point-light pcf {n}"), Technique::Pcf, Some(n))]
+        {
+            out.push(Case { point_light: true, ..case(label, technique, samples, None) });
+        }
     }
     out
 }
@@ -161,6 +174,13 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
         }
         if let Some(mode) = case.bias_mode {
             scene.shadow.bias_mode = mode;
+        }
+        if case.point_light
+            && let Some(light) = scene.lights.first_mut()
+        {
+            light.kind = crate::scene::LightKind::Point;
+            // A sun's angular size has no meaning at a point; a lamp has a width.
+            light.size = crate::scene::LightSize::Width { width_world: 0.0 };
         }
         let request_at = |time_s| FrameRequest {
             time_s,
