@@ -607,6 +607,8 @@ const STRINGS: &[&str] = &[
     "pcf",
     "directional",
     "spot",
+    "point",
+    "texel-density",
     "orthographic",
     "perspective",
     "receiver_plane",

@@ -280,6 +280,7 @@ normal_offset_texels = 0.5
         LightProbe {
             light: 0,
             shadow_view: 0,
+            cube_face: None,
             shadow_map_uv: uv,
             shadow_map_texel: [512, 512],
             inside_light_frustum: true,

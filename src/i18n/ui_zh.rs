@@ -158,6 +158,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("shadow map (texels)", "阴影贴图（纹素）"),
     ("directional light, orthographic map", "平行光，正交投影贴图"),
     ("spot light, perspective map", "聚光灯，透视投影贴图"),
+    ("point light, a cube map of six faces", "点光源，六个面的立方体贴图"),
     ("half-width (world units)", "半宽（世界单位）"),
     ("near (world units)", "近平面（世界单位）"),
     ("far (world units)", "远平面（世界单位）"),

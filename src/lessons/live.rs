@@ -405,6 +405,7 @@ mod tests {
         LightProbe {
             light,
             shadow_view: light,
+            cube_face: None,
             shadow_map_uv: [0.25, 0.75],
             shadow_map_texel: [512, 1536],
             inside_light_frustum: true,

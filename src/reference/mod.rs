@@ -183,3 +183,31 @@ pub fn settings_read(user: &ShadowSettings) -> ShadowSettings {
         ..reference_settings(user)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The lamp's samples seen from any direction cover its disk evenly: on planes through the
+    /// centre at several tilts, the share within radius r of the disk is r² (a uniform disk's),
+    /// and no point leaves the ball.
+    #[test]
+    fn sphere_points_project_evenly_onto_the_disk_from_every_direction() {
+        let n = 4096;
+        let points: Vec<Vec3> = (0..n).map(|k| sphere_point(k, n)).collect();
+        assert!(points.iter().all(|p| p.length() <= 1.0 + 1e-5));
+        for axis in
+            [Vec3::Y, Vec3::X, Vec3::new(1.0, 2.0, 3.0).normalize(), Vec3::new(-2.0, 0.5, 1.0).normalize()]
+        {
+            for r in [0.3f32, 0.5, 0.7, 0.9] {
+                let inside = points.iter().filter(|p| (**p - axis * p.dot(axis)).length() < r).count();
+                let share = inside as f32 / n as f32;
+                assert!(
+                    (share - r * r).abs() < 0.02,
+                    "axis {axis}: share within {r} is {share}, want {}",
+                    r * r
+                );
+            }
+        }
+    }
+}

@@ -88,7 +88,8 @@ pub fn view_covering(view: &ShadowViewGpu, world_pos: Vec3) -> ShadowViewGpu {
 pub fn cube_face_uv(face: u32, d: Vec3) -> Vec2 {
     let [forward, up, right] = cube_face_axes(face);
     let ahead = d.dot(forward);
-    if !(ahead > 0.0) {
+    // Also for NaN, as in the shader.
+    if ahead.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return Vec2::splat(-1.0);
     }
     Vec2::new(0.5 + 0.5 * d.dot(right) / ahead, 0.5 - 0.5 * d.dot(up) / ahead)
@@ -268,6 +269,50 @@ mod tests {
         let samples: Vec<f32> = (0..2000).map(|i| i as f32 / 4000.0).collect();
         for w in samples.windows(2) {
             assert!(rgba8_round_trip(w[0]) <= rgba8_round_trip(w[1]), "{w:?}");
+        }
+    }
+
+    /// A cube face's lookup (its axes, `cube_face_uv`, the distance) is what its shadow pass
+    /// draws (`Light::cube_face_clip_from_world`), and a tap past a face's edge is read where its
+    /// direction really is: on the neighbouring face, at the same place the point projects to.
+    #[test]
+    fn cube_faces_look_up_where_their_matrices_draw_and_taps_cross_seams_to_the_right_texel() {
+        let scene = crate::scene::load_scene(&crate::shipped_path("assets/scenes/point_lamp.toml"), &[])
+            .expect("scene");
+        let light = &scene.lights[0];
+        let (lights, views) = crate::shadow::frame_lights(&scene.lights, 0.0, 1024);
+        let lamp = light.position_at(0.0);
+        let mut h = 1u32;
+        let mut next = || {
+            h = h.wrapping_mul(747_796_405).wrapping_add(2_891_336_453);
+            (h >> 8) as f32 / 16_777_216.0 * 2.0 - 1.0
+        };
+        for _ in 0..500 {
+            let p = lamp + Vec3::new(next(), next(), next()) * 8.0;
+            let view = view_covering(&views[0], p);
+            assert_eq!(view.face as usize, cube_face_of(p - lamp));
+            let s = project_to_light(&view, p);
+            let drawn = light.cube_face_clip_from_world(view.face as usize, 0.0) * p.extend(1.0);
+            let ndc = drawn.truncate() / drawn.w;
+            let uv = Vec2::new(ndc.x * 0.5 + 0.5, ndc.y * -0.5 + 0.5);
+            assert!((Vec2::new(s.x, s.y) - uv).length() < 1e-4, "face {}: {s} vs {uv}", view.face);
+            assert!(!outside_map(uv));
+            let distance = (p - lamp).length();
+            assert!((depth_linear_from_ndc(&view, s.z) - distance).abs() < 1e-3);
+            // The same point seen from a neighbouring face lies past that face's edge: the tap
+            // comes back to the point's own face and uv.
+            for other in 0..6u32 {
+                let on_other = cube_face_view(&view, other);
+                let past = project_to_light(&on_other, p);
+                let past_uv = Vec2::new(past.x, past.y);
+                if other == view.face || !past_uv.is_finite() || past_uv == Vec2::splat(-1.0) {
+                    continue;
+                }
+                let (tap_view, tap_uv) = map_tap(&on_other, past_uv);
+                assert_eq!(tap_view.face, view.face, "from face {other}");
+                assert_eq!(tap_view.layer, lights[0].first_view + view.face);
+                assert!((tap_uv - uv).length() < 1e-4, "from face {other}: {tap_uv} vs {uv}");
+            }
         }
     }
 

@@ -114,9 +114,10 @@ fn cases(scene: &Scene) -> Vec<Case> {
     }
     // The cost of six maps: light 0 as a lamp where it stands, against its own rows above.
     if scene.lights.first().is_some_and(|l| !l.stores_distance()) {
-        for (label, technique, samples) in
-            [("point-light hard".to_string(), Technique::Hard, None), (format!("point-light pcf {n}"), Technique::Pcf, Some(n))]
-        {
+        for (label, technique, samples) in [
+            ("point-light hard".to_string(), Technique::Hard, None),
+            (format!("point-light pcf {n}"), Technique::Pcf, Some(n)),
+        ] {
             out.push(Case { point_light: true, ..case(label, technique, samples, None) });
         }
     }
