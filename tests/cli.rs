@@ -811,7 +811,7 @@ fn bench_json_has_a_row_per_technique_with_every_frame_and_the_adapter() {
     let rows = json["rows"].as_array().expect("rows is an array");
     let labels: Vec<&str> = rows.iter().filter_map(|r| r["technique"].as_str()).collect();
     // contact.toml filters with 32 + 32 taps: no extra row for the scene's own counts; its
-    // adaptive bias gets two rows with the receiver-plane bias.
+    // adaptive bias gets two rows with the receiver-plane bias; its spot light two as a lamp.
     assert_eq!(
         labels,
         [
@@ -824,7 +824,9 @@ fn bench_json_has_a_row_per_technique_with_every_frame_and_the_adapter() {
             "vsm",
             "vssm",
             "pcf 32 plane-bias",
-            "pcss 32+32 plane-bias"
+            "pcss 32+32 plane-bias",
+            "point-light hard",
+            "point-light pcf 32"
         ],
         "{json:#}"
     );

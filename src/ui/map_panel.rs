@@ -1,10 +1,13 @@
 //! The shadow-map panel: linear depth with a colour bar, hover readout, the probe's uv with its
 //! search and filter circles and every tap at its real size; wheel to zoom, drag to move the light.
+//! A point light's six cube faces show unfolded into a cross (`views::CUBE_CROSS_CELLS`), its taps
+//! on the face each one read.
 
 use super::AppState;
 use super::rendering::Shown;
 use crate::i18n::{Lang, fill, tr};
-use crate::shadow::depth_linear_from_ndc;
+use crate::shadow::{depth_linear_from_ndc, map_tap};
+use crate::views::CUBE_CROSS_CELLS;
 use egui::{Color32, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
 use glam::{Mat4, Vec4};
 
@@ -78,10 +81,13 @@ impl MapPanel {
             return;
         };
         let (map, shadow_view) = (&shown_map.depth, &shown_map.view);
+        let cube = shown_map.cube_faces.len() == 6;
+        // The picture's height per unit of width: a cross of six faces is 4 x 3 faces.
+        let aspect = if cube { 0.75 } else { 1.0 };
         let avail = ui.available_rect_before_wrap();
         // The column's own width: a long legend line must not widen the map past it.
-        let side = rect.width().min(avail.height() - 60.0).max(64.0);
-        let map_rect = Rect::from_min_size(avail.min, vec2(side, side));
+        let side = rect.width().min((avail.height() - 60.0) / aspect).max(64.0);
+        let map_rect = Rect::from_min_size(avail.min, vec2(side, side * aspect));
         let response = ui.allocate_rect(map_rect, Sense::click_and_drag());
         #[cfg(feature = "test-hooks")]
         super::hooks::set_landmark(ui.ctx(), super::hooks::LANDMARK_SHADOW_MAP, map_rect);
@@ -97,28 +103,46 @@ impl MapPanel {
         let to_rect = |uv: [f32; 2]| {
             pos2(
                 map_rect.left() + (uv[0] - window.left()) * side,
-                map_rect.top() + (uv[1] - window.top()) * side,
+                map_rect.top() + (uv[1] - window.top()) * side * aspect,
             )
+        };
+        // Screen pixels per uv of one map (a cube face is a quarter of the cross's width).
+        let face_side = if cube { side / 4.0 } else { side };
+        let views = shown_map.index..shown_map.index + if cube { 6 } else { 1 };
+        // Where uv of the frame's view `view_index` lies in the picture: on a cube, a uv past the
+        // face's edge is read on the face its direction falls in (`map_tap`), and drawn there.
+        let picture_uv = |view_index: usize, uv: [f32; 2]| -> [f32; 2] {
+            if !cube {
+                return uv;
+            }
+            let face = view_index.saturating_sub(shown_map.index).min(5) as u32;
+            let (tap_view, tap_uv) = map_tap(&shown_map.view.on_face(face), glam::Vec2::from(uv));
+            let (column, row) = CUBE_CROSS_CELLS[tap_view.face as usize];
+            [(column as f32 + tap_uv.x) / 4.0, (row as f32 + tap_uv.y) / 3.0]
         };
 
         // The probe on the map, at its real size, where it looked up this very view.
         let probe = state.probe.as_ref().and_then(|r| {
-            r.lights.iter().find(|l| l.light == state.selected_light && l.shadow_view == shown_map.index)
+            r.lights.iter().find(|l| l.light == state.selected_light && views.contains(&l.shadow_view))
         });
         if let Some(l) = probe {
-            let centre = to_rect(l.shadow_map_uv);
+            let centre = to_rect(picture_uv(l.shadow_view, l.shadow_map_uv));
             if l.blocker_search_radius_uv > 0.0 {
                 painter.circle_stroke(
                     centre,
-                    l.blocker_search_radius_uv * side,
+                    l.blocker_search_radius_uv * face_side,
                     Stroke::new(1.5, Color32::from_rgb(86, 180, 233)),
                 );
             }
             if l.filter_radius_uv > 0.0 {
-                painter.circle_stroke(centre, l.filter_radius_uv * side, Stroke::new(1.5, Color32::WHITE));
+                painter.circle_stroke(
+                    centre,
+                    l.filter_radius_uv * face_side,
+                    Stroke::new(1.5, Color32::WHITE),
+                );
             }
             for tap in &l.taps {
-                let p = to_rect(tap.uv);
+                let p = to_rect(picture_uv(l.shadow_view, tap.uv));
                 let (fill, search) = match tap.kind.as_str() {
                     "blocker-search" => (tap.value > 0.5, true),
                     _ => (tap.value < 0.5, false),
@@ -138,16 +162,34 @@ impl MapPanel {
             lang,
             "drag to move the light · blue: blocker search · white: filter · green lit, pink blocked",
         ));
-        if let Some(pos) = response.hover_pos() {
+        let hovered = response.hover_pos().and_then(|pos| {
             let u = (window.left() + (pos.x - map_rect.left()) / side).clamp(0.0, 0.9999);
-            let v = (window.top() + (pos.y - map_rect.top()) / side).clamp(0.0, 0.9999);
+            let v = (window.top() + (pos.y - map_rect.top()) / (side * aspect)).clamp(0.0, 0.9999);
+            if !cube {
+                return Some((map, *shadow_view, u, v));
+            }
+            // Which face's cell of the cross, and where in it.
+            let (column, row) = ((u * 4.0) as u32, (v * 3.0) as u32);
+            let face = CUBE_CROSS_CELLS.iter().position(|&cell| cell == (column, row))?;
+            let view = shadow_view.on_face(face as u32);
+            Some((&shown_map.cube_faces[face], view, u * 4.0 - column as f32, v * 3.0 - row as f32))
+        });
+        if let Some((map, view, u, v)) = hovered {
+            let shadow_view = &view;
             let (tx, ty) = ((u * map.size as f32) as u32, (v * map.size as f32) as u32);
             let z = map.depth_ndc[(ty * map.size + tx) as usize];
             if z < 1.0 {
-                let ndc = Vec4::new(u * 2.0 - 1.0, 1.0 - v * 2.0, z, 1.0);
-                let w = Mat4::from_cols_array_2d(&shadow_view.clip_from_world).inverse() * ndc;
-                let p = w.truncate() / w.w;
                 let d = depth_linear_from_ndc(shadow_view, z);
+                let p = if cube {
+                    // A cube face stores the distance: the point is that far along the texel's ray.
+                    let [forward, up, right] = crate::shadow::cube_face_axes(view.face);
+                    let ray = (forward + right * (2.0 * u - 1.0) + up * (1.0 - 2.0 * v)).normalize();
+                    Vec4::from(view.origin).truncate() + ray * d
+                } else {
+                    let ndc = Vec4::new(u * 2.0 - 1.0, 1.0 - v * 2.0, z, 1.0);
+                    let w = Mat4::from_cols_array_2d(&shadow_view.clip_from_world).inverse() * ndc;
+                    w.truncate() / w.w
+                };
                 info = fill(
                     lang,
                     "texel {},{} · stored {} NDC = {} world · point ({}, {}, {})",
@@ -164,6 +206,9 @@ impl MapPanel {
             } else {
                 info = fill(lang, "texel {},{} · nothing stored (cleared to 1.0)", &[&tx, &ty]);
             }
+            if cube {
+                info = format!("{} · {info}", crate::probe::CUBE_FACE_NAMES[view.face as usize]);
+            }
         }
         // Wrapped to the map's width: the column may be narrow.
         let info_font = egui::FontId::proportional(if state.present { 18.0 } else { 13.0 });
@@ -174,7 +219,7 @@ impl MapPanel {
         if response.hovered() {
             let scroll = ui.input(|i| i.smooth_scroll_delta.y);
             if scroll != 0.0 {
-                let max_zoom = (map.size as f32 / 16.0).max(1.0);
+                let max_zoom = (map.size as f32 * if cube { 4.0 } else { 1.0 } / 16.0).max(1.0);
                 let was_zoomed = self.zoomed();
                 self.zoom = (zoom * (scroll * 0.004).exp()).clamp(1.0, max_zoom);
                 if self.zoomed() != was_zoomed {
@@ -184,10 +229,14 @@ impl MapPanel {
                 let pointer = response.hover_pos().map(|p| {
                     (
                         window.left() + (p.x - map_rect.left()) / side,
-                        window.top() + (p.y - map_rect.top()) / side,
+                        window.top() + (p.y - map_rect.top()) / (side * aspect),
                     )
                 });
-                if let Some(centre) = probe.map(|l| (l.shadow_map_uv[0], l.shadow_map_uv[1])).or(pointer) {
+                let at_probe = probe.map(|l| {
+                    let uv = picture_uv(l.shadow_view, l.shadow_map_uv);
+                    (uv[0], uv[1])
+                });
+                if let Some(centre) = at_probe.or(pointer) {
                     self.zoom_centre = centre;
                 }
             }

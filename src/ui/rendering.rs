@@ -65,8 +65,10 @@ pub struct MapPicture {
     pub texture: egui::TextureHandle,
     pub depth: DepthImage,
     pub view: ShadowViewGpu,
-    /// Which of the frame's shadow views it is.
+    /// Which of the frame's shadow views it is (a point light: its first face, and `cube_faces`
+    /// holds all six, the picture their unfolded cross).
     pub index: usize,
+    pub cube_faces: Vec<DepthImage>,
     pub range: (f32, f32),
 }
 
@@ -278,13 +280,8 @@ impl ShadowlabApp {
         if let Some(map) = maps.map {
             let texture =
                 ctx.load_texture("shadow map", color_image(&map.image), egui::TextureOptions::NEAREST);
-            self.render.shown.map = Some(MapPicture {
-                texture,
-                depth: map.depth,
-                view: map.view,
-                index: map.index,
-                range: map.range,
-            });
+            let crate::app::scheduler::MapView { depth, view, index, cube_faces, range, .. } = map;
+            self.render.shown.map = Some(MapPicture { texture, depth, view, index, cube_faces, range });
         }
         if !maps.thumbnails.is_empty() || self.render.shown.lights.len() < 2 {
             self.render.shown.thumbnails = maps

@@ -3,12 +3,15 @@
 //! Heatmaps come with the value range they map.
 
 pub mod overlays;
+mod shadow_map;
 pub mod texel_density;
+
+pub use shadow_map::{CUBE_CROSS_CELLS, light_maps_image, shadow_map_image};
 
 use crate::i18n::Lang;
 use crate::render::Analysis;
 use crate::shadow::depth_linear_from_ndc;
-use crate::shadow::{DepthImage, LightViewGpu, ShadowParamsGpu, ShadowViewGpu};
+use crate::shadow::{LightViewGpu, ShadowParamsGpu, ShadowViewGpu};
 use image::{Rgba, RgbaImage};
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -141,82 +144,6 @@ pub fn heat_image(
         let i = analysis.index(x, y);
         if analysis.hit(i) { heat_color(value(i) * scale) } else { NO_SURFACE }
     });
-    (image, legend)
-}
-
-/// The shadow map as linear depth (near = dark, far = light), stretched over the range of
-/// depths actually stored (texels still at the clear value are shown in the no-surface colour).
-pub fn shadow_map_image(map: &DepthImage, view: &ShadowViewGpu) -> (RgbaImage, Legend) {
-    let linear: Vec<Option<f32>> =
-        map.depth_ndc.iter().map(|&z| (z < 1.0).then(|| depth_linear_from_ndc(view, z))).collect();
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-    for d in linear.iter().flatten() {
-        lo = lo.min(*d);
-        hi = hi.max(*d);
-    }
-    if !lo.is_finite() {
-        (lo, hi) = (view.near, view.far);
-    }
-    let span = (hi - lo).max(1e-6);
-    let image = RgbaImage::from_fn(map.size, map.size, |x, y| match linear[(y * map.size + x) as usize] {
-        Some(d) => heat_color((d - lo) / span),
-        None => Rgba([250, 250, 250, 255]),
-    });
-    (
-        image,
-        Legend {
-            label: "light-space depth",
-            min: lo,
-            max: hi,
-            unit: "world units from the light (white: nothing stored)",
-        },
-    )
-}
-
-/// Where each cube face lies in the unfolded cross, (column, row) of a 4 x 3 grid: +Y above the
-/// +Z face, the four around the horizon in a row (+X, +Z, -X, -Z: each face's right edge meets
-/// the next one's left), -Y below. With `scene::CUBE_FACES`' up vectors every shared edge meets
-/// its neighbour's.
-pub const CUBE_CROSS_CELLS: [(u32, u32); 6] = [(0, 1), (2, 1), (1, 0), (1, 2), (1, 1), (3, 1)];
-
-/// A light's maps as one picture with its legend: the one map of a spot or directional light, a
-/// point light's six faces unfolded into a cross (`CUBE_CROSS_CELLS`) on one depth scale.
-pub fn light_maps_image(maps: &[DepthImage], views: &[ShadowViewGpu]) -> (RgbaImage, Legend) {
-    let cube = views.len() == 6 && views.iter().all(|v| v.cube == 1) && maps.len() == 6;
-    if !cube {
-        return shadow_map_image(&maps[0], &views[0]);
-    }
-    let view = &views[0];
-    let (mut lo, mut hi) = (f32::INFINITY, f32::NEG_INFINITY);
-    for z in maps.iter().flat_map(|m| &m.depth_ndc).filter(|&&z| z < 1.0) {
-        let d = depth_linear_from_ndc(view, *z);
-        (lo, hi) = (lo.min(d), hi.max(d));
-    }
-    if !lo.is_finite() {
-        (lo, hi) = (view.near, view.far);
-    }
-    let span = (hi - lo).max(1e-6);
-    let size = maps[0].size;
-    let mut image = RgbaImage::from_pixel(4 * size, 3 * size, Rgba([40, 42, 48, 255]));
-    for (map, &(column, row)) in maps.iter().zip(&CUBE_CROSS_CELLS) {
-        for y in 0..size.min(map.size) {
-            for x in 0..size.min(map.size) {
-                let z = map.depth_ndc[(y * map.size + x) as usize];
-                let color = if z < 1.0 {
-                    heat_color((depth_linear_from_ndc(view, z) - lo) / span)
-                } else {
-                    Rgba([250, 250, 250, 255])
-                };
-                image.put_pixel(column * size + x, row * size + y, color);
-            }
-        }
-    }
-    let legend = Legend {
-        label: "distance to the light, six cube faces unfolded (+Y above; +X, +Z, -X, -Z; -Y below)",
-        min: lo,
-        max: hi,
-        unit: "world units (white: nothing stored)",
-    };
     (image, legend)
 }
 

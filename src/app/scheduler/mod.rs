@@ -102,10 +102,14 @@ pub struct ProbeSpot {
 /// The selected light's shadow map (its first view's): the depths (for the hover readout and the
 /// probe picture) and the picture shown, with the depth range of its colour bar (world units).
 pub struct MapView {
+    /// The map (a point light: its first face's; all six are in `cube_faces`).
     pub depth: DepthImage,
     pub view: ShadowViewGpu,
-    /// Which of the frame's shadow views it is.
+    /// Which of the frame's shadow views it is (a point light: its first face).
     pub index: usize,
+    /// A point light's six faces, in face order (`image` is then their unfolded cross); empty
+    /// for a light with one map.
+    pub cube_faces: Vec<DepthImage>,
     pub image: image::RgbaImage,
     pub range: (f32, f32),
 }
