@@ -1029,6 +1029,40 @@ fn every_try_this_apply_button_sets_what_its_prompt_says() {
     assert!(pressed >= 30, "only {pressed} Apply buttons pressed");
 }
 
+/// A lamp's map panel as a student meets it: the six cube faces unfolded into a 4 x 3 picture,
+/// and a click on the floor in the torus's shadow pins a probe that names the face it read (the
+/// lamp's -X face, the second of its views), its stored distance nearer than the floor's.
+#[test]
+fn a_point_lights_map_panel_unfolds_its_cube_and_the_probe_names_the_face() {
+    let mut h = harness();
+    h.state_mut()
+        .open(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/point_lamp.toml")));
+    settle(&mut h);
+    let map = shadowlab::ui::landmark(&h.ctx, shadowlab::ui::LANDMARK_SHADOW_MAP).expect("the map picture");
+    assert!((map.height() / map.width() - 0.75).abs() < 0.01, "a 4 x 3 cross: {map:?}");
+    // The floor in the torus's shadow, a third of the way across and two thirds down.
+    let view = camera_view_rect(&h);
+    let target = egui::pos2(view.left() + view.width() * 0.3125, view.top() + view.height() * 0.667);
+    h.hover_at(target);
+    h.run_steps(1);
+    for pressed in [true, false] {
+        h.event(egui::Event::PointerButton {
+            pos: target,
+            button: egui::PointerButton::Primary,
+            pressed,
+            modifiers: Default::default(),
+        });
+        h.run_steps(1);
+    }
+    settle(&mut h);
+    let report = h.state().probe_report().cloned().expect("a click pins the probe");
+    assert_eq!(report.object.as_deref(), Some("floor"), "{report:#?}");
+    let light = &report.lights[0];
+    assert_eq!(light.cube_face.as_deref(), Some("-X"), "{light:#?}");
+    assert_eq!(light.shadow_view, 1);
+    assert!(light.stored_depth_linear < light.receiver_depth_linear - 1.0, "{light:#?}");
+}
+
 /// The texel-density view picked from the view menu: its legend gives the scale with its unit
 /// and the densities on screen, in the language shown, and a map twice as large on a side has
 /// twice the density.

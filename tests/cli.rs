@@ -155,6 +155,13 @@ fn legend_range(stdout: &str, label: &str) -> (f64, f64) {
     (min, max)
 }
 
+/// The app benches drive the whole app in a process of their own and wait for it to settle; on a
+/// two-core machine three at once starve each other past that wait. They take turns.
+fn app_bench_turn() -> std::sync::MutexGuard<'static, ()> {
+    static TURN: std::sync::Mutex<()> = std::sync::Mutex::new(());
+    TURN.lock().unwrap_or_else(std::sync::PoisonError::into_inner)
+}
+
 fn probe_json(extra: &[&str]) -> Value {
     let scene = contact();
     let mut args = vec!["probe", "--scene", &scene, "--size", "160x90"];
@@ -907,6 +914,7 @@ fn bench_unknown_row_and_bad_override_are_refused() {
 
 #[test]
 fn bench_app_window_drives_the_real_window() {
+    let _turn = app_bench_turn();
     // A real window needs a display: Xvfb stands in for one (the CI script installs it).
     let run = common::run_in_window(&["bench", "--app", "--window", "--seconds", "0.5", "--json"]);
     assert_eq!(run.code, Some(0), "{run}");
@@ -970,6 +978,7 @@ fn bench_app_window_without_a_display_says_so() {
 
 #[test]
 fn bench_app_drives_the_app_and_reports_what_a_student_feels() {
+    let _turn = app_bench_turn();
     let run = shadowlab(&["bench", "--app", "--seconds", "0.5", "--json"]);
     assert_eq!(run.code, Some(0), "{run}");
     let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
@@ -1216,6 +1225,7 @@ fn an_installed_binary_finds_its_lessons_and_scenes_from_any_folder() {
 
 #[test]
 fn bench_soak_plays_the_lessons_in_the_real_window_and_keeps_moving() {
+    let _turn = app_bench_turn();
     let run = common::run_in_window(&["bench", "--app", "--window", "--soak", "12", "--json"]);
     assert_eq!(run.code, Some(0), "{run}");
     let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));

@@ -83,6 +83,18 @@ pub(super) fn probe_map_uv(state: &AppState) -> Option<[f32; 2]> {
     report.lights.iter().find(|l| l.light == state.selected_light).map(|l| l.shadow_map_uv)
 }
 
+/// The probe's place on the shown map's picture (0..1 over it): its uv, or on a point light's
+/// unfolded cross, its uv on the face it read.
+pub(super) fn probe_picture_uv(state: &AppState, map: &super::rendering::MapPicture) -> Option<[f32; 2]> {
+    let report = state.probe.as_ref()?;
+    let l = report.lights.iter().find(|l| l.light == state.selected_light)?;
+    if map.cube_faces.len() != 6 {
+        return Some(l.shadow_map_uv);
+    }
+    let face = l.shadow_view.checked_sub(map.index).filter(|&f| f < 6)?;
+    Some(crate::views::cube_cross_uv(&map.view.on_face(face as u32), l.shadow_map_uv))
+}
+
 /// The probe's texel on a light-space picture of the map occupying `square`.
 pub(super) fn mark_texel(painter: &egui::Painter, square: Rect, uv: [f32; 2]) -> Pos2 {
     let p = pos2(square.left() + uv[0] * square.width(), square.top() + uv[1] * square.height());

@@ -164,12 +164,15 @@ impl CameraPanel {
         let mut homework_shown = None;
         match (shown_view, &self.pictures.view_image, &shown.map) {
             (View::ShadowMap, _, Some(map)) => {
-                // The light's map, square, in the middle of the panel.
+                // The light's map (a point light's faces unfolded, 4 x 3), its shape kept, in the
+                // middle of the panel.
                 painter.rect_filled(rect, 0.0, Color32::from_gray(20));
-                let square =
-                    Rect::from_center_size(rect.center(), Vec2::splat(rect.width().min(rect.height())));
-                painter.image(map.texture.id(), square, uv, Color32::WHITE);
-                probe_texel.extend(probe_uv.map(|uv| camera_marks::mark_texel(&painter, square, uv)));
+                let [w, h] = map.texture.size().map(|s| s as f32);
+                let scale = (rect.width() / w).min(rect.height() / h);
+                let picture = Rect::from_center_size(rect.center(), vec2(w, h) * scale);
+                painter.image(map.texture.id(), picture, uv, Color32::WHITE);
+                let at = camera_marks::probe_picture_uv(state, map);
+                probe_texel.extend(at.map(|uv| camera_marks::mark_texel(&painter, picture, uv)));
             }
             (View::Moments, Some(texture), _) => {
                 // Two square panels side by side, their shape kept, in the middle of the panel.

@@ -6,8 +6,8 @@
 use super::AppState;
 use super::rendering::Shown;
 use crate::i18n::{Lang, fill, tr};
-use crate::shadow::{depth_linear_from_ndc, map_tap};
-use crate::views::CUBE_CROSS_CELLS;
+use crate::shadow::depth_linear_from_ndc;
+use crate::views::{CUBE_CROSS_CELLS, cube_cross_uv};
 use egui::{Color32, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
 use glam::{Mat4, Vec4};
 
@@ -116,9 +116,7 @@ impl MapPanel {
                 return uv;
             }
             let face = view_index.saturating_sub(shown_map.index).min(5) as u32;
-            let (tap_view, tap_uv) = map_tap(&shown_map.view.on_face(face), glam::Vec2::from(uv));
-            let (column, row) = CUBE_CROSS_CELLS[tap_view.face as usize];
-            [(column as f32 + tap_uv.x) / 4.0, (row as f32 + tap_uv.y) / 3.0]
+            cube_cross_uv(&shown_map.view.on_face(face), uv)
         };
 
         // The probe on the map, at its real size, where it looked up this very view.

@@ -80,3 +80,11 @@ pub fn light_maps_image(maps: &[DepthImage], views: &[ShadowViewGpu]) -> (RgbaIm
     };
     (image, legend)
 }
+
+/// Where uv of a point light's face `view` lies in its unfolded cross (0..1 over the picture): a
+/// uv past the face's edge is read on the face its direction falls in (`map_tap`), and drawn there.
+pub fn cube_cross_uv(view: &ShadowViewGpu, uv: [f32; 2]) -> [f32; 2] {
+    let (face_view, face_uv) = crate::shadow::map_tap(view, glam::Vec2::from(uv));
+    let (column, row) = CUBE_CROSS_CELLS[face_view.face as usize];
+    [(column as f32 + face_uv.x) / 4.0, (row as f32 + face_uv.y) / 3.0]
+}
