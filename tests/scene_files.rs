@@ -595,3 +595,30 @@ fn a_scene_path_that_is_not_a_regular_file_is_refused_at_once() {
     let err = load_scene(dir.path(), &[]).expect_err("a folder is not a scene").to_string();
     assert_one_line_naming(&err, &["is a folder"]);
 }
+
+/// A point light needs only where it is: six 90° faces, no aim, `width` its sphere's diameter;
+/// the other kinds' keys are refused in one line naming the key, and its numbers keep their
+/// ranges.
+#[test]
+fn a_point_light_takes_a_position_and_a_width_and_refuses_the_other_kinds_keys() {
+    let lamp = "kind = \"point\"\nposition = [0.0, 6.0, 0.0]\nwidth = 0.5";
+    let scene = parse_ok(&scene_with_lights(&[lamp]));
+    let light = &scene.lights[0];
+    assert_eq!(light.kind, shadowlab::scene::LightKind::Point);
+    assert_eq!(light.size, shadowlab::scene::LightSize::Width { width_world: 0.5 });
+    assert_eq!(light.near, 0.1, "the default near for a lamp");
+    assert_eq!(shadowlab::shadow::views_needed(&scene.lights), 6);
+    for (key, line) in [("fov_deg", "fov_deg = 60.0"), ("extent", "extent = 10.0")] {
+        let err = parse_err(&scene_with_lights(&[&format!("{lamp}\n{line}")]), &[]);
+        assert_one_line_naming(&err, &[&format!("light.0.{key}"), "point lights"]);
+    }
+    let err = parse_err(
+        &scene_with_lights(&["kind = \"point\"\nposition = [0.0, 6.0, 0.0]\nangular_diameter_deg = 1.0"]),
+        &[],
+    );
+    assert_one_line_naming(&err, &["light.0.angular_diameter_deg", "directional lights only"]);
+    let err = parse_err(&scene_with_lights(&[lamp]), &[("light.0.width", "-1")]);
+    assert_one_line_naming(&err, &["light.0.width"]);
+    let err = parse_err(&scene_with_lights(&["kind = \"lamp\"\nposition = [0.0, 6.0, 0.0]"]), &[]);
+    assert_one_line_naming(&err, &["lamp", "point"]);
+}
