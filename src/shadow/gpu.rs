@@ -351,12 +351,10 @@ pub fn first_view_of(
 /// camera pass's `shadow_view_at`): what a lookup at that point reads.
 pub fn view_covering(light: &LightGpu, views: &[ShadowViewGpu], world_pos: Vec3) -> usize {
     let first = light.first_view as usize;
-    match views.get(first) {
-        Some(view) if view.cube == 1 => {
-            first + crate::scene::cube_face_of(world_pos - glam::Vec4::from(view.origin).truncate())
-        }
-        _ => first,
-    }
+    // The twin's choice (`light_space::view_covering`), as an index: a cube's faces follow its first.
+    views
+        .get(first)
+        .map_or(first, |view| first + (super::view_covering(view, world_pos).face - view.face) as usize)
 }
 
 impl LightViewGpu {
