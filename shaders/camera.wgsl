@@ -46,7 +46,7 @@ fn noise_seed_at(frag: vec4<f32>) -> u32 {
 
 // The shadow view of `light` that covers a point (a point light: the cube face towards it).
 fn shadow_view_at(light: LightGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
-    return view_covering(shadow_views[light.first_view], world_pos);
+    return face_covering(shadow_views[light.first_view], world_pos);
 }
 
 // Spot lights light only inside their square frustum (soft 5% edge); a point light everywhere.

@@ -30,7 +30,7 @@ fn cs_accumulate(@builtin(global_invocation_id) id: vec3<u32>) {
         return;
     }
     let normal = textureLoad(normals, vec2<i32>(id.xy), 0).xyz;
-    let view = view_covering(sample.view, position.xyz);
+    let view = face_covering(sample.view, position.xyz);
     let coord = light_space_lookup(sample.light, view, position.xyz, normal);
     let index = id.y * info.width + id.x;
     accumulated[index] += info.weight * visibility_hard(view, coord);

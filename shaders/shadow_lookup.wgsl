@@ -102,7 +102,7 @@ fn cube_face_view(view: ShadowViewGpu, face: u32) -> ShadowViewGpu {
 }
 
 // The view of a light's maps that covers a point: a cube's face towards it, else the view itself.
-fn view_covering(view: ShadowViewGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
+fn face_covering(view: ShadowViewGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
     if is_cube(view) {
         return cube_face_view(view, cube_face_of(world_pos - view.origin.xyz));
     }

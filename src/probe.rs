@@ -300,7 +300,7 @@ fn light_probe(
     let normal = Vec3::from_slice(&here.normal[..3]);
     let light_gpu = rendered.lights[light_index];
     // The view the pixel's lookup read (a point light: the cube face towards it).
-    let view_index = crate::shadow::gpu::view_covering(&light_gpu, &rendered.views, position);
+    let view_index = crate::shadow::view_covering(&light_gpu, &rendered.views, position);
     let view = rendered.views[view_index];
     let params = rendered.params;
     let own = view_index - light_gpu.first_view as usize;

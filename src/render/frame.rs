@@ -71,7 +71,7 @@ impl Frame {
     /// Index into `views` of light `light`'s view that covers `world_pos` (a point light: the
     /// cube face towards it): the one its lookups there read.
     pub fn view_covering(&self, light: usize, world_pos: glam::Vec3) -> Option<usize> {
-        Some(crate::shadow::gpu::view_covering(self.lights.get(light)?, &self.views, world_pos))
+        Some(crate::shadow::view_covering(self.lights.get(light)?, &self.views, world_pos))
     }
 
     /// Light `light` with its first view: what the twin of one of its lookups needs.

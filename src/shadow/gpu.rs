@@ -347,16 +347,6 @@ pub fn first_view_of(
     Some((index, LightViewGpu { light, view: *views.get(index)? }))
 }
 
-/// Index into `views` of the shadow view of `light` that covers `world_pos` (the twin of the
-/// camera pass's `shadow_view_at`): what a lookup at that point reads.
-pub fn view_covering(light: &LightGpu, views: &[ShadowViewGpu], world_pos: Vec3) -> usize {
-    let first = light.first_view as usize;
-    // The twin's choice (`light_space::view_covering`), as an index: a cube's faces follow its first.
-    views
-        .get(first)
-        .map_or(first, |view| first + (super::view_covering(view, world_pos).face - view.face) as usize)
-}
-
 impl LightViewGpu {
     /// The light at time `t` with its first view, alone in layer 0 of an array `atlas_size` wide
     /// (a twin of one light: the diagrams, the homework check).

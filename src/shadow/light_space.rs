@@ -75,13 +75,21 @@ pub fn cube_face_view(view: &ShadowViewGpu, face: u32) -> ShadowViewGpu {
 }
 
 /// The view of a light's maps that covers a point: a cube's face towards it, else the view
-/// itself (the shader's `view_covering`).
-pub fn view_covering(view: &ShadowViewGpu, world_pos: Vec3) -> ShadowViewGpu {
+/// itself (the shader's `face_covering`).
+pub fn face_covering(view: &ShadowViewGpu, world_pos: Vec3) -> ShadowViewGpu {
     if is_cube(view) {
         let origin = Vec4::from(view.origin).truncate();
         return cube_face_view(view, cube_face_of(world_pos - origin) as u32);
     }
     *view
+}
+
+/// Index into `views` of the view of `light` that a lookup at `world_pos` reads (the camera
+/// pass's `shadow_view_at`): a cube's face towards the point, else the light's one view.
+pub fn view_covering(light: &LightGpu, views: &[ShadowViewGpu], world_pos: Vec3) -> usize {
+    let first = light.first_view as usize;
+    // A cube's faces lie in consecutive views from its first.
+    views.get(first).map_or(first, |view| first + (face_covering(view, world_pos).face - view.face) as usize)
 }
 
 /// Where direction `d` from the light lands on face `face`'s map (uv; behind the face: outside).
@@ -289,7 +297,7 @@ mod tests {
         };
         for _ in 0..500 {
             let p = lamp + Vec3::new(next(), next(), next()) * 8.0;
-            let view = view_covering(&views[0], p);
+            let view = face_covering(&views[0], p);
             assert_eq!(view.face as usize, cube_face_of(p - lamp));
             let s = project_to_light(&view, p);
             let drawn = light.cube_face_clip_from_world(view.face as usize, 0.0) * p.extend(1.0);

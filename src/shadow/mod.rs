@@ -19,8 +19,8 @@ pub use gpu::{
 use kernels::{filter_taps, kernel_offset};
 pub use light_space::{
     blocker_search_radius_uv, cube_face_axes, cube_face_uv, cube_face_view, depth_linear_from_ndc,
-    depth_ndc_from_linear, light_dir_to, light_space_lookup, map_tap, ndc_per_world, no_map_data,
-    outside_depth, outside_frustum, outside_map, project_to_light, receiver_bias_ndc,
+    depth_ndc_from_linear, face_covering, light_dir_to, light_space_lookup, map_tap, ndc_per_world,
+    no_map_data, outside_depth, outside_frustum, outside_map, project_to_light, receiver_bias_ndc,
     receiver_plane_gradient, rgba8_round_trip, texel_world_at, view_covering,
 };
 
@@ -198,7 +198,7 @@ impl<'a> Twin<'a> {
 
     /// A twin for each of a light's `views` over its `maps` (the same order): one for a spot or
     /// directional light, six for a point light's faces (each reading all six). Pick the one
-    /// that covers a point with `gpu::view_covering` (less the light's `first_view`).
+    /// that covers a point with `view_covering` (less the light's `first_view`).
     pub fn for_views(
         light: &'a LightGpu,
         views: &'a [ShadowViewGpu],

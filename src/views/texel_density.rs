@@ -4,7 +4,7 @@
 
 use super::{Legend, NO_SURFACE};
 use crate::render::Analysis;
-use crate::shadow::gpu::view_covering;
+use crate::shadow::view_covering;
 use crate::shadow::{LightGpu, ShadowViewGpu, outside_depth, outside_map, project_to_light};
 use glam::{Vec2, Vec3};
 use image::{Rgba, RgbaImage};
