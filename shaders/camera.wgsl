@@ -44,9 +44,20 @@ fn noise_seed_at(frag: vec4<f32>) -> u32 {
     return pixel_seed(vec2<u32>(frag.xy), params.noise_seed, params.rotate_per_pixel == 1u);
 }
 
-// The shadow view of `light` that covers a point (a point light: the cube face towards it).
+// The shadow view of `light` that covers a point: a point light's cube face towards it, a sun's
+// sharpest cascade that holds it (else its last), or the light's one view.
 fn shadow_view_at(light: LightGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
-    return face_covering(shadow_views[light.first_view], world_pos);
+    let first = shadow_views[light.first_view];
+    if is_cube(first) {
+        return face_covering(first, world_pos);
+    }
+    let last = light.first_view + max(light.view_count, 1u) - 1u;
+    for (var i = light.first_view; i < last; i++) {
+        if cascade_holds(shadow_views[i], world_pos) {
+            return shadow_views[i];
+        }
+    }
+    return shadow_views[last];
 }
 
 // Spot lights light only inside their square frustum (soft 5% edge); a point light everywhere.

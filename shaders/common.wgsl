@@ -8,6 +8,7 @@ const MAX_LIGHTS: u32 = 4u;
 // Shadow views of all lights together (a light owns one or more).
 const MAX_SHADOW_VIEWS: u32 = 24u;
 const MAX_TAPS: u32 = 128u;       // most filter or blocker-search taps (src/shadow/kernels.rs)
+const CASCADE_BORDER_TEXELS: u32 = 4u;  // a cascade holds points this far inside its map's edge
 
 // Bias modes, kernels, techniques and size models: numbered in src/shadow/gpu.rs (tests/shaders.rs checks).
 const BIAS_NONE: u32 = 0u;

@@ -109,6 +109,14 @@ fn face_covering(view: ShadowViewGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
     return view;
 }
 
+// A sun's cascade holds a point landing CASCADE_BORDER_TEXELS inside its map's edge (a filter's
+// nearest taps stay on the map).
+fn cascade_holds(view: ShadowViewGpu, world_pos: vec3<f32>) -> bool {
+    let uv = project_to_light(view, world_pos).xy;
+    let border = f32(CASCADE_BORDER_TEXELS) / view.map_size_texels;
+    return all(uv >= vec2<f32>(border)) && all(uv <= vec2<f32>(1.0 - border));
+}
+
 // Where direction d from the light lands on face `face`'s map (uv; behind the face: outside).
 fn cube_face_uv(face: u32, d: vec3<f32>) -> vec2<f32> {
     let axes = cube_face_axes(face);

@@ -272,6 +272,7 @@ mod tests {
             far: 400.0,
             size: LightSize::Width { width_world: 5.0 },
             orbit_deg_per_s: 0.0,
+            cascades: Default::default(),
         }
     }
 

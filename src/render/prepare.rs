@@ -69,7 +69,8 @@ impl Renderer {
             self.spare_targets = self.targets.replace(targets);
         }
         let t = request.time_s;
-        let (frame_lights, frame_views) = frame_lights(&scene.lights, t, atlas_size);
+        let aspect = request.size.0 as f32 / request.size.1 as f32;
+        let (frame_lights, frame_views) = frame_lights(scene, aspect, t, atlas_size);
         let mut lights = [bytemuck::Zeroable::zeroed(); MAX_LIGHTS];
         lights[..frame_lights.len()].copy_from_slice(&frame_lights);
         self.queue.write_buffer(&self.lights_buffer, 0, bytemuck::cast_slice(&lights));
@@ -87,7 +88,6 @@ impl Renderer {
         let params = ShadowParamsGpu::new(&scene.shadow);
         self.queue.write_buffer(&self.params_buffer, 0, bytemuck::bytes_of(&params));
         self.write_kernel_table(&scene.shadow);
-        let aspect = request.size.0 as f32 / request.size.1 as f32;
         let frame = FrameGpu {
             clip_from_world: scene.camera.clip_from_world(aspect).to_cols_array_2d(),
             camera_position: scene.camera.position.extend(1.0).to_array(),

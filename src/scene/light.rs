@@ -42,6 +42,34 @@ pub struct Light {
     pub size: LightSize,
     /// Orbit speed about the axis through `target` along `up`, degrees per second.
     pub orbit_deg_per_s: f32,
+    /// A directional light's cascades (one: a single map over `extent_world`).
+    pub cascades: Cascades,
+}
+
+/// Most cascades a directional light may have (engines stop at four; each is a map to render).
+pub const MAX_CASCADES: u32 = 4;
+
+/// How a directional light splits the camera's frustum among its maps (src/shadow/cascades.rs).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cascades {
+    /// Maps, sharpest first; 1 is the one map of `LightKind::Directional::extent_world`.
+    pub count: u32,
+    /// The split scheme: 0 uniform, 1 logarithmic, between a blend [Zhang-2006].
+    pub lambda: f32,
+    /// Where the last cascade ends along the camera's view axis, world units (at most its far plane).
+    pub distance_world: f32,
+}
+
+impl Default for Cascades {
+    fn default() -> Self {
+        Self { count: 1, lambda: 0.5, distance_world: f32::INFINITY }
+    }
+}
+
+impl Cascades {
+    pub fn is_cascaded(&self) -> bool {
+        self.count > 1
+    }
 }
 
 impl Light {

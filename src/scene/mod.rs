@@ -15,7 +15,9 @@ mod settings;
 pub use camera::{Camera, Projection};
 pub(crate) use file::describe_toml_error;
 pub use file::{Override, SceneError, SceneSource, load_scene, parse_scene_str};
-pub use light::{CUBE_FACES, Light, LightKind, LightSize, cube_face_of, safe_up as safe_up_for};
+pub use light::{
+    CUBE_FACES, Cascades, Light, LightKind, LightSize, MAX_CASCADES, cube_face_of, safe_up as safe_up_for,
+};
 pub use mesh::{Material, Mesh, MeshError, MeshPart, TextureImage, Vertex};
 pub use settings::{
     BiasMode, DepthStorage, Kernel, MAX_TAPS, ShadowSettings, Technique, effective_samples, filter_taps,

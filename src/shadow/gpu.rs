@@ -3,7 +3,10 @@
 //! that shaders/common.wgsl shares (one source here; tests/shaders.rs holds the WGSL to it).
 //! Keep the structs in sync with shaders/common.wgsl (sizes asserted below).
 
-use crate::scene::{BiasMode, DepthStorage, Kernel, Light, LightKind, LightSize, ShadowSettings, Technique};
+use super::cascades::fit_cascades;
+use crate::scene::{
+    BiasMode, DepthStorage, Kernel, Light, LightKind, LightSize, Scene, ShadowSettings, Technique,
+};
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
 
@@ -30,9 +33,12 @@ pub const SIZE_MODEL_ANGULAR: u32 = 1;
 /// Shadow views of all lights together (a light owns one or more), the size of the shaders' array.
 pub const MAX_SHADOW_VIEWS: usize = 24;
 
+/// Map texels between a point and its cascade's edge for the cascade to hold it (`cascade_holds`).
+pub const CASCADE_BORDER_TEXELS: u32 = 4;
 /// Every shared constant by its WGSL name, for the test that holds shaders/common.wgsl to them.
-pub const SHARED_CONSTANTS: [(&str, u32); 22] = [
+pub const SHARED_CONSTANTS: [(&str, u32); 23] = [
     ("MAX_LIGHTS", crate::scene::MAX_LIGHTS as u32),
+    ("CASCADE_BORDER_TEXELS", CASCADE_BORDER_TEXELS),
     ("MAX_SHADOW_VIEWS", MAX_SHADOW_VIEWS as u32),
     ("TECHNIQUE_HARD", TECHNIQUE_HARD),
     ("TECHNIQUE_PCF", TECHNIQUE_PCF),
@@ -152,7 +158,8 @@ pub struct ShadowViewGpu {
     /// 1: a cube face. Its map stores the distance to `origin`, (|p - origin| - near) / (far - near),
     /// and lookups project with the face's axes (`CUBE_FACES`), not `clip_from_world`.
     pub cube: u32,
-    /// Which face (0..6, `CUBE_FACES`); the light's six faces lie in layers `layer - face ..`.
+    /// Which of its light's views: a cube's face (0..6, `CUBE_FACES`) or a sun's cascade (0
+    /// sharpest); they lie in layers `layer - face ..`.
     pub face: u32,
 }
 
@@ -236,10 +243,17 @@ pub fn moments_block(atlas_size: u32) -> u32 {
     atlas_size.div_ceil(MOMENTS_MAX_SIDE).max(1)
 }
 
-/// The lights of a frame at time `t` and their shadow views, one layer of an array texture
-/// `atlas_size` texels wide each, in order (light 0's views first). The one place views are laid
-/// out in the array.
-pub fn frame_lights(lights: &[Light], t_s: f32, atlas_size: u32) -> (Vec<LightGpu>, Vec<ShadowViewGpu>) {
+/// The lights of a scene's frame at time `t`, seen by its camera through a picture `aspect`
+/// wide per unit of height (cascades follow the camera), and their shadow views, one layer of an
+/// array texture `atlas_size` texels wide each, in order (light 0's views first). The one place
+/// views are laid out in the array.
+pub fn frame_lights(
+    scene: &Scene,
+    aspect: f32,
+    t_s: f32,
+    atlas_size: u32,
+) -> (Vec<LightGpu>, Vec<ShadowViewGpu>) {
+    let lights = &scene.lights;
     let mut frame_lights = Vec::with_capacity(lights.len());
     let mut views = Vec::with_capacity(lights.len());
     for (index, light) in lights.iter().enumerate() {
@@ -249,6 +263,18 @@ pub fn frame_lights(lights: &[Light], t_s: f32, atlas_size: u32) -> (Vec<LightGp
                 let clip = light.cube_face_clip_from_world(face, t_s);
                 let view = ShadowViewGpu::new(light, clip, first_view, atlas_size);
                 views.push(ShadowViewGpu { light: index as u32, ..view.on_face(face as u32) });
+            }
+        } else if light.cascades.is_cascaded() && light.is_orthographic() {
+            // A sun's cascades, sharpest first; `face` numbers them.
+            for (i, fit) in fit_cascades(light, &scene.camera, aspect, t_s).into_iter().enumerate() {
+                let layer = views.len() as u32;
+                let view = ShadowViewGpu::new(light, fit.clip_from_world, layer, atlas_size);
+                views.push(ShadowViewGpu {
+                    light: index as u32,
+                    frustum_width_world: fit.width_world,
+                    face: i as u32,
+                    ..view
+                });
             }
         } else {
             // Spot and directional lights: the one frustum of `Light::clip_from_world`.
@@ -265,8 +291,9 @@ pub fn frame_lights(lights: &[Light], t_s: f32, atlas_size: u32) -> (Vec<LightGp
 /// How many shadow views (maps) a light of this kind renders (`frame_lights` makes them).
 pub fn shadow_view_count(light: &Light) -> u32 {
     match light.kind {
-        // One frustum covers what they light.
-        LightKind::Directional { .. } | LightKind::Spot { .. } => 1,
+        // A sun's cascades, else one frustum covers what it lights.
+        LightKind::Directional { .. } => light.cascades.count,
+        LightKind::Spot { .. } => 1,
         LightKind::Point => 6,
     }
 }
@@ -369,7 +396,7 @@ mod tests {
         let scene = crate::scene::load_scene(&crate::shipped_path("assets/scenes/multi_light.toml"), &[])
             .expect("scene");
         assert!(scene.lights.len() > 1);
-        let (lights, views) = frame_lights(&scene.lights, 1.5, 2048);
+        let (lights, views) = frame_lights(&scene, 1.5, 1.5, 2048);
         assert_eq!(views.len() as u32, views_needed(&scene.lights));
         let mut layers: Vec<u32> = views.iter().map(|v| v.layer).collect();
         layers.dedup();

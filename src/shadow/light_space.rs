@@ -3,8 +3,8 @@
 //! every other part of shadowlab (probe, views, overlays, diagrams) calls rather than copies.
 
 use super::{
-    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, LightGpu, SIZE_MODEL_ANGULAR, ShadowCoord,
-    ShadowParamsGpu, ShadowViewGpu,
+    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, CASCADE_BORDER_TEXELS, LightGpu,
+    SIZE_MODEL_ANGULAR, ShadowCoord, ShadowParamsGpu, ShadowViewGpu,
 };
 use crate::scene::{CUBE_FACES, cube_face_of};
 use glam::{Vec2, Vec3, Vec4};
@@ -85,11 +85,25 @@ pub fn face_covering(view: &ShadowViewGpu, world_pos: Vec3) -> ShadowViewGpu {
 }
 
 /// Index into `views` of the view of `light` that a lookup at `world_pos` reads (the camera
-/// pass's `shadow_view_at`): a cube's face towards the point, else the light's one view.
+/// pass's `shadow_view_at`): a cube's face towards the point; a sun's sharpest cascade that holds
+/// it (`cascade_holds`), else its last; else the light's one view.
 pub fn view_covering(light: &LightGpu, views: &[ShadowViewGpu], world_pos: Vec3) -> usize {
     let first = light.first_view as usize;
-    // A cube's faces lie in consecutive views from its first.
-    views.get(first).map_or(first, |view| first + (face_covering(view, world_pos).face - view.face) as usize)
+    let Some(view) = views.get(first) else { return first };
+    if is_cube(view) {
+        // A cube's faces lie in consecutive views from its first.
+        return first + (face_covering(view, world_pos).face - view.face) as usize;
+    }
+    let last = first + (light.view_count.max(1) as usize - 1);
+    (first..last).find(|&i| views.get(i).is_some_and(|v| cascade_holds(v, world_pos))).unwrap_or(last)
+}
+
+/// A cascade holds a point when it lands on its map at least `CASCADE_BORDER_TEXELS` inside the
+/// edge, so that a filter's nearest taps stay on the map (the shader's `cascade_holds`).
+pub fn cascade_holds(view: &ShadowViewGpu, world_pos: Vec3) -> bool {
+    let uv = project_to_light(view, world_pos).truncate();
+    let border = CASCADE_BORDER_TEXELS as f32 / view.map_size_texels;
+    uv.cmpge(Vec2::splat(border)).all() && uv.cmple(Vec2::splat(1.0 - border)).all()
 }
 
 /// Where direction `d` from the light lands on face `face`'s map (uv; behind the face: outside).
@@ -288,7 +302,7 @@ mod tests {
         let scene = crate::scene::load_scene(&crate::shipped_path("assets/scenes/point_lamp.toml"), &[])
             .expect("scene");
         let light = &scene.lights[0];
-        let (lights, views) = crate::shadow::frame_lights(&scene.lights, 0.0, 1024);
+        let (lights, views) = crate::shadow::frame_lights(&scene, 1.5, 0.0, 1024);
         let lamp = light.position_at(0.0);
         let mut h = 1u32;
         let mut next = || {

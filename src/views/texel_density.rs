@@ -166,6 +166,7 @@ mod tests {
             far: 200.0,
             size: LightSize::Width { width_world: 1.0 },
             orbit_deg_per_s: 0.0,
+            cascades: Default::default(),
         }
     }
 

@@ -109,8 +109,7 @@ mod tests {
         let path = crate::shipped_path("assets/scenes/games202.toml");
         let scene = crate::scene::load_scene(&path, &[]).expect("scene");
         let key = |scene: &Scene, time_s: f32| {
-            let (_, views) =
-                crate::shadow::frame_lights(&scene.lights, time_s, scene.lights[0].shadow_map_size);
+            let (_, views) = crate::shadow::frame_lights(scene, 1.5, time_s, scene.lights[0].shadow_map_size);
             MapKey::new(scene, &views[0], time_s, 1024)
         };
         let base = key(&scene, 0.0);

@@ -307,6 +307,7 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
         return Err(BuildError::Invalid(format!("`{}` coincides with `{}`", key("target"), key("position"))));
     }
     let color = rgb(&key("color"), l.color)?;
+    let cascades = build_cascades(&l, &key)?;
     Ok(Light {
         kind,
         position,
@@ -319,7 +320,42 @@ fn build_light(i: usize, l: LightFile) -> Result<Light, BuildError> {
         far,
         size,
         orbit_deg_per_s: real(&parameters::LIGHT_ORBIT, &key("orbit_deg_per_s"), l.orbit_deg_per_s)?,
+        cascades,
     })
+}
+
+/// A directional light's cascades; the other kinds refuse the keys.
+fn build_cascades(l: &LightFile, key: &dyn Fn(&str) -> String) -> Result<Cascades, BuildError> {
+    let given = [
+        (l.cascades.is_some(), "cascades"),
+        (l.cascade_lambda.is_some(), "cascade_lambda"),
+        (l.cascade_distance.is_some(), "cascade_distance"),
+    ];
+    if l.kind != LightKindName::Directional {
+        if let Some((_, name)) = given.iter().find(|(g, _)| *g) {
+            return Err(BuildError::Invalid(format!(
+                "`{}` is for directional lights: cascades split a sun's map along the camera's view",
+                key(name)
+            )));
+        }
+        return Ok(Cascades::default());
+    }
+    let defaults = Cascades::default();
+    let count = match l.cascades {
+        Some(n) => parameters::LIGHT_CASCADES
+            .check_whole(&key("cascades"), i64::from(n))
+            .map_err(BuildError::Invalid)? as u32,
+        None => defaults.count,
+    };
+    let lambda = match l.cascade_lambda {
+        Some(v) => real(&parameters::LIGHT_CASCADE_LAMBDA, &key("cascade_lambda"), v)?,
+        None => defaults.lambda,
+    };
+    let distance_world = match l.cascade_distance {
+        Some(v) => real(&parameters::LIGHT_CASCADE_DISTANCE, &key("cascade_distance"), v)?,
+        None => defaults.distance_world,
+    };
+    Ok(Cascades { count, lambda, distance_world })
 }
 
 fn resolve_mesh(

@@ -7,7 +7,7 @@
 
 mod build;
 
-use super::light::{Light, LightKind, LightSize};
+use super::light::{Cascades, Light, LightKind, LightSize};
 use super::mesh::{self, Mesh, MeshError};
 use super::settings::ShadowSettings;
 use super::{Camera, MAX_LIGHTS, Object, Projection, Scene};
@@ -129,6 +129,9 @@ struct LightFile {
     angular_diameter_deg: Option<f32>,
     #[serde(default)]
     orbit_deg_per_s: f32,
+    cascades: Option<u32>,
+    cascade_lambda: Option<f32>,
+    cascade_distance: Option<f32>,
 }
 
 fn default_ambient() -> [f32; 3] {

@@ -2,7 +2,7 @@
 //! order.
 
 use super::{Control, Field, Parameter, Values};
-use crate::scene::MAX_TAPS;
+use crate::scene::{MAX_CASCADES, MAX_TAPS};
 
 /// What most rows share: a named `[shadow]` key with no field yet.
 const ROW: Parameter = Parameter {
@@ -314,6 +314,32 @@ pub static LIGHT_ORBIT: Parameter = Parameter {
     control: Control::Slider { lo: -180.0, hi: 180.0, log: false },
     ..LIGHT_ROW
 };
+pub static LIGHT_CASCADES: Parameter = Parameter {
+    key: "light.N.cascades",
+    label: "cascades",
+    unit: "",
+    values: Values::Whole { lo: 1, hi: MAX_CASCADES as i64 },
+    control: Control::Slider { lo: 1.0, hi: MAX_CASCADES as f32, log: false },
+    named: false,
+    ..LIGHT_ROW
+};
+pub static LIGHT_CASCADE_LAMBDA: Parameter = Parameter {
+    key: "light.N.cascade_lambda",
+    label: "cascade split λ (0 uniform, 1 logarithmic)",
+    unit: "",
+    values: Values::Real { lo: 0.0, hi: 1.0 },
+    control: Control::Slider { lo: 0.0, hi: 1.0, log: false },
+    named: false,
+    ..LIGHT_ROW
+};
+pub static LIGHT_CASCADE_DISTANCE: Parameter = Parameter {
+    key: "light.N.cascade_distance",
+    label: "cascades reach (world units)",
+    values: Values::Real { lo: 1e-3, hi: 1e7 },
+    control: Control::Slider { lo: 1.0, hi: 2000.0, log: true },
+    named: false,
+    ..LIGHT_ROW
+};
 pub static CAMERA_FOV: Parameter = Parameter {
     key: "camera.fov_deg",
     label: "field of view (°)",
@@ -326,7 +352,7 @@ pub static CAMERA_FOV: Parameter = Parameter {
 };
 
 /// The light's and the camera's keys, in the inspector's order.
-pub static LIGHT_AND_CAMERA: [&Parameter; 12] = [
+pub static LIGHT_AND_CAMERA: [&Parameter; 15] = [
     &LIGHT_POSITION,
     &LIGHT_TARGET,
     &LIGHT_SHADOW_MAP_SIZE,
@@ -338,5 +364,8 @@ pub static LIGHT_AND_CAMERA: [&Parameter; 12] = [
     &LIGHT_ANGULAR_DIAMETER,
     &LIGHT_INTENSITY,
     &LIGHT_ORBIT,
+    &LIGHT_CASCADES,
+    &LIGHT_CASCADE_LAMBDA,
+    &LIGHT_CASCADE_DISTANCE,
     &CAMERA_FOV,
 ];

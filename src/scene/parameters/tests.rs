@@ -143,7 +143,7 @@ fn every_control_fits_its_values_and_spans_only_what_the_loader_takes() {
                     && to <= hi as f32
                     && from.fract() == 0.0
                     && to.fract() == 0.0
-                    && matches!(field, Some(Field::Int(_) | Field::Count(_)))
+                    && matches!(field, None | Some(Field::Int(_) | Field::Count(_)))
             }
             (Values::Whole { .. }, Control::Drag) => matches!(field, Some(Field::Count(_))),
             (Values::Whole { lo, hi }, Control::Sizes(sizes)) => {
