@@ -105,6 +105,14 @@ fn point_lamp_hard_and_pcss() {
     );
 }
 
+/// A sun's four cascades down a long avenue (sharp shadows at the camera's feet and at the far
+/// posts), and the same avenue under one map, whose near shadows are blocky.
+#[test]
+fn sun_avenue_cascades_and_one_map() {
+    check("sun_avenue_cascades", "sun_avenue", &[("technique", "pcf")]);
+    check("sun_avenue_one_map", "sun_avenue", &[("technique", "pcf"), ("light.0.cascades", "1")]);
+}
+
 #[test]
 fn multi_light_at_two_seconds() {
     check_at("multi_light_t2", "multi_light", 2.0);

@@ -622,3 +622,37 @@ fn a_point_light_takes_a_position_and_a_width_and_refuses_the_other_kinds_keys()
     let err = parse_err(&scene_with_lights(&["kind = \"lamp\"\nposition = [0.0, 6.0, 0.0]"]), &[]);
     assert_one_line_naming(&err, &["lamp", "point"]);
 }
+
+/// A sun takes `cascades` (1..4), `cascade_lambda` (0..1) and `cascade_distance`; it renders one
+/// map per cascade; the other kinds refuse the keys, and values out of range name their key.
+#[test]
+fn a_sun_takes_cascades_in_range_and_the_other_kinds_refuse_them() {
+    let sun = "kind = \"directional\"\nposition = [20.0, 40.0, 10.0]\nextent = 30.0";
+    let scene = parse_ok(&scene_with_lights(&[&format!(
+        "{sun}\ncascades = 3\ncascade_lambda = 0.8\ncascade_distance = 50.0"
+    )]));
+    let cascades = scene.lights[0].cascades;
+    assert_eq!((cascades.count, cascades.lambda, cascades.distance_world), (3, 0.8, 50.0));
+    assert_eq!(shadowlab::shadow::views_needed(&scene.lights), 3);
+    let plain = parse_ok(&scene_with_lights(&[sun]));
+    assert_eq!(plain.lights[0].cascades, shadowlab::scene::Cascades::default());
+    assert_eq!(shadowlab::shadow::views_needed(&plain.lights), 1);
+    // `--set` turns them on for a scene that has none.
+    let set = parse(&scene_with_lights(&[sun]), &[("light.0.cascades", "4")]).expect("scene");
+    assert_eq!(set.lights[0].cascades.count, 4);
+    for (key, value) in
+        [("cascades", "0"), ("cascades", "5"), ("cascade_lambda", "1.5"), ("cascade_distance", "-2")]
+    {
+        let err = parse_err(&scene_with_lights(&[sun]), &[(&format!("light.0.{key}"), value)]);
+        assert_one_line_naming(&err, &[&format!("light.0.{key}")]);
+    }
+    let lamp = "kind = \"point\"\nposition = [0.0, 6.0, 0.0]";
+    let spot = "kind = \"spot\"\nposition = [0.0, 6.0, 4.0]\nfov_deg = 50.0";
+    for light in [lamp, spot] {
+        for line in ["cascades = 2", "cascade_lambda = 0.5", "cascade_distance = 10.0"] {
+            let err = parse_err(&scene_with_lights(&[&format!("{light}\n{line}")]), &[]);
+            let key = format!("light.0.{}", line.split(' ').next().expect("key"));
+            assert_one_line_naming(&err, &[&key, "directional lights"]);
+        }
+    }
+}
