@@ -904,6 +904,33 @@ fn bench_takes_overrides_a_fixed_time_and_picks_rows() {
     }
 }
 
+/// A sun's cascades cost their maps: the homework's sun gets rows with four cascades, and a
+/// scene whose sun has cascades gets rows with one map to hold them against.
+#[test]
+fn bench_holds_four_cascades_against_one_map() {
+    let labels = |args: &[&str]| {
+        let run = shadowlab(args);
+        assert_eq!(run.code, Some(0), "{run}");
+        let json: Value = serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("JSON ({e}):\n{run}"));
+        let rows = json["rows"].as_array().expect("rows").clone();
+        for row in &rows {
+            assert!(row["median_frame_ms"].as_f64().is_some_and(|ms| ms > 0.0), "{row}");
+        }
+        rows.iter().filter_map(|r| r["technique"].as_str().map(String::from)).collect::<Vec<_>>()
+    };
+    let quick = ["--frames", "1", "--size", "64x36", "--json"];
+    assert_eq!(
+        labels(&[&["bench", "--only", "4-cascade"][..], &quick].concat()),
+        ["4-cascade hard", "4-cascade pcf 50"]
+    );
+    let avenue = common::repo_path("assets/scenes/sun_avenue.toml");
+    let avenue = avenue.to_str().expect("path");
+    assert_eq!(
+        labels(&[&["bench", "--scene", avenue, "--only", "one-map"][..], &quick].concat()),
+        ["one-map hard", "one-map pcf 16"]
+    );
+}
+
 #[test]
 fn bench_unknown_row_and_bad_override_are_refused() {
     let run = shadowlab(&["bench", "--only", "blurry", "--frames", "1"]);

@@ -61,8 +61,18 @@ struct Case {
     samples: Option<u32>,
     blocker_samples: Option<u32>,
     bias_mode: Option<BiasMode>,
-    /// Light 0 made a point light where it stands (six cube faces instead of its one map).
-    point_light: bool,
+    /// Light 0 as the scene has it, or made a lamp or given cascades where it stands.
+    light0: Light0,
+}
+
+/// What a row does to light 0: the cost of more maps against the scene's own.
+#[derive(Clone, Copy, PartialEq)]
+enum Light0 {
+    AsIs,
+    /// A point light where it stands: six cube faces instead of its one map.
+    Point,
+    /// A sun with this many cascades (1: one map over its extent).
+    Cascades(u32),
 }
 
 /// The rows: `none` (shading without any shadow lookup: the per-pixel floor), hard, PCF and PCSS
@@ -71,7 +81,7 @@ struct Case {
 /// that does not grow with the kernel, a floor tilted to the light finds itself in the blocker
 /// search, so PCSS filters every pixel; with the plane it filters only near real blockers.
 /// Last, hard and PCF with light 0 made a point light where it stands: what six maps cost
-/// against one.
+/// against one; and for a sun, with four cascades (or one map, where it has cascades).
 fn cases(scene: &Scene) -> Vec<Case> {
     let case = |label: String, technique, samples, blocker_samples| Case {
         label,
@@ -79,7 +89,7 @@ fn cases(scene: &Scene) -> Vec<Case> {
         samples,
         blocker_samples,
         bias_mode: None,
-        point_light: false,
+        light0: Light0::AsIs,
     };
     let (n, nb) = (scene.shadow.samples, scene.shadow.blocker_samples);
     let mut out = vec![
@@ -118,7 +128,17 @@ fn cases(scene: &Scene) -> Vec<Case> {
             ("point-light hard".to_string(), Technique::Hard, None),
             (format!("point-light pcf {n}"), Technique::Pcf, Some(n)),
         ] {
-            out.push(Case { point_light: true, ..case(label, technique, samples, None) });
+            out.push(Case { light0: Light0::Point, ..case(label, technique, samples, None) });
+        }
+    }
+    // The cost of cascades: a sun's four against its one map (or one map against its cascades).
+    if let Some(sun) = scene.lights.first().filter(|l| l.is_orthographic()) {
+        let (count, name) = if sun.cascades.is_cascaded() { (1, "one-map") } else { (4, "4-cascade") };
+        for (label, technique, samples) in [
+            (format!("{name} hard"), Technique::Hard, None),
+            (format!("{name} pcf {n}"), Technique::Pcf, Some(n)),
+        ] {
+            out.push(Case { light0: Light0::Cascades(count), ..case(label, technique, samples, None) });
         }
     }
     out
@@ -176,12 +196,17 @@ pub fn run(args: BenchArgs) -> Result<(), CliError> {
         if let Some(mode) = case.bias_mode {
             scene.shadow.bias_mode = mode;
         }
-        if case.point_light
-            && let Some(light) = scene.lights.first_mut()
-        {
-            light.kind = crate::scene::LightKind::Point;
-            // A sun's angular size has no meaning at a point; a lamp has a width.
-            light.size = crate::scene::LightSize::Width { width_world: 0.0 };
+        if let Some(light) = scene.lights.first_mut() {
+            match case.light0 {
+                Light0::AsIs => {}
+                Light0::Point => {
+                    light.kind = crate::scene::LightKind::Point;
+                    // A sun's angular size has no meaning at a point; a lamp has a width.
+                    light.size = crate::scene::LightSize::Width { width_world: 0.0 };
+                    light.cascades = crate::scene::Cascades::default();
+                }
+                Light0::Cascades(count) => light.cascades.count = count,
+            }
         }
         let request_at = |time_s| FrameRequest {
             time_s,
