@@ -4,7 +4,7 @@
 use crate::render::{AnalysisPixel, Frame, FrameRequest, GpuWait, Readback, RenderError, Renderer};
 use crate::scene::{BiasMode, DepthStorage, Scene, Technique};
 use crate::shadow::DepthImage;
-use crate::shadow::{TapKind, Twin, kernels};
+use crate::shadow::{LightGpu, ShadowViewGpu, TapKind, Twin, kernels};
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
 
@@ -17,6 +17,20 @@ pub struct TapReport {
     pub value: f32,
 }
 
+/// The cascade a lookup read: the sharpest whose map holds the point `CASCADE_BORDER_TEXELS`
+/// inside its edge (`cascade_holds`); each sharper one lands it outside that square.
+#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
+pub struct CascadeProbe {
+    /// 0 is the sharpest, nearest the camera.
+    pub index: usize,
+    pub count: usize,
+    /// The side of its map, world units, and of one texel of it.
+    pub width_world: f32,
+    pub texel_world: f32,
+    /// Where the point lands on each sharper cascade's map (uv), none of them holding it.
+    pub uv_in_sharper: Vec<[f32; 2]>,
+}
+
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct LightProbe {
     pub light: usize,
@@ -26,6 +40,9 @@ pub struct LightProbe {
     /// A point light only: which face of its cube ("+X", "-X", "+Y", "-Y", "+Z", "-Z").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cube_face: Option<String>,
+    /// A sun with cascades only: which one was read and why not a sharper one.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cascade: Option<CascadeProbe>,
     pub shadow_map_uv: [f32; 2],
     pub shadow_map_texel: [i32; 2],
     pub inside_light_frustum: bool,
@@ -286,6 +303,31 @@ fn submit_light(
     Ok((rendered, here.zip(maps)))
 }
 
+/// Which of a cascaded sun's maps `view_index` is, and where the point fell on the sharper ones.
+fn cascade_probe(
+    light: &LightGpu,
+    views: &[ShadowViewGpu],
+    view_index: usize,
+    p: Vec3,
+) -> Option<CascadeProbe> {
+    let first = light.first_view as usize;
+    let view = views.get(view_index)?;
+    if light.directional == 0 || light.view_count < 2 {
+        return None;
+    }
+    let uv_in_sharper = views[first..view_index]
+        .iter()
+        .map(|v| crate::shadow::project_to_light(v, p).truncate().to_array())
+        .collect();
+    Some(CascadeProbe {
+        index: view_index - first,
+        count: light.view_count as usize,
+        width_world: view.frustum_width_world,
+        texel_world: view.frustum_width_world / view.map_size_texels,
+        uv_in_sharper,
+    })
+}
+
 /// Everything about light `light` at the probed pixel, from its frame's lights and parameters,
 /// the pixel's analysis and the light's map.
 fn light_probe(
@@ -322,6 +364,7 @@ fn light_probe(
         light: light_index,
         shadow_view: view_index,
         cube_face: (view.cube == 1).then(|| CUBE_FACE_NAMES[view.face as usize].to_string()),
+        cascade: cascade_probe(&light_gpu, &rendered.views, view_index, position),
         shadow_map_uv: coord.uv.to_array(),
         shadow_map_texel: [(coord.uv.x * map_size).floor() as i32, (coord.uv.y * map_size).floor() as i32],
         inside_light_frustum: !crate::shadow::no_map_data(&view, &coord),

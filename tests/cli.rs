@@ -785,6 +785,42 @@ fn probe_of_a_lamp_names_the_cube_face_and_compares_distances() {
     assert_eq!(number("visibility_twin"), 0.0);
 }
 
+/// Far down the avenue the sun's sharper cascades do not hold the crate: the probe says which
+/// cascade it read, its texel, and where the point fell off each sharper one.
+#[test]
+fn probe_of_a_cascaded_sun_says_which_cascade_and_why() {
+    let scene = repo_path("assets/scenes/sun_avenue.toml").display().to_string();
+    let probe = |pixel: &str| {
+        let run = shadowlab(&["probe", "--scene", &scene, "--pixel", pixel, "--no-reference"]);
+        assert_eq!(run.code, Some(0), "{run}");
+        let json: Value = serde_json::from_str(&run.stdout).expect("JSON");
+        assert_light_report(&json["lights"][0]);
+        json
+    };
+    let near = probe("150,480");
+    let cascade = &near["lights"][0]["cascade"];
+    assert_eq!((cascade["index"].as_u64(), cascade["count"].as_u64()), (Some(0), Some(4)), "{near:#}");
+    assert_eq!(cascade["uv_in_sharper"], serde_json::json!([]));
+    let far = probe("478,228");
+    assert_eq!(far["object"], "far crate", "{far:#}");
+    let light = &far["lights"][0];
+    let cascade = &light["cascade"];
+    let index = cascade["index"].as_u64().expect("index");
+    assert!(index >= 1, "{light:#}");
+    assert_eq!(light["shadow_view"].as_u64(), Some(index), "the sun's views are its cascades");
+    let misses = cascade["uv_in_sharper"].as_array().expect("misses");
+    assert_eq!(misses.len() as u64, index);
+    for uv in misses {
+        let (u, v) = (uv[0].as_f64().expect("u"), uv[1].as_f64().expect("v"));
+        let border = 4.0 / 1024.0;
+        assert!(!(border..=1.0 - border).contains(&u) || !(border..=1.0 - border).contains(&v), "{uv}");
+    }
+    let width = |c: &Value| c["width_world"].as_f64().expect("width");
+    assert!(width(cascade) > 2.0 * width(&near["lights"][0]["cascade"]), "farther cascades cover more");
+    let texel = cascade["texel_world"].as_f64().expect("texel");
+    assert!((texel - width(cascade) / 1024.0).abs() < 1e-6);
+}
+
 #[test]
 fn probe_without_reference_leaves_the_reference_null() {
     let json = probe_json(&["--pixel", "80,45", "--no-reference"]);

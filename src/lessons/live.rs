@@ -406,6 +406,7 @@ mod tests {
             light,
             shadow_view: light,
             cube_face: None,
+            cascade: None,
             shadow_map_uv: [0.25, 0.75],
             shadow_map_texel: [512, 1536],
             inside_light_frustum: true,

@@ -43,6 +43,24 @@ pub(super) fn probe_values(state: &mut AppState, ui: &mut Ui) {
             );
             ui.end_row();
         };
+        if let Some(face) = &l.cube_face {
+            row(tr("cube face"), face.clone());
+        }
+        if let Some(c) = &l.cascade {
+            row(
+                tr("cascade"),
+                fill(
+                    lang,
+                    "{} of {} · texel {} world",
+                    &[&(c.index + 1), &c.count, &format!("{:.3}", c.texel_world)],
+                ),
+            );
+            if !c.uv_in_sharper.is_empty() {
+                let misses: Vec<String> =
+                    c.uv_in_sharper.iter().map(|uv| format!("({:.2}, {:.2})", uv[0], uv[1])).collect();
+                row(tr("sharper cascades miss it at uv"), misses.join(" "));
+            }
+        }
         row(tr("shadow-map uv"), format!("{:.4}, {:.4}", l.shadow_map_uv[0], l.shadow_map_uv[1]));
         row(tr("texel"), format!("{}, {}", l.shadow_map_texel[0], l.shadow_map_texel[1]));
         row(
