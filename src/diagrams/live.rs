@@ -281,6 +281,7 @@ normal_offset_texels = 0.5
             light: 0,
             shadow_view: 0,
             cube_face: None,
+            cascade: None,
             shadow_map_uv: uv,
             shadow_map_texel: [512, 512],
             inside_light_frustum: true,
