@@ -162,6 +162,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("half-width (world units)", "半宽（世界单位）"),
     ("cascades", "级联数"),
     ("cascade", "级联"),
+    ("cascade {} · texel {} world", "级联 {} · 纹素 {} 世界单位"),
     ("cube face", "立方体面"),
     ("{} of {} · texel {} world", "第 {} 个（共 {} 个）· 纹素 {} 世界单位"),
     ("sharper cascades miss it at uv", "更清晰的级联未覆盖，其 uv"),

@@ -4,6 +4,7 @@
 use super::rendering::Shown;
 use super::{AppState, ProbeAt};
 use crate::i18n::tr;
+use crate::shadow::ShadowViewGpu;
 use crate::views::View;
 use egui::{Color32, Pos2, Rect, Stroke, pos2, vec2};
 use std::time::Duration;
@@ -83,16 +84,17 @@ pub(super) fn probe_map_uv(state: &AppState) -> Option<[f32; 2]> {
     report.lights.iter().find(|l| l.light == state.selected_light).map(|l| l.shadow_map_uv)
 }
 
-/// The probe's place on the shown map's picture (0..1 over it): its uv, or on a point light's
-/// unfolded cross, its uv on the face it read.
+/// The probe's place on the shown map's picture (0..1 over it): its uv, or on a light with
+/// several maps (a cube's cross, a sun's cascades), its uv on the tile it read.
 pub(super) fn probe_picture_uv(state: &AppState, map: &super::rendering::MapPicture) -> Option<[f32; 2]> {
     let report = state.probe.as_ref()?;
     let l = report.lights.iter().find(|l| l.light == state.selected_light)?;
-    if map.cube_faces.len() != 6 {
+    if map.tiles.is_empty() {
         return Some(l.shadow_map_uv);
     }
-    let face = l.shadow_view.checked_sub(map.index).filter(|&f| f < 6)?;
-    Some(crate::views::cube_cross_uv(&map.view.on_face(face as u32), l.shadow_map_uv))
+    let views: Vec<ShadowViewGpu> = map.tiles.iter().map(|t| t.1).collect();
+    let own = l.shadow_view.checked_sub(map.index).filter(|&i| i < views.len())?;
+    Some(crate::views::MapsLayout::of(&views).picture_uv(&views, own, l.shadow_map_uv))
 }
 
 /// The probe's texel on a light-space picture of the map occupying `square`.

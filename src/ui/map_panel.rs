@@ -6,8 +6,8 @@
 use super::AppState;
 use super::rendering::Shown;
 use crate::i18n::{Lang, fill, tr};
-use crate::shadow::depth_linear_from_ndc;
-use crate::views::{CUBE_CROSS_CELLS, cube_cross_uv};
+use crate::shadow::{ShadowViewGpu, depth_linear_from_ndc};
+use crate::views::MapsLayout;
 use egui::{Color32, Rect, Sense, Stroke, Ui, Vec2, pos2, vec2};
 use glam::{Mat4, Vec4};
 
@@ -81,9 +81,17 @@ impl MapPanel {
             return;
         };
         let (map, shadow_view) = (&shown_map.depth, &shown_map.view);
-        let cube = shown_map.cube_faces.len() == 6;
-        // The picture's height per unit of width: a cross of six faces is 4 x 3 faces.
-        let aspect = if cube { 0.75 } else { 1.0 };
+        // A light with several maps: a cube's six faces in a cross, a sun's cascades in a row.
+        let tile_views: Vec<ShadowViewGpu> = shown_map.tiles.iter().map(|t| t.1).collect();
+        let layout = MapsLayout::of(if tile_views.is_empty() {
+            std::slice::from_ref(shadow_view)
+        } else {
+            &tile_views
+        });
+        let tiled = !tile_views.is_empty();
+        let cube = shadow_view.cube == 1 && tiled;
+        // The picture's height per unit of width.
+        let aspect = layout.aspect();
         let avail = ui.available_rect_before_wrap();
         // The column's own width: a long legend line must not widen the map past it.
         let side = rect.width().min((avail.height() - 60.0) / aspect).max(64.0);
@@ -106,17 +114,16 @@ impl MapPanel {
                 map_rect.top() + (uv[1] - window.top()) * side * aspect,
             )
         };
-        // Screen pixels per uv of one map (a cube face is a quarter of the cross's width).
-        let face_side = if cube { side / 4.0 } else { side };
-        let views = shown_map.index..shown_map.index + if cube { 6 } else { 1 };
-        // Where uv of the frame's view `view_index` lies in the picture: on a cube, a uv past the
-        // face's edge is read on the face its direction falls in (`map_tap`), and drawn there.
+        // Screen pixels per uv of one map (a tile is a column's width).
+        let face_side = side / layout.columns as f32;
+        let views = shown_map.index..shown_map.index + tile_views.len().max(1);
+        // Where uv of the frame's view `view_index` lies in the picture: on its tile (a uv past a
+        // cube face's edge on the face its direction falls in, `map_tap`).
         let picture_uv = |view_index: usize, uv: [f32; 2]| -> [f32; 2] {
-            if !cube {
+            if !tiled {
                 return uv;
             }
-            let face = view_index.saturating_sub(shown_map.index).min(5) as u32;
-            cube_cross_uv(&shown_map.view.on_face(face), uv)
+            layout.picture_uv(&tile_views, view_index.saturating_sub(shown_map.index), uv)
         };
 
         // The probe on the map, at its real size, where it looked up this very view.
@@ -163,14 +170,13 @@ impl MapPanel {
         let hovered = response.hover_pos().and_then(|pos| {
             let u = (window.left() + (pos.x - map_rect.left()) / side).clamp(0.0, 0.9999);
             let v = (window.top() + (pos.y - map_rect.top()) / (side * aspect)).clamp(0.0, 0.9999);
-            if !cube {
+            if !tiled {
                 return Some((map, *shadow_view, u, v));
             }
-            // Which face's cell of the cross, and where in it.
-            let (column, row) = ((u * 4.0) as u32, (v * 3.0) as u32);
-            let face = CUBE_CROSS_CELLS.iter().position(|&cell| cell == (column, row))?;
-            let view = shadow_view.on_face(face as u32);
-            Some((&shown_map.cube_faces[face], view, u * 4.0 - column as f32, v * 3.0 - row as f32))
+            // Which tile, and where in it.
+            let (i, [u, v]) = layout.cell_at(u, v)?;
+            let (map, view) = shown_map.tiles.get(i)?;
+            Some((map, *view, u, v))
         });
         if let Some((map, view, u, v)) = hovered {
             let shadow_view = &view;
@@ -206,6 +212,11 @@ impl MapPanel {
             }
             if cube {
                 info = format!("{} · {info}", crate::probe::CUBE_FACE_NAMES[view.face as usize]);
+            } else if tiled {
+                let texel = view.frustum_width_world / view.map_size_texels;
+                let name =
+                    fill(lang, "cascade {} · texel {} world", &[&(view.face + 1), &format!("{texel:.3}")]);
+                info = format!("{name} · {info}");
             }
         }
         // Wrapped to the map's width: the column may be narrow.
@@ -217,7 +228,7 @@ impl MapPanel {
         if response.hovered() {
             let scroll = ui.input(|i| i.smooth_scroll_delta.y);
             if scroll != 0.0 {
-                let max_zoom = (map.size as f32 * if cube { 4.0 } else { 1.0 } / 16.0).max(1.0);
+                let max_zoom = (map.size as f32 * layout.columns as f32 / 16.0).max(1.0);
                 let was_zoomed = self.zoomed();
                 self.zoom = (zoom * (scroll * 0.004).exp()).clamp(1.0, max_zoom);
                 if self.zoomed() != was_zoomed {

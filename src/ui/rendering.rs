@@ -65,10 +65,10 @@ pub struct MapPicture {
     pub texture: egui::TextureHandle,
     pub depth: DepthImage,
     pub view: ShadowViewGpu,
-    /// Which of the frame's shadow views it is (a point light: its first face, and `cube_faces`
-    /// holds all six, the picture their unfolded cross).
+    /// Which of the frame's shadow views it is (a light with several: its first; `tiles` holds
+    /// them all with their views, the picture tiled by `MapsLayout`).
     pub index: usize,
-    pub cube_faces: Vec<DepthImage>,
+    pub tiles: Vec<(DepthImage, ShadowViewGpu)>,
     pub range: (f32, f32),
 }
 
@@ -280,8 +280,8 @@ impl ShadowlabApp {
         if let Some(map) = maps.map {
             let texture =
                 ctx.load_texture("shadow map", color_image(&map.image), egui::TextureOptions::NEAREST);
-            let crate::app::scheduler::MapView { depth, view, index, cube_faces, range, .. } = map;
-            self.render.shown.map = Some(MapPicture { texture, depth, view, index, cube_faces, range });
+            let crate::app::scheduler::MapView { depth, view, index, tiles, range, .. } = map;
+            self.render.shown.map = Some(MapPicture { texture, depth, view, index, tiles, range });
         }
         if !maps.thumbnails.is_empty() || self.render.shown.lights.len() < 2 {
             self.render.shown.thumbnails = maps

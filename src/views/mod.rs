@@ -6,7 +6,7 @@ pub mod overlays;
 mod shadow_map;
 pub mod texel_density;
 
-pub use shadow_map::{CUBE_CROSS_CELLS, cube_cross_uv, light_maps_image, shadow_map_image};
+pub use shadow_map::{CUBE_CROSS_CELLS, MapsLayout, light_maps_image, shadow_map_image};
 
 use crate::i18n::Lang;
 use crate::render::Analysis;

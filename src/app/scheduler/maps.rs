@@ -21,10 +21,11 @@ enum Picture {
     Selected {
         texels: u32,
     },
-    /// One face of the selected point light's cube, read in face order: the picture is made
-    /// once all six are back.
-    CubeFace {
+    /// One of the selected light's several maps (a cube's face, a sun's cascade), read in view
+    /// order: the picture is made once all `of` are back.
+    Tile {
         texels: u32,
+        of: usize,
     },
     Thumbnail,
 }
@@ -32,8 +33,8 @@ enum Picture {
 /// A picture made, once its map is back.
 enum Made {
     Selected(MapView),
-    /// A face's map, its view and the view's index in the frame.
-    CubeFace(DepthImage, ShadowViewGpu, usize, Picture),
+    /// A tile's map, its view and the view's index in the frame.
+    Tile(DepthImage, ShadowViewGpu, usize, Picture),
     Thumbnail(image::RgbaImage),
 }
 
@@ -47,8 +48,8 @@ pub(super) struct MapsComing {
     reading: Option<Readback<Made>>,
     /// What the selected light's picture is drawn from: the views have it once it is sent.
     map_key: Option<MapKey>,
-    /// A point light's faces read so far, with their views.
-    cube_faces: Vec<(DepthImage, ShadowViewGpu, usize)>,
+    /// The tiles of a light with several maps read so far, with their views.
+    tiles: Vec<(DepthImage, ShadowViewGpu, usize)>,
 }
 
 impl Renderers {
@@ -66,10 +67,12 @@ impl Renderers {
         let map_unchanged = map_key.is_some() && map_key == self.last_map;
         let mut to_read = VecDeque::new();
         if let Some(&(index, view)) = first_views.get(selected).filter(|_| !map_unchanged) {
-            if view.cube == 1 {
-                let faces = self.a.last_frame().and_then(|f| f.views_of(selected).map(|(_, v)| v.to_vec()));
-                for (face, view) in faces.unwrap_or_default().into_iter().enumerate() {
-                    to_read.push_back((index + face, view, Picture::CubeFace { texels }));
+            let views = self.a.last_frame().and_then(|f| f.views_of(selected).map(|(_, v)| v.to_vec()));
+            let views = views.unwrap_or_default();
+            if views.len() > 1 {
+                let of = views.len();
+                for (i, view) in views.into_iter().enumerate() {
+                    to_read.push_back((index + i, view, Picture::Tile { texels, of }));
                 }
             } else {
                 to_read.push_back((index, view, Picture::Selected { texels }));
@@ -79,7 +82,7 @@ impl Renderers {
             to_read.extend(first_views.iter().map(|&(index, view)| (index, view, Picture::Thumbnail)));
         }
         let maps = Maps { job: id, map: None, thumbnails: Vec::new() };
-        MapsComing { maps, to_read, reading: None, map_key, cube_faces: Vec::new() }
+        MapsComing { maps, to_read, reading: None, map_key, tiles: Vec::new() }
     }
 
     /// Take the picture being read once it is there, then submit the next read-back; once all
@@ -98,14 +101,14 @@ impl Renderers {
             }
             match reading.finish()? {
                 Made::Selected(view) => coming.maps.map = Some(view),
-                Made::CubeFace(depth, view, index, Picture::CubeFace { texels, .. }) => {
-                    coming.cube_faces.push((depth, view, index));
-                    if coming.cube_faces.len() == 6 {
-                        let faces = std::mem::take(&mut coming.cube_faces);
-                        coming.maps.map = Some(cube_picture(faces, texels));
+                Made::Tile(depth, view, index, Picture::Tile { texels, of }) => {
+                    coming.tiles.push((depth, view, index));
+                    if coming.tiles.len() == of {
+                        let tiles = std::mem::take(&mut coming.tiles);
+                        coming.maps.map = Some(tiled_picture(tiles, texels));
                     }
                 }
-                Made::CubeFace(..) => {}
+                Made::Tile(..) => {}
                 Made::Thumbnail(image) => coming.maps.thumbnails.push(image),
             }
         }
@@ -122,19 +125,19 @@ impl Renderers {
     }
 }
 
-/// A point light's picture: its six faces unfolded into a cross, each face at most a quarter of
-/// `texels` wide.
-fn cube_picture(read: Vec<(DepthImage, ShadowViewGpu, usize)>, texels: u32) -> MapView {
+/// The picture of a light with several maps, tiled by `MapsLayout` (a cube's cross, a sun's
+/// cascades in a row), the whole at most `texels` wide.
+fn tiled_picture(read: Vec<(DepthImage, ShadowViewGpu, usize)>, texels: u32) -> MapView {
     let (view, index) = (read[0].1, read[0].2);
     let views: Vec<ShadowViewGpu> = read.iter().map(|r| r.1).collect();
-    let faces: Vec<DepthImage> = read.into_iter().map(|r| r.0).collect();
-    let small: Vec<DepthImage> = faces.iter().map(|f| subsample(f, (texels / 4).max(16))).collect();
+    let columns = views::MapsLayout::of(&views).columns;
+    let small: Vec<DepthImage> = read.iter().map(|r| subsample(&r.0, (texels / columns).max(16))).collect();
     let (image, legend) = views::light_maps_image(&small, &views);
     MapView {
-        depth: faces[0].clone(),
+        depth: read[0].0.clone(),
         view,
         index,
-        cube_faces: faces,
+        tiles: read.into_iter().map(|(depth, view, _)| (depth, view)).collect(),
         image,
         range: (legend.min, legend.max),
     }
@@ -145,9 +148,9 @@ fn make(depth: DepthImage, (index, view): (usize, ShadowViewGpu), picture: Pictu
         Picture::Selected { texels } => {
             let (image, legend) = views::shadow_map_image(&subsample(&depth, texels), &view);
             let range = (legend.min, legend.max);
-            Made::Selected(MapView { depth, view, index, cube_faces: Vec::new(), image, range })
+            Made::Selected(MapView { depth, view, index, tiles: Vec::new(), image, range })
         }
-        Picture::CubeFace { .. } => Made::CubeFace(depth, view, index, picture),
+        Picture::Tile { .. } => Made::Tile(depth, view, index, picture),
         Picture::Thumbnail => {
             let (image, _) = views::shadow_map_image(&subsample(&depth, 4 * THUMBNAIL_TEXELS), &view);
             Made::Thumbnail(image::imageops::resize(

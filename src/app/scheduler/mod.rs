@@ -102,14 +102,14 @@ pub struct ProbeSpot {
 /// The selected light's shadow map (its first view's): the depths (for the hover readout and the
 /// probe picture) and the picture shown, with the depth range of its colour bar (world units).
 pub struct MapView {
-    /// The map (a point light: its first face's; all six are in `cube_faces`).
+    /// The map (a light with several: its first's; all are in `tiles`).
     pub depth: DepthImage,
     pub view: ShadowViewGpu,
-    /// Which of the frame's shadow views it is (a point light: its first face).
+    /// Which of the frame's shadow views it is (a light with several: its first).
     pub index: usize,
-    /// A point light's six faces, in face order (`image` is then their unfolded cross); empty
-    /// for a light with one map.
-    pub cube_faces: Vec<DepthImage>,
+    /// A light with several maps (a point light's six faces, a sun's cascades): each map with
+    /// its view, in view order (`image` tiles them by `MapsLayout`); empty for a light with one.
+    pub tiles: Vec<(DepthImage, ShadowViewGpu)>,
     pub image: image::RgbaImage,
     pub range: (f32, f32),
 }
