@@ -146,6 +146,11 @@ fn diagrams_at_fixed_inputs() {
         &far_blocker,
         en,
     );
+    let lamp = shadowlab::diagrams::DiagramInputs {
+        shadow_views: shadowlab::diagrams::ShadowViewsPlot::Cube { lamp_xz: [5.0, 5.0], probe_face: Some(1) },
+        ..shadowlab::diagrams::DiagramInputs::default()
+    };
+    check_diagram("diagram_shadow-views_cube", shadowlab::diagrams::DiagramKind::ShadowViews, &lamp, en);
 }
 
 /// The same diagrams with Chinese labels (needs a CJK font: fonts-noto-cjk).

@@ -7,7 +7,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{DiagramInputs, LightTopView};
+use super::{DiagramInputs, LightTopView, ShadowViewsPlot};
 use crate::probe::LightProbe;
 use crate::scene::{BiasMode, LightKind, LightSize, Scene, Technique};
 use crate::shadow::{self, LightViewGpu, ShadowParamsGpu, kernels};
@@ -41,6 +41,7 @@ pub fn inputs_from_scene(
         receiver_plane: scene.shadow.bias_mode == BiasMode::ReceiverPlane,
         // Only a VSM probe fills it; the diagram marks its example as one.
         vsm: None,
+        shadow_views: shadow_views(scene, light_index, time_s, probe),
         ..DiagramInputs::default()
     };
     let shadow = &scene.shadow;
@@ -168,6 +169,52 @@ pub fn inputs_from_scene(
         }
     }
     out
+}
+
+/// The light's views for the shadow-views diagram: a lamp's cube, else its cascades (one for a
+/// light with one map) fitted to the camera as a 16:9 frame sees it (the lessons' frames).
+fn shadow_views(
+    scene: &Scene,
+    light_index: usize,
+    time_s: f32,
+    probe: Option<&LightProbe>,
+) -> ShadowViewsPlot {
+    let Some(light) = scene.lights.get(light_index) else {
+        return ShadowViewsPlot::Cascades {
+            splits_world: vec![scene.camera.near, scene.camera.far],
+            widths_world: Vec::new(),
+            one_map_width_world: 0.0,
+            lambda: 0.0,
+            probe_cascade: None,
+        };
+    };
+    if light.stores_distance() {
+        let p = light.position_at(time_s);
+        let probe_face = probe
+            .and_then(|l| l.cube_face.as_deref())
+            .and_then(|name| crate::probe::CUBE_FACE_NAMES.iter().position(|n| *n == name));
+        return ShadowViewsPlot::Cube { lamp_xz: [p.x, p.z], probe_face };
+    }
+    let one_map_width_world = light.frustum_width_world();
+    if !light.cascades.is_cascaded() || !light.is_orthographic() {
+        return ShadowViewsPlot::Cascades {
+            splits_world: vec![scene.camera.near, scene.camera.far],
+            widths_world: vec![one_map_width_world],
+            one_map_width_world,
+            lambda: light.cascades.lambda,
+            probe_cascade: probe.map(|_| 0),
+        };
+    }
+    let fits = shadow::cascades::fit_cascades(light, &scene.camera, 16.0 / 9.0, time_s);
+    let mut splits_world: Vec<f32> = fits.iter().map(|f| f.split_world.0).collect();
+    splits_world.extend(fits.last().map(|f| f.split_world.1));
+    ShadowViewsPlot::Cascades {
+        splits_world,
+        widths_world: fits.iter().map(|f| f.width_world).collect(),
+        one_map_width_world,
+        lambda: light.cascades.lambda,
+        probe_cascade: probe.and_then(|l| l.cascade.as_ref()).map(|c| c.index),
+    }
 }
 
 /// PCSS and VSSM search for blockers and size their filter from the penumbra.

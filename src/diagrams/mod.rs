@@ -11,6 +11,7 @@ pub mod live;
 mod multi_light;
 mod pcf_kernel;
 mod pcss;
+mod shadow_views;
 mod style;
 mod text;
 mod two_pass;
@@ -25,6 +26,7 @@ pub use canvas::{Canvas, MAX_TEXT_GROWTH};
 pub use cjk_font::{
     BUILT_IN_CJK_FONT, CJK_FONT_PATHS, CjkFont, FontBytes, built_in_cjk_font, cjk_font, system_cjk_font,
 };
+pub use shadow_views::VIEW_COLORS;
 pub use text::{TextMetrics, TextRenderer, TextStyle, is_cjk};
 
 /// Largest accepted width or height, in pixels.
@@ -50,16 +52,18 @@ pub enum DiagramKind {
     PcssTriangles,
     MultiLight,
     Chebyshev,
+    ShadowViews,
 }
 
 impl DiagramKind {
-    pub const ALL: [DiagramKind; 6] = [
+    pub const ALL: [DiagramKind; 7] = [
         DiagramKind::TwoPass,
         DiagramKind::AcneBias,
         DiagramKind::PcfKernel,
         DiagramKind::PcssTriangles,
         DiagramKind::MultiLight,
         DiagramKind::Chebyshev,
+        DiagramKind::ShadowViews,
     ];
 
     /// Stable identifier (file names, command line).
@@ -71,6 +75,7 @@ impl DiagramKind {
             DiagramKind::PcssTriangles => "pcss",
             DiagramKind::MultiLight => "multi-light",
             DiagramKind::Chebyshev => "chebyshev",
+            DiagramKind::ShadowViews => "shadow-views",
         }
     }
 
@@ -92,6 +97,7 @@ impl DiagramKind {
             DiagramKind::PcssTriangles => "PCSS: penumbra width from similar triangles",
             DiagramKind::MultiLight => "Several lights: one shadow map each (top view)",
             DiagramKind::Chebyshev => "VSM: Chebyshev's bound on the depths in the filter window",
+            DiagramKind::ShadowViews => "A light's shadow maps: a sun's cascades, a lamp's cube",
         }
     }
 }
@@ -174,6 +180,25 @@ pub struct DiagramInputs {
     /// Object centre and radius in the XZ plane (world).
     pub objects_xz: Vec<([f32; 2], f32)>,
     pub camera_xz: [f32; 2],
+    /// The light's shadow views, for [`DiagramKind::ShadowViews`].
+    pub shadow_views: ShadowViewsPlot,
+}
+
+/// A light's shadow views for [`DiagramKind::ShadowViews`]. Distances and widths in world units.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ShadowViewsPlot {
+    /// A sun's cascades (one for a light with one map): where each slice of the camera's view
+    /// begins and ends along its axis (`count + 1` values), each cascade's map width, the width
+    /// of one map over the scene, the split's lambda, and the cascade the probe read.
+    Cascades {
+        splits_world: Vec<f32>,
+        widths_world: Vec<f32>,
+        one_map_width_world: f32,
+        lambda: f32,
+        probe_cascade: Option<usize>,
+    },
+    /// A point light's cube from above, and the face the probe read (`CUBE_FACES` order).
+    Cube { lamp_xz: [f32; 2], probe_face: Option<usize> },
 }
 
 /// One VSM lookup for [`DiagramKind::Chebyshev`] (see `crate::probe::VsmProbe`). Depths are NDC.
@@ -301,6 +326,14 @@ impl Default for DiagramInputs {
             vsm: Some(VsmPlot::example()),
             objects_xz: vec![([0.0, 0.0], 10.0), ([40.0, 0.0], 10.0), ([-30.0, 25.0], 6.0)],
             camera_xz: [30.0, 30.0],
+            // Four cascades over 0.3..160 with lambda 0.7 (the avenue's), each a sphere's width.
+            shadow_views: ShadowViewsPlot::Cascades {
+                splits_world: crate::shadow::cascades::split_distances(0.3, 160.0, 4, 0.7),
+                widths_world: vec![33.4, 40.0, 72.0, 143.0],
+                one_map_width_world: 220.0,
+                lambda: 0.7,
+                probe_cascade: Some(1),
+            },
         }
     }
 }
@@ -458,6 +491,7 @@ fn draw_once(
         DiagramKind::PcssTriangles => pcss::draw(&mut c, inputs),
         DiagramKind::MultiLight => multi_light::draw(&mut c, inputs),
         DiagramKind::Chebyshev => chebyshev::draw(&mut c, inputs),
+        DiagramKind::ShadowViews => shadow_views::draw(&mut c, inputs),
     }
     Ok(c)
 }

@@ -85,7 +85,10 @@ fn bad_sizes_are_errors() {
 #[test]
 fn ids_titles_and_round_trip() {
     let ids: Vec<&str> = DiagramKind::ALL.iter().map(|k| k.id()).collect();
-    assert_eq!(ids, ["two-pass", "acne-bias", "pcf-kernel", "pcss", "multi-light", "chebyshev"]);
+    assert_eq!(
+        ids,
+        ["two-pass", "acne-bias", "pcf-kernel", "pcss", "multi-light", "chebyshev", "shadow-views"]
+    );
     for kind in DiagramKind::ALL {
         assert_eq!(DiagramKind::from_id(kind.id()), Some(kind));
         assert!(!kind.title().is_empty());

@@ -309,6 +309,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("acne-bias", "失真与偏移"),
     ("pcf-kernel", "PCF 滤波核"),
     ("multi-light", "多光源"),
+    ("shadow-views", "阴影视图"),
     ("chebyshev", "切比雪夫上界"),
     ("hard", "硬阴影"),
     ("pcf", "PCF 滤波"),

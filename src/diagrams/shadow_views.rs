@@ -1,0 +1,161 @@
+//! A light's shadow views: a sun's cascades along the camera's view axis, each slice with its
+//! map's texel size against one map over the whole scene; or a point light's cube from above,
+//! its four side faces as 90° wedges meeting at the seams.
+
+use tiny_skia::ColorU8;
+
+use super::canvas::Canvas;
+use super::style::{Anchor, FS_LABEL, FS_SMALL, Style, Swatch, col, fin, num, pal};
+use super::widgets::Column;
+use super::{DiagramInputs, ShadowViewsPlot};
+
+/// Drawing area: x, y, w, h.
+const AREA: [f32; 4] = [20.0, 56.0, 620.0, 446.0];
+/// Where the text column begins.
+const COLUMN_X: f32 = 656.0;
+
+/// One colour per cascade or cube face, as the cascade-index view colours them.
+pub const VIEW_COLORS: [ColorU8; 6] = [
+    ColorU8::from_rgba(230, 159, 0, 255),
+    ColorU8::from_rgba(86, 180, 233, 255),
+    ColorU8::from_rgba(0, 158, 115, 255),
+    ColorU8::from_rgba(204, 121, 167, 255),
+    ColorU8::from_rgba(213, 94, 0, 255),
+    ColorU8::from_rgba(0, 114, 178, 255),
+];
+
+pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
+    c.rect(AREA, Some(col(pal::BG, 1.0)), Some((col(pal::MUTED, 1.0), 2.0)));
+    match &inp.shadow_views {
+        ShadowViewsPlot::Cascades { .. } => cascades(c, inp),
+        ShadowViewsPlot::Cube { .. } => cube(c, inp),
+    }
+}
+
+fn cascades(c: &mut Canvas, inp: &DiagramInputs) {
+    let ShadowViewsPlot::Cascades { splits_world, widths_world, one_map_width_world, lambda, probe_cascade } =
+        &inp.shadow_views
+    else {
+        return;
+    };
+    let map = inp.shadow_map_size_texels.max(1) as f32;
+    let n = widths_world.len().min(splits_world.len().saturating_sub(1)).min(VIEW_COLORS.len());
+    let far = splits_world.last().map_or(1.0, |f| fin(*f, 1.0)).max(1e-3);
+    // The camera on the left, its view axis to the right; heights are not to scale.
+    let (x0, x1, mid) = (AREA[0] + 70.0, AREA[0] + AREA[2] - 20.0, AREA[1] + AREA[3] * 0.45);
+    let x = |d: f32| x0 + (fin(d, 0.0).clamp(0.0, far) / far) * (x1 - x0);
+    let half = |d: f32| 170.0 * fin(d, 0.0).clamp(0.0, far) / far;
+    for i in 0..n {
+        let (a, b) = (splits_world[i], splits_world[i + 1]);
+        let poly =
+            [[x(a), mid - half(a)], [x(b), mid - half(b)], [x(b), mid + half(b)], [x(a), mid + half(a)]];
+        let probed = *probe_cascade == Some(i);
+        c.polygon(&poly, col(VIEW_COLORS[i], if probed { 0.75 } else { 0.4 }));
+        c.line(poly[1], poly[2], col(pal::INK, 1.0), if probed { 3.0 } else { 1.5 });
+        let label = format!("{}", i + 1);
+        c.text(
+            &label,
+            [0.5 * (x(a) + x(b)), mid + half(b) + 8.0],
+            Anchor::TopCenter,
+            Style::em(FS_LABEL, pal::INK),
+        );
+    }
+    c.line([x0, mid - 0.0], [x1, mid - half(far)], col(pal::MUTED, 1.0), 1.5);
+    c.line([x0, mid], [x1, mid + half(far)], col(pal::MUTED, 1.0), 1.5);
+    c.dashed([x0, mid], [x1, mid], col(pal::MUTED, 1.0), 1.0, 5.0);
+    c.camera_icon([x0 - 18.0, mid], 0.0, 0.7);
+    let t = c.fill("camera's view axis · 0 .. {} world", &[&num(far)]);
+    c.label(&t, [AREA[0] + 8.0, AREA[1] + AREA[3] - 8.0], Anchor::BottomLeft, FS_SMALL);
+
+    let mut text = Column::new(COLUMN_X, 64.0);
+    text.bottom = 536.0;
+    let one_texel = fin(*one_map_width_world, 0.0).abs() / map;
+    let mut items: Vec<(Swatch, String)> = Vec::new();
+    for i in 0..n {
+        let texel = fin(widths_world[i], 0.0).abs() / map;
+        let range = format!("{}–{}", num(splits_world[i]), num(splits_world[i + 1]));
+        let line = c.fill("{}: {} · texel {}", &[&(i + 1), &range, &num(texel)]);
+        items.push((Swatch::Fill(VIEW_COLORS[i], 0.6), line));
+    }
+    let refs: Vec<(Swatch, &str)> = items.iter().map(|(s, t)| (*s, t.as_str())).collect();
+    let b = c.legend(&refs, [COLUMN_X, 64.0], Anchor::TopLeft);
+    text.y = b[1] + b[3] + 16.0;
+    text.line(c, "distances and texels in world units");
+    if n > 1 {
+        let t = c.fill("{} cascades, split with λ = {}", &[&n, &num(*lambda)]);
+        text.line(c, &t);
+        let t = c.fill("one map over the scene: texel {}", &[&num(one_texel)]);
+        text.line(c, &t);
+        let sharpest = fin(widths_world[0], 0.0).abs() / map;
+        if sharpest > 0.0 {
+            let t = c.fill("cascade 1's texels: {}× smaller", &[&num(one_texel / sharpest)]);
+            text.line(c, &t);
+        }
+        text.line(c, "each map covers its slice's sphere,");
+        text.line(c, "moved in whole texels: stable");
+    } else {
+        text.line(c, "one map for the whole view:");
+        text.line(c, "the same texel near and far");
+    }
+}
+
+/// A side face in the top view: its index in `CUBE_FACES`, its name, the square's two corners it
+/// reaches and the direction of its name from the lamp.
+type Wedge = (usize, &'static str, [[f32; 2]; 2], [f32; 2]);
+
+fn cube(c: &mut Canvas, inp: &DiagramInputs) {
+    let ShadowViewsPlot::Cube { lamp_xz, probe_face } = &inp.shadow_views else { return };
+    let centre = [AREA[0] + AREA[2] * 0.5, AREA[1] + AREA[3] * 0.5];
+    let s = 0.42 * AREA[3];
+    let corner = |sx: f32, sz: f32| [centre[0] + sx * s, centre[1] + sz * s];
+    // Top view, x to the right and z down: the faces +X, -X, +Z, -Z as wedges (the CUBE_FACES order).
+    let wedges: [Wedge; 4] = [
+        (0, "+X", [corner(1.0, -1.0), corner(1.0, 1.0)], [0.7, 0.0]),
+        (1, "-X", [corner(-1.0, 1.0), corner(-1.0, -1.0)], [-0.7, 0.0]),
+        (4, "+Z", [corner(1.0, 1.0), corner(-1.0, 1.0)], [0.0, 0.7]),
+        (5, "-Z", [corner(-1.0, -1.0), corner(1.0, -1.0)], [0.0, -0.7]),
+    ];
+    for (face, _, [a, b], _) in wedges {
+        let probed = *probe_face == Some(face);
+        c.polygon(&[centre, a, b], col(VIEW_COLORS[face], if probed { 0.75 } else { 0.35 }));
+    }
+    for (sx, sz) in [(1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0)] {
+        c.dashed(centre, corner(sx, sz), col(pal::INK, 1.0), 1.5, 6.0);
+    }
+    c.rect([centre[0] - s, centre[1] - s, 2.0 * s, 2.0 * s], None, Some((col(pal::INK, 1.0), 2.0)));
+    // The objects around the lamp, to scale.
+    let lamp = [fin(lamp_xz[0], 0.0), fin(lamp_xz[1], 0.0)];
+    let reach = inp
+        .objects_xz
+        .iter()
+        .map(|(o, r)| (fin(o[0], 0.0) - lamp[0]).hypot(fin(o[1], 0.0) - lamp[1]) + fin(*r, 0.0).abs())
+        .fold(1e-3, f32::max);
+    let scale = 0.95 * s / reach;
+    for (o, r) in &inp.objects_xz {
+        let p =
+            [centre[0] + (fin(o[0], 0.0) - lamp[0]) * scale, centre[1] + (fin(o[1], 0.0) - lamp[1]) * scale];
+        let r = (fin(*r, 0.0).abs() * scale).clamp(2.0, s);
+        c.circle(p, r, Some(col(pal::BLOCKER, 0.8)), Some((col(pal::BG, 1.0), 1.5)));
+    }
+    // The faces' names over the objects, near the square's edge.
+    for (_, name, _, at) in wedges {
+        c.text(name, corner(1.25 * at[0], 1.25 * at[1]), Anchor::TopCenter, Style::em(FS_LABEL, pal::INK));
+    }
+    c.sun(centre, col(pal::LIGHT, 1.0), col(pal::LIGHT_DARK, 1.0));
+    c.label("top view (x →, z ↓)", [AREA[0] + 8.0, AREA[1] + AREA[3] - 8.0], Anchor::BottomLeft, FS_SMALL);
+
+    let mut text = Column::new(COLUMN_X, 64.0);
+    text.bottom = 536.0;
+    text.line(c, "six 90° faces: +X −X +Y −Y +Z −Z");
+    text.line(c, "(+Y, −Y: up and down, not shown)");
+    text.line(c, "each face stores the distance");
+    text.line(c, "to the lamp, on one scale:");
+    text.line(c, "(|p − lamp| − near) / (far − near)");
+    text.line(c, "a filter's taps cross the");
+    text.line(c, "dashed seams to the next face");
+    if let Some(face) = probe_face {
+        let name = crate::probe::CUBE_FACE_NAMES.get(*face).copied().unwrap_or("?");
+        let t = c.fill("the probe reads face {}", &[&name]);
+        text.line(c, &t);
+    }
+}
