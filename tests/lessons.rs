@@ -582,6 +582,7 @@ const DERIVED: &[(&str, usize, f64, &str)] = &[
     ("pcf", 5, 0.25, "1 of 4 taps lit"),
     ("pcf", 5, 0.75, "3 of 4 taps lit"),
     ("pcss", 5, 28.0, "W_near = 2 * 20 * tan(35°), the spot light's near-plane width"),
+    ("more-maps", 4, 220.0 / 1024.0, "a texel of the 220-unit square (extent 110) on a 1024² map"),
 ];
 
 /// Numbers any text may write: a half, and the ends of 0..1 (in formulas and code).

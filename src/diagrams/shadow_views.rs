@@ -123,15 +123,15 @@ fn cube(c: &mut Canvas, inp: &DiagramInputs) {
         c.dashed(centre, corner(sx, sz), col(pal::INK, 1.0), 1.5, 6.0);
     }
     c.rect([centre[0] - s, centre[1] - s, 2.0 * s, 2.0 * s], None, Some((col(pal::INK, 1.0), 2.0)));
-    // The objects around the lamp, to scale.
+    // The objects around the lamp, to scale; not those whose footprint holds the lamp (walls
+    // round a room, seen from above, are discs over everything).
     let lamp = [fin(lamp_xz[0], 0.0), fin(lamp_xz[1], 0.0)];
-    let reach = inp
-        .objects_xz
-        .iter()
-        .map(|(o, r)| (fin(o[0], 0.0) - lamp[0]).hypot(fin(o[1], 0.0) - lamp[1]) + fin(*r, 0.0).abs())
-        .fold(1e-3, f32::max);
+    let distance = |o: &[f32; 2]| (fin(o[0], 0.0) - lamp[0]).hypot(fin(o[1], 0.0) - lamp[1]);
+    let around: Vec<&([f32; 2], f32)> =
+        inp.objects_xz.iter().filter(|(o, r)| distance(o) > fin(*r, 0.0).abs()).collect();
+    let reach = around.iter().map(|(o, r)| distance(o) + fin(*r, 0.0).abs()).fold(1e-3, f32::max);
     let scale = 0.95 * s / reach;
-    for (o, r) in &inp.objects_xz {
+    for (o, r) in around {
         let p =
             [centre[0] + (fin(o[0], 0.0) - lamp[0]) * scale, centre[1] + (fin(o[1], 0.0) - lamp[1]) * scale];
         let r = (fin(*r, 0.0).abs() * scale).clamp(2.0, s);

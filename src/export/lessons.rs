@@ -11,7 +11,6 @@ use crate::i18n::Lang;
 use crate::lessons::Lesson;
 use crate::render::Renderer;
 use crate::scene::Scene;
-use image::imageops::{FilterType, resize};
 use std::path::{Path, PathBuf};
 
 /// What the loop reports as it goes.
@@ -84,7 +83,7 @@ fn export_step(
     let map_panel = pictures
         .shadow_map
         .as_ref()
-        .map(|(img, _)| resize(img, layout.shadow_map.w, layout.shadow_map.h, FilterType::Triangle));
+        .map(|(img, _)| super::slide::map_panel_image(img, layout.shadow_map.w, layout.shadow_map.h));
     let d = layout.diagram;
     let diagram = diagrams::draw(pictures.diagram, &pictures.inputs, lang, d.w, d.h)
         .map_err(|e| ExportError::Draw(format!("diagram: {e}")))?;

@@ -25,6 +25,10 @@ pub struct StepPictures {
     /// The shadow map of the step's light (full resolution) and its depth range; `None` for a
     /// scene without lights.
     pub shadow_map: Option<(RgbaImage, Legend)>,
+    /// The light's shadow views (the picture tiles several by `MapsLayout`) and the index of its
+    /// first in the frame's.
+    pub shadow_map_views: Vec<crate::shadow::ShadowViewGpu>,
+    pub first_view: usize,
     pub light: usize,
     /// The probed pixel in the lesson's 960x540 frame ([`PROBE_FRAME`]), and whether the
     /// lesson chose it.
@@ -221,21 +225,23 @@ pub fn render_step(
         let legend = tr(lang, "frusta: yellow = this light, blue = the others").to_string();
         camera_summary = Some(camera_summary.map_or(legend.clone(), |s| format!("{s}\n{legend}")));
     }
-    let shadow_map = if has_lights {
-        let views = renderer
+    let (shadow_map, first_view, shadow_map_views) = if has_lights {
+        let (first_view, views) = renderer
             .last_frame()
-            .and_then(|f| f.views_of(light).map(|(_, v)| v.to_vec()))
+            .and_then(|f| f.views_of(light).map(|(first, v)| (first, v.to_vec())))
             .ok_or_else(|| RenderError::Usage(format!("light {light} was not rendered")))?;
         let maps = renderer.read_light_maps(light)?;
-        Some(views::light_maps_image(&maps, &views))
+        (Some(views::light_maps_image(&maps, &views)), first_view, views)
     } else {
-        None
+        (None, 0, Vec::new())
     };
     Ok(StepPictures {
         view,
         camera,
         camera_summary,
         shadow_map,
+        shadow_map_views,
+        first_view,
         light,
         probe_pixel,
         probe_from_lesson,

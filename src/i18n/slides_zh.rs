@@ -10,6 +10,9 @@ pub(super) const SLIDES: &[(&str, &str)] = &[
     ("orthographic", "正交"),
     ("perspective", "透视"),
     ("Shadow map: light {} · {}² · {}", "阴影贴图：光源 {} · {}² · {}"),
+    ("Shadow map: light {} · {} {} of {}²", "阴影贴图：光源 {} · {} 张{}，每张 {}²"),
+    ("cube faces", "立方体面"),
+    ("cascade maps", "级联贴图"),
     ("depth from the light {} (dark) .. {} (bright)", "到光源的深度 {}（暗）至 {}（亮）"),
     ("frusta: yellow = this light, blue = the others", "视锥：黄 = 本光源，蓝 = 其他光源"),
     // A range in a legend: "a .. b".

@@ -242,10 +242,10 @@ pub(super) const UI: &[(&str, &str)] = &[
         "平均遮挡深度：{:.2} .. {:.2} 到光源的世界单位（深蓝 .. 黄；灰：没有遮挡物）",
     ),
     ("texel density", "纹素密度"),
-    ("shadow-map texels per screen pixel", "阴影贴图纹素/屏幕像素"),
+    ("map texels per pixel", "贴图纹素/像素"),
     (
-        "{}: {} .. {} {}, log scale (red: under 1, blocky edges; white: 1; blue: over 1, wasted; grey: off the light's map)",
-        "{}：{} .. {} {}，对数刻度（红：小于 1，边缘成块；白：1；蓝：大于 1，浪费；灰：在光源贴图之外）",
+        "{}: {} .. {} {}, log: red < 1 blocky, blue > 1 wasted",
+        "{}：{} .. {} {}，对数：红 < 1 成块，蓝 > 1 浪费",
     ),
     ("on screen: {} .. {}, median {}", "画面上：{} .. {}，中位数 {}"),
     ("on screen: no surface on the light's map", "画面上：没有落在光源贴图上的表面"),

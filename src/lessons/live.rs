@@ -60,9 +60,15 @@ enum Quantity {
     Verdict,
     /// The object under the probe.
     Object,
+    /// A point light: the cube face the lookup read ("-X").
+    CubeFace,
+    /// A cascaded sun: the cascade the lookup read, from 1 (the sharpest), and its texel's
+    /// width, world units.
+    Cascade,
+    CascadeTexelWorld,
 }
 
-const QUANTITIES: [(&str, Quantity); 33] = [
+const QUANTITIES: [(&str, Quantity); 36] = [
     ("receiver_depth_ndc", Quantity::ReceiverDepthNdc),
     ("stored_depth_ndc", Quantity::StoredDepthNdc),
     ("receiver_depth_world", Quantity::ReceiverDepthWorld),
@@ -96,6 +102,9 @@ const QUANTITIES: [(&str, Quantity); 33] = [
     ("pcss_blocker_depth_world", Quantity::PcssBlockerDepthWorld),
     ("verdict", Quantity::Verdict),
     ("object", Quantity::Object),
+    ("cube_face", Quantity::CubeFace),
+    ("cascade", Quantity::Cascade),
+    ("cascade_texel_world", Quantity::CascadeTexelWorld),
 ];
 
 /// What a `{frame.NAME}` placeholder names.
@@ -342,6 +351,9 @@ fn value(q: Quantity, report: &ProbeReport, l: &LightProbe, lang: Lang) -> Optio
         }
         Quantity::Verdict => Some(Value::Text(Verdict::of(l.visibility_gpu).name(lang).into())),
         Quantity::Object => report.object.clone().map(Value::Text),
+        Quantity::CubeFace => l.cube_face.clone().map(Value::Text),
+        Quantity::Cascade => l.cascade.as_ref().and_then(|c| int(c.index as f64 + 1.0)),
+        Quantity::CascadeTexelWorld => l.cascade.as_ref().and_then(|c| float(c.texel_world)),
     }
 }
 

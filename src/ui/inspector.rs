@@ -270,6 +270,20 @@ fn lights(state: &mut AppState, ui: &mut Ui) -> bool {
         LightKind::Directional { extent_world } => {
             ui.label(tr("directional light, orthographic map"));
             changed |= number(lang, ui, &params::LIGHT_EXTENT, extent_world, 0.0).changed();
+            let cascades = &mut light.cascades;
+            let row = &params::LIGHT_CASCADES;
+            let count = ui.add(slider(
+                lang,
+                row,
+                &mut cascades.count,
+                (1.0, crate::scene::MAX_CASCADES as f32),
+                false,
+            ));
+            changed |= hinted(lang, row, count).changed();
+            if cascades.is_cascaded() {
+                changed |=
+                    number(lang, ui, &params::LIGHT_CASCADE_LAMBDA, &mut cascades.lambda, 0.0).changed();
+            }
         }
         LightKind::Spot { fov_deg } => {
             ui.label(tr("spot light, perspective map"));

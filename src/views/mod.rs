@@ -407,7 +407,7 @@ pub fn analysis_view(
             let (image, legend, on_screen) = texel_density::texel_density_image(a, &light.light, views);
             let range = fill(
                 lang,
-                "{}: {} .. {} {}, log scale (red: under 1, blocky edges; white: 1; blue: over 1, wasted; grey: off the light's map)",
+                "{}: {} .. {} {}, log: red < 1 blocky, blue > 1 wasted",
                 &[&tr(lang, legend.label), &legend.min, &legend.max, &tr(lang, legend.unit)],
             );
             let measured = match on_screen {

@@ -136,12 +136,8 @@ pub fn texel_density_image(
         median: measured[measured.len() / 2],
         max: measured[measured.len() - 1],
     });
-    let legend = Legend {
-        label: "texel density",
-        min: DENSITY_MIN,
-        max: DENSITY_MAX,
-        unit: "shadow-map texels per screen pixel",
-    };
+    let legend =
+        Legend { label: "texel density", min: DENSITY_MIN, max: DENSITY_MAX, unit: "map texels per pixel" };
     (image, legend, on_screen)
 }
 

@@ -181,6 +181,30 @@ pub struct Slide {
 
 /// Assemble the slide. The camera image is at `layout.camera`'s size, `map` is the shadow map
 /// panel at `layout.shadow_map`'s size and `diagram` is drawn at `layout.diagram`'s size.
+/// Where a map picture `img_w` x `img_h` lies in its panel `r`, its aspect kept and centred:
+/// x, y, w, h in slide pixels (a cube's 4 x 3 cross, a sun's cascades in a row).
+fn map_inner_rect(r: Rect, img_w: u32, img_h: u32) -> [f32; 4] {
+    let aspect = img_h.max(1) as f32 / img_w.max(1) as f32;
+    let w = (r.w as f32).min(r.h as f32 / aspect);
+    let h = w * aspect;
+    [r.x as f32 + 0.5 * (r.w as f32 - w), r.y as f32 + 0.5 * (r.h as f32 - h), w, h]
+}
+
+/// A map picture for a `w` x `h` panel: scaled to fit with its aspect kept, centred on the
+/// panel's colour.
+pub fn map_panel_image(img: &RgbaImage, w: u32, h: u32) -> RgbaImage {
+    let [x, y, iw, ih] = map_inner_rect(Rect { x: 0, y: 0, w, h }, img.width(), img.height());
+    let scaled = image::imageops::resize(
+        img,
+        (iw.round() as u32).max(1),
+        (ih.round() as u32).max(1),
+        image::imageops::FilterType::Triangle,
+    );
+    let mut panel = RgbaImage::from_pixel(w, h, image::Rgba([238, 240, 236, 255]));
+    image::imageops::overlay(&mut panel, &scaled, x.round() as i64, y.round() as i64);
+    panel
+}
+
 pub fn compose(
     layout: &SlideLayout,
     text: &SlideText,
@@ -247,11 +271,17 @@ pub fn compose(
     }
     let probe_light =
         pictures.probe.as_ref().and_then(|r| r.lights.iter().find(|l| l.light == pictures.light));
-    if let (Some(l), Some(_)) = (probe_light, map) {
-        let r = layout.shadow_map;
+    if let (Some(l), Some((img, _))) = (probe_light, &pictures.shadow_map) {
+        let [x, y, w, h] = map_inner_rect(layout.shadow_map, img.width(), img.height());
         let [u_, v_] = l.shadow_map_uv;
         if (0.0..=1.0).contains(&u_) && (0.0..=1.0).contains(&v_) {
-            p.marker([r.x as f32 + u_ * r.w as f32, r.y as f32 + v_ * r.h as f32], marker);
+            // On a light with several maps, its uv on the tile it read.
+            let views = &pictures.shadow_map_views;
+            let [u_, v_] = match (views.len() > 1, l.shadow_view.checked_sub(pictures.first_view)) {
+                (true, Some(own)) => crate::views::MapsLayout::of(views).picture_uv(views, own, [u_, v_]),
+                _ => [u_, v_],
+            };
+            p.marker([x + u_ * w, y + v_ * h], marker);
         }
     }
 
@@ -268,8 +298,21 @@ pub fn compose(
                 true => tr(lang, "orthographic"),
                 false => tr(lang, "perspective"),
             };
-            let first =
-                fill(lang, "Shadow map: light {} · {}² · {}", &[&pictures.light, &img.width(), &kind]);
+            let views = &pictures.shadow_map_views;
+            let first = match views.first().filter(|_| views.len() > 1) {
+                Some(view) => {
+                    let kind = tr(lang, if view.cube == 1 { "cube faces" } else { "cascade maps" });
+                    let size = view.map_size_texels;
+                    fill(
+                        lang,
+                        "Shadow map: light {} · {} {} of {}²",
+                        &[&pictures.light, &views.len(), &kind, &size],
+                    )
+                }
+                None => {
+                    fill(lang, "Shadow map: light {} · {}² · {}", &[&pictures.light, &img.width(), &kind])
+                }
+            };
             let (lo, hi) = (short_num(legend.min), short_num(legend.max));
             let second = fill(lang, "depth from the light {} (dark) .. {} (bright)", &[&lo, &hi]);
             (first, second)
@@ -296,11 +339,19 @@ fn caption(p: &mut Canvas, layout: &SlideLayout, r: Rect, first: &str, second: O
     let lines =
         [(first, pal::INK, true, 0.0), (second.unwrap_or(""), pal::MUTED, false, p.leading(cap) * 0.95)];
     for (s, color, bold, below) in lines {
+        // A legend of several parts (" · ") too long for the line keeps its leading parts whole
+        // rather than ending in the middle of one.
+        let mut s = s.to_string();
+        while p.text_width(&s, min) > width
+            && let Some((head, _)) = s.rsplit_once(" · ")
+        {
+            s = head.to_string();
+        }
         let mut px = cap;
-        while px > min && p.text_width(s, px) > width {
+        while px > min && p.text_width(&s, px) > width {
             px = (px - cap * 0.02).max(min);
         }
-        let s = p.fit_label(s, px, width);
+        let s = p.fit_label(&s, px, width);
         p.run(&s, r.x as f32, r.y as f32 + cap + below, px, color, bold);
     }
 }

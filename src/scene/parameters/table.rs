@@ -320,7 +320,6 @@ pub static LIGHT_CASCADES: Parameter = Parameter {
     unit: "",
     values: Values::Whole { lo: 1, hi: MAX_CASCADES as i64 },
     control: Control::Slider { lo: 1.0, hi: MAX_CASCADES as f32, log: false },
-    named: false,
     ..LIGHT_ROW
 };
 pub static LIGHT_CASCADE_LAMBDA: Parameter = Parameter {
@@ -329,9 +328,10 @@ pub static LIGHT_CASCADE_LAMBDA: Parameter = Parameter {
     unit: "",
     values: Values::Real { lo: 0.0, hi: 1.0 },
     control: Control::Slider { lo: 0.0, hi: 1.0, log: false },
-    named: false,
     ..LIGHT_ROW
 };
+/// Not in the inspector (its default, the camera's far plane, is no number a slider holds):
+/// scene files and `--set` only.
 pub static LIGHT_CASCADE_DISTANCE: Parameter = Parameter {
     key: "light.N.cascade_distance",
     label: "cascades reach (world units)",
