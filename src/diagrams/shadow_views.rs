@@ -80,7 +80,7 @@ fn cascades(c: &mut Canvas, inp: &DiagramInputs) {
     let refs: Vec<(Swatch, &str)> = items.iter().map(|(s, t)| (*s, t.as_str())).collect();
     let b = c.legend(&refs, [COLUMN_X, 64.0], Anchor::TopLeft);
     text.y = b[1] + b[3] + 16.0;
-    text.line(c, "distances and texels in world units");
+    text.line(c, "(world units)");
     if n > 1 {
         let t = c.fill("{} cascades, split with λ = {}", &[&n, &num(*lambda)]);
         text.line(c, &t);
@@ -91,8 +91,7 @@ fn cascades(c: &mut Canvas, inp: &DiagramInputs) {
             let t = c.fill("cascade 1's texels: {}× smaller", &[&num(one_texel / sharpest)]);
             text.line(c, &t);
         }
-        text.line(c, "each map covers its slice's sphere,");
-        text.line(c, "moved in whole texels: stable");
+        text.line(c, "spheres moved in whole texels");
     } else {
         text.line(c, "one map for the whole view:");
         text.line(c, "the same texel near and far");
