@@ -609,6 +609,7 @@ const STRINGS: &[&str] = &[
     "spot",
     "point",
     "texel-density",
+    "cascade-index",
     "orthographic",
     "perspective",
     "receiver_plane",
