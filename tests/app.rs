@@ -1097,6 +1097,29 @@ fn the_view_menu_shows_the_texel_density_and_a_larger_map_doubles_it() {
     assert!((after / before - 2.0).abs() < 0.01, "{before} then {after}");
 }
 
+/// The cascade-index view picked from the view menu on the avenue: its legend names the sun's
+/// four cascades by their colours, in the language shown.
+#[test]
+fn the_view_menu_shows_the_cascade_index_of_the_avenue() {
+    let mut h = harness();
+    h.state_mut()
+        .open(std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/scenes/sun_avenue.toml")));
+    settle(&mut h);
+    h.get_by_value("view: final").click();
+    h.run_steps(2);
+    h.get_by_label("cascade-index").click();
+    settle(&mut h);
+    assert_eq!(h.state().camera_panel_view(), shadowlab::views::View::CascadeIndex);
+    let legends = h.state().legend_lines();
+    assert!(legends[0].starts_with("cascade index: which of the light's 4 shadow maps"), "{legends:?}");
+    assert_eq!(legends[1], "orange: cascade 1, sky blue: cascade 2, green: cascade 3, yellow: cascade 4");
+    h.state_mut().lang = Lang::Zh;
+    h.run_steps(2);
+    let legends = h.state().legend_lines();
+    assert!(legends[0].starts_with("级联序号：每个像素读取光源 4 张阴影贴图中的哪一张"), "{legends:?}");
+    assert_eq!(legends[1], "橙色：级联 1，天蓝：级联 2，绿色：级联 3，黄色：级联 4");
+}
+
 /// Lesson 6 as a student meets it: the bleeding overlay and its legend on the two-slab scene, the
 /// probe's Chebyshev rows, then the moments view picked from the view menu, and what it says
 /// once the technique has no moments.

@@ -433,7 +433,7 @@ fn set_without_equals_sign_is_a_usage_error() {
 fn unknown_view_lists_the_views() {
     render_usage_error(
         &["--view", "sideways"],
-        &["--view", "sideways", "shadow-map", "blocker-radius", "texel-density"],
+        &["--view", "sideways", "shadow-map", "blocker-radius", "texel-density", "cascade-index"],
     );
 }
 
@@ -694,6 +694,42 @@ fn render_texel_density_of_a_floor_seen_head_on_under_a_directional_light_is_one
     let image = decode_png(&scratch.path("out.png"));
     let first = *image.get_pixel(0, 0);
     assert!(image.pixels().all(|p| *p == first), "one colour over the floor and the box");
+}
+
+/// Which colour of the cascade-index palette a pixel shows (each is darkened by the surface's
+/// lighting, to 0.65 at most; 0.6 leaves room for rounding), None for any other colour.
+fn palette_index(pixel: image::Rgba<u8>) -> Option<usize> {
+    let p = [0, 1, 2].map(|c| f32::from(pixel[c]));
+    shadowlab::views::cascade_index::PALETTE.iter().position(|(colour, _)| {
+        let c = colour.map(f32::from);
+        let shade = (0..3).map(|k| p[k] * c[k]).sum::<f32>() / (0..3).map(|k| c[k] * c[k]).sum::<f32>();
+        (0.6..=1.0).contains(&shade) && (0..3).all(|k| (p[k] - c[k] * shade).abs() <= 2.0)
+    })
+}
+
+/// The cascade-index view of the avenue under a sun with four cascades: the legend names the
+/// four colours, all four show on screen (the sharpest at the camera's feet) and no others.
+#[test]
+fn render_cascade_index_of_the_avenue_shows_four_cascades() {
+    let scratch = Scratch::new();
+    let scene = repo_path("assets/scenes/sun_avenue.toml").display().to_string();
+    let run = render(&scratch, &scene, &["--view", "cascade-index", "--size", "320x180"]);
+    assert_eq!(run.code, Some(0), "{run}");
+    assert!(run.stderr.is_empty(), "{run}");
+    assert!(run.stdout.contains("cascade index: which of the light's 4 shadow maps"), "{run}");
+    let key = "orange: cascade 1, sky blue: cascade 2, green: cascade 3, yellow: cascade 4\n";
+    assert!(run.stdout.contains(key), "{run}");
+    let image = decode_png(&scratch.path("out.png"));
+    let mut pixels = [0usize; 6];
+    for p in image.pixels() {
+        if let Some(k) = palette_index(*p) {
+            pixels[k] += 1;
+        }
+    }
+    assert!(pixels[..4].iter().all(|&n| n >= 20), "pixels per colour: {pixels:?}");
+    assert_eq!(pixels[4..], [0, 0], "only the sun's four cascades: {pixels:?}");
+    let (w, h) = image.dimensions();
+    assert_eq!(palette_index(*image.get_pixel(w / 2, h - 1)), Some(0), "cascade 1 at the camera's feet");
 }
 
 #[test]

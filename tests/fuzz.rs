@@ -610,6 +610,7 @@ const STRINGS: &[&str] = &[
     "point",
     "texel-density",
     "../assets/scenes/sun_avenue.toml",
+    "cascade-index",
     "orthographic",
     "perspective",
     "receiver_plane",

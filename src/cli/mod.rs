@@ -95,8 +95,8 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
     /// What to show: final, visibility, shadow-map, blocker-radius, penumbra, blockers,
-    /// blocker-depth, moments, texel-density, reference, error (default: final, or the lesson
-    /// step's view).
+    /// blocker-depth, moments, texel-density, cascade-index, reference, error (default: final, or
+    /// the lesson step's view).
     #[arg(long, value_parser = parse_view)]
     pub view: Option<View>,
     /// The light the debug views describe (default: 0, or the lesson step's light).

@@ -14,15 +14,14 @@ const AREA: [f32; 4] = [20.0, 56.0, 620.0, 446.0];
 /// Where the text column begins.
 const COLUMN_X: f32 = 656.0;
 
-/// One colour per cascade or cube face, as the cascade-index view colours them.
-pub const VIEW_COLORS: [ColorU8; 6] = [
-    ColorU8::from_rgba(230, 159, 0, 255),
-    ColorU8::from_rgba(86, 180, 233, 255),
-    ColorU8::from_rgba(0, 158, 115, 255),
-    ColorU8::from_rgba(204, 121, 167, 255),
-    ColorU8::from_rgba(213, 94, 0, 255),
-    ColorU8::from_rgba(0, 114, 178, 255),
-];
+/// One colour per cascade or cube face: the cascade-index view's (`views::cascade_index::PALETTE`).
+pub const VIEW_COLORS: [ColorU8; 6] =
+    [view_color(0), view_color(1), view_color(2), view_color(3), view_color(4), view_color(5)];
+
+const fn view_color(i: usize) -> ColorU8 {
+    let [r, g, b] = crate::views::cascade_index::PALETTE[i].0;
+    ColorU8::from_rgba(r, g, b, 255)
+}
 
 pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
     c.rect(AREA, Some(col(pal::BG, 1.0)), Some((col(pal::MUTED, 1.0), 2.0)));

@@ -75,7 +75,7 @@ fn legend_lines_expected(state: &AppState) -> usize {
     let view = view_kind(state);
     let of_view = match view {
         View::Final | View::ShadowMap => 0,
-        View::Moments | View::Error | View::TexelDensity => 2,
+        View::Moments | View::Error | View::TexelDensity | View::CascadeIndex => 2,
         _ => 1,
     };
     let overlays = state

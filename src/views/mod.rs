@@ -1,7 +1,9 @@
 //! Debug views as images: the camera view, the shadow term, the shadow map, PCSS heatmaps,
-//! the shadow map's texels per screen pixel, the ground truth and the error against it.
+//! the shadow map's texels per screen pixel, the map each pixel reads, the ground truth and the
+//! error against it.
 //! Heatmaps come with the value range they map.
 
+pub mod cascade_index;
 pub mod overlays;
 mod shadow_map;
 pub mod texel_density;
@@ -28,12 +30,14 @@ pub enum View {
     Moments,
     /// Shadow-map texels per screen pixel (perspective aliasing), on a log scale.
     TexelDensity,
+    /// Which of the light's shadow maps (cascade, cube face) each pixel reads, one colour each.
+    CascadeIndex,
     Reference,
     Error,
 }
 
 impl View {
-    pub const ALL: [View; 11] = [
+    pub const ALL: [View; 12] = [
         View::Final,
         View::Visibility,
         View::ShadowMap,
@@ -43,6 +47,7 @@ impl View {
         View::BlockerDepth,
         View::Moments,
         View::TexelDensity,
+        View::CascadeIndex,
         View::Reference,
         View::Error,
     ];
@@ -58,6 +63,7 @@ impl View {
             View::BlockerDepth => "blocker-depth",
             View::Moments => "moments",
             View::TexelDensity => "texel-density",
+            View::CascadeIndex => "cascade-index",
             View::Reference => "reference",
             View::Error => "error",
         }
@@ -420,6 +426,7 @@ pub fn analysis_view(
             };
             Some((image, format!("{range}\n{measured}")))
         }
+        View::CascadeIndex => Some(cascade_index::cascade_index_image(a, &light?.0.light, views, lang)),
         View::Visibility => {
             let legend = tr(lang, "visibility: black = shadowed, white = lit");
             Some((gray_image(a, |i| a.shadow[i][0]), legend.into()))

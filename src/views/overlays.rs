@@ -351,6 +351,7 @@ pub fn hidden_by_view(view: crate::views::View, overlay: Overlay) -> bool {
         | View::Blockers
         | View::BlockerDepth
         | View::TexelDensity
+        | View::CascadeIndex
         | View::Error => heat_overlay,
         View::Final | View::Visibility | View::Reference => false,
     }

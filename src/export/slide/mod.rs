@@ -52,6 +52,7 @@ pub fn view_label(view: View, lang: Lang) -> &'static str {
             View::BlockerDepth => "average blocker depth",
             View::Moments => "VSM moments",
             View::TexelDensity => "texel density",
+            View::CascadeIndex => "cascade index",
             View::Reference => "ground truth",
             View::Error => "error vs ground truth",
         },
