@@ -1043,7 +1043,7 @@ fn bench_diagrams_times_every_diagram_in_both_languages() {
         serde_json::from_str(&run.stdout).unwrap_or_else(|e| panic!("bench prints JSON ({e}):\n{run}"));
     assert_eq!(json["size"], serde_json::json!([320, 180]));
     let rows = json["rows"].as_array().expect("rows");
-    let ids = ["two-pass", "acne-bias", "pcf-kernel", "pcss", "multi-light", "chebyshev"];
+    let ids = ["two-pass", "acne-bias", "pcf-kernel", "pcss", "multi-light", "chebyshev", "shadow-views"];
     let expected: Vec<(&str, &str)> = ids.iter().flat_map(|id| [(*id, "en"), (*id, "zh")]).collect();
     let got: Vec<(&str, &str)> = rows
         .iter()

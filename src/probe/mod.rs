@@ -4,9 +4,13 @@
 use crate::render::{AnalysisPixel, Frame, FrameRequest, GpuWait, Readback, RenderError, Renderer};
 use crate::scene::{BiasMode, DepthStorage, Scene, Technique};
 use crate::shadow::DepthImage;
-use crate::shadow::{LightGpu, ShadowViewGpu, TapKind, Twin, kernels};
+use crate::shadow::{TapKind, Twin, kernels};
+
+mod view_read;
 use glam::Vec3;
 use serde::{Deserialize, Serialize};
+use view_read::cascade_probe;
+pub use view_read::{CUBE_FACE_NAMES, CascadeProbe};
 
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 pub struct TapReport {
@@ -15,20 +19,6 @@ pub struct TapReport {
     pub uv: [f32; 2],
     /// Blocker search: 1 = blocker. Filter: lit fraction of the tap.
     pub value: f32,
-}
-
-/// The cascade a lookup read: the sharpest whose map holds the point `CASCADE_BORDER_TEXELS`
-/// inside its edge (`cascade_holds`); each sharper one lands it outside that square.
-#[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-pub struct CascadeProbe {
-    /// 0 is the sharpest, nearest the camera.
-    pub index: usize,
-    pub count: usize,
-    /// The side of its map, world units, and of one texel of it.
-    pub width_world: f32,
-    pub texel_world: f32,
-    /// Where the point lands on each sharper cascade's map (uv), none of them holding it.
-    pub uv_in_sharper: Vec<[f32; 2]>,
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -179,10 +169,6 @@ pub struct Probing {
     coming: LightReadbacks,
 }
 
-/// The probed pixel's analysis and the light's map (None without lights), on their way.
-/// The cube faces by number (`scene::CUBE_FACES`), as the probe and the map panel name them.
-pub const CUBE_FACE_NAMES: [&str; 6] = ["+X", "-X", "+Y", "-Y", "+Z", "-Z"];
-
 /// The pixel's analysis and every map of the light (a point light's six faces; none without a light).
 type LightReadbacks = Readback<(AnalysisPixel, Vec<DepthImage>)>;
 
@@ -301,31 +287,6 @@ fn submit_light(
         }
     }
     Ok((rendered, here.zip(maps)))
-}
-
-/// Which of a cascaded sun's maps `view_index` is, and where the point fell on the sharper ones.
-fn cascade_probe(
-    light: &LightGpu,
-    views: &[ShadowViewGpu],
-    view_index: usize,
-    p: Vec3,
-) -> Option<CascadeProbe> {
-    let first = light.first_view as usize;
-    let view = views.get(view_index)?;
-    if light.directional == 0 || light.view_count < 2 {
-        return None;
-    }
-    let uv_in_sharper = views[first..view_index]
-        .iter()
-        .map(|v| crate::shadow::project_to_light(v, p).truncate().to_array())
-        .collect();
-    Some(CascadeProbe {
-        index: view_index - first,
-        count: light.view_count as usize,
-        width_world: view.frustum_width_world,
-        texel_world: view.frustum_width_world / view.map_size_texels,
-        uv_in_sharper,
-    })
 }
 
 /// Everything about light `light` at the probed pixel, from its frame's lights and parameters,
