@@ -72,9 +72,9 @@ fn placement(o: &crate::scene::Object) -> [f32; 12] {
 /// leaves the map alone (the light's width, a filter setting) then skips its read-back.
 #[derive(Clone, Debug, PartialEq)]
 pub(super) struct MapKey {
-    /// The shadow view's matrix and depth range (not the light's colour or size, which the map
-    /// does not see).
-    view_clip_from_world: [[f32; 4]; 4],
+    /// Every shadow view's matrix (a sun's far cascade moves while its first stays put) and the
+    /// first's depth range (not the light's colour or size, which the maps do not see).
+    view_clip_from_world: Vec<[[f32; 4]; 4]>,
     view_depth: (f32, f32, u32, f32),
     time_bits: u32,
     depth_bias: (i32, u32, bool),
@@ -84,12 +84,14 @@ pub(super) struct MapKey {
 }
 
 impl MapKey {
-    pub(super) fn new(scene: &Scene, view: &ShadowViewGpu, time_s: f32, picture_texels: u32) -> Self {
+    /// The key of the picture of a light's `views` (its first, then the rest).
+    pub(super) fn new(scene: &Scene, views: &[ShadowViewGpu], time_s: f32, picture_texels: u32) -> Self {
+        let view = views.first().copied().unwrap_or_else(bytemuck::Zeroable::zeroed);
         let objects =
             scene.objects.iter().map(|o| (std::sync::Arc::as_ptr(&o.mesh) as usize, placement(o))).collect();
         let s = &scene.shadow;
         Self {
-            view_clip_from_world: view.clip_from_world,
+            view_clip_from_world: views.iter().map(|v| v.clip_from_world).collect(),
             view_depth: (view.near, view.far, view.orthographic, view.map_size_texels),
             time_bits: time_s.to_bits(),
             depth_bias: (s.depth_bias_constant, s.depth_bias_slope.to_bits(), s.cull_front_faces),
@@ -110,7 +112,7 @@ mod tests {
         let scene = crate::scene::load_scene(&path, &[]).expect("scene");
         let key = |scene: &Scene, time_s: f32| {
             let (_, views) = crate::shadow::frame_lights(scene, 1.5, time_s, scene.lights[0].shadow_map_size);
-            MapKey::new(scene, &views[0], time_s, 1024)
+            MapKey::new(scene, &views[..1], time_s, 1024)
         };
         let base = key(&scene, 0.0);
         // The light's width and the filter do not change the map: no new read-back.
@@ -129,6 +131,12 @@ mod tests {
         let mut biased = scene.clone();
         biased.shadow.depth_bias_constant = 4;
         assert_ne!(key(&biased, 0.0), base);
+        // A sun's cascades: a view after the first that moves changes the key too.
+        let (_, views) = crate::shadow::frame_lights(&scene, 1.5, 0.0, 1024);
+        let mut cascades = vec![views[0], views[0]];
+        let before = MapKey::new(&scene, &cascades, 0.0, 1024);
+        cascades[1].clip_from_world[3][0] += 0.01;
+        assert_ne!(MapKey::new(&scene, &cascades, 0.0, 1024), before);
     }
 
     #[test]

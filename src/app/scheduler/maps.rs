@@ -62,16 +62,16 @@ impl Renderers {
         let first_views: Vec<(usize, ShadowViewGpu)> = self.a.last_frame().map_or_else(Vec::new, |f| {
             (0..f.lights.len()).filter_map(|l| f.first_view_of(l).map(|(i, v)| (i, *v))).collect()
         });
-        let map_key =
-            first_views.get(selected).map(|(_, v)| MapKey::new(&job.scene, v, job.request.time_s, texels));
+        let light_views = self.a.last_frame().and_then(|f| f.views_of(selected).map(|(_, v)| v.to_vec()));
+        let light_views = light_views.unwrap_or_default();
+        let map_key = (!light_views.is_empty())
+            .then(|| MapKey::new(&job.scene, &light_views, job.request.time_s, texels));
         let map_unchanged = map_key.is_some() && map_key == self.last_map;
         let mut to_read = VecDeque::new();
         if let Some(&(index, view)) = first_views.get(selected).filter(|_| !map_unchanged) {
-            let views = self.a.last_frame().and_then(|f| f.views_of(selected).map(|(_, v)| v.to_vec()));
-            let views = views.unwrap_or_default();
-            if views.len() > 1 {
-                let of = views.len();
-                for (i, view) in views.into_iter().enumerate() {
+            if light_views.len() > 1 {
+                let of = light_views.len();
+                for (i, view) in light_views.into_iter().enumerate() {
                     to_read.push_back((index + i, view, Picture::Tile { texels, of }));
                 }
             } else {
