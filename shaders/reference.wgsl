@@ -18,7 +18,9 @@ struct LightViewGpu {
     light: LightGpu,
     view: ShadowViewGpu,
 }
-@group(1) @binding(0) var<uniform> sample: LightViewGpu;
+// Storage, not uniform: a value that changes with every dispatch must not be a uniform that
+// a driver may inline into a new shader variant per value (src/render/layouts.rs, LightBinding).
+@group(1) @binding(0) var<storage, read> sample: LightViewGpu;
 
 @compute @workgroup_size(8, 8)
 fn cs_accumulate(@builtin(global_invocation_id) id: vec3<u32>) {

@@ -49,17 +49,43 @@ fn sampler_entry(
 
 /// Group 1 of the camera and reference shaders: light(s), params, shadow maps, compare sampler,
 /// kernel table, and for the camera (`camera_inputs`) the maps' VSM moments and the shadow views.
+/// The light a shadow lookup reads (binding 0 of the shadow inputs): every light of the frame
+/// at once, or one light sample per dispatch (the ground truth).
+#[derive(Clone, Copy)]
+enum LightBinding {
+    FrameLights,
+    /// A sample at a dynamic offset of a read-only storage buffer, not a uniform: lavapipe
+    /// compiles a new shader variant for each distinct value of a uniform that decides a branch
+    /// (directly, or through a copy used five times or more) and keeps every variant until the
+    /// pipeline is destroyed, so per-dispatch values in a uniform grow the process by the
+    /// sample. Storage loads are never inlined.
+    SamplePerDispatch,
+}
+
 fn shadow_inputs_layout(
     device: &wgpu::Device,
     label: &str,
-    dynamic_light: bool,
+    light: LightBinding,
     camera_inputs: bool,
 ) -> wgpu::BindGroupLayout {
     let all = wgpu::ShaderStages::VERTEX_FRAGMENT | wgpu::ShaderStages::COMPUTE;
     let unfilterable = wgpu::TextureSampleType::Float { filterable: false };
     let moments = texture_entry(5, all, unfilterable, wgpu::TextureViewDimension::D2Array);
+    let light_entry = match light {
+        LightBinding::FrameLights => uniform_entry(0, all, false),
+        LightBinding::SamplePerDispatch => wgpu::BindGroupLayoutEntry {
+            binding: 0,
+            visibility: wgpu::ShaderStages::COMPUTE,
+            ty: wgpu::BindingType::Buffer {
+                ty: wgpu::BufferBindingType::Storage { read_only: true },
+                has_dynamic_offset: true,
+                min_binding_size: None,
+            },
+            count: None,
+        },
+    };
     let entries = [
-        uniform_entry(0, all, dynamic_light),
+        light_entry,
         uniform_entry(1, all, false),
         texture_entry(2, all, wgpu::TextureSampleType::Depth, wgpu::TextureViewDimension::D2Array),
         sampler_entry(3, all, wgpu::SamplerBindingType::Comparison),
@@ -89,7 +115,7 @@ impl Layouts {
                 label: Some("frame"),
                 entries: &[uniform_entry(0, vf, false)],
             }),
-            lights: shadow_inputs_layout(device, "lights", false, true),
+            lights: shadow_inputs_layout(device, "lights", LightBinding::FrameLights, true),
             albedo_cache: device.create_bind_group_layout(&wgpu::BindGroupLayoutDescriptor {
                 label: Some("albedo cache"),
                 entries: &[texture_entry(
@@ -139,7 +165,12 @@ impl Layouts {
                     uniform_entry(3, wgpu::ShaderStages::COMPUTE, false),
                 ],
             }),
-            reference_light: shadow_inputs_layout(device, "reference light", true, false),
+            reference_light: shadow_inputs_layout(
+                device,
+                "reference light",
+                LightBinding::SamplePerDispatch,
+                false,
+            ),
         }
     }
 }

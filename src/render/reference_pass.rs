@@ -230,16 +230,18 @@ impl Renderer {
         // Each sample's views (a point light's six faces) into layers 0.., one after the other.
         let views_per_sample = samples.first().map_or(1, |s| reference::sample_views(light, s).len());
         let maps = ShadowMaps::new(&device, light.shadow_map_size, views_per_sample as u32);
-        let dynamic_buffer = |label: &str, count: usize| {
+        let dynamic_buffer = |label: &str, count: usize, usage: wgpu::BufferUsages| {
             device.create_buffer(&wgpu::BufferDescriptor {
                 label: Some(label),
                 size: DYNAMIC_STRIDE * count as u64,
-                usage: wgpu::BufferUsages::UNIFORM | wgpu::BufferUsages::COPY_DST,
+                usage: usage | wgpu::BufferUsages::COPY_DST,
                 mapped_at_creation: false,
             })
         };
-        let light_buffer = dynamic_buffer("reference lights", samples.len());
-        let view_buffer = dynamic_buffer("reference views", samples.len() * views_per_sample);
+        // The accumulating dispatch reads its sample from storage (layouts::LightBinding).
+        let light_buffer = dynamic_buffer("reference lights", samples.len(), wgpu::BufferUsages::STORAGE);
+        let view_buffer =
+            dynamic_buffer("reference views", samples.len() * views_per_sample, wgpu::BufferUsages::UNIFORM);
         for (i, sample) in samples.iter().enumerate() {
             let offset = i as u64 * DYNAMIC_STRIDE;
             self.queue.write_buffer(&light_buffer, offset, bytemuck::bytes_of(sample));
