@@ -172,6 +172,11 @@ pub struct BenchArgs {
     /// over the second half).
     #[arg(long, value_name = "SECONDS", requires = "app")]
     pub soak: Option<f32>,
+    /// With --soak: play this lesson step instead of the PCSS and multi-light ones (LESSON:STEP,
+    /// a lesson by id or number, its step from 1; repeat it for several, played in turn), e.g.
+    /// `--soak-lesson more-maps:1 --soak-lesson more-maps:5` for a lamp's cube and a sun's cascades.
+    #[arg(long, value_name = "LESSON:STEP", requires = "soak")]
+    pub soak_lesson: Vec<String>,
 }
 
 /// The scene `bench` measures when none is given.

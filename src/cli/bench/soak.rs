@@ -15,8 +15,8 @@ use serde::Serialize;
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
 
-/// The lessons played in turn: (id, step from 0). PCSS step 2 (blocker search, a probe) and
-/// multi-light step 4 (orbiting lights, spinning objects).
+/// The lessons played in turn unless `--soak-lesson` names others: (id, step from 0). PCSS step 2
+/// (blocker search, a probe) and multi-light step 4 (orbiting lights, spinning objects).
 const LESSONS: [(&str, usize); 2] = [("pcss", 1), ("multi-light", 3)];
 /// Overlays kept on throughout (camera-space ones, over the views that take them).
 const OVERLAYS: [Overlay; 3] = [Overlay::Penumbra, Overlay::OutsideFrustum, Overlay::LightFrustum];
@@ -25,7 +25,6 @@ const VIEWS: [View; 5] =
     [View::Final, View::Visibility, View::Penumbra, View::ShadowMap, View::BlockerRadius];
 /// The tour's stops: every lesson in every view, each played then paused for its full detail:
 /// the soak's own cycle once in each lesson and view.
-const TOUR: usize = LESSONS.len() * VIEWS.len();
 /// Playback between two pauses, seconds of wall-clock time, on the tour as after it: a tour stop
 /// must play long enough to reach its lesson's steady state (the frames and read-backs in flight
 /// while it plays), or the soak proper would count reaching it as growth.
@@ -121,6 +120,8 @@ enum Stage {
 
 struct Soak {
     app: ShadowlabApp,
+    /// The lessons played in turn: (id, step from 0).
+    lessons: Vec<(String, usize)>,
     stage: Stage,
     length: Duration,
     started: Instant,
@@ -166,8 +167,13 @@ fn second_half_trend(every_30_s: &[f64], from_s: f64, early_mb: Option<f64>) -> 
 
 impl Soak {
     fn open_lesson(&mut self, which: usize) -> Result<(), String> {
-        let (id, step) = LESSONS[which % LESSONS.len()];
-        let lesson = self.app.lessons.iter().position(|l| l.id == id).ok_or(format!("no lesson {id}"))?;
+        let (id, step) = &self.lessons[which % self.lessons.len()];
+        let lesson = self.app.lessons.iter().position(|l| l.id == *id).ok_or(format!("no lesson {id}"))?;
+        let steps = self.app.lessons[lesson].steps.len();
+        if *step >= steps {
+            return Err(format!("lesson {id} has {steps} steps; step {} asked for", step + 1));
+        }
+        let step = *step;
         self.app.go_to_step(lesson, step);
         self.app.overlays = OVERLAYS.to_vec();
         if self.app.probe_at.is_none() {
@@ -248,7 +254,7 @@ impl Soak {
                         self.stage = Stage::Touring { index, since: Instant::now(), frames_before };
                     }
                 } else if since.elapsed() > Duration::from_millis(50) && !self.app.render_pending() {
-                    if index + 1 < TOUR {
+                    if index + 1 < self.lessons.len() * VIEWS.len() {
                         self.tour(index + 1)?;
                     } else {
                         self.report.tour_s = elapsed.as_secs_f64();
@@ -363,6 +369,34 @@ impl eframe::App for Soak {
     }
 }
 
+/// `--soak-lesson ID:STEP` (a lesson by id or number, a step from 1), or the default lessons.
+fn soak_lessons(asked: &[String]) -> Result<Vec<(String, usize)>, CliError> {
+    if asked.is_empty() {
+        return Ok(LESSONS.iter().map(|(id, step)| (id.to_string(), *step)).collect());
+    }
+    asked
+        .iter()
+        .map(|text| {
+            let bad =
+                || CliError::input(format!("--soak-lesson {text}: expected LESSON:STEP, e.g. more-maps:5"));
+            let (id, step) = text.split_once(':').ok_or_else(bad)?;
+            let step: usize = step.parse().ok().filter(|s| *s >= 1).ok_or_else(bad)?;
+            let lessons = crate::lessons::load_all(&crate::lessons::default_dir())
+                .map_err(|e| CliError::input(format!("--soak-lesson: {e}")))?;
+            let lesson = crate::lessons::find(&lessons, id)
+                .map_err(|e| CliError::input(format!("--soak-lesson {text}: {e}")))?;
+            if step > lesson.steps.len() {
+                return Err(CliError::input(format!(
+                    "--soak-lesson {text}: lesson {} has {} steps",
+                    lesson.id,
+                    lesson.steps.len()
+                )));
+            }
+            Ok((lesson.id.clone(), step - 1))
+        })
+        .collect()
+}
+
 pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
     if !(5.0..=86_400.0).contains(&seconds) {
         return Err(CliError::input(format!("--soak {seconds} is out of range 5..=86400 seconds")));
@@ -376,6 +410,7 @@ pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
              it under `xvfb-run -a`",
         ));
     }
+    let lessons = soak_lessons(&args.soak_lesson)?;
     let painter = crate::ui::ui_painter();
     let outcome = Arc::new(Mutex::new(None));
     let sink = outcome.clone();
@@ -390,6 +425,7 @@ pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
             crate::ui::clear_paints_panels(&cc.egui_ctx);
             let mut soak = Soak {
                 app,
+                lessons,
                 stage: Stage::Starting,
                 length: Duration::from_secs_f32(seconds),
                 started: Instant::now(),
