@@ -395,3 +395,30 @@ impl TextRenderer {
 fn sane_px(px: f32) -> f32 {
     if px.is_finite() { px.clamp(1.0, 512.0) } else { 16.0 }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A drag puts new numbers in the labels on every frame, and a resized panel new sizes: the
+    /// shaped lines and glyph images those key stay within their bounds however long it goes on.
+    #[test]
+    fn the_caches_keyed_on_live_values_stay_bounded() {
+        let text = TextRenderer::new();
+        let mut pixmap = Pixmap::new(64, 16).expect("pixmap");
+        let style = |px| TextStyle { px, color: Color::BLACK, bold: false };
+        for k in 0..(2 * MAX_CACHED_LINES + 100) {
+            let label = format!("d_blocker = {:.3}", k as f32 * 0.001);
+            text.measure(&label, 12.0);
+            if k % 8 == 0 {
+                // Sizes as a panel being resized makes them, each with new glyph images.
+                text.draw(&mut pixmap, &label, 0.0, 12.0, style(8.0 + (k % 2048) as f32 * 0.01));
+            }
+            let engine = text.engine();
+            assert!(engine.lines.len() <= MAX_CACHED_LINES, "{} lines kept", engine.lines.len());
+            // A line's glyphs (each stamped twice) may pass the bound before the next restart.
+            let glyphs = engine.glyphs.image_cache.len();
+            assert!(glyphs <= MAX_CACHED_GLYPHS + 2 * label.len(), "{glyphs} glyph images kept");
+        }
+    }
+}
