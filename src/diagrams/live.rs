@@ -24,13 +24,16 @@ const FLAT_RATIO: f32 = 0.02;
 /// light's axis and the +Y floor. The PCF samples are the probe's filter taps turned back into
 /// unit-disk offsets, `(tap_uv - probe_uv) / filter_radius_uv`, with a tap counted as blocked
 /// when less than half of it is lit; without a probe they are the scene's kernel pattern and
-/// `sample_blocked` is empty (no results to show).
+/// `sample_blocked` is empty (no results to show). `picture_aspect` is the width / height of the
+/// camera picture the renderer fitted its cascades to (the probe's frame where there is a probe),
+/// so the shadow-views diagram draws the cascades the probe read.
 pub fn inputs_from_scene(
     scene: &Scene,
     light_index: usize,
     time_s: f32,
     probe: Option<&LightProbe>,
     normal: Option<[f32; 3]>,
+    picture_aspect: f32,
 ) -> DiagramInputs {
     let mut out = DiagramInputs {
         lights: top_views(scene, time_s),
@@ -41,7 +44,7 @@ pub fn inputs_from_scene(
         receiver_plane: scene.shadow.bias_mode == BiasMode::ReceiverPlane,
         // Only a VSM probe fills it; the diagram marks its example as one.
         vsm: None,
-        shadow_views: shadow_views(scene, light_index, time_s, probe),
+        shadow_views: shadow_views(scene, light_index, time_s, probe, picture_aspect),
         ..DiagramInputs::default()
     };
     let shadow = &scene.shadow;
@@ -172,12 +175,14 @@ pub fn inputs_from_scene(
 }
 
 /// The light's views for the shadow-views diagram: a lamp's cube, else its cascades (one for a
-/// light with one map) fitted to the camera as a 16:9 frame sees it (the lessons' frames).
+/// light with one map) fitted to the camera as a picture of `picture_aspect` sees it, as the
+/// renderer fits them (`shadow::frame_lights`).
 fn shadow_views(
     scene: &Scene,
     light_index: usize,
     time_s: f32,
     probe: Option<&LightProbe>,
+    picture_aspect: f32,
 ) -> ShadowViewsPlot {
     let Some(light) = scene.lights.get(light_index) else {
         return ShadowViewsPlot::Cascades {
@@ -205,7 +210,7 @@ fn shadow_views(
             probe_cascade: probe.map(|_| 0),
         };
     }
-    let fits = shadow::cascades::fit_cascades(light, &scene.camera, 16.0 / 9.0, time_s);
+    let fits = shadow::cascades::fit_cascades(light, &scene.camera, picture_aspect, time_s);
     let mut splits_world: Vec<f32> = fits.iter().map(|f| f.split_world.0).collect();
     splits_world.extend(fits.last().map(|f| f.split_world.1));
     ShadowViewsPlot::Cascades {
@@ -271,6 +276,43 @@ mod tests {
     use crate::probe::TapReport;
     use crate::scene::parse_scene_str;
     use std::path::Path;
+
+    /// The lessons' frames (960x540, `lessons::PROBE_FRAME`).
+    const LESSON_ASPECT: f32 = 16.0 / 9.0;
+
+    #[test]
+    fn the_cascades_drawn_are_the_ones_the_renderer_fits_at_the_pictures_aspect() {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/scenes/sun_avenue.toml");
+        let scene = crate::scene::load_scene(&path, &[]).expect("sun_avenue");
+        let map_size = scene.lights[0].shadow_map_size as f32;
+        // A wide panel, the lessons' 16:9, and a tall narrow one.
+        for aspect in [2.4, LESSON_ASPECT, 0.8] {
+            let ShadowViewsPlot::Cascades { widths_world, .. } =
+                inputs_from_scene(&scene, 0, 0.0, None, None, aspect).shadow_views
+            else {
+                panic!("a sun's cascades are drawn as cascades");
+            };
+            let (lights, views) = crate::shadow::frame_lights(&scene, aspect, 0.0, 1024);
+            let first = lights[0].first_view as usize;
+            let rendered = &views[first..first + lights[0].view_count as usize];
+            assert_eq!(widths_world.len(), rendered.len(), "aspect {aspect}");
+            for (drawn, view) in widths_world.iter().zip(rendered) {
+                // The width the probe reports, and its texel (width / map size), agree exactly.
+                assert_eq!(*drawn, view.frustum_width_world, "aspect {aspect}");
+                assert_eq!(
+                    drawn / map_size,
+                    view.frustum_width_world / view.map_size_texels,
+                    "aspect {aspect}"
+                );
+            }
+        }
+        // The aspect matters: the slices of a tall picture see less to the sides.
+        let width_at = |aspect| match inputs_from_scene(&scene, 0, 0.0, None, None, aspect).shadow_views {
+            ShadowViewsPlot::Cascades { widths_world, .. } => widths_world[3],
+            ShadowViewsPlot::Cube { .. } => f32::NAN,
+        };
+        assert!(width_at(2.4) > width_at(0.8) * 1.05, "{} vs {}", width_at(2.4), width_at(0.8));
+    }
 
     const SCENE: &str = r#"
 [camera]
@@ -365,7 +407,7 @@ normal_offset_texels = 0.5
     #[test]
     fn light_models_and_frustum_come_from_the_scene() {
         let s = scene(&[]);
-        let sun = inputs_from_scene(&s, 0, 0.0, None, None);
+        let sun = inputs_from_scene(&s, 0, 0.0, None, None, LESSON_ASPECT);
         assert!(sun.orthographic);
         assert_eq!(sun.shadow_map_size_texels, 1024);
         assert_eq!(sun.frustum_width_world, 60.0);
@@ -377,7 +419,7 @@ normal_offset_texels = 0.5
         assert!(sun.light_angle_deg.abs() < 1e-3, "{}", sun.light_angle_deg);
         assert_eq!(sun.receiver_depth_linear, 50.0);
 
-        let spot = inputs_from_scene(&s, 1, 0.0, None, None);
+        let spot = inputs_from_scene(&s, 1, 0.0, None, None, LESSON_ASPECT);
         assert!(!spot.orthographic);
         assert_eq!(spot.shadow_map_size_texels, 512);
         assert_eq!(spot.light_width_world, Some(3.0));
@@ -394,7 +436,7 @@ normal_offset_texels = 0.5
     #[test]
     fn top_view_has_every_light_and_the_solid_objects() {
         let s = scene(&[]);
-        let inp = inputs_from_scene(&s, 0, 0.0, None, None);
+        let inp = inputs_from_scene(&s, 0, 0.0, None, None, LESSON_ASPECT);
         assert_eq!(inp.lights.len(), 2);
         assert!(!inp.lights[0].spot && inp.lights[1].spot);
         assert_eq!(inp.lights[0].half_width_world, 30.0);
@@ -413,7 +455,7 @@ normal_offset_texels = 0.5
     #[test]
     fn lights_orbit_with_time() {
         let s = scene(&[("light.1.orbit_deg_per_s", "90")]);
-        let inp = inputs_from_scene(&s, 1, 1.0, None, None);
+        let inp = inputs_from_scene(&s, 1, 1.0, None, None, LESSON_ASPECT);
         let [x, z] = inp.lights[1].position_xz;
         // A quarter turn about +Y: (20, 0) goes to (0, -20).
         assert!(x.abs() < 1e-3 && (z + 20.0).abs() < 1e-3, "{x},{z}");
@@ -423,7 +465,7 @@ normal_offset_texels = 0.5
     fn probe_values_and_taps_become_the_diagram_numbers() {
         let s = scene(&[]);
         let p = probe();
-        let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), Some([0.0, 1.0, 0.0]));
+        let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), Some([0.0, 1.0, 0.0]), LESSON_ASPECT);
         assert!((inp.light_angle_deg - 60.0).abs() < 1e-3);
         assert_eq!(inp.receiver_depth_linear, 50.0);
         assert_eq!(inp.stored_depth_linear, 41.0);
@@ -445,7 +487,7 @@ normal_offset_texels = 0.5
         let s = scene(&[]);
         let mut p = probe();
         let parts = |p: &LightProbe| {
-            let inp = inputs_from_scene(&s, 0, 0.0, Some(p), None);
+            let inp = inputs_from_scene(&s, 0, 0.0, Some(p), None, LESSON_ASPECT);
             assert_eq!(inp.outside_frustum(), !p.inside_light_frustum, "{:?}", p.shadow_map_uv);
             (inp.outside_map, inp.outside_depth)
         };
@@ -465,10 +507,10 @@ normal_offset_texels = 0.5
         assert_eq!(parts(&p), (true, false));
 
         p.stored_depth_rgba8_error_ndc = Some(-0.0018);
-        let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), None);
+        let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), None, LESSON_ASPECT);
         assert_eq!(inp.stored_depth_rgba8_error_ndc, Some(-0.0018));
         assert_eq!(inp.technique, Technique::Pcf);
-        let hard = inputs_from_scene(&scene(&[("technique", "hard")]), 0, 0.0, None, None);
+        let hard = inputs_from_scene(&scene(&[("technique", "hard")]), 0, 0.0, None, None, LESSON_ASPECT);
         assert_eq!((hard.technique, hard.outside_frustum()), (Technique::Hard, false));
     }
 
@@ -476,7 +518,7 @@ normal_offset_texels = 0.5
     fn normal_gives_the_angle_without_a_probe() {
         let s = scene(&[]);
         let n = [0.0, 1.0, 1.0];
-        let inp = inputs_from_scene(&s, 0, 0.0, None, Some(n));
+        let inp = inputs_from_scene(&s, 0, 0.0, None, Some(n), LESSON_ASPECT);
         assert!((inp.light_angle_deg - 45.0).abs() < 1e-3, "{}", inp.light_angle_deg);
     }
 
@@ -485,11 +527,11 @@ normal_offset_texels = 0.5
         let s = scene(&[("technique", "pcss")]);
         let mut p = probe();
         p.avg_blocker_depth_linear = None;
-        let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), None);
+        let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), None, LESSON_ASPECT);
         assert_eq!(inp.blocker_depth_linear, None);
         p.avg_blocker_depth_linear = Some(30.0);
         p.blockers_found = 5;
-        let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), None);
+        let inp = inputs_from_scene(&s, 0, 0.0, Some(&p), None, LESSON_ASPECT);
         assert_eq!(inp.blocker_depth_linear, Some(30.0));
         assert_eq!(inp.blockers_found, 5);
     }
@@ -497,7 +539,7 @@ normal_offset_texels = 0.5
     #[test]
     fn hard_shadows_have_one_centred_sample() {
         let s = scene(&[("technique", "hard")]);
-        let inp = inputs_from_scene(&s, 0, 0.0, None, None);
+        let inp = inputs_from_scene(&s, 0, 0.0, None, None, LESSON_ASPECT);
         assert_eq!(inp.pcf_samples, vec![[0.0, 0.0]]);
         assert_eq!(inp.filter_radius_texels, 0.0);
     }
@@ -506,7 +548,7 @@ normal_offset_texels = 0.5
     fn a_scene_without_lights_is_unshadowed() {
         let no_lights = SCENE.split("[[light]]").next().unwrap_or_default().to_string() + "\n[shadow]\n";
         let s = parse_scene_str(&no_lights, Path::new("."), "t.toml", &[]).expect("scene");
-        let inp = inputs_from_scene(&s, 0, 0.0, None, None);
+        let inp = inputs_from_scene(&s, 0, 0.0, None, None, LESSON_ASPECT);
         assert!(inp.lights.is_empty());
         assert_eq!(inp.visibility, 1.0);
         assert!(inp.pcf_samples.is_empty());

@@ -157,7 +157,10 @@ pub fn render_step(
     };
     let light_probe = report.as_ref().and_then(|r| r.lights.iter().find(|l| l.light == light));
     let normal = report.as_ref().and_then(|r| r.normal);
-    let inputs = live::inputs_from_scene(scene, light, time_s, light_probe, normal);
+    // The slide's picture and its probe render at PROBE_FRAME's shape; the diagram fits the
+    // cascades as they did.
+    let aspect = PROBE_FRAME.0 as f32 / PROBE_FRAME.1 as f32;
+    let inputs = live::inputs_from_scene(scene, light, time_s, light_probe, normal, aspect);
 
     let rendered = views::render_view_measured(renderer, scene, view, light, time_s, size, lang)?;
     let (mut camera, mut camera_summary) = (rendered.image, rendered.summary);

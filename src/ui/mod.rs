@@ -406,6 +406,7 @@ impl eframe::App for ShadowlabApp {
         if self.state.panel_visible(lessons::Panel::Diagram)
             || self.state.panel_visible(lessons::Panel::KernelPlot)
         {
+            self.diagram_panel.picture_px = self.render.shown.size;
             if self.state.present {
                 egui::Panel::bottom("diagrams (present)")
                     .resizable(false)

@@ -14,6 +14,8 @@ pub struct DiagramPanel {
     diagram: Option<(egui::TextureHandle, DiagramKey)>,
     /// Size of the smallest text in the diagram on screen, points.
     pub smallest_diagram_text_pt: Option<f32>,
+    /// The camera picture shown, pixels (the app sets it before each frame's `ui`).
+    pub picture_px: (u32, u32),
 }
 
 /// What a diagram texture was drawn from: kind, live inputs, language and size in pixels.
@@ -26,15 +28,21 @@ struct DiagramKey {
     present: bool,
 }
 
-fn live_inputs(state: &AppState) -> DiagramInputs {
+/// The diagrams' inputs; `picture_px` is the camera picture shown (its shape is what the
+/// renderer fitted a sun's cascades to).
+fn live_inputs(state: &AppState, picture_px: (u32, u32)) -> DiagramInputs {
     let probe = state.probe.as_ref();
     let light_probe = probe.and_then(|p| p.lights.iter().find(|l| l.light == state.selected_light));
+    // The probe's own frame where there is a probe: its cascade is the one the text quotes.
+    let (width, height) = probe.map_or(picture_px, |p| (p.size[0], p.size[1]));
+    let aspect = if width > 0 && height > 0 { width as f32 / height as f32 } else { 16.0 / 9.0 };
     diagrams::live::inputs_from_scene(
         &state.scene,
         state.selected_light,
         state.time_s,
         light_probe,
         probe.and_then(|p| p.normal),
+        aspect,
     )
 }
 
@@ -99,7 +107,7 @@ impl DiagramPanel {
         let size_px = ((w * ppp).max(32.0) as u32, (h * ppp).max(18.0) as u32);
         let key = DiagramKey {
             kind: state.diagram,
-            inputs: live_inputs(state),
+            inputs: live_inputs(state, self.picture_px),
             lang: state.lang,
             size_px,
             present: state.present,
