@@ -4,7 +4,8 @@
 // formula in both.
 //
 // Units: `depth_ndc` is what the map stores (0..1); `depth_linear` is world units from the light
-// along its axis; `_uv` is shadow-map uv (0..1 over the shadow view's map); `_texels` is map texels.
+// along its axis (a cube face: the straight distance to the light); `_uv` is shadow-map uv (0..1
+// over the shadow view's map); `_texels` is map texels.
 
 // ---------------------------------------------------------------- sample patterns
 

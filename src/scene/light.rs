@@ -1,7 +1,8 @@
 //! Shadow-casting lights and the geometry of their shadow maps.
 //!
 //! Depth conventions (wgpu, depth range 0..1 [WebGPU-Coordinates]; docs/REFERENCES.md, Notation):
-//! - `d` / `depth_linear`: distance from the light along its axis, world units.
+//! - `d` / `depth_linear`: distance from the light along its axis (a point light's cube face: the
+//!   straight distance to the light, which the face stores), world units.
 //! - `z` / `depth_ndc`: what the shadow map stores. Orthographic: `z = (d - near) / (far - near)`.
 //!   Perspective: `z = far * (d - near) / (d * (far - near))`, so `d = near*far / (far - z*(far - near))`.
 
@@ -54,7 +55,7 @@ pub const MAX_CASCADES: u32 = 4;
 pub struct Cascades {
     /// Maps, sharpest first; 1 is the one map of `LightKind::Directional::extent_world`.
     pub count: u32,
-    /// The split scheme: 0 uniform, 1 logarithmic, between a blend [Zhang-2006].
+    /// The split scheme: 0 uniform, 1 logarithmic, between a blend [Zhang-2006] [Zhang-2007].
     pub lambda: f32,
     /// Where the last cascade ends along the camera's view axis, world units (at most its far plane).
     pub distance_world: f32,

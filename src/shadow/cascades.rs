@@ -8,8 +8,8 @@ use crate::scene::{Camera, Light, Projection};
 use glam::{Mat4, Vec3};
 
 /// The distances (world units along the camera's view axis) where `count` cascades begin and
-/// end over `near..far`: `count + 1` values, the practical split scheme of [Zhang-2006]
-/// d_i = lambda n (f / n)^(i / N) + (1 - lambda) (n + (f - n) i / N).
+/// end over `near..far`: `count + 1` values, the practical split scheme of [Zhang-2006], weighted
+/// as [Zhang-2007] states it: d_i = lambda n (f / n)^(i / N) + (1 - lambda) (n + (f - n) i / N).
 /// lambda = 0 splits uniformly, 1 logarithmically (equal ratios: the same texels per pixel in each).
 pub fn split_distances(near: f32, far: f32, count: u32, lambda: f32) -> Vec<f32> {
     let n = near.max(1e-4);
