@@ -1348,6 +1348,11 @@ fn bench_soak_plays_the_lessons_in_the_real_window_and_keeps_moving() {
 fn bench_soak_needs_the_window_and_a_sensible_length() {
     let run = shadowlab(&["bench", "--app", "--soak", "60"]);
     assert_bad_input(&run, &["--soak", "--window"]);
+    // A lesson step that does not exist is named before any window opens.
+    let run = shadowlab(&["bench", "--app", "--window", "--soak", "60", "--soak-lesson", "more-maps:9"]);
+    assert_bad_input(&run, &["--soak-lesson more-maps:9", "6 steps"]);
+    let run = shadowlab(&["bench", "--app", "--window", "--soak", "60", "--soak-lesson", "more-maps"]);
+    assert_bad_input(&run, &["--soak-lesson more-maps", "LESSON:STEP"]);
     let run = shadowlab(&["bench", "--app", "--window", "--soak", "1"]);
     assert_bad_input(&run, &["--soak 1", "out of range"]);
 }

@@ -40,6 +40,10 @@ const EARLY: Duration = Duration::from_secs(60);
 const QUIET: f64 = 60.0;
 /// Memory is judged on soaks at least this long (shorter ones are all start-up).
 const JUDGE_MEMORY_FROM: Duration = Duration::from_secs(120);
+/// A judged soak's readings after its baseline: three 30-second readings for the trend.
+const JUDGED_SPAN: Duration = Duration::from_secs(90);
+/// How long past its length a judged soak waits for that before it fails.
+const JUDGE_WAIT_LIMIT: Duration = Duration::from_secs(600);
 /// Over the soak's second half, memory may grow this much (the least-squares trend of the
 /// 30-second readings, as a share of the early reading): one late reading is noise, a trend is
 /// a leak.
@@ -72,7 +76,8 @@ pub struct SoakReport {
     /// The least-squares trend of the readings over the second half of the soak (those after
     /// the early reading), as growth over that span / early: what is judged.
     pub rss_trend_second_half: Option<f64>,
-    /// Resident memory every 30 s of the soak, MB.
+    /// Resident memory every 30 s of the soak, MB: each the least of the samples taken every 2 s
+    /// over the 30 s before it (as are the early, 60-second and end readings).
     pub rss_every_30_s_mb: Vec<f64>,
     /// Specialised pipelines built by then (each cached for good: memory grows with them).
     pub pipelines_every_30_s: Vec<u64>,
@@ -130,8 +135,18 @@ struct Soak {
     report: SoakReport,
     last_time: f32,
     pipelines_seen: u64,
+    /// Memory sampled every `SAMPLE_EVERY` over the last `FLOOR_WINDOW`: (seconds in, MB).
+    samples: std::collections::VecDeque<(f64, f64)>,
+    last_sample: Option<Instant>,
     outcome: Arc<Mutex<Option<Result<SoakReport, String>>>>,
 }
+
+/// Memory is sampled this often, and each reading the soak reports and judges is the least of
+/// the samples over the `FLOOR_WINDOW` before it: read-backs and depth maps in flight (4-48 MB
+/// each) come and go between samples, what the process holds stays in the floor, and a leak
+/// raises it. A single sample swung the 30-second readings by up to 40 MB (10%).
+const SAMPLE_EVERY: Duration = Duration::from_secs(2);
+const FLOOR_WINDOW: f64 = 30.0;
 
 /// Resident memory of this process, MB (Linux), once freed memory is handed back: what the
 /// process holds, whenever within the app's 2 s between two hand-backs it is read.
@@ -166,6 +181,34 @@ fn second_half_trend(every_30_s: &[f64], from_s: f64, early_mb: Option<f64>) -> 
 }
 
 impl Soak {
+    /// Take a memory sample where one is due, keeping those of the last `FLOOR_WINDOW`.
+    fn sample_memory(&mut self, elapsed_s: f64) {
+        if self.last_sample.is_some_and(|t| t.elapsed() < SAMPLE_EVERY) {
+            return;
+        }
+        self.last_sample = Some(Instant::now());
+        if let Some(mb) = rss_mb() {
+            self.samples.push_back((elapsed_s, mb));
+        }
+        while self.samples.front().is_some_and(|&(t, _)| t < elapsed_s - FLOOR_WINDOW) {
+            self.samples.pop_front();
+        }
+    }
+
+    /// A soak long enough to be judged on memory goes on past its length until `JUDGED_SPAN`
+    /// of readings follow the baseline (taken once the tour is over and no pipeline has been
+    /// built for a minute, however long a slow machine takes to get there).
+    fn judged_long_enough(&self, elapsed: Duration) -> bool {
+        self.length < JUDGE_MEMORY_FROM
+            || (self.report.rss_early_mb.is_some()
+                && elapsed.as_secs_f64() >= self.report.rss_early_at_s + JUDGED_SPAN.as_secs_f64())
+    }
+
+    /// The least memory sampled over the last `FLOOR_WINDOW`, MB.
+    fn memory_floor_mb(&self) -> Option<f64> {
+        self.samples.iter().map(|&(_, mb)| mb).reduce(f64::min)
+    }
+
     fn open_lesson(&mut self, which: usize) -> Result<(), String> {
         let (id, step) = &self.lessons[which % self.lessons.len()];
         let lesson = self.app.lessons.iter().position(|l| l.id == *id).ok_or(format!("no lesson {id}"))?;
@@ -213,18 +256,19 @@ impl Soak {
 
     fn advance(&mut self) -> Result<(), String> {
         let elapsed = self.started.elapsed();
+        self.sample_memory(elapsed.as_secs_f64());
         // The first reading comes a minute in, once the tour has shown every lesson in every
-        // view and no pipeline has been built for a minute (later on a slower machine, at three
-        // quarters of the soak at the latest); on a soak too short to judge memory by, at half
-        // of it.
+        // view and no pipeline has been built for a minute (later on a slower machine: the soak
+        // goes on until it has been judged, `judged_long_enough`); on a soak too short to judge
+        // memory by, at half of it.
         let quiet = elapsed.as_secs_f64() - self.report.last_new_pipeline_at_s >= QUIET;
-        let warm = (self.report.tour_s > 0.0 && elapsed >= EARLY && quiet) || elapsed >= self.length * 3 / 4;
+        let warm = self.report.tour_s > 0.0 && elapsed >= EARLY && quiet;
         if self.report.rss_at_60_s_mb.is_none() && elapsed >= EARLY {
-            self.report.rss_at_60_s_mb = rss_mb();
+            self.report.rss_at_60_s_mb = self.memory_floor_mb();
         }
         let early_due = if self.length >= JUDGE_MEMORY_FROM { warm } else { elapsed >= self.length / 2 };
         if elapsed.as_secs_f64() >= 30.0 * (self.report.rss_every_30_s_mb.len() + 1) as f64 {
-            self.report.rss_every_30_s_mb.extend(rss_mb());
+            self.report.rss_every_30_s_mb.extend(self.memory_floor_mb());
             self.report.pipelines_every_30_s.push(crate::render::pipelines_built());
         }
         let pipelines = crate::render::pipelines_built();
@@ -234,7 +278,7 @@ impl Soak {
             self.report.rss_at_last_new_pipeline_mb = rss_mb();
         }
         if self.report.rss_early_mb.is_none() && early_due {
-            self.report.rss_early_mb = rss_mb();
+            self.report.rss_early_mb = self.memory_floor_mb();
             self.report.rss_early_at_s = elapsed.as_secs_f64();
         }
         match self.stage {
@@ -293,7 +337,16 @@ impl Soak {
                     }
                     self.report.full_detail_frames += 1;
                     // However slow the machine, a soak goes through one view switch at least.
-                    if elapsed >= self.length && self.cycle >= 1 {
+                    if elapsed >= self.length + JUDGE_WAIT_LIMIT && !self.judged_long_enough(elapsed) {
+                        return Err(format!(
+                            "memory could not be judged: {:.0} s in, a pipeline was last built {:.0} s in and \
+                             the baseline waits a minute after the last (the machine is too slow for this \
+                             soak, or pipelines keep being made)",
+                            elapsed.as_secs_f64(),
+                            self.report.last_new_pipeline_at_s
+                        ));
+                    }
+                    if elapsed >= self.length && self.cycle >= 1 && self.judged_long_enough(elapsed) {
                         self.stage = Stage::Done;
                         return Ok(());
                     }
@@ -321,7 +374,7 @@ impl Soak {
             let mut report = std::mem::take(&mut self.report);
             report.seconds = self.started.elapsed().as_secs_f64();
             report.frames_rendered = self.app.frames_shown();
-            report.rss_end_mb = rss_mb();
+            report.rss_end_mb = self.memory_floor_mb();
             let trims = crate::ui::trim_stats();
             report.pages_returned = trims.calls;
             report.pages_returned_total_ms = trims.total_ms;
@@ -404,13 +457,13 @@ pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
     if !args.window {
         return Err(CliError::input("--soak plays in the real window: add --window"));
     }
+    let lessons = soak_lessons(&args.soak_lesson)?;
     if !crate::ui::display_available() {
         return Err(CliError::input(
             "bench --app --window --soak: no display found (DISPLAY and WAYLAND_DISPLAY are unset); run \
              it under `xvfb-run -a`",
         ));
     }
-    let lessons = soak_lessons(&args.soak_lesson)?;
     let painter = crate::ui::ui_painter();
     let outcome = Arc::new(Mutex::new(None));
     let sink = outcome.clone();
@@ -434,6 +487,8 @@ pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
                 report: SoakReport { painter: format!("{painter} (window)"), ..Default::default() },
                 last_time: 0.0,
                 pipelines_seen: 0,
+                samples: Default::default(),
+                last_sample: None,
                 outcome: sink,
             };
             soak.open_lesson(0)?;
