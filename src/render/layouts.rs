@@ -47,8 +47,6 @@ fn sampler_entry(
     wgpu::BindGroupLayoutEntry { binding, visibility, ty: wgpu::BindingType::Sampler(ty), count: None }
 }
 
-/// Group 1 of the camera and reference shaders: light(s), params, shadow maps, compare sampler,
-/// kernel table, and for the camera (`camera_inputs`) the maps' VSM moments and the shadow views.
 /// The light a shadow lookup reads (binding 0 of the shadow inputs): every light of the frame
 /// at once, or one light sample per dispatch (the ground truth).
 #[derive(Clone, Copy)]
@@ -62,6 +60,8 @@ enum LightBinding {
     SamplePerDispatch,
 }
 
+/// Group 1 of the camera and reference shaders: light(s), params, shadow maps, compare sampler,
+/// kernel table, and for the camera (`camera_inputs`) the maps' VSM moments and the shadow views.
 fn shadow_inputs_layout(
     device: &wgpu::Device,
     label: &str,

@@ -23,8 +23,6 @@ const OVERLAYS: [Overlay; 3] = [Overlay::Penumbra, Overlay::OutsideFrustum, Over
 /// The views gone through, one per cycle.
 const VIEWS: [View; 5] =
     [View::Final, View::Visibility, View::Penumbra, View::ShadowMap, View::BlockerRadius];
-/// The tour's stops: every lesson in every view, each played then paused for its full detail:
-/// the soak's own cycle once in each lesson and view.
 /// Playback between two pauses, seconds of wall-clock time, on the tour as after it: a tour stop
 /// must play long enough to reach its lesson's steady state (the frames and read-backs in flight
 /// while it plays), or the soak proper would count reaching it as growth.
@@ -209,13 +207,11 @@ impl Soak {
         self.samples.iter().map(|&(_, mb)| mb).reduce(f64::min)
     }
 
+    /// Open the `which`th of the lessons played in turn (the tour's stops are every lesson in
+    /// every view; `soak_lessons` checked each step exists).
     fn open_lesson(&mut self, which: usize) -> Result<(), String> {
         let (id, step) = &self.lessons[which % self.lessons.len()];
         let lesson = self.app.lessons.iter().position(|l| l.id == *id).ok_or(format!("no lesson {id}"))?;
-        let steps = self.app.lessons[lesson].steps.len();
-        if *step >= steps {
-            return Err(format!("lesson {id} has {steps} steps; step {} asked for", step + 1));
-        }
         let step = *step;
         self.app.go_to_step(lesson, step);
         self.app.overlays = OVERLAYS.to_vec();
@@ -427,6 +423,8 @@ fn soak_lessons(asked: &[String]) -> Result<Vec<(String, usize)>, CliError> {
     if asked.is_empty() {
         return Ok(LESSONS.iter().map(|(id, step)| (id.to_string(), *step)).collect());
     }
+    let lessons = crate::lessons::load_all(&crate::lessons::default_dir())
+        .map_err(|e| CliError::input(format!("--soak-lesson: {e}")))?;
     asked
         .iter()
         .map(|text| {
@@ -434,8 +432,6 @@ fn soak_lessons(asked: &[String]) -> Result<Vec<(String, usize)>, CliError> {
                 || CliError::input(format!("--soak-lesson {text}: expected LESSON:STEP, e.g. more-maps:5"));
             let (id, step) = text.split_once(':').ok_or_else(bad)?;
             let step: usize = step.parse().ok().filter(|s| *s >= 1).ok_or_else(bad)?;
-            let lessons = crate::lessons::load_all(&crate::lessons::default_dir())
-                .map_err(|e| CliError::input(format!("--soak-lesson: {e}")))?;
             let lesson = crate::lessons::find(&lessons, id)
                 .map_err(|e| CliError::input(format!("--soak-lesson {text}: {e}")))?;
             if step > lesson.steps.len() {
