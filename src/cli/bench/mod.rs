@@ -13,6 +13,8 @@ mod offscreen;
 mod session;
 #[cfg(feature = "bench-app")]
 mod soak;
+#[cfg(feature = "bench-app")]
+mod soak_memory;
 mod techniques;
 #[cfg(feature = "bench-app")]
 mod window;

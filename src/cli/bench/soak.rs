@@ -7,6 +7,7 @@
 //! minute, and fails where the scene stopped moving or memory trends up over the second half.
 
 use super::session::{SETTLE_LIMIT, WINDOW};
+use super::soak_memory::{MemoryFloor, rss_mb, second_half_trend};
 use crate::cli::{BenchArgs, CliError};
 use crate::ui::{PLAYBACK_RANGE_S, Settings, ShadowlabApp, app_for_test};
 use crate::views::View;
@@ -133,66 +134,11 @@ struct Soak {
     report: SoakReport,
     last_time: f32,
     pipelines_seen: u64,
-    /// Memory sampled every `SAMPLE_EVERY` over the last `FLOOR_WINDOW`: (seconds in, MB).
-    samples: std::collections::VecDeque<(f64, f64)>,
-    last_sample: Option<Instant>,
+    memory: MemoryFloor,
     outcome: Arc<Mutex<Option<Result<SoakReport, String>>>>,
 }
 
-/// Memory is sampled this often, and each reading the soak reports and judges is the least of
-/// the samples over the `FLOOR_WINDOW` before it: read-backs and depth maps in flight (4-48 MB
-/// each) come and go between samples, what the process holds stays in the floor, and a leak
-/// raises it. A single sample swung the 30-second readings by up to 40 MB (10%).
-const SAMPLE_EVERY: Duration = Duration::from_secs(2);
-const FLOOR_WINDOW: f64 = 30.0;
-
-/// Resident memory of this process, MB (Linux), once freed memory is handed back: what the
-/// process holds, whenever within the app's 2 s between two hand-backs it is read.
-fn rss_mb() -> Option<f64> {
-    crate::ui::return_free_pages();
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmRSS:"))?;
-    let kb: f64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb / 1024.0)
-}
-
-/// The least-squares trend of the 30-second readings (`every_30_s[i]` taken 30 (i + 1) s in)
-/// from `from_s` on, as the growth it gives over their span, a share of `early_mb`; None with
-/// fewer than three readings.
-fn second_half_trend(every_30_s: &[f64], from_s: f64, early_mb: Option<f64>) -> Option<f64> {
-    let points: Vec<(f64, f64)> = every_30_s
-        .iter()
-        .enumerate()
-        .map(|(i, &mb)| (30.0 * (i + 1) as f64, mb))
-        .filter(|&(t, _)| t >= from_s)
-        .collect();
-    let early = early_mb.filter(|e| *e > 0.0)?;
-    if points.len() < 3 {
-        return None;
-    }
-    let n = points.len() as f64;
-    let (mt, mm) = points.iter().fold((0.0, 0.0), |(a, b), (t, m)| (a + t / n, b + m / n));
-    let (cov, var) =
-        points.iter().fold((0.0, 0.0), |(c, v), (t, m)| (c + (t - mt) * (m - mm), v + (t - mt) * (t - mt)));
-    let span = points[points.len() - 1].0 - points[0].0;
-    Some(cov / var * span / early)
-}
-
 impl Soak {
-    /// Take a memory sample where one is due, keeping those of the last `FLOOR_WINDOW`.
-    fn sample_memory(&mut self, elapsed_s: f64) {
-        if self.last_sample.is_some_and(|t| t.elapsed() < SAMPLE_EVERY) {
-            return;
-        }
-        self.last_sample = Some(Instant::now());
-        if let Some(mb) = rss_mb() {
-            self.samples.push_back((elapsed_s, mb));
-        }
-        while self.samples.front().is_some_and(|&(t, _)| t < elapsed_s - FLOOR_WINDOW) {
-            self.samples.pop_front();
-        }
-    }
-
     /// A soak long enough to be judged on memory goes on past its length until `JUDGED_SPAN`
     /// of readings follow the baseline (taken once the tour is over and no pipeline has been
     /// built for a minute, however long a slow machine takes to get there).
@@ -200,11 +146,6 @@ impl Soak {
         self.length < JUDGE_MEMORY_FROM
             || (self.report.rss_early_mb.is_some()
                 && elapsed.as_secs_f64() >= self.report.rss_early_at_s + JUDGED_SPAN.as_secs_f64())
-    }
-
-    /// The least memory sampled over the last `FLOOR_WINDOW`, MB.
-    fn memory_floor_mb(&self) -> Option<f64> {
-        self.samples.iter().map(|&(_, mb)| mb).reduce(f64::min)
     }
 
     /// Open the `which`th of the lessons played in turn (the tour's stops are every lesson in
@@ -252,7 +193,7 @@ impl Soak {
 
     fn advance(&mut self) -> Result<(), String> {
         let elapsed = self.started.elapsed();
-        self.sample_memory(elapsed.as_secs_f64());
+        self.memory.sample(elapsed.as_secs_f64());
         // The first reading comes a minute in, once the tour has shown every lesson in every
         // view and no pipeline has been built for a minute (later on a slower machine: the soak
         // goes on until it has been judged, `judged_long_enough`); on a soak too short to judge
@@ -260,11 +201,11 @@ impl Soak {
         let quiet = elapsed.as_secs_f64() - self.report.last_new_pipeline_at_s >= QUIET;
         let warm = self.report.tour_s > 0.0 && elapsed >= EARLY && quiet;
         if self.report.rss_at_60_s_mb.is_none() && elapsed >= EARLY {
-            self.report.rss_at_60_s_mb = self.memory_floor_mb();
+            self.report.rss_at_60_s_mb = self.memory.floor_mb();
         }
         let early_due = if self.length >= JUDGE_MEMORY_FROM { warm } else { elapsed >= self.length / 2 };
         if elapsed.as_secs_f64() >= 30.0 * (self.report.rss_every_30_s_mb.len() + 1) as f64 {
-            self.report.rss_every_30_s_mb.extend(self.memory_floor_mb());
+            self.report.rss_every_30_s_mb.extend(self.memory.floor_mb());
             self.report.pipelines_every_30_s.push(crate::render::pipelines_built());
         }
         let pipelines = crate::render::pipelines_built();
@@ -274,7 +215,7 @@ impl Soak {
             self.report.rss_at_last_new_pipeline_mb = rss_mb();
         }
         if self.report.rss_early_mb.is_none() && early_due {
-            self.report.rss_early_mb = self.memory_floor_mb();
+            self.report.rss_early_mb = self.memory.floor_mb();
             self.report.rss_early_at_s = elapsed.as_secs_f64();
         }
         match self.stage {
@@ -370,7 +311,7 @@ impl Soak {
             let mut report = std::mem::take(&mut self.report);
             report.seconds = self.started.elapsed().as_secs_f64();
             report.frames_rendered = self.app.frames_shown();
-            report.rss_end_mb = self.memory_floor_mb();
+            report.rss_end_mb = self.memory.floor_mb();
             let trims = crate::ui::trim_stats();
             report.pages_returned = trims.calls;
             report.pages_returned_total_ms = trims.total_ms;
@@ -483,8 +424,7 @@ pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
                 report: SoakReport { painter: format!("{painter} (window)"), ..Default::default() },
                 last_time: 0.0,
                 pipelines_seen: 0,
-                samples: Default::default(),
-                last_sample: None,
+                memory: MemoryFloor::default(),
                 outcome: sink,
             };
             soak.open_lesson(0)?;
@@ -535,23 +475,4 @@ pub fn run(args: &BenchArgs, seconds: f32) -> Result<(), CliError> {
         });
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::second_half_trend;
-
-    #[test]
-    fn a_flat_second_half_holds_whatever_its_noise_and_a_steady_rise_is_measured() {
-        // Start-up growth before the second half does not count; noise around a flat line does
-        // not add up to a trend.
-        let flat = [300.0, 330.0, 355.0, 349.0, 367.0, 352.0, 360.0, 351.0, 366.0, 355.0];
-        let g = second_half_trend(&flat, 150.0, Some(349.0)).expect("a trend");
-        assert!(g.abs() < 0.05, "{g}");
-        // 10 MB a minute over 3 minutes of 300 MB: +10%.
-        let rising: Vec<f64> = (0..10).map(|i| 300.0 + 5.0 * i as f64).collect();
-        let g = second_half_trend(&rising, 120.0, Some(300.0)).expect("a trend");
-        assert!((g - 0.1).abs() < 1e-9, "{g}");
-        assert_eq!(second_half_trend(&rising[..4], 90.0, Some(300.0)), None);
-    }
 }
