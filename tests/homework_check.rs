@@ -419,6 +419,23 @@ fn bad_shaders_are_one_line_errors_on_their_line_and_an_endless_loop_ends() {
             "NaN",
         ),
         ("nested too deep", source.replacen("  float lit = 0.0;", &deep, 1), "float lit = ((", "nested"),
+        // What WebGL 1 refuses and GLSL 450 accepts: refused as the student's browser refused it.
+        (
+            "an int where WebGL wants a float",
+            source.replacen("lit / float(PCF_NUM_SAMPLES)", "lit / PCF_NUM_SAMPLES", 1),
+            "lit / PCF_NUM_SAMPLES",
+            "WebGL 1 refuses this: `NUM_SAMPLES` (#define NUM_SAMPLES 32",
+        ),
+        (
+            "a while loop",
+            source.replacen(
+                "  float lit = 0.0;",
+                "  float lit = 0.0;\n  while (lit > 1.0) { lit -= 1.0; }",
+                1,
+            ),
+            "while (lit",
+            "`while` loop",
+        ),
     ];
     let scratch = tempfile::tempdir().expect("a scratch folder");
     for (what, text, at, says) in cases {

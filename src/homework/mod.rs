@@ -34,6 +34,7 @@ mod session;
 pub mod student_light;
 pub mod submission;
 mod translate;
+mod webgl1;
 
 pub use figures::Figures;
 pub use findings::{Finding, Severity};

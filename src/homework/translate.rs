@@ -19,6 +19,8 @@ pub fn translate(
     stage: Stage,
     layout: &Interface,
 ) -> Result<Translated, HomeworkError> {
+    // What the browser refuses is refused first, as the student saw it refused.
+    super::webgl1::check_source(file, source, stage)?;
     let rewritten = rewrite(source, stage, layout).map_err(|e| e.in_file(file))?;
     with_deep_stack(file, || translate_rewritten(file, rewritten))
 }
@@ -87,6 +89,11 @@ pub fn translate_rewritten(file: &str, rewritten: Rewritten) -> Result<Translate
     if !rewritten.has_main {
         return Err(no_main(file, glsl, rewritten.prelude_lines));
     }
+    let student_lines =
+        glsl.lines().count().saturating_sub(rewritten.prelude_lines + rewritten.epilogue_lines);
+    let student_line = |l: usize| rewritten.student_line(l).filter(|s| *s <= student_lines);
+    let text = super::webgl1::Text { glsl, student_line: &student_line };
+    super::webgl1::check_conversions(file, &module, &text)?;
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),
         naga::valid::Capabilities::default(),
@@ -104,6 +111,7 @@ pub fn translate_rewritten(file: &str, rewritten: Rewritten) -> Result<Translate
         }
         error(e.location(glsl), message)
     })?;
+    super::webgl1::check_builtins(file, &module, &info, &text)?;
 
     let wgsl = naga::back::wgsl::write_string(&module, &info, naga::back::wgsl::WriterFlags::empty())
         .map_err(|e| error(None, format!("cannot write WGSL: {e}")))?;
