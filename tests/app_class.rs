@@ -5,24 +5,32 @@
 
 use egui_kittest::Harness;
 use egui_kittest::kittest::Queryable;
+use shadowlab::i18n::Lang;
 use shadowlab::ui::{Settings, ShadowlabApp, app_for_test};
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 fn harness() -> Harness<'static, ShadowlabApp> {
+    harness_at([1600.0, 900.0], Lang::En)
+}
+
+fn harness_at(size: [f32; 2], lang: Lang) -> Harness<'static, ShadowlabApp> {
     let mut setup = egui_kittest::wgpu::default_wgpu_setup();
     if let eframe::egui_wgpu::WgpuSetup::CreateNew(create) = setup {
         setup = eframe::egui_wgpu::WgpuSetup::CreateNew(shadowlab::ui::configure_wgpu(create));
     }
-    let settings = Settings { show_timings: false, ..Settings::default() };
+    let settings = Settings { show_timings: false, lang, ..Settings::default() };
     let mut h = Harness::builder()
-        .with_size([1600.0, 900.0])
+        .with_size(size)
         .wgpu_setup(setup)
         .build_eframe(move |cc| app_for_test(cc, settings.clone()));
     // The class is checked by the program itself (the test binary is not it).
     h.state_mut().class_checker = Some(PathBuf::from(env!("CARGO_BIN_EXE_shadowlab")));
     h
 }
+
+/// A finding as a student reads it: its id, its figures by name, its explanation.
+type Said = (String, Vec<(String, Option<f64>)>, String);
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("assets/homework").join(name))
@@ -99,9 +107,33 @@ fn a_class_folder_opens_as_its_ranked_findings_and_each_student_is_a_click_away(
     settle_check(&mut h);
     let homework = h.state().homework.as_ref().expect("bob's homework");
     assert_eq!(homework.path, class.join("bob"));
-    let found: Vec<&str> =
-        homework.outcome.as_ref().expect("a check").report.findings.iter().map(|f| f.id).collect();
+    let outcome = homework.outcome.as_ref().expect("a check");
+    let found: Vec<&str> = outcome.report.findings.iter().map(|f| f.id).collect();
     assert_eq!(found, ["receiver_counts_as_blocker"]);
+    // The same findings, with the same numbers, as the command line's check of the same folder
+    // (the class report's): judged at the command line's size whatever the panel's, the
+    // pictures shown scaled into the panel.
+    let class_row = &h.state().class.as_ref().expect("the class").rows[1];
+    let by_cli = class_row.report.as_ref().expect("bob's report");
+    let said_by_cli: Vec<Said> = by_cli
+        .findings
+        .iter()
+        .map(|f| {
+            (f.id.clone(), f.figures.iter().map(|(k, v)| (k.clone(), *v)).collect(), f.explanation.clone())
+        })
+        .collect();
+    let said_in_app: Vec<Said> = outcome
+        .report
+        .findings
+        .iter()
+        .map(|f| {
+            let figures =
+                f.figures.iter().map(|(k, v)| (k.to_string(), v.is_finite().then_some(*v))).collect();
+            (f.id.to_string(), figures, f.explanation.clone())
+        })
+        .collect();
+    assert_eq!(said_in_app, said_by_cli);
+    assert_eq!((outcome.student.width, outcome.student.height), shadowlab::homework::CHECK_SIZE);
     h.get_by_label("Your homework");
 
     // The homework panel leads back to the class.
@@ -131,4 +163,36 @@ fn a_class_folder_without_submissions_is_refused_and_the_scene_kept() {
     let error = h.state().error.as_ref().expect("an error");
     assert!(error.to_string().contains("empty"), "{error}");
     assert_eq!(h.state().scene.path, scene);
+}
+
+/// On a classroom laptop's screen, in Chinese, each finding id in the students' list stays whole
+/// (the list breaks between ids, never inside one).
+#[test]
+fn finding_ids_stay_whole_in_the_students_list_on_a_small_screen() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let class = scratch.path().join("class-2026");
+    student(&class, "alice", "phongFragment_divided_by_blockers.glsl");
+    student(&class, "bob_with_a_long_name", "phongFragment_light_size_world.glsl");
+    let mut h = harness_at([1366.0, 768.0], Lang::En);
+    open(&mut h, &class);
+    settle_class(&mut h);
+    h.state_mut().lang = Lang::Zh;
+    h.run_steps(3);
+    let ids: Vec<String> = h
+        .state()
+        .class
+        .as_ref()
+        .expect("the class")
+        .rows
+        .iter()
+        .flat_map(|r| r.report.iter().flat_map(|report| report.findings.iter().map(|f| f.id.clone())))
+        .collect();
+    assert!(ids.len() >= 4, "two findings each: {ids:?}");
+    let row_height = h.get_all_by_label("alice").map(|n| n.rect().height()).fold(f32::INFINITY, f32::min);
+    for id in &ids {
+        for label in h.get_all_by_label(id) {
+            let rect = label.rect();
+            assert!(rect.height() < 1.5 * row_height, "{id} wraps: {rect:?} (a row is {row_height})");
+        }
+    }
 }

@@ -73,7 +73,8 @@ pub struct HomeworkArgs {
     /// Override a scene value, as for `render` (`light.0.extent=150`, `light.0.width=8`).
     #[arg(long = "set", value_name = "KEY=VALUE", value_parser = parse_key_value)]
     pub set: Vec<(String, String)>,
-    #[arg(long, default_value = "960x540", value_parser = parse_size)]
+    /// Picture size, pixels; checks at other sizes may count pixel-sized things differently.
+    #[arg(long, default_value = crate::homework::CHECK_SIZE_ARG, value_parser = parse_size)]
     pub size: (u32, u32),
     /// Scene time, seconds.
     #[arg(long, value_parser = parse_time, default_value = "0")]

@@ -55,3 +55,11 @@ pub(super) fn parse_timeout(s: &str) -> Result<Duration, String> {
         _ => Err(format!("`{s}` is not a number of seconds above 0 and at most {MAX_TIMEOUT_S}")),
     }
 }
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_homework_checks_default_size_is_the_one_the_app_checks_at() {
+        assert_eq!(super::parse_size(crate::homework::CHECK_SIZE_ARG), Ok(crate::homework::CHECK_SIZE));
+    }
+}

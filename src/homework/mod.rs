@@ -55,6 +55,15 @@ pub use session::{
 };
 pub use translate::{Translated, translate, translate_rewritten};
 
+/// The picture size every check judges at, pixels: `shadowlab homework`'s default `--size`, the
+/// class check's, and the app's (which shows the pictures scaled into its panel, letterboxed to
+/// this shape). Some findings count pixels (a penumbra's width in pixels, the share of a strip that
+/// is lit), so a homework checked at the panel's size could read differently in the app than in a
+/// class report.
+pub const CHECK_SIZE: (u32, u32) = (960, 540);
+/// `CHECK_SIZE` as the command line writes it.
+pub const CHECK_SIZE_ARG: &str = "960x540";
+
 /// The two stages a homework shader can be.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {

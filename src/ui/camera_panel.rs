@@ -42,9 +42,12 @@ impl CameraLayout {
         let legend_height = (legend_lines_expected(state) as f32 * line_height + 8.0)
             .clamp(40.0, (rect.height() * 0.35).max(40.0));
         let area = Rect::from_min_max(rect.min, pos2(rect.right(), rect.bottom() - legend_height));
-        let picture = match state.current_step() {
-            Some(_) => letterbox(area, crate::lessons::PROBE_FRAME),
-            None => area,
+        // A homework's pictures are its check's, of `CHECK_SIZE`'s shape: shadowlab's side of the
+        // A/B split is rendered at the same shape so that the two agree pixel for pixel.
+        let picture = match (state.current_step(), &state.homework) {
+            (Some(_), _) => letterbox(area, crate::lessons::PROBE_FRAME),
+            (None, Some(_)) => letterbox(area, crate::homework::CHECK_SIZE),
+            (None, None) => area,
         };
         let legend = Rect::from_min_max(pos2(rect.left(), picture.bottom()), rect.max);
         Self { area, picture, legend, legend_font }

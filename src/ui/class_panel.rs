@@ -106,14 +106,22 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
             }
             let findings: Vec<&str> =
                 row.report.iter().flat_map(|r| &r.findings).map(|f| f.id.as_str()).collect();
-            let said = match (row.status, findings.is_empty()) {
-                (Status::Checked, true) => tr(lang, "no findings").to_string(),
-                (Status::Checked, false) => findings.join(", "),
-                (status, _) if row.message.is_empty() => status.shown(lang).to_string(),
-                (status, _) => format!("{}: {}", status.shown(lang), row.message),
-            };
             let colour = if row.status == Status::Checked { Color32::GRAY } else { PROBLEM };
-            ui.add(egui::Label::new(RichText::new(said).monospace().color(colour)).wrap());
+            if row.status == Status::Checked && !findings.is_empty() {
+                // Each id whole: the line breaks between ids, never inside one.
+                ui.horizontal_wrapped(|ui| {
+                    for id in findings {
+                        ui.add(egui::Label::new(RichText::new(id).monospace().color(colour)).extend());
+                    }
+                });
+            } else {
+                let said = match row.status {
+                    Status::Checked => tr(lang, "no findings").to_string(),
+                    status if row.message.is_empty() => status.shown(lang).to_string(),
+                    status => format!("{}: {}", status.shown(lang), row.message),
+                };
+                ui.add(egui::Label::new(RichText::new(said).monospace().color(colour)).wrap());
+            }
             ui.end_row();
         }
     });

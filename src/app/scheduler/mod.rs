@@ -293,7 +293,9 @@ impl Renderers {
             Stage::Homework if cancelled() => Ok(Stage::Done),
             Stage::Homework => {
                 let Some(homework) = &job.homework else { return Stage::ViewReference };
-                let (size, time_s) = (job.request.size, job.request.time_s);
+                // Judged at the size the command line judges at, whatever the panel's: the same
+                // homework gets the same findings in the app and in a class report.
+                let (size, time_s) = (crate::homework::CHECK_SIZE, job.request.time_s);
                 let stepped =
                     self.homework.step(&self.device, &self.queue, homework, &job.scene, size, time_s, wait);
                 match stepped.transpose() {
