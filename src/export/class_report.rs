@@ -140,6 +140,16 @@ pub struct FrustumPart {
 pub struct WidthPart {
     #[serde(default)]
     pub implied_light_width_world: Option<f64>,
+    /// Set where the penumbrae are too narrow to measure: the light is narrower than this.
+    #[serde(default)]
+    pub narrower_than_world: Option<f64>,
+}
+
+impl WidthPart {
+    /// The light width to tell: a number where it could be measured.
+    pub fn measured(&self) -> Option<f64> {
+        self.implied_light_width_world.filter(|_| self.narrower_than_world.is_none())
+    }
 }
 
 #[derive(Clone, Debug, PartialEq, Deserialize)]
@@ -320,9 +330,13 @@ pub fn csv(rows: &[ClassRow]) -> String {
             csv_text(&row.message),
             csv_field(report.and_then(|r| r.visibility_function.as_deref()).unwrap_or("")),
             csv_text(light.map_or("", |l| l.from.as_str())),
-            report
-                .and_then(|r| r.light_width.as_ref()?.implied_light_width_world)
-                .map_or(String::new(), number),
+            report.and_then(|r| r.light_width.as_ref()).map_or(String::new(), |w| {
+                match (w.measured(), w.narrower_than_world) {
+                    (_, Some(bound)) => format!("<{}", number(bound)),
+                    (Some(width), None) => number(width),
+                    (None, None) => String::new(),
+                }
+            }),
         ];
         for kind in FINDINGS {
             let cell = report.map(|r| match r.findings.iter().find(|f| f.id == kind.id) {

@@ -70,6 +70,18 @@ pub struct LightWidthFit {
     pub resolution_world: f32,
     /// The widths grow with the gap as similar triangles say (None: too few widths to tell).
     pub law_holds: Option<bool>,
+    /// Where the slabs cast shadows but fewer than two penumbrae are wider than the resolution:
+    /// the light is narrower than this, world units (the resolution over the largest ratio, the
+    /// widest penumbra such a light would cast), and no narrower width can be told with this
+    /// map. `implied_light_width_world` is then below what can be measured.
+    pub narrower_than_world: Option<f32>,
+}
+
+impl LightWidthFit {
+    /// The light width to tell a student: a number where it can be measured.
+    pub fn measured_width_world(&self) -> Option<f32> {
+        self.implied_light_width_world.filter(|_| self.narrower_than_world.is_none())
+    }
 }
 
 /// A probe of the light width: a box floating over the floor (the built-in cube, not rotated).
@@ -341,7 +353,21 @@ fn law(slabs: Vec<SlabShadow>, resolution_world: f32) -> LightWidthFit {
             r_squared.is_some_and(|r| r >= LAW_R2) && least < LAW_SPREAD * most
         })
     };
-    LightWidthFit { slabs, implied_light_width_world: implied, r_squared, resolution_world, law_holds }
+    // Shadows there, their penumbrae too narrow to see: only a bound can be said.
+    let shadowed: Vec<&SlabShadow> = slabs
+        .iter()
+        .filter(|s| s.width_world.is_some() || s.core_visibility.is_some_and(|v| v < 0.5))
+        .collect();
+    let widest_ratio = shadowed.iter().map(|s| s.ratio).fold(0.0, f32::max);
+    let narrower_than_world = (resolved < 2 && widest_ratio > 0.0).then(|| resolution_world / widest_ratio);
+    LightWidthFit {
+        slabs,
+        implied_light_width_world: implied,
+        r_squared,
+        resolution_world,
+        law_holds,
+        narrower_than_world,
+    }
 }
 
 #[cfg(test)]
@@ -409,7 +435,16 @@ mod tests {
         assert_eq!(right.law_holds, Some(true));
         assert_eq!(law_of([1.0, 1.0, 1.0, 1.0]).law_holds, Some(false));
         assert_eq!(law_of([2.0, 1.5, 1.0, 0.5]).law_holds, Some(false));
-        // All under the resolution: nothing to tell.
-        assert_eq!(law_of([0.05, 0.08, 0.1, 0.15]).law_holds, None);
+        assert_eq!(right.narrower_than_world, None);
+        assert_eq!(right.measured_width_world(), right.implied_light_width_world);
+        // All under the resolution: nothing to tell of the law, and of the light only a bound:
+        // the resolution (0.2) over the largest ratio (0.45), the widest penumbra it would cast.
+        let unresolved = law_of([0.05, 0.08, 0.1, 0.15]);
+        assert_eq!(unresolved.law_holds, None);
+        let bound = unresolved.narrower_than_world.expect("a bound");
+        assert!((bound - 0.2 / 0.45).abs() < 1e-6, "{bound}");
+        assert_eq!(unresolved.measured_width_world(), None);
+        // No shadows at all: not even a bound.
+        assert_eq!(law(ratios.iter().map(|&g| slab(g, None)).collect(), 0.2).narrower_than_world, None);
     }
 }

@@ -42,6 +42,10 @@ pub(super) const CLASS: &[(&str, &str)] = &[
     ("{} frustum, depth range {}", "{} 视锥，深度范围 {}"),
     ("their penumbrae imply a light {} wide", "其半影对应的光源宽度为 {}"),
     ("no light width implied", "无法从半影推出光源宽度"),
+    (
+        "their penumbrae imply a light narrower than {}, too narrow for this map",
+        "其半影对应的光源窄于 {}，这张贴图分辨不出",
+    ),
     ("their light was not used: {}", "未使用学生的光源：{}"),
     ("their picture", "学生的画面"),
     ("their picture over a lossless map", "无损贴图下学生的画面"),

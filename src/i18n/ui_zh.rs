@@ -356,6 +356,10 @@ pub(super) const UI: &[(&str, &str)] = &[
         "your penumbrae behave as a light {:.2} world units wide",
         "你的半影相当于一个 {:.2} 个世界单位宽的光源",
     ),
+    (
+        "your penumbrae behave as a light narrower than {:.2} world units: not measurable with this map",
+        "你的半影相当于一个窄于 {:.2} 个世界单位的光源：这张贴图分辨不出更小的宽度",
+    ),
     ("your light did not run: {}", "你的光源没能运行：{}"),
     ("could not open the homework", "无法打开作业"),
 ];

@@ -132,8 +132,16 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
         },
     );
     ui.label(fill(lang, "light from {}", &[&light]));
-    if let Some(width) = report.light_width.as_ref().and_then(|w| w.implied_light_width_world) {
-        ui.label(fill(lang, "your penumbrae behave as a light {:.2} world units wide", &[&width]));
+    if let Some(fit) = report.light_width.as_ref() {
+        if let Some(bound) = fit.narrower_than_world {
+            ui.label(fill(
+                lang,
+                "your penumbrae behave as a light narrower than {:.2} world units: not measurable with this map",
+                &[&bound],
+            ));
+        } else if let Some(width) = fit.measured_width_world() {
+            ui.label(fill(lang, "your penumbrae behave as a light {:.2} world units wide", &[&width]));
+        }
     }
     if let Some(error) = report.light.as_ref().and_then(|l| l.error.as_ref()) {
         ui.label(

@@ -2,7 +2,9 @@
 //! them, a table of the students, then a section per student (their light, their findings, their
 //! pictures). Static HTML with its style inline: no script, nothing fetched from elsewhere.
 
-use super::{ClassRow, FindingPart, Ranked, Severity, Status, StudentReport, description, lesson_of, number};
+use super::{
+    ClassRow, FindingPart, Ranked, Severity, Status, StudentReport, WidthPart, description, lesson_of, number,
+};
 use crate::export::html::{escape, rich};
 use crate::i18n::{Lang, fill, tr};
 use std::fmt::Write;
@@ -216,10 +218,15 @@ fn light_line(lang: Lang, report: &StudentReport) -> Option<String> {
             (kind, _, _) => fill(lang, "{} frustum, depth range {}", &[&kind, &depth]),
         });
     }
-    let implied = report.light_width.as_ref().and_then(|w| w.implied_light_width_world);
-    parts.push(match implied {
-        Some(w) => fill(lang, "their penumbrae imply a light {} wide", &[&number(w)]),
-        None => tr(lang, "no light width implied").to_string(),
+    let width = report.light_width.as_ref();
+    parts.push(match (width.and_then(WidthPart::measured), width.and_then(|w| w.narrower_than_world)) {
+        (_, Some(bound)) => fill(
+            lang,
+            "their penumbrae imply a light narrower than {}, too narrow for this map",
+            &[&number(bound)],
+        ),
+        (Some(w), None) => fill(lang, "their penumbrae imply a light {} wide", &[&number(w)]),
+        (None, None) => tr(lang, "no light width implied").to_string(),
     });
     let mut line = escape(&parts.join(match lang {
         Lang::En => "; ",
