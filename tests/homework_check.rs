@@ -286,6 +286,39 @@ fn a_hard_shadow_is_compared_with_shadowlabs_hard_shadow_and_has_no_penumbra_to_
     assert!(report["mean_abs_difference"].as_f64().is_some_and(|d| d < 0.01), "{report:#}");
 }
 
+/// Peter panning is said in the student's own units: their light's depth range, the bias in [0, 1]
+/// depth the lost shadows bound, and the constant in their code that is that bias (its line, the
+/// function its test is in, its size in world units). Where the code writes nothing that large,
+/// the finding says so instead of having the student shrink a bias that is not the cause.
+#[test]
+fn peter_panning_names_the_students_bias_with_its_line_in_their_own_units() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let report = check(&example("phongFragment_bias_too_large.glsl"), &[], &scratch.path().join("large"));
+    let found = &report["findings"][0];
+    assert_eq!(found["id"], "peter_panning", "{report:#}");
+    let figure = |name: &str| found["figures"][name].as_f64().unwrap_or(f64::NAN);
+    assert!((figure("light_depth_range_world") - 400.0).abs() < 1.0, "{found:#}");
+    assert!(figure("bias_at_least_depth") <= 0.015 && 0.015 <= figure("bias_under_depth"), "{found:#}");
+    assert_eq!((figure("bias_line"), figure("bias_written")), (30.0, 0.015), "{found:#}");
+    assert_eq!(found["function"], "findBlocker", "{found:#}");
+    let said = found["explanation"].as_str().unwrap_or_default();
+    assert!(said.contains("`BIAS` (line 30, findBlocker: 6.0 world units)"), "{said}");
+    assert!(said.contains("depth runs over 400 world units"), "{said}");
+
+    // The same 6 world units, computed: `0.003 * 5.0` in each test. No constant is that large.
+    let source = std::fs::read_to_string(example("phongFragment_bias_too_large.glsl")).expect("the example");
+    let computed = source.replace("#define BIAS 0.015", "").replace("+ BIAS", "+ 0.003 * 5.0");
+    let first_test = computed.lines().position(|l| l.contains("0.003 * 5.0")).expect("a test") + 1;
+    let shader = scratch.path().join("phongFragment.glsl");
+    std::fs::write(&shader, computed).expect("write the shader");
+    let report = check(&shader.display().to_string(), &[], &scratch.path().join("computed"));
+    assert_eq!(finding_ids(&report), ["peter_panning"], "{report:#}");
+    let said = report["findings"][0]["explanation"].as_str().unwrap_or_default();
+    let expected = format!("the largest, `0.003` on line {first_test}, is 1.2 world units");
+    assert!(said.contains(&expected), "{said}");
+    assert!(!said.contains("In your shader:"), "{said}");
+}
+
 /// A PCF whose sum of 32 tests is divided by another count (24), or not at all: visibility above
 /// 1, and that finding alone (not missing shadows, a missing penumbra or acne).
 #[test]

@@ -30,7 +30,7 @@ pub fn run_check(
     request: &HomeworkRequest,
     lang: Lang,
 ) -> Result<CheckOutcome, HomeworkGpuError> {
-    let mut run = CheckRun::start(homework, &shader.name, scene, light, request, lang)?;
+    let mut run = CheckRun::start(homework, shader, scene, light, request, lang)?;
     loop {
         if let Some(outcome) = run.step(renderer, GpuWait::Block)? {
             return Ok(outcome);
@@ -41,6 +41,8 @@ pub fn run_check(
 /// A check under way.
 pub struct CheckRun {
     shader: String,
+    /// The student's fragment shader, where findings point at its lines.
+    fragment_source: String,
     scene: Scene,
     light: HomeworkLight,
     request: HomeworkRequest,
@@ -113,7 +115,7 @@ impl CheckRun {
     /// shader in the report.
     pub fn start(
         homework: &HomeworkRenderer,
-        shader: &str,
+        shader: &ShaderSource,
         scene: &Scene,
         light: &HomeworkLight,
         request: &HomeworkRequest,
@@ -125,7 +127,8 @@ impl CheckRun {
         let lossless = homework.submit_with_map(scene, light, &over(MapKind::Lossless))?;
         let taps = homework.submit_taps(scene, light, &over(MapKind::Framework))?;
         Ok(Self {
-            shader: shader.to_owned(),
+            shader: shader.name.clone(),
+            fragment_source: shader.text.clone(),
             scene: scene.clone(),
             light: light.clone(),
             request: *request,
@@ -318,6 +321,7 @@ impl CheckRun {
                 model_matrix: self.light.model_matrix,
             },
             twin: Some(&twin),
+            fragment_source: &self.fragment_source,
         };
         let (framework, exact) = (evidence(&student), evidence(&lossless));
         let figures = super::figures::figures(&Judged::new(&framework));

@@ -121,8 +121,21 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "目前被框架的深度打包掩盖了（它 256 对 255 的舍入让每个深度都读得稍远一点，相当于自带了一个偏移）；一旦深度被精确保存，它就会显现：",
     ),
     (
-        "The {} casts no shadow: a blocker {:.1} world units above the floor (along the light) does not shadow it, while one {:.1} above does. Your depth bias is that large: shadows come loose from what casts them (peter panning). A bias in [0, 1] depth is a distance times 1 / (far - near): 0.01 with far 400 is 4 world units.",
-        "{} 没有投下阴影：（沿光线方向）离地面 {:.1} 个世界单位的遮挡物没有在地面上留下阴影，而离地面 {:.1} 的却有。你的深度偏移就有这么大：阴影与投射它的物体脱开了（彼得潘现象，悬浮）。[0, 1] 深度中的偏移等于距离乘以 1 / (far - near)：far 为 400 时，0.01 就是 4 个世界单位。",
+        "The {} casts no shadow: a blocker {:.1} world units above the floor (along the light) does not shadow it, while one {:.1} above does. Your depth bias is that large: shadows come loose from what casts them (peter panning).",
+        "{} 没有投下阴影：（沿光线方向）离地面 {:.1} 个世界单位的遮挡物没有在地面上留下阴影，而离地面 {:.1} 的却有。你的深度偏移就有这么大：阴影与投射它的物体脱开了（彼得潘现象，悬浮）。",
+    ),
+    (
+        "Your light's depth runs over {:.0} world units, so that is a bias of {:.4} to {:.4} in [0, 1] depth.",
+        "你的光源深度范围是 {:.0} 个世界单位，所以这相当于 [0, 1] 深度中 {:.4} 到 {:.4} 的偏移。",
+    ),
+    ("`{}` (line {}{}: {:.1} world units)", "`{}`（第 {} 行{}：{:.1} 个世界单位）"),
+    (
+        "No constant in your depth tests is that large (the largest, `{}` on line {}, is {:.1} world units): look for a bias your code computes, or for what else loses the shadow (a filter much wider than the blocker dilutes it).",
+        "你的深度测试里没有这么大的常数（最大的 `{}` 在第 {} 行，为 {:.1} 个世界单位）：去找代码计算出来的偏移，或者别的让阴影消失的原因（比遮挡物宽得多的滤波会把它冲淡）。",
+    ),
+    (
+        "In your shader: {}. A bias of a texel's depth slope or two is enough; with this light that is far under 1 world unit.",
+        "在你的着色器中：{}。偏移取一两个纹素的深度斜率就够了；对这个光源而言远小于 1 个世界单位。",
     ),
     (
         "{:.1}% of the surfaces that face the light and are fully lit in the ground truth are dark in yours: shadow acne, the surface shadowing itself. Compare with a bias (the receiver's depth minus a small amount), or a larger one; a bias that is 0 where a surface faces the light squarely (max(c (1 - N.L), 0)) leaves acne there.",

@@ -108,7 +108,7 @@ impl HomeworkRunner {
                         Some(student) => {
                             let run = CheckRun::start(
                                 homework,
-                                &shader.name,
+                                shader,
                                 &student.scene,
                                 &student.light,
                                 &request,
@@ -119,8 +119,7 @@ impl HomeworkRunner {
                         None => {
                             let light = HomeworkLight::of_scene(scene, 0, time_s, FRAMEWORK_LIGHT_INTENSITY)
                                 .ok_or_else(|| "the scene has no light".to_string())?;
-                            let run =
-                                CheckRun::start(homework, &shader.name, scene, &light, &request, job.lang);
+                            let run = CheckRun::start(homework, shader, scene, &light, &request, job.lang);
                             (run.map_err(|e| e.to_string())?, None)
                         }
                     };

@@ -31,7 +31,10 @@ fn checked(name: &str, findings: Vec<FindingPart>) -> ClassRow {
                     depth_range_world: Some(399.99),
                 }),
             }),
-            light_width: Some(WidthPart { implied_light_width_world: Some(1.6847), narrower_than_world: None }),
+            light_width: Some(WidthPart {
+                implied_light_width_world: Some(1.6847),
+                narrower_than_world: None,
+            }),
             findings,
             ..StudentReport::default()
         }),

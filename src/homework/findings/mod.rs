@@ -16,6 +16,7 @@ mod functions;
 mod light;
 mod penumbra;
 pub(crate) mod shadows;
+mod source_lines;
 mod visibility;
 
 pub use functions::TwinInputs;
@@ -184,6 +185,8 @@ pub struct Evidence<'a> {
     pub light: LightInputs<'a>,
     /// shadowlab's map of the same light, where the twin searches as the student's findBlocker did.
     pub twin: Option<&'a TwinInputs<'a>>,
+    /// The student's fragment shader: the lines a finding can point at.
+    pub fragment_source: &'a str,
 }
 
 /// Where a pixel's surface lies in the student's own light: their shadow coordinate.

@@ -123,15 +123,64 @@ fn peter_panning(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opti
             figures.insert(key.core_visibility, f64::from(v));
         }
     }
-    Some(Found::new(
-        None,
-        figures,
-        fill(
+    let mut explanation = fill(
+        lang,
+        "The {} casts no shadow: a blocker {:.1} world units above the floor (along the light) does not shadow it, while one {:.1} above does. Your depth bias is that large: shadows come loose from what casts them (peter panning).",
+        &[&lowest.name, &lost, &kept],
+    );
+    // In the student's own units: their light's depth range, and the constant that is that bias.
+    let mut function = None;
+    if let Some(per_world) = super::source_lines::depth_per_world(j) {
+        let (low, high) = (f64::from(lost * per_world), f64::from(kept * per_world));
+        let range = 1.0 / per_world;
+        figures.insert("light_depth_range_world", f64::from(range));
+        figures.insert("bias_at_least_depth", low);
+        figures.insert("bias_under_depth", high);
+        explanation += " ";
+        explanation += &fill(
             lang,
-            "The {} casts no shadow: a blocker {:.1} world units above the floor (along the light) does not shadow it, while one {:.1} above does. Your depth bias is that large: shadows come loose from what casts them (peter panning). A bias in [0, 1] depth is a distance times 1 / (far - near): 0.01 with far 400 is 4 world units.",
-            &[&lowest.name, &lost, &kept],
-        ),
-    ))
+            "Your light's depth runs over {:.0} world units, so that is a bias of {:.4} to {:.4} in [0, 1] depth.",
+            &[&range, &low, &high],
+        );
+        // A shadow comes loose a little beyond the bias where a filter softens its edge: the
+        // constants within the slabs' bounds, a fifth either way.
+        let constants = super::source_lines::depth_test_constants(j.e.fragment_source);
+        let fitting: Vec<super::source_lines::Constant> =
+            constants.iter().filter(|c| (0.8 * low..=1.2 * high).contains(&c.value)).cloned().collect();
+        // The largest, the first of equals.
+        let largest = constants.iter().max_by(|a, b| a.value.total_cmp(&b.value).then(b.line.cmp(&a.line)));
+        if let Some(first) = fitting.first() {
+            function = first.function;
+            figures.insert("bias_line", first.line as f64);
+            figures.insert("bias_written", first.value);
+            let named: Vec<String> = fitting
+                .iter()
+                .take(3)
+                .map(|c| {
+                    let world = c.value / f64::from(per_world);
+                    let place = c.function.map_or(String::new(), |f| format!(", {f}"));
+                    fill(lang, "`{}` (line {}{}: {:.1} world units)", &[&c.text, &c.line, &place, &world])
+                })
+                .collect();
+            explanation += " ";
+            explanation += &fill(
+                lang,
+                "In your shader: {}. A bias of a texel's depth slope or two is enough; with this light that is far under 1 world unit.",
+                &[&named.join(", ")],
+            );
+        } else if let Some(c) = largest.filter(|c| c.value < 0.8 * low) {
+            // What the code writes is too small to lose these shadows: say so rather than have the
+            // student shrink a bias that is not the cause.
+            let world = c.value / f64::from(per_world);
+            explanation += " ";
+            explanation += &fill(
+                lang,
+                "No constant in your depth tests is that large (the largest, `{}` on line {}, is {:.1} world units): look for a bias your code computes, or for what else loses the shadow (a filter much wider than the blocker dilutes it).",
+                &[&c.text, &c.line, &world],
+            );
+        }
+    }
+    Some(Found::new(function, figures, explanation))
 }
 
 /// Surfaces facing the light and fully lit in the ground truth are dark in the student's:
