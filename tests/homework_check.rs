@@ -78,6 +78,7 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_receiver_blocker.glsl", vec![], &["receiver_counts_as_blocker"]),
         ("phongFragment_search_radius.glsl", vec![], &["search_radius_wrong (latent)"]),
         ("phongFragment_random_walk.glsl", vec![], &["samples_not_around_receiver"]),
+        ("phongFragment_least_filter.glsl", vec![], &[]),
         ("phongFragment_constant_filter.glsl", vec![], &["no_contact_hardening"]),
         ("phongFragment_divided_twice.glsl", vec![], &["visibility_scaled"]),
         ("phongFragment_undivided.glsl", vec![], &["visibility_out_of_range"]),
@@ -317,6 +318,21 @@ fn peter_panning_names_the_students_bias_with_its_line_in_their_own_units() {
     let expected = format!("the largest, `0.003` on line {first_test}, is 1.2 world units");
     assert!(said.contains(&expected), "{said}");
     assert!(!said.contains("In your shader:"), "{said}");
+}
+
+/// A correct PCSS whose filter never goes under 2 texels: its penumbrae are the light's over that
+/// floor, so they still follow similar triangles and give back a light near the 2 world units its
+/// code sets (not a filter of one width, no_contact_hardening).
+#[test]
+fn a_narrow_light_over_a_least_filter_radius_is_measured_not_called_a_constant_filter() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let report = check(&example("phongFragment_least_filter.glsl"), &[], scratch.path());
+    assert_eq!(finding_ids(&report), Vec::<String>::new(), "{report:#}");
+    let width = &report["light_width"];
+    assert_eq!(width["law_holds"], true, "{width:#}");
+    let implied = width["implied_light_width_world"].as_f64().unwrap_or(f64::NAN);
+    assert!((1.5..=2.5).contains(&implied), "{width:#}");
+    assert_eq!(width["narrower_than_world"], Value::Null, "{width:#}");
 }
 
 /// A PCF whose sum of 32 tests is divided by another count (24), or not at all: visibility above

@@ -26,10 +26,14 @@ const MIN_HEIGHT_WORLD: f32 = 1.0;
 /// mean differs from the model's by less than this: what is left is noise (a filter of a few
 /// random taps), not a shadow of another shape.
 const FIT_BIAS: f32 = 0.1;
-/// `law_holds`: the widths follow similar triangles this well (R^2, through the origin)...
+/// `law_holds`: the widths follow similar triangles, combined in quadrature with a floor (what a
+/// hard edge measures at this resolution), this well (R^2 of the widths)...
 const LAW_R2: f32 = 0.9;
-/// ...and grow with the gap: the least of them under this share of the largest.
-const LAW_SPREAD: f32 = 0.6;
+/// ...and the light's part of the widest penumbra is more than the resolution. Where it is not and
+/// the floor is within this many resolutions, the light is too narrow to measure with this map
+/// (nothing is said of the law); a floor above that is a filter of one width (no contact
+/// hardening).
+const FLOOR_OF_RESOLUTION: f32 = 2.0;
 
 /// One slab's shadow: where it floats and the penumbra the student's shader gives it.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -325,18 +329,81 @@ fn resolution(light: &Light, inputs: &WidthInputs<'_>, _direction: Vec3) -> f32 
     1.5 * pixel.max(texel)
 }
 
-/// The light width the slabs' penumbrae say, and whether they follow similar triangles.
+/// w^2 = a g^2 + b over (g, w) by least squares, with b >= 0 (the floor's square): (a, b). None
+/// with fewer than two points or no spread in g.
+fn quadrature_fit(measured: &[(f32, f32)]) -> Option<(f32, f32)> {
+    let n = measured.len() as f32;
+    if measured.len() < 2 {
+        return None;
+    }
+    let (mx, my) = measured.iter().fold((0.0, 0.0), |(x, y), (g, w)| (x + g * g / n, y + w * w / n));
+    let (sxy, sxx) = measured.iter().fold((0.0, 0.0), |(xy, xx), (g, w)| {
+        let dx = g * g - mx;
+        (xy + dx * (w * w - my), xx + dx * dx)
+    });
+    if sxx <= 0.0 {
+        return None;
+    }
+    let a = sxy / sxx;
+    let b = my - a * mx;
+    if b >= 0.0 {
+        return Some((a, b));
+    }
+    // A floor below 0 says nothing: through the origin instead.
+    let (gw, gg) = measured.iter().fold((0.0, 0.0), |(gw, gg), (g, w)| (gw + g * g * w * w, gg + g.powi(4)));
+    (gg > 0.0).then(|| (gw / gg, 0.0))
+}
+
+/// A light width and a floor fitted to the widths, and how well they explain them.
+#[derive(Clone, Copy, Debug)]
+struct FloorFit {
+    light: f32,
+    floor: f32,
+    r_squared: f32,
+}
+
+/// R^2 of `predicted` widths against the measured ones (0 where the widths do not vary).
+fn r_squared_of(measured: &[(f32, f32)], predicted: impl Fn(f32) -> f32) -> f32 {
+    let mean = measured.iter().map(|(_, w)| w).sum::<f32>() / measured.len().max(1) as f32;
+    let spread: f32 = measured.iter().map(|(_, w)| (w - mean).powi(2)).sum();
+    let residual: f32 = measured.iter().map(|(g, w)| (w - predicted(*g)).powi(2)).sum();
+    if spread > 0.0 { 1.0 - residual / spread } else { 0.0 }
+}
+
+/// The light and the floor under the widths, two ways, the better kept: the light's penumbra and
+/// a blur of the resolution combined in quadrature (w^2 = L^2 g^2 + F^2), or a filter that never
+/// goes under a floor (w = max(L g, F): PCSS with a least filter radius, as many solutions write).
+fn floor_fit(measured: &[(f32, f32)]) -> Option<FloorFit> {
+    let quadrature = quadrature_fit(measured).map(|(a, b)| {
+        let (light, floor) = (a.max(0.0).sqrt(), b.max(0.0).sqrt());
+        let r_squared = r_squared_of(measured, |g| (a * g * g + b).max(0.0).sqrt());
+        FloorFit { light, floor, r_squared }
+    });
+    // The floor: the least width; the light: through the origin over the widths clearly above it.
+    let least = measured.iter().map(|(_, w)| *w).fold(f32::INFINITY, f32::min);
+    let above: Vec<&(f32, f32)> = measured.iter().filter(|(_, w)| *w > 1.2 * least).collect();
+    let (gw, gg) = above.iter().fold((0.0, 0.0), |(gw, gg), (g, w)| (gw + g * w, gg + g * g));
+    let clamped = (gg > 0.0).then(|| {
+        let light = gw / gg;
+        let r_squared = r_squared_of(measured, |g| (light * g).max(least));
+        FloorFit { light, floor: least, r_squared }
+    });
+    match (quadrature, clamped) {
+        (Some(q), Some(c)) => Some(if c.r_squared > q.r_squared { c } else { q }),
+        (q, c) => q.or(c),
+    }
+}
+
+/// The light width the slabs' penumbrae say, and whether they follow similar triangles: each
+/// width is the light's penumbra (w_light * ratio) and the resolution's floor combined in
+/// quadrature, so that a narrow light's penumbrae, held up by the floor, are not read as widths
+/// that do not grow.
 fn law(slabs: Vec<SlabShadow>, resolution_world: f32) -> LightWidthFit {
     let measured: Vec<(f32, f32)> =
         slabs.iter().filter_map(|s| s.width_world.map(|w| (s.ratio, w))).collect();
-    let (gg, gw) = measured.iter().fold((0.0, 0.0), |(gg, gw), (g, w)| (gg + g * g, gw + g * w));
-    let implied = (measured.len() >= 2 && gg > 0.0).then(|| gw / gg);
-    let r_squared = implied.and_then(|light| {
-        let mean = measured.iter().map(|(_, w)| w).sum::<f32>() / measured.len() as f32;
-        let spread: f32 = measured.iter().map(|(_, w)| (w - mean).powi(2)).sum();
-        let residual: f32 = measured.iter().map(|(g, w)| (w - light * g).powi(2)).sum();
-        (spread > 0.0).then(|| 1.0 - residual / spread)
-    });
+    let fit = floor_fit(&measured);
+    let implied = fit.map(|f| f.light);
+    let r_squared = fit.map(|f| f.r_squared);
     // Widths under the resolution say nothing of the law: at least two must be over it. Shadows
     // that are there but not shaped as any light's (two or more) break it too.
     let resolved = measured.iter().filter(|(_, w)| *w > resolution_world).count();
@@ -344,22 +411,27 @@ fn law(slabs: Vec<SlabShadow>, resolution_world: f32) -> LightWidthFit {
         .iter()
         .filter(|s| s.width_world.is_none() && s.core_visibility.is_some_and(|v| v < 0.5))
         .count();
+    let widest_ratio = measured.iter().map(|(g, _)| *g).fold(0.0, f32::max);
+    let light_part = implied.unwrap_or(0.0) * widest_ratio;
+    let floor = fit.map_or(0.0, |f| f.floor);
+    let resolution_bound = light_part <= resolution_world && floor <= FLOOR_OF_RESOLUTION * resolution_world;
     let law_holds = if misshapen >= 2 {
         Some(false)
+    } else if resolved < 2 || resolution_bound {
+        None
     } else {
-        (resolved >= 2).then(|| {
-            let least = measured.iter().map(|(_, w)| *w).fold(f32::INFINITY, f32::min);
-            let most = measured.iter().map(|(_, w)| *w).fold(0.0, f32::max);
-            r_squared.is_some_and(|r| r >= LAW_R2) && least < LAW_SPREAD * most
-        })
+        Some(r_squared.is_some_and(|r| r >= LAW_R2) && light_part > resolution_world)
     };
-    // Shadows there, their penumbrae too narrow to see: only a bound can be said.
+    // Shadows there, their penumbrae too narrow to tell the light from the floor: only a bound
+    // can be said.
     let shadowed: Vec<&SlabShadow> = slabs
         .iter()
         .filter(|s| s.width_world.is_some() || s.core_visibility.is_some_and(|v| v < 0.5))
         .collect();
-    let widest_ratio = shadowed.iter().map(|s| s.ratio).fold(0.0, f32::max);
-    let narrower_than_world = (resolved < 2 && widest_ratio > 0.0).then(|| resolution_world / widest_ratio);
+    let shadowed_ratio = shadowed.iter().map(|s| s.ratio).fold(0.0, f32::max);
+    // (Not where the shadows are misshapen: those are no light's.)
+    let unmeasured = law_holds.is_none() && (resolved < 2 || resolution_bound);
+    let narrower_than_world = (unmeasured && shadowed_ratio > 0.0).then(|| resolution_world / shadowed_ratio);
     LightWidthFit {
         slabs,
         implied_light_width_world: implied,
@@ -435,6 +507,27 @@ mod tests {
         assert_eq!(right.law_holds, Some(true));
         assert_eq!(law_of([1.0, 1.0, 1.0, 1.0]).law_holds, Some(false));
         assert_eq!(law_of([2.0, 1.5, 1.0, 0.5]).law_holds, Some(false));
+        // A constant filter with a little noise: its floor is far above the resolution.
+        assert_eq!(law_of([2.0, 2.1, 1.9, 2.2]).law_holds, Some(false));
+        // A light of 3 over a floor of 0.3 (one and a half resolutions): the widths combine in
+        // quadrature, grow with the gap, and give the light back.
+        let floored = law_of(ratios.map(|g| ((3.0 * g).powi(2) + 0.09f32).sqrt()));
+        assert_eq!(floored.law_holds, Some(true), "{floored:?}");
+        assert!((floored.implied_light_width_world.expect("a width") - 3.0).abs() < 0.05, "{floored:?}");
+        assert_eq!(floored.narrower_than_world, None);
+        // A least filter radius: w = max(3 g, 0.7), the light given back too.
+        let least_filter = law_of(ratios.map(|g| (3.0 * g).max(0.7)));
+        assert_eq!(least_filter.law_holds, Some(true), "{least_filter:?}");
+        assert!(
+            (least_filter.implied_light_width_world.expect("a width") - 3.0).abs() < 0.05,
+            "{least_filter:?}"
+        );
+        // A light of 0.3 over that floor: its part of the widest penumbra is under the resolution,
+        // the widths are the floor's; not a filter of one width but a light this map cannot
+        // measure: nothing said of the law, and a bound on the light.
+        let narrow = law_of(ratios.map(|g| ((0.3 * g).powi(2) + 0.09f32).sqrt()));
+        assert_eq!(narrow.law_holds, None, "{narrow:?}");
+        assert!(narrow.narrower_than_world.is_some_and(|b| (b - 0.2 / 0.45).abs() < 1e-6), "{narrow:?}");
         assert_eq!(right.narrower_than_world, None);
         assert_eq!(right.measured_width_world(), right.implied_light_width_world);
         // All under the resolution: nothing to tell of the law, and of the light only a bound:
@@ -444,6 +537,11 @@ mod tests {
         let bound = unresolved.narrower_than_world.expect("a bound");
         assert!((bound - 0.2 / 0.45).abs() < 1e-6, "{bound}");
         assert_eq!(unresolved.measured_width_world(), None);
+        // Shadows of no light's shape: the law is broken, and no bound is said of a light.
+        let misshapen: Vec<SlabShadow> =
+            ratios.iter().map(|&g| SlabShadow { core_visibility: Some(0.1), ..slab(g, None) }).collect();
+        let broken = law(misshapen, 0.2);
+        assert_eq!((broken.law_holds, broken.narrower_than_world), (Some(false), None));
         // No shadows at all: not even a bound.
         assert_eq!(law(ratios.iter().map(|&g| slab(g, None)).collect(), 0.2).narrower_than_world, None);
     }
