@@ -92,7 +92,7 @@ pub fn translate_rewritten(file: &str, rewritten: Rewritten) -> Result<Translate
     let student_lines =
         glsl.lines().count().saturating_sub(rewritten.prelude_lines + rewritten.epilogue_lines);
     let student_line = |l: usize| rewritten.student_line(l).filter(|s| *s <= student_lines);
-    let text = super::webgl1::Text { glsl, student_line: &student_line };
+    let text = super::webgl1::Text::new(glsl, &student_line);
     super::webgl1::check_conversions(file, &module, &text)?;
     let info = naga::valid::Validator::new(
         naga::valid::ValidationFlags::all(),

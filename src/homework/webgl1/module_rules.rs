@@ -9,12 +9,24 @@ use naga::{Arena, Expression, Handle, Literal, ScalarKind, Span, Statement, Type
 
 /// The rewritten text and how its lines map to the student's.
 pub struct Text<'a> {
-    pub glsl: &'a str,
+    glsl: &'a str,
     /// The student's line for a rewritten line; none for what the rewrite added around them.
-    pub student_line: &'a dyn Fn(usize) -> Option<usize>,
+    student_line: &'a dyn Fn(usize) -> Option<usize>,
+    /// Where each line of `glsl` starts, bytes.
+    line_starts: Vec<usize>,
 }
 
-impl Text<'_> {
+impl<'a> Text<'a> {
+    pub fn new(glsl: &'a str, student_line: &'a dyn Fn(usize) -> Option<usize>) -> Self {
+        let line_starts = std::iter::once(0).chain(glsl.match_indices('\n').map(|(i, _)| i + 1)).collect();
+        Text { glsl, student_line, line_starts }
+    }
+
+    /// The 1-based line of byte `at`.
+    fn line_of(&self, at: usize) -> usize {
+        self.line_starts.partition_point(|&start| start <= at)
+    }
+
     fn of(&self, span: Span) -> &str {
         span.to_range().and_then(|r| self.glsl.get(r)).unwrap_or("").trim()
     }
@@ -23,14 +35,13 @@ impl Text<'_> {
     fn line(&self, span: Span, end: bool) -> Option<usize> {
         let range = span.to_range()?;
         let at = if end { range.end.saturating_sub(1) } else { range.start };
-        let line = self.glsl.get(..at)?.matches('\n').count() + 1;
-        (self.student_line)(line)
+        (self.student_line)(self.line_of(at))
     }
 
     /// The `#define` on the student's line `line`, if that line is one: (name, body).
     fn define_on(&self, span: Span) -> Option<(String, String)> {
         let start = span.to_range()?.start;
-        let line_start = self.glsl.get(..start)?.rfind('\n').map_or(0, |n| n + 1);
+        let line_start = *self.line_starts.get(self.line_of(start).checked_sub(1)?)?;
         let line_text = self.glsl.get(line_start..)?.lines().next()?.trim();
         let rest = line_text.strip_prefix('#')?.trim_start().strip_prefix("define")?;
         let mut words = rest.split_whitespace();

@@ -155,21 +155,26 @@ fn is_defined(macros: &HashMap<String, Macro>, name: &str) -> bool {
 fn evaluate(source: &str, args: &[Token], macros: &HashMap<String, Macro>) -> Option<i64> {
     let words: Vec<String> = args.iter().map(|t| source[t.start..t.end].to_string()).collect();
     let mut expanded = Vec::new();
-    expand(&words, macros, &mut expanded, 0)?;
+    expand(&words, macros, &mut expanded, &mut Vec::new())?;
     let expanded = join_operators(expanded);
     let mut at = 0;
     let value = Expr { words: &expanded, at: &mut at }.or()?;
     (at == expanded.len()).then_some(value)
 }
 
-/// `words` with macros replaced by their bodies (split into words), `defined X` by 0 or 1.
+/// Most words an `#if` may expand to: past it, the condition is not evaluated (its lines are
+/// neither judged nor refused).
+const MAX_EXPANDED_WORDS: usize = 4096;
+
+/// `words` with macros replaced by their bodies (split into words), `defined X` by 0 or 1. As in
+/// C, a macro is not expanded again inside its own expansion (`expanding`).
 fn expand(
     words: &[String],
     macros: &HashMap<String, Macro>,
     out: &mut Vec<String>,
-    depth: usize,
+    expanding: &mut Vec<String>,
 ) -> Option<()> {
-    if depth > 16 {
+    if out.len() > MAX_EXPANDED_WORDS {
         return None;
     }
     let mut k = 0;
@@ -187,12 +192,14 @@ fn expand(
         }
         if let Some(v) = predefined(w) {
             out.push(v.to_string());
-        } else if let Some(m) = macros.get(w) {
+        } else if let Some(m) = macros.get(w).filter(|_| !expanding.contains(w)) {
             let body: Vec<String> = crate::homework::lex::tokens(&m.body)
                 .iter()
                 .map(|t| m.body[t.start..t.end].to_string())
                 .collect();
-            expand(&body, macros, out, depth + 1)?;
+            expanding.push(w.clone());
+            expand(&body, macros, out, expanding)?;
+            expanding.pop();
         } else {
             out.push(w.clone());
         }

@@ -28,6 +28,9 @@ pub const TYPES: [&str; 19] = [
     "struct",
 ];
 
+/// Most tokens whose names and loops are followed.
+const MAX_SCOPED_TOKENS: usize = 50_000;
+
 /// What a declared name is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DeclKind {
@@ -89,6 +92,12 @@ pub struct Shader<'a> {
     pub array_sizes: Vec<usize>,
     /// For each token, the index of the bracket closing it where it opens one.
     closing: Vec<Option<usize>>,
+    /// For each token, how many `(` and `{` are open before it, and the innermost open `{`.
+    paren_depth: Vec<i32>,
+    brace_depth: Vec<i32>,
+    open_brace: Vec<Option<usize>>,
+    /// `decls` by name, in order.
+    by_name: std::collections::HashMap<&'a str, Vec<usize>>,
 }
 
 /// What a name used at a token resolves to.
@@ -115,6 +124,22 @@ impl<'a> Shader<'a> {
         let toks =
             join_operators(source, raw.into_iter().filter(|t| !t.in_directive && pre.compiled(t.line)));
         let closing = closing_brackets(source, &toks);
+        let (mut paren_depth, mut brace_depth, mut open_brace) = (Vec::new(), Vec::new(), Vec::new());
+        let (mut parens, mut braces) = (0i32, Vec::new());
+        for t in &toks {
+            paren_depth.push(parens);
+            brace_depth.push(braces.len() as i32);
+            open_brace.push(braces.last().copied());
+            match &source[t.start..t.end] {
+                "(" => parens += 1,
+                ")" => parens -= 1,
+                "{" => braces.push(paren_depth.len() - 1),
+                "}" => {
+                    braces.pop();
+                }
+                _ => {}
+            }
+        }
         let mut shader = Shader {
             source,
             toks,
@@ -124,9 +149,26 @@ impl<'a> Shader<'a> {
             functions: Vec::new(),
             array_sizes: Vec::new(),
             closing,
+            paren_depth,
+            brace_depth,
+            open_brace,
+            by_name: std::collections::HashMap::new(),
         };
+        // A homework shader has 1,000 to 10,000 tokens; past this many, names are not followed
+        // (nothing is refused for what a name is), so that a machine-made shader of a megabyte
+        // stays quick to read.
+        if shader.toks.len() > MAX_SCOPED_TOKENS {
+            return shader;
+        }
         shader.find_loops();
         shader.find_declarations();
+        for (k, d) in shader.decls.iter().enumerate() {
+            let name = &source[shader.toks[d.at].start..shader.toks[d.at].end];
+            shader.by_name.entry(name).or_default().push(k);
+        }
+        shader.functions.sort();
+        shader.functions.dedup();
+        shader.array_sizes.sort_unstable();
         shader
     }
 
@@ -191,13 +233,11 @@ impl<'a> Shader<'a> {
 
     /// The innermost pair of braces around token `i`: (open, close), or the whole shader.
     fn enclosing_braces(&self, i: usize) -> (usize, usize) {
-        let mut best = (0, self.toks.len());
-        for (open, close) in self.closing.iter().enumerate().filter_map(|(o, c)| c.map(|c| (o, c))) {
-            if self.text(open) == "{" && open < i && i < close && open >= best.0 {
-                best = (open, close);
-            }
+        let open = self.open_brace.get(i).copied().flatten();
+        match open.and_then(|o| Some((o, self.closing(o)?))) {
+            Some(pair) => pair,
+            None => (0, self.toks.len()),
         }
-        best
     }
 
     fn find_declarations(&mut self) {
@@ -304,19 +344,31 @@ impl<'a> Shader<'a> {
     }
 
     fn paren_depth(&self, i: usize) -> i32 {
-        self.depth(i, "(", ")")
+        self.paren_depth.get(i).copied().unwrap_or(0)
     }
 
     fn brace_depth(&self, i: usize) -> i32 {
-        self.depth(i, "{", "}")
+        self.brace_depth.get(i).copied().unwrap_or(0)
     }
 
-    fn depth(&self, i: usize, open: &str, close: &str) -> i32 {
-        (0..i).fold(0, |d, k| match self.text(k) {
-            t if t == open => d + 1,
-            t if t == close => d - 1,
-            _ => d,
-        })
+    /// Whether the student defines (or declares) a function of this name.
+    pub fn defines_function(&self, name: &str) -> bool {
+        self.functions.binary_search_by(|f| f.as_str().cmp(name)).is_ok()
+    }
+
+    /// Whether the `[` at `open` gives an array's size in a declaration.
+    pub fn is_array_size(&self, open: usize) -> bool {
+        self.array_sizes.binary_search(&open).is_ok()
+    }
+
+    /// The innermost declaration of `name` visible at token `at`.
+    pub fn visible_decl(&self, name: &str, at: usize) -> Option<Decl> {
+        self.by_name
+            .get(name)?
+            .iter()
+            .map(|&k| self.decls[k])
+            .filter(|d| d.visible.0 <= at && at <= d.visible.1)
+            .max_by_key(|d| d.visible.0)
     }
 
     /// What the name at token `i` is there: the innermost declaration visible at `i`, a macro, or
@@ -326,13 +378,8 @@ impl<'a> Shader<'a> {
             return Resolved::Unknown;
         }
         let name = self.text(i);
-        let visible = self
-            .decls
-            .iter()
-            .filter(|d| self.text(d.at) == name && d.visible.0 <= i && i <= d.visible.1)
-            .max_by_key(|d| d.visible.0);
-        if let Some(d) = visible {
-            return Resolved::Decl(*d);
+        if let Some(d) = self.visible_decl(name, i) {
+            return Resolved::Decl(d);
         }
         if self.pre.macros.contains_key(name) {
             return Resolved::Macro;

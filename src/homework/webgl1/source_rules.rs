@@ -65,7 +65,7 @@ fn words_and_operators(shader: &Shader, stage: Stage, refusals: &mut Vec<Refusal
     for (i, t) in shader.toks.iter().enumerate() {
         let word = shader.text(i);
         let line = t.line;
-        let call = shader.text(i + 1) == "(" && !shader.functions.iter().any(|f| f == word);
+        let call = shader.text(i + 1) == "(" && !shader.defines_function(word);
         let mut refuse = |rule: Rule, message: String| refusals.push(Refusal { line, rule, message });
         match t.kind {
             Kind::Punct if RESERVED_OPERATORS.contains(&word) => refuse(
@@ -164,10 +164,7 @@ fn not_constant(shader: &Shader, from: usize, to: usize, loop_indices: bool) -> 
         if !shader.is_ident(k) || shader.text(k + 1) == "(" {
             // A call: constructors and built-ins of constants are constant; a function of the
             // student's is not, but it is rarely where a bound is.
-            if shader.is_ident(k)
-                && shader.text(k + 1) == "("
-                && shader.functions.iter().any(|f| f == shader.text(k))
-            {
+            if shader.is_ident(k) && shader.text(k + 1) == "(" && shader.defines_function(shader.text(k)) {
                 return Some((shader.text(k).to_string(), "a function of the shader's own".into()));
             }
             continue;
@@ -182,7 +179,9 @@ fn not_constant(shader: &Shader, from: usize, to: usize, loop_indices: bool) -> 
                 ));
             }
             Resolved::Macro => {
-                if let Some((name, what)) = macro_not_constant(shader, shader.text(k), k, loop_indices, 0) {
+                if let Some((name, what)) =
+                    macro_not_constant(shader, shader.text(k), k, loop_indices, &mut Vec::new())
+                {
                     return Some((name, what));
                 }
             }
@@ -199,31 +198,29 @@ fn macro_not_constant(
     name: &str,
     at: usize,
     loop_indices: bool,
-    depth: usize,
+    seen: &mut Vec<String>,
 ) -> Option<(String, String)> {
-    let defined = shader.pre.macros.get(name)?;
-    let body = &defined.body;
-    if depth > 8 {
+    // Each macro is read once per question: a macro naming itself, or one named many times over
+    // in a chain, stays linear.
+    if seen.iter().any(|s| s == name) {
         return None;
     }
+    seen.push(name.to_string());
+    let defined = shader.pre.macros.get(name)?;
+    let body = &defined.body;
     for t in crate::homework::lex::tokens(body) {
         if t.kind != Kind::Ident {
             continue;
         }
         let word = &body[t.start..t.end];
         if shader.pre.macros.contains_key(word) {
-            if let Some(found) = macro_not_constant(shader, word, at, loop_indices, depth + 1) {
+            if let Some(found) = macro_not_constant(shader, word, at, loop_indices, seen) {
                 return Some(found);
             }
             continue;
         }
         // The name as if written at `at`: the innermost declaration of it visible there.
-        let visible = shader
-            .decls
-            .iter()
-            .filter(|d| shader.text(d.at) == word && d.visible.0 <= at && at <= d.visible.1)
-            .max_by_key(|d| d.visible.0);
-        if let Some(d) = visible {
+        if let Some(d) = shader.visible_decl(word, at) {
             let is_index = d.kind == DeclKind::LoopIndex && loop_indices;
             if d.kind != DeclKind::Const && !is_index {
                 let what = format!(
@@ -302,9 +299,9 @@ fn loops(shader: &Shader, refusals: &mut Vec<Refusal>) {
             continue;
         }
         // Body: the index is never assigned.
-        let Some(index_decl) = shader.decls.iter().find(|d| d.at == index_at) else { continue };
+        let Some(index_decl) = shader.visible_decl(index, index_at) else { continue };
         for k in l.close + 1..=l.body_end {
-            let is_index = shader.text(k) == index && shader.resolve(k) == Resolved::Decl(*index_decl);
+            let is_index = shader.text(k) == index && shader.resolve(k) == Resolved::Decl(index_decl);
             if !is_index {
                 continue;
             }
@@ -328,7 +325,7 @@ fn loops(shader: &Shader, refusals: &mut Vec<Refusal>) {
 /// (constants and loop indices) only, except uniforms in a vertex shader.
 fn indexing(shader: &Shader, stage: Stage, refusals: &mut Vec<Refusal>) {
     for open in 0..shader.toks.len() {
-        if shader.text(open) != "[" || shader.array_sizes.contains(&open) || open == 0 {
+        if shader.text(open) != "[" || shader.is_array_size(open) || open == 0 {
             continue;
         }
         let before = shader.text(open - 1);

@@ -297,3 +297,19 @@ fn the_framework_and_the_projects_examples_are_accepted() {
     }
     assert!(seen >= 20, "{seen} shaders");
 }
+
+#[test]
+fn macros_that_name_themselves_or_each_other_many_times_are_read_once() {
+    // A macro whose body names itself hundreds of times (a fuzzed shader hung on this), used as a
+    // loop bound and in an `#if`: read once, nothing refused for it, and the reading ends.
+    let body = "N ".repeat(400);
+    let source = fragment(&format!(
+        "#define N {body}\n#if N > 1\n#endif\nfloat f(float x, int n) {{\n  for (int i = 0; i < N; i++) {{ x += 1.0; }}\n  return x;\n}}"
+    ));
+    assert!(source_refusals(&source, Stage::Fragment).iter().all(|r| r.rule != Rule::LoopForm));
+    // A chain where each macro names the next many times: its expansion is cut, not followed.
+    let chain: String =
+        (0..12).map(|k| format!("#define M{k} {}\n", format!("M{} ", k + 1).repeat(8))).collect();
+    let source = fragment(&format!("{chain}#if M0\n#endif\nfloat f(float x, int n) {{ return x; }}"));
+    assert_eq!(source_refusals(&source, Stage::Fragment), vec![]);
+}
