@@ -26,7 +26,11 @@ pub(super) fn lesson_link(
 }
 
 /// `homework1/src/lights/DirectionalLight.js:32` as `DirectionalLight.js:32`.
-fn file_and_line(from: &str) -> String {
+fn file_and_line(from: &str, lang: crate::i18n::Lang) -> String {
+    // The report's `framework` names no file: said in the panel's language.
+    if from == "framework" {
+        return tr(lang, "the framework's").to_string();
+    }
     from.rsplit(['/', '\\']).next().unwrap_or(from).to_string()
 }
 
@@ -127,8 +131,8 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
         |l| match (&l.error, l.frustum.width_world) {
             (Some(_), _) => tr(lang, "the framework's (yours did not run)").to_string(),
             // The file's name and line: the path inside the submission is in report.json.
-            (None, Some(width)) => fill(lang, "{}, {:.0} wide", &[&file_and_line(&l.from), &width]),
-            (None, None) => file_and_line(&l.from),
+            (None, Some(width)) => fill(lang, "{}, {:.0} wide", &[&file_and_line(&l.from, lang), &width]),
+            (None, None) => file_and_line(&l.from, lang),
         },
     );
     ui.label(fill(lang, "light from {}", &[&light]));
