@@ -5,7 +5,7 @@
 
 use super::Judged;
 use crate::homework::RECORDED_FUNCTIONS;
-use crate::homework::lex::{Kind, tokens};
+use crate::homework::lex::{Kind, matching, tokens};
 use glam::Vec3;
 
 /// A number the student wrote where a depth test can read it.
@@ -36,20 +36,10 @@ fn function_lines(source: &str) -> Vec<(&'static str, usize, usize)> {
                     // Its body: the first `{` after the parameters, to the brace closing it.
                     let open = (i + 1..toks.len()).find(|&k| text(k) == "{" || text(k) == ";");
                     if let Some(open) = open.filter(|&k| text(k) == "{") {
-                        let mut d = 0;
-                        for k in open..toks.len() {
-                            match text(k) {
-                                "{" => d += 1,
-                                "}" => {
-                                    d -= 1;
-                                    if d == 0 {
-                                        out.push((*recorded, toks[open].line, toks[k].line));
-                                        i = k;
-                                        break;
-                                    }
-                                }
-                                _ => {}
-                            }
+                        let close = matching(source, &toks, open, "{", "}");
+                        if close > open && text(close) == "}" {
+                            out.push((*recorded, toks[open].line, toks[close].line));
+                            i = close;
                         }
                     }
                 }
