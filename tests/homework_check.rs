@@ -84,6 +84,10 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_undivided.glsl", vec![], &["visibility_out_of_range"]),
         ("phongFragment_zero_blocker.glsl", vec![], &["filter_radius_not_finite"]),
         ("phongFragment_divided_by_blockers.glsl", vec![], &["nan_visibility", "visibility_out_of_range"]),
+        ("phongFragment_blocker_early_return.glsl", vec![], &["blocker_depth_wrong"]),
+        ("phongFragment_unfilled_samples.glsl", vec![], &["search_radius_wrong"]),
+        ("phongFragment_grid_search.glsl", vec![], &["search_radius_wrong", "no_contact_hardening"]),
+        ("phongFragment_receiver_from_map.glsl", vec![], &["penumbra_estimate_wrong"]),
     ]
 }
 
@@ -318,6 +322,91 @@ fn peter_panning_names_the_students_bias_with_its_line_in_their_own_units() {
     let expected = format!("the largest, `0.003` on line {first_test}, is 1.2 world units");
     assert!(said.contains(&expected), "{said}");
     assert!(!said.contains("In your shader:"), "{said}");
+
+    // The same bias set in a local by an expression in each function that tests: named where it
+    // is set, the first of them.
+    let local = source.replace("#define BIAS 0.015", "#define SCALE 5.0").replace("BIAS", "bias");
+    let local = local.replace(
+        "float findBlocker(sampler2D shadowMap, vec2 uv, float zReceiver) {",
+        "float findBlocker(sampler2D shadowMap, vec2 uv, float zReceiver) {\n  float bias = 0.003 * SCALE;",
+    );
+    let local = local
+        .replace(
+            "float PCF(sampler2D shadowMap, vec4 coords, float radiusUV) {",
+            "float PCF(sampler2D shadowMap, vec4 coords, float radiusUV) {\n  float bias = 0.003 * SCALE;",
+        )
+        .replace(
+            "float useShadowMap(sampler2D shadowMap, vec4 shadowCoord) {",
+            "float useShadowMap(sampler2D shadowMap, vec4 shadowCoord) {\n  float bias = 0.003 * SCALE;",
+        );
+    let set_at = local.lines().position(|l| l.contains("float bias = 0.003 * SCALE;")).expect("set") + 1;
+    std::fs::write(&shader, local).expect("write the shader");
+    let report = check(&shader.display().to_string(), &[], &scratch.path().join("local"));
+    assert_eq!(finding_ids(&report), ["peter_panning"], "{report:#}");
+    let found = &report["findings"][0];
+    assert_eq!(found["function"], "findBlocker", "{found:#}");
+    let said = found["explanation"].as_str().unwrap_or_default();
+    let expected = format!("`bias = 0.003 * SCALE` (line {set_at}, findBlocker)");
+    assert!(said.contains(&expected), "{said}");
+}
+
+/// Each of PCSS's steps judged on the student's own inputs names the function, its quantity
+/// beside the expected one, and the line: the early return findBlocker always takes, the sample
+/// array it reads before anything fills it, a search far smaller than the light the filter
+/// behaves as, the map read that stands in for the receiver's depth, the constant that sets a
+/// light as wide as the map.
+#[test]
+fn each_pcss_step_that_parts_from_the_twin_is_named_with_its_quantity_and_line() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let first = |name: &str| {
+        let report = check(&example(name), &[], &scratch.path().join(name));
+        report["findings"][0].clone()
+    };
+    let figure = |f: &Value, name: &str| f["figures"][name].as_f64().unwrap_or(f64::NAN);
+    let said = |f: &Value| f["explanation"].as_str().unwrap_or_default().to_string();
+
+    let early = first("phongFragment_blocker_early_return.glsl");
+    assert_eq!(
+        (early["id"].as_str(), early["function"].as_str()),
+        (Some("blocker_depth_wrong"), Some("findBlocker"))
+    );
+    assert_eq!(figure(&early, "returned_median"), 0.0, "{early:#}");
+    assert!((0.1..0.4).contains(&figure(&early, "twin_blocker_depth_median")), "{early:#}");
+    assert!(
+        said(&early).contains("the return on line 82, taken whenever the test on line 81 holds"),
+        "{early:#}"
+    );
+
+    let unfilled = first("phongFragment_unfilled_samples.glsl");
+    assert_eq!(unfilled["id"], "search_radius_wrong", "{unfilled:#}");
+    assert_eq!(figure(&unfilled, "reads_at_receiver_share"), 1.0, "{unfilled:#}");
+    assert!(said(&unfilled).contains("Line 69 reads `poissonDisk` before anything fills it"), "{unfilled:#}");
+
+    let grid = first("phongFragment_grid_search.glsl");
+    assert_eq!(grid["id"], "search_radius_wrong", "{grid:#}");
+    assert!((2.0..3.5).contains(&figure(&grid, "search_radius_texels_median")), "{grid:#}");
+    // The example's light: 5 world units, 5 / 200 of the 2048-texel map, half of it 25.6 texels.
+    assert!((figure(&grid, "light_width_world") - 5.0).abs() < 0.25, "{grid:#}");
+    assert!((figure(&grid, "light_half_width_texels_median") - 25.6).abs() < 1.0, "{grid:#}");
+
+    let from_map = first("phongFragment_receiver_from_map.glsl");
+    assert_eq!(
+        (from_map["id"].as_str(), from_map["function"].as_str()),
+        (Some("penumbra_estimate_wrong"), Some("PCSS"))
+    );
+    assert_eq!(figure(&from_map, "map_read_line"), 99.0, "{from_map:#}");
+    assert!(figure(&from_map, "collapsed_share") > 0.3, "{from_map:#}");
+
+    // A light size in world units (5) used as uv: a light five maps wide, and its #define.
+    let wide = first("phongFragment_light_size_world.glsl");
+    assert_eq!(wide["id"], "umbra_not_dark", "{wide:#}");
+    assert!((figure(&wide, "light_width_uv") - 5.0).abs() < 0.1, "{wide:#}");
+    assert_eq!(figure(&wide, "light_line"), 28.0, "{wide:#}");
+    assert!(said(&wide).contains("That is `LIGHT_WIDTH_UV` on line 28."), "{wide:#}");
+
+    // The correct solution: no step parts from the twin.
+    let report = check(&example("phongFragment.glsl"), &[], &scratch.path().join("correct"));
+    assert_eq!(finding_ids(&report), Vec::<String>::new(), "{report:#}");
 }
 
 /// A correct PCSS whose filter never goes under 2 texels: its penumbrae are the light's over that

@@ -228,6 +228,11 @@ const DESCRIPTIONS: &[(&str, &str)] = &[
         "PCSS filters over a radius that is not a number (a blocker depth of 0 divided by).",
     ),
     ("receiver_counts_as_blocker", "findBlocker counts the receiver as its own blocker."),
+    ("blocker_depth_wrong", "findBlocker returns a depth no blocker has where the disk is blocked."),
+    (
+        "penumbra_estimate_wrong",
+        "PCSS's filter radius collapses under blockers: the penumbra estimate misses the receiver's depth.",
+    ),
     ("samples_not_around_receiver", "The filter's taps are not spread over a disk around the receiver."),
     ("no_penumbra", "PCSS draws hard shadows: the filter is under a texel wide."),
     ("no_contact_hardening", "Penumbrae do not widen with the blocker's distance as similar triangles say."),

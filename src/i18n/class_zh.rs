@@ -99,6 +99,14 @@ pub(super) const CLASS: &[(&str, &str)] = &[
     ),
     ("findBlocker counts the receiver as its own blocker.", "findBlocker 把接收点自己算成了遮挡物。"),
     (
+        "findBlocker returns a depth no blocker has where the disk is blocked.",
+        "搜索圆盘被遮挡时，findBlocker 返回的深度不属于任何遮挡物。",
+    ),
+    (
+        "PCSS's filter radius collapses under blockers: the penumbra estimate misses the receiver's depth.",
+        "PCSS 的滤波半径在遮挡物下塌缩：半影估计没有用接收点自己的深度。",
+    ),
+    (
         "The filter's taps are not spread over a disk around the receiver.",
         "滤波的采样点没有分布在以接收点为中心的圆盘上。",
     ),

@@ -165,4 +165,58 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "the matrix is not projection * view * translate * scale",
         "这个矩阵不是 projection * view * translate * scale",
     ),
+    (
+        "findBlocker reads the map only at the receiver's own texel at {:.0}% of the pixels (every read within half a texel of it), while PCSS's filter then reaches up to {:.1} texels: the search sees no blocker beside the receiver, so the penumbra starts only where the receiver's own texel is blocked.",
+        "在 {:.0}% 的像素上，findBlocker 只在接收点自己的纹素上读取阴影图（每次读取都在半个纹素之内），而 PCSS 随后的滤波可达 {:.1} 个纹素：搜索看不到接收点旁边的遮挡物，半影只从接收点自己的纹素被遮挡处才开始。",
+    ),
+    (
+        "Line {} reads `{}` before anything fills it (nothing that writes it runs before findBlocker): every offset is 0. Fill the samples at the start of findBlocker.",
+        "第 {} 行在任何代码填充 `{}` 之前就读取了它（在 findBlocker 之前没有运行写它的函数）：每个偏移都是 0。请在 findBlocker 开头生成采样点。",
+    ),
+    (
+        "findBlocker searches {:.1} texels around the receiver, but at {:.0}% of the points under a blocker the blockers that shade the receiver lie farther, up to {:.1} texels away: the light PCSS's filter behaves as ({:.1} texels wide: its radius r = (w_light / 2) (d_r - d_b) / d_b solved with findBlocker's own d_b) reaches the blockers' plane within (w_light / 2) (d_r - d_b) / d_r of the receiver. Search the light's half width (in the map's uv), which covers every blocker depth.",
+        "findBlocker 在接收点周围搜索 {:.1} 个纹素，但在遮挡物下 {:.0}% 的点上，遮住接收点的遮挡物离得更远，最远 {:.1} 个纹素：PCSS 的滤波所相当的光源（宽 {:.1} 个纹素：由半径 r = (w_light / 2) (d_r - d_b) / d_b 和 findBlocker 自己的 d_b 解出）在遮挡物平面上覆盖到离接收点 (w_light / 2) (d_r - d_b) / d_r 的范围。请搜索光源的半宽（以阴影图的 uv 计），它能覆盖任何遮挡深度。",
+    ),
+    (
+        "That light is {:.1} world units wide. The blockers the search misses are the ones that shade the outer penumbra: it ends too soon, hard, where the search stops.",
+        "这个光源宽 {:.1} 个世界单位。搜索漏掉的遮挡物正是遮住外侧半影的那些：半影在搜索停止处过早地、生硬地结束。",
+    ),
+    (
+        "findBlocker returns {:.3} (the median) at {:.0}% of the points where most of the disk it searched is blocked, where the blockers' average depth is {:.3} (the median, in [0, 1] depth, from shadowlab's map over the same disk).",
+        "findBlocker 返回 {:.3}（中位数），这发生在其搜索圆盘大部分被遮挡的点中的 {:.0}%，而那里遮挡物的平均深度是 {:.3}（中位数，[0, 1] 深度，取自 shadowlab 阴影图上的同一个圆盘）。",
+    ),
+    (
+        "That is the return on line {}, taken whenever the test on line {} holds: it holds where it should not.",
+        "那是第 {} 行的 return，只要第 {} 行的条件成立就会执行：它在不该成立的地方成立了。",
+    ),
+    ("That is the return on line {}.", "那是第 {} 行的 return。"),
+    (
+        "PCSS then sizes the penumbra from a depth that is no blocker's: it no longer widens with the distance from blocker to receiver.",
+        "于是 PCSS 用一个不属于任何遮挡物的深度来估计半影：半影不再随遮挡物到接收点的距离变宽。",
+    ),
+    (
+        "PCSS hands its filter a radius that collapses at {:.0}% of the points under a blocker (findBlocker's own blockers in front of the receiver): there it is under a texel where the same light (r d_b / (d_r - d_b), the light's half width, {:.1} texels at the 90th percentile) asks for two or more. By similar triangles r = (w_light / 2) (d_r - d_b) / d_b with d_r the receiver's own depth: it is small only where the blocker touches the receiver.",
+        "在遮挡物下 {:.0}% 的点上（findBlocker 自己找到了接收点前方的遮挡物），PCSS 交给滤波的半径塌缩了：同一光源（r d_b / (d_r - d_b)，即光源半宽，第 90 百分位为 {:.1} 个纹素）要求两个纹素以上的地方，它不到一个纹素。按相似三角形 r = (w_light / 2) (d_r - d_b) / d_b，其中 d_r 是接收点自己的深度：只有遮挡物贴着接收点时它才小。",
+    ),
+    (
+        "PCSS reads the map itself on line {}: a depth read at the receiver's uv is the nearest occluder's, not the receiver's; use the receiver's own depth (coords.z).",
+        "PCSS 在第 {} 行自己读取了阴影图：在接收点 uv 处读到的深度是最近遮挡物的，不是接收点的；请用接收点自己的深度（coords.z）。",
+    ),
+    (
+        "On screen, the part of each penumbra inside the hard shadow's edge is dark and hard.",
+        "画面上，每个半影在硬阴影边缘以内的部分又黑又硬。",
+    ),
+    (
+        "Your PCSS filters as a light {:.3} wide in the map's uv ({:.1} world units; the whole map is 1, {:.0} world units).",
+        "你的 PCSS 的滤波相当于一个在阴影图 uv 中宽 {:.3} 的光源（{:.1} 个世界单位；整张图为 1，即 {:.0} 个世界单位）。",
+    ),
+    (
+        "Your PCSS filters as a light {:.3} wide in the map's uv (the whole map is 1).",
+        "你的 PCSS 的滤波相当于一个在阴影图 uv 中宽 {:.3} 的光源（整张图为 1）。",
+    ),
+    ("That is `{}` on line {}.", "那就是 `{}`（第 {} 行）。"),
+    (
+        "Your depth tests use a bias your code computes: `{} = {}` (line {}, {}). It comes to at least {:.4} in [0, 1] depth here; a bias of a texel's depth slope or two is enough, far under 1 world unit with this light.",
+        "你的深度测试用了代码计算出来的偏移：`{} = {}`（第 {} 行，{}）。在这里它至少是 [0, 1] 深度中的 {:.4}；偏移取一两个纹素的深度斜率就够了，对这个光源而言远小于 1 个世界单位。",
+    ),
 ];

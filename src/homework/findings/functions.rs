@@ -183,18 +183,19 @@ pub(crate) fn search_broken(earlier: &[super::Finding]) -> bool {
             && (f.figures.get("not_finite_share").is_some_and(|s| *s > NOT_FINITE_SHARE)
                 || f.figures
                     .get("under_half_a_texel_share")
-                    .is_some_and(|s| *s > COLLAPSED_SHARE && *s < COLLAPSED_EVERYWHERE))
+                    .is_some_and(|s| *s > COLLAPSED_SHARE && *s < COLLAPSED_EVERYWHERE)
+                || f.figures.contains_key("reads_at_receiver_share"))
     })
 }
 
 /// The twin's search at one pixel.
 pub(crate) struct TwinSearch {
     /// The share of the disk that blocks, and the blockers' average depth (NDC).
-    blocked: f32,
-    z_blocker: f32,
+    pub blocked: f32,
+    pub z_blocker: f32,
     /// The receiver's depth, and how far its own plane's depth moves across the disk.
-    z_receiver: f32,
-    receiver_spread: f32,
+    pub z_receiver: f32,
+    pub receiver_spread: f32,
 }
 
 /// The twin's search at one pixel, over a disk of `radius_uv` around the receiver.

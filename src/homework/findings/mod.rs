@@ -14,6 +14,7 @@
 
 mod functions;
 mod light;
+mod pcss_steps;
 mod penumbra;
 pub(crate) mod shadows;
 mod source_lines;
@@ -136,7 +137,10 @@ pub const FINDINGS: &[FindingKind] = &[
     functions::DEPTH_ROUND_TRIP_WRONG,
     functions::SEARCH_RADIUS_WRONG,
     functions::FILTER_RADIUS_NOT_FINITE,
+    pcss_steps::SEARCH_MISSES_LIGHT,
     functions::RECEIVER_COUNTS_AS_BLOCKER,
+    pcss_steps::BLOCKER_DEPTH_WRONG,
+    pcss_steps::PENUMBRA_ESTIMATE_WRONG,
     functions::SAMPLES_NOT_AROUND_RECEIVER,
     shadows::SELF_SHADOWING,
     penumbra::NO_PENUMBRA,

@@ -58,10 +58,14 @@ pub const NO_CONTACT_HARDENING: FindingKind =
     FindingKind { id: "no_contact_hardening", lesson: "pcss", step: 1, judge: no_contact_hardening };
 
 fn no_contact_hardening(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    // Taps on a line make penumbrae soft one way and hard the other: that finding says why.
+    // Taps on a line make penumbrae soft one way and hard the other: that finding says why; a
+    // blocker depth that is no blocker's, or a filter radius that collapses, is why the widths do
+    // not follow similar triangles, and those findings say so.
     if !penumbra_judged(j, earlier)
         || has(earlier, "no_penumbra")
         || has(earlier, "samples_not_around_receiver")
+        || has(earlier, "blocker_depth_wrong")
+        || has(earlier, "penumbra_estimate_wrong")
     {
         return None;
     }

@@ -81,15 +81,43 @@ fn umbra_not_dark(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opt
         return None;
     }
     let umbra = umbra_mean(j).filter(|m| *m > UMBRA_MEAN_LIMIT)?;
-    Some(Found::new(
-        None,
-        BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]),
-        fill(
-            lang,
-            "Where no point of the light reaches (the ground truth is 0), your visibility averages {:.2}. A filter that reaches far past the blocker does this: a light size in world units used as a size in uv (or texels).",
-            &[&umbra],
-        ),
-    ))
+    let mut figures = BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]);
+    let mut explanation = fill(
+        lang,
+        "Where no point of the light reaches (the ground truth is 0), your visibility averages {:.2}. A filter that reaches far past the blocker does this: a light size in world units used as a size in uv (or texels).",
+        &[&umbra],
+    );
+    // The light PCSS behaves as, and the constant that sets it where one does.
+    let mut function = None;
+    if let Some(width_uv) = super::pcss_steps::light_width_behaved_as_uv(j) {
+        function = Some("PCSS");
+        figures.insert("light_width_uv", f64::from(width_uv));
+        explanation += " ";
+        match super::source_lines::world_per_uv(j) {
+            Some(per_uv) => {
+                figures.insert("light_width_world", f64::from(width_uv * per_uv));
+                explanation += &fill(
+                    lang,
+                    "Your PCSS filters as a light {:.3} wide in the map's uv ({:.1} world units; the whole map is 1, {:.0} world units).",
+                    &[&width_uv, &(width_uv * per_uv), &per_uv],
+                );
+            }
+            None => {
+                explanation += &fill(
+                    lang,
+                    "Your PCSS filters as a light {:.3} wide in the map's uv (the whole map is 1).",
+                    &[&width_uv],
+                )
+            }
+        }
+        if let Some(c) = super::source_lines::constant_near(j.e.fragment_source, &[width_uv, 0.5 * width_uv])
+        {
+            figures.insert("light_line", c.line as f64);
+            explanation += " ";
+            explanation += &fill(lang, "That is `{}` on line {}.", &[&c.text, &c.line]);
+        }
+    }
+    Some(Found::new(function, figures, explanation))
 }
 
 /// The lowest slab's shadow is gone while the higher ones are there: a bias so large that a
@@ -116,6 +144,14 @@ fn peter_panning(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opti
     // The bias lies between the largest gap that lost its shadow and the smallest that kept it.
     let lost = slabs.iter().filter(gone).map(|s| s.gap_world).fold(0.0f32, f32::max);
     let kept = slabs.iter().filter(there).map(|s| s.gap_world).fold(f32::INFINITY, f32::min);
+    // A bias hides a blocker that near from the blocker search too; where the search sees it, the
+    // shadow is lost downstream (a filter far wider than the blocker dilutes it).
+    let per_world = super::source_lines::depth_per_world(j);
+    if let Some(per_world) = per_world
+        && super::pcss_steps::search_sees_blockers_within(j, lost * per_world) == Some(true)
+    {
+        return None;
+    }
     let mut figures =
         BTreeMap::from([("bias_at_least_world", f64::from(lost)), ("bias_under_world", f64::from(kept))]);
     for (key, s) in super::SLAB_KEYS.iter().zip(slabs) {
@@ -167,6 +203,16 @@ fn peter_panning(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opti
                 lang,
                 "In your shader: {}. A bias of a texel's depth slope or two is enough; with this light that is far under 1 world unit.",
                 &[&named.join(", ")],
+            );
+        } else if let Some(first) = super::source_lines::computed_biases(j.e.fragment_source).first() {
+            // No number written is that large, but a bias the code computes is in the tests.
+            function = Some(first.function);
+            figures.insert("bias_line", first.line as f64);
+            explanation += " ";
+            explanation += &fill(
+                lang,
+                "Your depth tests use a bias your code computes: `{} = {}` (line {}, {}). It comes to at least {:.4} in [0, 1] depth here; a bias of a texel's depth slope or two is enough, far under 1 world unit with this light.",
+                &[&first.name, &first.expression, &first.line, &first.function, &low],
             );
         } else if let Some(c) = largest.filter(|c| c.value < 0.8 * low) {
             // What the code writes is too small to lose these shadows: say so rather than have the

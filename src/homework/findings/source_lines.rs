@@ -23,32 +23,13 @@ pub struct Constant {
 /// The recorded functions' bodies: (name, first line, last line).
 fn function_lines(source: &str) -> Vec<(&'static str, usize, usize)> {
     let toks = tokens(source);
-    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
-    let mut out = Vec::new();
-    let mut depth = 0i32;
-    let mut i = 0;
-    while i < toks.len() {
-        match text(i) {
-            "{" => depth += 1,
-            "}" => depth -= 1,
-            name if depth == 0 && text(i + 1) == "(" => {
-                if let Some(recorded) = RECORDED_FUNCTIONS.iter().find(|f| **f == name) {
-                    // Its body: the first `{` after the parameters, to the brace closing it.
-                    let open = (i + 1..toks.len()).find(|&k| text(k) == "{" || text(k) == ";");
-                    if let Some(open) = open.filter(|&k| text(k) == "{") {
-                        let close = matching(source, &toks, open, "{", "}");
-                        if close > open && text(close) == "}" {
-                            out.push((*recorded, toks[open].line, toks[close].line));
-                            i = close;
-                        }
-                    }
-                }
-            }
-            _ => {}
-        }
-        i += 1;
-    }
-    out
+    function_bodies(source, &toks)
+        .into_iter()
+        .filter_map(|(name, open, close)| {
+            let recorded = RECORDED_FUNCTIONS.iter().find(|f| **f == name)?;
+            Some((*recorded, toks[open].line, toks[close].line))
+        })
+        .collect()
 }
 
 /// The constants in the depth tests of the recorded functions: float literals on a line that
@@ -134,21 +115,240 @@ pub fn depth_test_constants(source: &str) -> Vec<Constant> {
     out
 }
 
-/// [0, 1] depth per world unit along the light, at the floor under the view (the depth the
-/// student's `uLightMVP` gives: 1 / (far - near) for an orthographic light).
-pub fn depth_per_world(j: &Judged<'_>) -> Option<f32> {
+/// A bias the student's code computes: a local a recorded function's depth test reads, set by an
+/// expression that is not a plain number (`float bias = Bias(0.15);`).
+#[derive(Clone, Debug, PartialEq)]
+pub struct ComputedBias {
+    /// Where it is set (1-based), and the function it is in.
+    pub line: usize,
+    pub function: &'static str,
+    pub name: String,
+    /// The expression as written, on one line.
+    pub expression: String,
+}
+
+/// The computed biases in the recorded functions' depth tests (lines that compare with `<` or
+/// `>`), named as biases, first in the file first, each once.
+pub fn computed_biases(source: &str) -> Vec<ComputedBias> {
+    let toks = tokens(source);
+    let word = |i: usize| &source[toks[i].start..toks[i].end];
+    let functions = function_lines(source);
+    let in_function =
+        |line: usize| functions.iter().find(|&&(_, from, to)| (from..=to).contains(&line)).map(|&(f, ..)| f);
+    let mut out: Vec<ComputedBias> = Vec::new();
+    for i in 1..toks.len().saturating_sub(2) {
+        // `float NAME = ...;` inside a recorded function, not a plain number.
+        if word(i - 1) != "float" || toks[i].kind != Kind::Ident || word(i + 1) != "=" {
+            continue;
+        }
+        let Some(function) = in_function(toks[i].line) else { continue };
+        let Some(end) = (i + 2..toks.len()).find(|&k| word(k) == ";") else { continue };
+        if end == i + 3 && toks[i + 2].kind == Kind::Number {
+            continue;
+        }
+        let name = word(i);
+        // Read by a later comparison in the same function.
+        let body = functions.iter().find(|f| f.0 == function).map_or((0, 0), |f| (f.1, f.2));
+        let compared = (end..toks.len()).any(|k| {
+            word(k) == name
+                && toks[k].line <= body.1
+                && (k.saturating_sub(3)..(k + 4).min(toks.len())).any(|m| matches!(word(m), "<" | ">"))
+        });
+        let expression =
+            source[toks[i + 2].start..toks[end - 1].end].split_whitespace().collect::<Vec<_>>().join(" ");
+        // Named as a bias (`bias`, `EPS`, `shadowBias`, or set by a `Bias(...)` call): a depth or
+        // a coordinate compared on the same line is not one.
+        let says_bias = |t: &str| {
+            let t = t.to_ascii_lowercase();
+            t.contains("bias") || t.contains("eps")
+        };
+        let named = says_bias(name) || says_bias(&expression);
+        if compared && named && !out.iter().any(|c| c.expression == expression && c.name == name) {
+            out.push(ComputedBias { line: toks[i].line, function, name: name.to_string(), expression });
+        }
+    }
+    out
+}
+
+/// How the student's light maps a world point near the floor under the view: the gradients of
+/// its map u and of its [0, 1] depth, per world unit.
+fn light_gradients(j: &Judged<'_>) -> Option<(Vec3, Vec3)> {
     let e = j.e;
     let (i, p) = (0..e.positions.len()).find_map(|i| Some((i, e.positions[i]?)))?;
     let o = e.objects.get(i).copied().flatten()?;
     let clip_from_world = *e.light.clip_from_object.get(o)? * e.light.world_from_object.get(o)?.inverse();
-    let depth = |q: Vec3| {
+    let map = |q: Vec3| {
         let clip = clip_from_world * q.extend(1.0);
-        0.5 * clip.z / clip.w + 0.5
+        Vec3::new(0.5 * clip.x / clip.w + 0.5, 0.0, 0.5 * clip.z / clip.w + 0.5)
     };
-    let at = depth(p);
-    let gradient = Vec3::new(depth(p + Vec3::X) - at, depth(p + Vec3::Y) - at, depth(p + Vec3::Z) - at);
-    let per_world = gradient.length();
+    let at = map(p);
+    let d = [Vec3::X, Vec3::Y, Vec3::Z].map(|a| map(p + a) - at);
+    Some((Vec3::new(d[0].x, d[1].x, d[2].x), Vec3::new(d[0].z, d[1].z, d[2].z)))
+}
+
+/// [0, 1] depth per world unit along the light, at the floor under the view (the depth the
+/// student's `uLightMVP` gives: 1 / (far - near) for an orthographic light).
+pub fn depth_per_world(j: &Judged<'_>) -> Option<f32> {
+    let per_world = light_gradients(j)?.1.length();
     (per_world.is_finite() && per_world > 0.0).then_some(per_world)
+}
+
+/// World units across the light per unit of the map's uv, at the floor under the view (the
+/// orthographic box's width).
+pub fn world_per_uv(j: &Judged<'_>) -> Option<f32> {
+    let per_world = light_gradients(j)?.0.length();
+    (per_world.is_finite() && per_world > 0.0).then(|| 1.0 / per_world)
+}
+
+/// A `#define` of a number (or a number on a line of code) within 10% of one of `values`: the
+/// constant a measured quantity comes from. The first such in the file.
+pub fn constant_near(source: &str, values: &[f32]) -> Option<Constant> {
+    let toks = tokens(source);
+    let word = |i: usize| &source[toks[i].start..toks[i].end];
+    let close = |v: f64| values.iter().any(|&x| x > 0.0 && (v / f64::from(x) - 1.0).abs() <= 0.1);
+    (0..toks.len()).find_map(|i| {
+        let t = &toks[i];
+        if t.kind != Kind::Number || !word(i).contains('.') {
+            return None;
+        }
+        let value = word(i).trim_end_matches(['f', 'F']).parse::<f64>().ok().filter(|v| close(*v))?;
+        // Under a `#define NAME`, name the macro.
+        let text = if t.in_directive && i >= 2 && word(i - 2).trim_start_matches('#').trim() == "define" {
+            word(i - 1).to_string()
+        } else {
+            word(i).to_string()
+        };
+        Some(Constant { line: t.line, text, value, function: None })
+    })
+}
+
+/// Every function defined at the top level: (name, token of its body's `{`, token of its `}`).
+fn function_bodies<'s>(
+    source: &'s str,
+    toks: &[crate::homework::lex::Token],
+) -> Vec<(&'s str, usize, usize)> {
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let mut out = Vec::new();
+    let mut depth = 0i32;
+    let mut i = 0;
+    while i < toks.len() {
+        match text(i) {
+            "{" => depth += 1,
+            "}" => depth -= 1,
+            name if depth == 0
+                && toks[i].kind == Kind::Ident
+                && text(i + 1) == "("
+                && !toks[i].in_directive =>
+            {
+                let open = (i + 1..toks.len()).find(|&k| text(k) == "{" || text(k) == ";");
+                if let Some(open) = open.filter(|&k| text(k) == "{") {
+                    let close = matching(source, toks, open, "{", "}");
+                    if close > open && text(close) == "}" {
+                        out.push((name, open, close));
+                        i = close;
+                    }
+                }
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    out
+}
+
+/// A global sample array `function` reads (`poissonDisk[i]`) that nothing fills before it runs:
+/// no function that writes the array is called in `function` before the read, nor in the
+/// function that calls `function` before that call, nor in `main` before the call that leads
+/// there. (array name, the line of the first read in `function`.)
+pub fn sample_array_read_unfilled(source: &str, function: &str) -> Option<(String, usize)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let bodies = function_bodies(source, &toks);
+    let body = |name: &str| bodies.iter().find(|b| b.0 == name).map(|b| (b.1, b.2));
+    // Global arrays: `TYPE NAME [` at the top level, outside every body.
+    let inside_any = |k: usize| bodies.iter().any(|&(_, open, close)| (open..=close).contains(&k));
+    let arrays: Vec<&str> = (1..toks.len())
+        .filter(|&k| {
+            !inside_any(k) && !toks[k].in_directive && text(k + 1) == "[" && toks[k].kind == Kind::Ident
+        })
+        .filter(|&k| toks[k - 1].kind == Kind::Ident)
+        .map(|k| text(k))
+        .collect();
+    let (open, close) = body(function)?;
+    let read = (open..close).find(|&k| arrays.contains(&text(k)) && text(k + 1) == "[")?;
+    let array = text(read);
+    // Functions that write `array[...] =`.
+    let fillers: Vec<&str> = bodies
+        .iter()
+        .filter(|&&(_, o, c)| {
+            (o..c).any(|k| {
+                text(k) == array && text(k + 1) == "[" && {
+                    let end = matching(source, &toks, k + 1, "[", "]");
+                    text(end + 1) == "="
+                }
+            })
+        })
+        .map(|b| b.0)
+        .collect();
+    let calls_filler =
+        |from: usize, to: usize| (from..to).any(|k| fillers.contains(&text(k)) && text(k + 1) == "(");
+    if fillers.is_empty() || calls_filler(open, read) {
+        return (fillers.is_empty()).then(|| (array.to_string(), toks[read].line));
+    }
+    // Up the calls: each caller before its call of the function below it.
+    let mut callee = function;
+    for _ in 0..4 {
+        let Some(&(caller, o, c)) = bodies
+            .iter()
+            .find(|&&(name, o, c)| name != callee && (o..c).any(|k| text(k) == callee && text(k + 1) == "("))
+        else {
+            break;
+        };
+        let call = (o..c).find(|&k| text(k) == callee && text(k + 1) == "(")?;
+        if calls_filler(o, call) {
+            return None;
+        }
+        if caller == "main" {
+            break;
+        }
+        callee = caller;
+    }
+    Some((array.to_string(), toks[read].line))
+}
+
+/// Where `function` returns the number `value` (`return 0.0;`, `return -1.;`): (the return's
+/// line, the line of the `if` it is under where there is one).
+pub fn return_of(source: &str, function: &str, value: f32) -> Option<(usize, Option<usize>)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let bodies = function_bodies(source, &toks);
+    let &(_, open, close) = bodies.iter().find(|b| b.0 == function)?;
+    (open..close).find_map(|k| {
+        if text(k) != "return" {
+            return None;
+        }
+        let (sign, number) = if text(k + 1) == "-" { (-1.0, k + 2) } else { (1.0, k + 1) };
+        let written = text(number).trim_end_matches(['f', 'F']).parse::<f32>().ok()? * sign;
+        if toks[number].kind != Kind::Number || text(number + 1) != ";" || (written - value).abs() > 1e-4 {
+            return None;
+        }
+        // The nearest `if` before the return within two lines.
+        let condition =
+            (open..k).rev().take_while(|&m| toks[m].line + 2 >= toks[k].line).find(|&m| text(m) == "if");
+        Some((toks[k].line, condition.map(|m| toks[m].line)))
+    })
+}
+
+/// The first line of `function`'s body that reads the map itself (`texture2D`, `texture`, or an
+/// `unpack` call), not through another function of the student's that does.
+pub fn reads_map_in(source: &str, function: &str) -> Option<usize> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let bodies = function_bodies(source, &toks);
+    let &(_, open, close) = bodies.iter().find(|b| b.0 == function)?;
+    (open..close)
+        .find(|&k| matches!(text(k), "texture2D" | "texture" | "unpack") && text(k + 1) == "(")
+        .map(|k| toks[k].line)
 }
 
 #[cfg(test)]
@@ -177,5 +377,40 @@ mod tests {
                 (15, "bias", Some("useShadowMap"))
             ]
         );
+    }
+
+    const STEPS: &str = "#define LIGHT 0.025\nvec2 disk[4];\nvoid fill(vec2 s) {\n  for (int i = 0; i < 4; i++) { disk[i] = s; }\n}\n\
+        float findBlocker(vec2 uv, float z) {\n  float d = texture2D(m, uv + disk[0]).r;\n  if (d <= 4.0) {\n    return 0.0;\n  }\n  return -1.0;\n}\n\
+        float PCSS(vec4 c) {\n  float b = findBlocker(c.xy, c.z);\n  float r = unpack(texture2D(m, c.xy));\n  fill(c.xy);\n  return r - b;\n}\n\
+        void main() { PCSS(vec4(0.0)); }\n";
+
+    #[test]
+    fn the_lines_of_pcss_steps_are_found() {
+        // findBlocker reads `disk` on line 7; only PCSS fills it, after calling findBlocker.
+        assert_eq!(sample_array_read_unfilled(STEPS, "findBlocker"), Some(("disk".to_string(), 7)));
+        let filled_first = STEPS.replace("float b = findBlocker", "fill(c.xy); float b = findBlocker");
+        assert_eq!(sample_array_read_unfilled(&filled_first, "findBlocker"), None);
+        // `return 0.0;` on line 9 under the `if` on line 8; `return -1.0;` on line 11.
+        assert_eq!(return_of(STEPS, "findBlocker", 0.0), Some((9, Some(8))));
+        assert_eq!(return_of(STEPS, "findBlocker", -1.0).map(|r| r.0), Some(11));
+        assert_eq!(return_of(STEPS, "findBlocker", 0.5), None);
+        // PCSS reads the map itself on line 15 (its findBlocker call on line 14 does not count).
+        assert_eq!(reads_map_in(STEPS, "PCSS"), Some(15));
+        assert_eq!(reads_map_in(STEPS, "main"), None);
+        // The #define whose value is (within 10%) the measured one, by its name.
+        let found = constant_near(STEPS, &[0.026]).expect("LIGHT");
+        assert_eq!((found.line, found.text.as_str()), (1, "LIGHT"));
+        assert!(constant_near(STEPS, &[0.05]).is_none());
+    }
+
+    #[test]
+    fn a_bias_the_code_computes_is_found_where_it_is_set() {
+        let shader = "float Bias(float c) { return c * 0.1; }\n\
+            float PCF(vec4 coords) {\n  float bias = Bias(0.15);\n  float d = unpack(coords);\n  \
+            return coords.z - bias > d ? 0.0 : 1.0;\n}\n";
+        let found = computed_biases(shader);
+        assert_eq!(found.len(), 1, "{found:?}");
+        assert_eq!((found[0].line, found[0].function, found[0].name.as_str()), (3, "PCF", "bias"));
+        assert_eq!(found[0].expression, "Bias(0.15)");
     }
 }
