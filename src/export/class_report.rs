@@ -143,12 +143,17 @@ pub struct WidthPart {
     /// Set where the penumbrae are too narrow to measure: the light is narrower than this.
     #[serde(default)]
     pub narrower_than_world: Option<f64>,
+    /// False where the widths follow no light's similar triangles.
+    #[serde(default)]
+    pub law_holds: Option<bool>,
 }
 
 impl WidthPart {
-    /// The light width to tell: a number where it could be measured.
+    /// The light width to tell: a number where it could be measured and a light casts these
+    /// widths (`LightWidthFit::measured_width_world`'s rule, on the report as read back).
     pub fn measured(&self) -> Option<f64> {
-        self.implied_light_width_world.filter(|_| self.narrower_than_world.is_none())
+        self.implied_light_width_world
+            .filter(|_| self.narrower_than_world.is_none() && self.law_holds != Some(false))
     }
 }
 

@@ -82,9 +82,12 @@ pub struct LightWidthFit {
 }
 
 impl LightWidthFit {
-    /// The light width to tell a student: a number where it can be measured.
+    /// The light width to tell a student: a number where it can be measured, and where the
+    /// widths follow similar triangles (where they do not, no light casts them: a fit through
+    /// them is no light's width).
     pub fn measured_width_world(&self) -> Option<f32> {
-        self.implied_light_width_world.filter(|_| self.narrower_than_world.is_none())
+        self.implied_light_width_world
+            .filter(|_| self.narrower_than_world.is_none() && self.law_holds != Some(false))
     }
 }
 
@@ -542,6 +545,7 @@ mod tests {
             ratios.iter().map(|&g| SlabShadow { core_visibility: Some(0.1), ..slab(g, None) }).collect();
         let broken = law(misshapen, 0.2);
         assert_eq!((broken.law_holds, broken.narrower_than_world), (Some(false), None));
+        assert_eq!(broken.measured_width_world(), None);
         // No shadows at all: not even a bound.
         assert_eq!(law(ratios.iter().map(|&g| slab(g, None)).collect(), 0.2).narrower_than_world, None);
     }

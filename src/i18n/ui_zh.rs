@@ -356,6 +356,7 @@ pub(super) const UI: &[(&str, &str)] = &[
         "your penumbrae behave as a light {:.2} world units wide",
         "你的半影相当于一个 {:.2} 个世界单位宽的光源",
     ),
+    ("your penumbrae follow no one light's width", "你的半影不符合任何一个光源宽度"),
     (
         "your penumbrae behave as a light narrower than {:.2} world units: not measurable with this map",
         "你的半影相当于一个窄于 {:.2} 个世界单位的光源：这张贴图分辨不出更小的宽度",

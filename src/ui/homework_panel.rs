@@ -145,6 +145,8 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
             ));
         } else if let Some(width) = fit.measured_width_world() {
             ui.label(fill(lang, "your penumbrae behave as a light {:.2} world units wide", &[&width]));
+        } else if fit.law_holds == Some(false) {
+            ui.label(tr(lang, "your penumbrae follow no one light's width"));
         }
     }
     if let Some(error) = report.light.as_ref().and_then(|l| l.error.as_ref()) {

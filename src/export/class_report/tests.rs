@@ -34,6 +34,7 @@ fn checked(name: &str, findings: Vec<FindingPart>) -> ClassRow {
             light_width: Some(WidthPart {
                 implied_light_width_world: Some(1.6847),
                 narrower_than_world: None,
+                law_holds: Some(true),
             }),
             findings,
             ..StudentReport::default()
@@ -241,4 +242,18 @@ fn numbers_read_as_people_write_them() {
     assert_eq!(number(1.68471), "1.685");
     assert_eq!(number(0.5), "0.5");
     assert_eq!(number(f64::NAN), "n/a");
+}
+
+#[test]
+fn a_light_width_is_told_only_where_a_light_casts_the_widths() {
+    let part = |law_holds, narrower_than_world| WidthPart {
+        implied_light_width_world: Some(1.5),
+        narrower_than_world,
+        law_holds,
+    };
+    assert_eq!(part(Some(true), None).measured(), Some(1.5));
+    assert_eq!(part(None, None).measured(), Some(1.5));
+    // Widths of no light's shape: a fit through them is no light's width.
+    assert_eq!(part(Some(false), None).measured(), None);
+    assert_eq!(part(None, Some(0.4)).measured(), None);
 }
