@@ -67,6 +67,7 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment.glsl", script("DirectionalLight.js"), &[]),
         ("phongFragment.glsl", script("DirectionalLight_no_model.js"), &["light_model_matrix"]),
         ("phongFragment.glsl", script("DirectionalLight_narrow.js"), &["light_frustum_clips"]),
+        ("phongFragment.glsl", script("DirectionalLight_low.js"), &["light_frustum_clips"]),
         ("phongFragment.glsl", shadow("shadowFragment_carry.glsl"), &["depth_round_trip_wrong"]),
         ("phongFragment_light_size_world.glsl", vec![], &["umbra_not_dark", "depends_on_uncleared_map"]),
         ("phongFragment_tiny_light.glsl", vec![], &["no_penumbra"]),
@@ -407,6 +408,26 @@ fn each_pcss_step_that_parts_from_the_twin_is_named_with_its_quantity_and_line()
     // The correct solution: no step parts from the twin.
     let report = check(&example("phongFragment.glsl"), &[], &scratch.path().join("correct"));
     assert_eq!(finding_ids(&report), Vec::<String>::new(), "{report:#}");
+}
+
+/// A light whose box fits shadowlab's check scene but not the framework's own floor (±80 tall:
+/// the far floor wraps to rows nothing was drawn in) is judged on that floor: the finding names
+/// the band it leaves dark, in world units, and why it is dark.
+#[test]
+fn a_light_that_fits_the_check_scene_but_not_the_frameworks_floor_is_named_with_the_band() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let light = example("DirectionalLight_low.js");
+    let report = check(&example("phongFragment.glsl"), &["--light-script", &light], scratch.path());
+    assert_eq!(finding_ids(&report), ["light_frustum_clips"], "{report:#}");
+    let found = &report["findings"][0];
+    let figure = |name: &str| found["figures"][name].as_f64().unwrap_or(f64::NAN);
+    // The floor reaches v = 0.707 * 141.7 = 100.2 up the map; the box ends at 80: z < -113.
+    assert!((figure("framework_floor_dark_z_min") + 141.0).abs() < 2.0, "{found:#}");
+    assert!((figure("framework_floor_dark_z_max") + 114.0).abs() < 3.0, "{found:#}");
+    assert!((0.08..0.16).contains(&figure("framework_floor_dark_share")), "{found:#}");
+    assert_eq!(figure("framework_floor_beyond_far_share"), 0.0, "{found:#}");
+    let said = found["explanation"].as_str().unwrap_or_default();
+    assert!(said.contains("wrap (REPEAT) to texels the floor never wrote"), "{said}");
 }
 
 /// A correct PCSS whose filter never goes under 2 texels: its penumbrae are the light's over that

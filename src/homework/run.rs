@@ -317,6 +317,7 @@ impl CheckRun {
                 world_from_object: &world_from_object,
                 object_names: &object_names,
                 map_size,
+                clip_from_world: self.light.clip_from_world,
                 width: width.as_ref(),
                 model_matrix: self.light.model_matrix,
             },

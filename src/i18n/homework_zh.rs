@@ -219,4 +219,16 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "Your depth tests use a bias your code computes: `{} = {}` (line {}, {}). It comes to at least {:.4} in [0, 1] depth here; a bias of a texel's depth slope or two is enough, far under 1 world unit with this light.",
         "你的深度测试用了代码计算出来的偏移：`{} = {}`（第 {} 行，{}）。在这里它至少是 [0, 1] 深度中的 {:.4}；偏移取一两个纹素的深度斜率就够了，对这个光源而言远小于 1 个世界单位。",
     ),
+    (
+        "it lies beyond your far plane, so its own depth is over 1 and every texel is in front of it",
+        "它在你的远平面之外，自身深度大于 1，任何纹素都在它前面",
+    ),
+    (
+        "it lies outside your box's sides, and its lookups wrap (REPEAT) to texels the floor never wrote, which read 0: a blocker at the light",
+        "它在你的正交盒侧面之外，查找时环绕（REPEAT）到地面从未写入的纹素，读出 0：相当于光源处的遮挡物",
+    ),
+    (
+        "On the framework's own scene your light leaves {:.0}% of the floor dark: the band from z = {:.0} to {:.0} (x {:.0} to {:.0} world units; the floor spans z -142 to 82 and x -112 to 112, as the framework's engine.js lays it out). There {}. shadowlab's check scene fits inside your frustum, so nothing else shows it; in your own page it is a black band across the floor. Make the box wide and deep enough for the framework's floor (left/right/bottom/top, near and far).",
+        "在框架自己的场景中，你的光源让 {:.0}% 的地面变黑：z 从 {:.0} 到 {:.0} 的一条带（x 从 {:.0} 到 {:.0} 个世界单位；按框架 engine.js 的布置，地面范围是 z -142 到 82、x -112 到 112）。那里{}。shadowlab 的检查场景完全在你的视锥内，所以别处看不出来；在你自己的页面里，它是横跨地面的一条黑带。请把正交盒做得足够宽、足够深，盖住框架的地面（left/right/bottom/top，以及 near 和 far）。",
+    ),
 ];

@@ -59,9 +59,11 @@ fn light_frustum_clips(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -
         }
     }
     let share = |o: usize| outside[o] as f64 / seen[o].max(1) as f64;
-    let worst = (0..names.len())
-        .filter(|&o| share(o) > CLIPPED_SHARE)
-        .max_by(|&a, &b| share(a).total_cmp(&share(b)))?;
+    let Some(worst) =
+        (0..names.len()).filter(|&o| share(o) > CLIPPED_SHARE).max_by(|&a, &b| share(a).total_cmp(&share(b)))
+    else {
+        return framework_floor_clipped(j, lang);
+    };
     let total = outside.iter().sum::<usize>();
     Some(Found::new(
         Some("CalcLightMVP"),
@@ -74,6 +76,50 @@ fn light_frustum_clips(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -
             lang,
             "{:.1}% of what the camera sees lies outside your light's frustum, most of it on the {} ({:.0}% of it): the map has nothing there, and its lookups read outside [0, 1]. Make the orthographic box wide and deep enough for the scene (left/right/bottom/top, near and far).",
             &[&(100.0 * j.share(total)), &names[worst], &(100.0 * share(worst))],
+        ),
+    ))
+}
+
+/// The check scene fits the student's light, but the framework's own floor, where their page
+/// draws it, does not: a band of it is dark for the frustum alone.
+fn framework_floor_clipped(j: &Judged<'_>, lang: Lang) -> Option<Found> {
+    let floor = super::framework_floor::coverage(j.e.light.clip_from_world)?;
+    if floor.dark_share <= CLIPPED_SHARE {
+        return None;
+    }
+    let figures = BTreeMap::from([
+        ("framework_floor_dark_share", floor.dark_share),
+        ("framework_floor_beyond_far_share", floor.beyond_far_share),
+        ("framework_floor_dark_z_min", f64::from(floor.z_range.0)),
+        ("framework_floor_dark_z_max", f64::from(floor.z_range.1)),
+        ("framework_floor_dark_x_min", f64::from(floor.x_range.0)),
+        ("framework_floor_dark_x_max", f64::from(floor.x_range.1)),
+    ]);
+    let cause = if floor.beyond_far_share > 0.5 {
+        tr(
+            lang,
+            "it lies beyond your far plane, so its own depth is over 1 and every texel is in front of it",
+        )
+    } else {
+        tr(
+            lang,
+            "it lies outside your box's sides, and its lookups wrap (REPEAT) to texels the floor never wrote, which read 0: a blocker at the light",
+        )
+    };
+    Some(Found::new(
+        Some("CalcLightMVP"),
+        figures,
+        fill(
+            lang,
+            "On the framework's own scene your light leaves {:.0}% of the floor dark: the band from z = {:.0} to {:.0} (x {:.0} to {:.0} world units; the floor spans z -142 to 82 and x -112 to 112, as the framework's engine.js lays it out). There {}. shadowlab's check scene fits inside your frustum, so nothing else shows it; in your own page it is a black band across the floor. Make the box wide and deep enough for the framework's floor (left/right/bottom/top, near and far).",
+            &[
+                &(100.0 * floor.dark_share),
+                &floor.z_range.0,
+                &floor.z_range.1,
+                &floor.x_range.0,
+                &floor.x_range.1,
+                &cause,
+            ],
         ),
     ))
 }

@@ -12,6 +12,7 @@
 //! across real submissions, never for one file (tests/homework_check.rs holds the project's own
 //! example of each).
 
+mod framework_floor;
 mod functions;
 mod light;
 mod pcss_steps;
@@ -157,6 +158,9 @@ pub struct LightInputs<'a> {
     pub object_names: &'a [String],
     /// Texels per side of the map.
     pub map_size: u32,
+    /// The matrix an object at the origin gets (GL clip from world): the framework's floor
+    /// under it.
+    pub clip_from_world: Mat4,
     /// The slabs' penumbrae and the light width they say.
     pub width: Option<&'a LightWidthFit>,
     /// What the student's model matrix does instead of translate-then-scale, where it is wrong.
