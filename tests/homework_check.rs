@@ -74,7 +74,7 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_nan_blocker.glsl", vec![], &["nan_blocker_depth"]),
         ("phongFragment_ndc_coordinates.glsl", vec![], &["shadows_missing"]),
         ("phongFragment_no_bias.glsl", shadow("shadowFragment_255.glsl"), &["self_shadowing"]),
-        ("phongFragment_no_bias_hidden.glsl", vec![], &["self_shadowing (latent)"]),
+        ("phongFragment_no_bias_hidden.glsl", vec![], &["round_trip_acne", "self_shadowing (latent)"]),
         ("phongFragment_bias_too_large.glsl", vec![], &["peter_panning"]),
         ("phongFragment_receiver_blocker.glsl", vec![], &["receiver_counts_as_blocker"]),
         ("phongFragment_search_radius.glsl", vec![], &["search_radius_wrong (latent)"]),
@@ -428,6 +428,30 @@ fn a_light_that_fits_the_check_scene_but_not_the_frameworks_floor_is_named_with_
     assert_eq!(figure("framework_floor_beyond_far_share"), 0.0, "{found:#}");
     let said = found["explanation"].as_str().unwrap_or_default();
     assert!(said.contains("wrap (REPEAT) to texels the floor never wrote"), "{said}");
+}
+
+/// No bias in PCF, the framework's packing: shadowlab's check scene hides the acne (its depths
+/// lie under 0.5, where the round trip reads a little too far), but the framework's own floor
+/// reaches depth 0.53 under its light, where the round trip reads up to 1/510 too near: the far
+/// floor acnes, and the finding says that the round trip is why, with the band and the figures.
+#[test]
+fn the_round_trip_that_acnes_the_frameworks_far_floor_is_named_as_the_cause() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let report = check(&example("phongFragment_no_bias_hidden.glsl"), &[], scratch.path());
+    let found = &report["findings"][0];
+    assert_eq!(
+        (found["id"].as_str(), found["severity"].as_str()),
+        (Some("round_trip_acne"), Some("mistake"))
+    );
+    let figure = |name: &str| found["figures"][name].as_f64().unwrap_or(f64::NAN);
+    assert_eq!(figure("bias_depth"), 0.0, "{found:#}");
+    assert!((figure("round_trip_error_depth") - 1.0 / 510.0).abs() < 1e-4, "{found:#}");
+    assert!(figure("acne_depth_from") >= 0.5 && figure("acne_z_min") < -135.0, "{found:#}");
+    let said = found["explanation"].as_str().unwrap_or_default();
+    assert!(said.contains("stored in 8-bit channels (k/255) and read back with 1/256 steps"), "{said}");
+    // The correct solution's bias, 0.003, is over the round trip's 0.002: nothing.
+    let correct = check(&example("phongFragment.glsl"), &[], &scratch.path().join("correct"));
+    assert_eq!(finding_ids(&correct), Vec::<String>::new(), "{correct:#}");
 }
 
 /// A correct PCSS whose filter never goes under 2 texels: its penumbrae are the light's over that

@@ -2,9 +2,11 @@
 precision mediump float;
 #endif
 
-// Mistake: no bias where the receiver is compared with the map (PCF and useShadowMap). The
-// framework's own pack hides it: its 256-vs-255 rounding reads every depth a little too far, a
-// bias of its own. Expected finding: self_shadowing, latent (it shows over a lossless map).
+// Mistake: no bias where the receiver is compared with the map (PCF and useShadowMap). On
+// shadowlab's check scene the framework's own pack hides it: its 256-vs-255 rounding reads depths
+// under 0.5 a little too far, a bias of its own. The framework's far floor lies past depth 0.5,
+// where the same rounding reads too near. Expected findings: round_trip_acne, and self_shadowing,
+// latent (it shows over a lossless map).
 uniform sampler2D uSampler;
 uniform vec3 uKd;
 uniform vec3 uKs;

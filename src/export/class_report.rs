@@ -242,6 +242,10 @@ const DESCRIPTIONS: &[(&str, &str)] = &[
     ("no_penumbra", "PCSS draws hard shadows: the filter is under a texel wide."),
     ("no_contact_hardening", "Penumbrae do not widen with the blocker's distance as similar triangles say."),
     ("self_shadowing", "Lit surfaces shadow themselves: shadow acne, a bias too small."),
+    (
+        "round_trip_acne",
+        "The framework's far floor acnes: its RGBA8 round trip reads depths over 0.5 nearer than the bias.",
+    ),
     ("depends_on_uncleared_map", "The picture depends on the texels the framework never clears."),
 ];
 

@@ -99,6 +99,10 @@ pub(super) const CLASS: &[(&str, &str)] = &[
     ),
     ("findBlocker counts the receiver as its own blocker.", "findBlocker 把接收点自己算成了遮挡物。"),
     (
+        "The framework's far floor acnes: its RGBA8 round trip reads depths over 0.5 nearer than the bias.",
+        "框架地面的远端出现阴影痤疮：RGBA8 往返把 0.5 以上的深度读近得超过了偏移。",
+    ),
+    (
         "findBlocker returns a depth no blocker has where the disk is blocked.",
         "搜索圆盘被遮挡时，findBlocker 返回的深度不属于任何遮挡物。",
     ),

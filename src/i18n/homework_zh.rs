@@ -231,4 +231,8 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "On the framework's own scene your light leaves {:.0}% of the floor dark: the band from z = {:.0} to {:.0} (x {:.0} to {:.0} world units; the floor spans z -142 to 82 and x -112 to 112, as the framework's engine.js lays it out). There {}. shadowlab's check scene fits inside your frustum, so nothing else shows it; in your own page it is a black band across the floor. Make the box wide and deep enough for the framework's floor (left/right/bottom/top, near and far).",
         "在框架自己的场景中，你的光源让 {:.0}% 的地面变黑：z 从 {:.0} 到 {:.0} 的一条带（x 从 {:.0} 到 {:.0} 个世界单位；按框架 engine.js 的布置，地面范围是 z -142 到 82、x -112 到 112）。那里{}。shadowlab 的检查场景完全在你的视锥内，所以别处看不出来；在你自己的页面里，它是横跨地面的一条黑带。请把正交盒做得足够宽、足够深，盖住框架的地面（left/right/bottom/top，以及 near 和 far）。",
     ),
+    (
+        "On the framework's own floor your light puts the far end (z = {:.0} to {:.0} world units, {:.0}% of the floor) at depth {:.3} and over. There the framework's pack, stored in 8-bit channels (k/255) and read back with 1/256 steps, reads every depth up to {:.4} too near, more than your bias of {:.4}: the floor shadows itself (acne) in your page, though shadowlab's check scene, nearer the light, shows nothing. A bias of {:.4} or more, a far plane nearer the scene (depths under 0.5 read a little too far instead), or a pack and unpack in base 255 remove it.",
+        "在框架自己的地面上，你的光源把远端（z 从 {:.0} 到 {:.0} 个世界单位，占地面的 {:.0}%）放在 {:.3} 及以上的深度。在那里，框架的 pack 存进 8 位通道（k/255）、再按 1/256 的步长读回，会把每个深度读近最多 {:.4}，超过了你的偏移 {:.4}：在你的页面里地面会自己遮挡自己（阴影痤疮），而离光源更近的 shadowlab 检查场景看不出来。偏移取 {:.4} 或更大、把远平面移近场景（深度小于 0.5 时反而读得稍远），或者 pack 和 unpack 都用 255 为基数，就能消除它。",
+    ),
 ];

@@ -17,6 +17,7 @@ mod functions;
 mod light;
 mod pcss_steps;
 mod penumbra;
+mod round_trip;
 pub(crate) mod shadows;
 mod source_lines;
 mod visibility;
@@ -144,6 +145,7 @@ pub const FINDINGS: &[FindingKind] = &[
     pcss_steps::PENUMBRA_ESTIMATE_WRONG,
     functions::SAMPLES_NOT_AROUND_RECEIVER,
     shadows::SELF_SHADOWING,
+    round_trip::ROUND_TRIP_ACNE,
     penumbra::NO_PENUMBRA,
     penumbra::NO_CONTACT_HARDENING,
     shadows::DEPENDS_ON_UNCLEARED_MAP,

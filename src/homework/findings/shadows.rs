@@ -181,8 +181,11 @@ fn peter_panning(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opti
         // A shadow comes loose a little beyond the bias where a filter softens its edge: the
         // constants within the slabs' bounds, a fifth either way.
         let constants = super::source_lines::depth_test_constants(j.e.fragment_source);
-        let fitting: Vec<super::source_lines::Constant> =
+        // Each constant once, where it is written (a `#define` read by several tests: its first).
+        let mut fitting: Vec<super::source_lines::Constant> =
             constants.iter().filter(|c| (0.8 * low..=1.2 * high).contains(&c.value)).cloned().collect();
+        let mut named = std::collections::HashSet::new();
+        fitting.retain(|c| named.insert((c.line, c.text.clone())));
         // The largest, the first of equals.
         let largest = constants.iter().max_by(|a, b| a.value.total_cmp(&b.value).then(b.line.cmp(&a.line)));
         if let Some(first) = fitting.first() {

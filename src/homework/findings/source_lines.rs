@@ -18,6 +18,9 @@ pub struct Constant {
     pub value: f64,
     /// The recorded function the test is in (`PCF`, `findBlocker`...), where it is in one.
     pub function: Option<&'static str>,
+    /// Added to or taken from a depth where the test reads it (`depth + BIAS`): a bias, not a
+    /// threshold compared with alone (`depth < EPS`, a texel never written).
+    pub added: bool,
 }
 
 /// The recorded functions' bodies: (name, first line, last line).
@@ -34,7 +37,7 @@ fn function_lines(source: &str) -> Vec<(&'static str, usize, usize)> {
 
 /// The constants in the depth tests of the recorded functions: float literals on a line that
 /// compares (`<`, `>`), and the `#define`s such a line names, with values between 0 and 0.2 (a
-/// bias in [0, 1] depth; a sample count or a resolution is not one).
+/// bias in [0, 1] depth; a sample count or a resolution is not one). Once per function.
 pub fn depth_test_constants(source: &str) -> Vec<Constant> {
     let toks = tokens(source);
     let functions = function_lines(source);
@@ -106,8 +109,22 @@ pub fn depth_test_constants(source: &str) -> Vec<Constant> {
             _ => None,
         };
         if let Some((line, text, value)) = found.filter(|f| f.2 > 0.0 && f.2 < 0.2) {
-            let constant = Constant { line, text, value, function: in_function(t.line) };
-            if !out.iter().any(|c| c.line == constant.line && c.text == constant.text) {
+            let next_to =
+                |k: usize| toks.get(k).is_some_and(|n| n.line == t.line && matches!(word(k), "+" | "-"));
+            // Or compared with a difference of depths (`z - depth < 0.01`): the same bias.
+            let compared_with_difference = i > 0 && matches!(word(i - 1), "<" | ">" | "=") && {
+                let start = (0..i).rev().take_while(|&k| toks[k].line == t.line).last().unwrap_or(i);
+                (start..i).any(|k| word(k) == "-")
+            };
+            let added = next_to(i + 1) || (i > 0 && next_to(i - 1)) || compared_with_difference;
+            let constant = Constant { line, text, value, function: in_function(t.line), added };
+            let same = |c: &Constant| {
+                c.line == constant.line
+                    && c.text == constant.text
+                    && c.function == constant.function
+                    && c.added == constant.added
+            };
+            if !out.iter().any(same) {
                 out.push(constant);
             }
         }
@@ -170,6 +187,44 @@ pub fn computed_biases(source: &str) -> Vec<ComputedBias> {
     out
 }
 
+/// The recorded functions with a depth test of their own: a line that compares two depths (not a
+/// loop's bound, not one value against a constant alone, `blockerDepth >= 1e-5`, `d < EPS`).
+pub fn functions_with_depth_tests(source: &str) -> Vec<&'static str> {
+    let toks = tokens(source);
+    let word = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    // A number, or a macro's name (upper case by custom).
+    let constant = |k: usize| {
+        toks.get(k).is_some_and(|t| {
+            t.kind == Kind::Number
+                || (t.kind == Kind::Ident
+                    && word(k).chars().all(|c| c.is_ascii_uppercase() || c == '_' || c.is_ascii_digit()))
+        })
+    };
+    let functions = function_lines(source);
+    let mut out = Vec::new();
+    for &(name, from, to) in &functions {
+        let compares = (0..toks.len()).any(|i| {
+            let line = toks[i].line;
+            if !(from..=to).contains(&line) || toks[i].in_directive || !matches!(word(i), "<" | ">") {
+                return false;
+            }
+            let on_line = |k: usize| toks[k].line == line;
+            if toks.iter().enumerate().any(|(k, t)| t.line == line && word(k) == "for") {
+                return false;
+            }
+            // `value OP constant` (or the mirror) with no sum or difference on the line.
+            let after = if word(i + 1) == "=" { i + 2 } else { i + 1 };
+            let sums = (0..toks.len()).filter(|&k| on_line(k)).any(|k| matches!(word(k), "+" | "-"));
+            let alone = (constant(after) || (i > 0 && constant(i - 1))) && !sums;
+            !alone
+        });
+        if compares && !out.contains(&name) {
+            out.push(name);
+        }
+    }
+    out
+}
+
 /// How the student's light maps a world point near the floor under the view: the gradients of
 /// its map u and of its [0, 1] depth, per world unit.
 fn light_gradients(j: &Judged<'_>) -> Option<(Vec3, Vec3)> {
@@ -218,7 +273,7 @@ pub fn constant_near(source: &str, values: &[f32]) -> Option<Constant> {
         } else {
             word(i).to_string()
         };
-        Some(Constant { line: t.line, text, value, function: None })
+        Some(Constant { line: t.line, text, value, function: None, added: false })
     })
 }
 
@@ -272,7 +327,7 @@ pub fn sample_array_read_unfilled(source: &str, function: &str) -> Option<(Strin
             !inside_any(k) && !toks[k].in_directive && text(k + 1) == "[" && toks[k].kind == Kind::Ident
         })
         .filter(|&k| toks[k - 1].kind == Kind::Ident)
-        .map(|k| text(k))
+        .map(&text)
         .collect();
     let (open, close) = body(function)?;
     let read = (open..close).find(|&k| arrays.contains(&text(k)) && text(k + 1) == "[")?;
@@ -377,6 +432,11 @@ mod tests {
                 (15, "bias", Some("useShadowMap"))
             ]
         );
+        assert!(found.iter().all(|c| c.added), "{found:?}");
+        // A threshold compared alone (a texel never written) is no bias.
+        let guarded = SHADER.replace("return c.z < v + 0.015", "return v < 0.015");
+        let threshold = depth_test_constants(&guarded);
+        assert!(threshold.iter().any(|c| c.text == "0.015" && !c.added), "{threshold:?}");
     }
 
     const STEPS: &str = "#define LIGHT 0.025\nvec2 disk[4];\nvoid fill(vec2 s) {\n  for (int i = 0; i < 4; i++) { disk[i] = s; }\n}\n\
@@ -412,5 +472,21 @@ mod tests {
         assert_eq!(found.len(), 1, "{found:?}");
         assert_eq!((found[0].line, found[0].function, found[0].name.as_str()), (3, "PCF", "bias"));
         assert_eq!(found[0].expression, "Bias(0.15)");
+    }
+
+    #[test]
+    fn depth_tests_are_told_from_thresholds_and_differences_count_as_biases() {
+        let shader = "#define EPS 1e-3\nfloat useShadowMap(vec4 c) {\n  float d = unpack(c);\n  \
+            if (c.z - d < 0.01) return 1.0;\n  return 0.0;\n}\n\
+            float PCF(vec4 c) {\n  float v = 0.0;\n  for (int i = 0; i < 4; i++) { v += useShadowMap(c); }\n  return v;\n}\n\
+            float PCSS(vec4 c) {\n  float b = 0.5;\n  if (b >= 1.0e-5) return PCF(c);\n  if (b < EPS) return 1.0;\n  return 0.0;\n}\n";
+        // PCF's only comparison is its loop's, PCSS's compare one value with a constant alone.
+        assert_eq!(functions_with_depth_tests(shader), ["useShadowMap"]);
+        // `c.z - d < 0.01`: a bias, compared with a difference.
+        let found = depth_test_constants(shader);
+        assert!(
+            found.iter().any(|c| c.text == "0.01" && c.added && c.function == Some("useShadowMap")),
+            "{found:?}"
+        );
     }
 }
