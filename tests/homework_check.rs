@@ -77,6 +77,11 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_no_bias_hidden.glsl", vec![], &["round_trip_acne", "self_shadowing (latent)"]),
         ("phongFragment_bias_too_large.glsl", vec![], &["peter_panning"]),
         ("phongFragment_receiver_blocker.glsl", vec![], &["receiver_counts_as_blocker"]),
+        (
+            "phongFragment_red_only.glsl",
+            vec![],
+            &["depth_round_trip_wrong (latent)", "self_shadowing (latent)"],
+        ),
         ("phongFragment_search_radius.glsl", vec![], &["search_radius_wrong (latent)"]),
         ("phongFragment_random_walk.glsl", vec![], &["samples_not_around_receiver"]),
         ("phongFragment_least_filter.glsl", vec![], &[]),

@@ -235,4 +235,15 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "On the framework's own floor your light puts the far end (z = {:.0} to {:.0} world units, {:.0}% of the floor) at depth {:.3} and over. There the framework's pack, stored in 8-bit channels (k/255) and read back with 1/256 steps, reads every depth up to {:.4} too near, more than your bias of {:.4}: the floor shadows itself (acne) in your page, though shadowlab's check scene, nearer the light, shows nothing. A bias of {:.4} or more, a far plane nearer the scene (depths under 0.5 read a little too far instead), or a pack and unpack in base 255 remove it.",
         "在框架自己的地面上，你的光源把远端（z 从 {:.0} 到 {:.0} 个世界单位，占地面的 {:.0}%）放在 {:.3} 及以上的深度。在那里，框架的 pack 存进 8 位通道（k/255）、再按 1/256 的步长读回，会把每个深度读近最多 {:.4}，超过了你的偏移 {:.4}：在你的页面里地面会自己遮挡自己（阴影痤疮），而离光源更近的 shadowlab 检查场景看不出来。偏移取 {:.4} 或更大、把远平面移近场景（深度小于 0.5 时反而读得稍远），或者 pack 和 unpack 都用 255 为基数，就能消除它。",
     ),
+    (
+        "Your `{}`{} does not give back the depth your pack stored: from a map that keeps every bit, findBlocker returns the blockers' depth {:.4} {} (the median, in [0, 1] depth; up to {:.4}) where the whole disk it searched is blocked. Unpack every channel with the weights your pack used (dot(rgbaDepth, vec4(1.0, 1.0 / 256.0, 1.0 / 65536.0, 1.0 / 16777216.0)) for the framework's pack). A receiver reads its own depth off by as much: with a smaller bias it shadows itself.",
+        "你的 `{}`{} 没有还原出 pack 存进去的深度：即使阴影图保留了每一位，在搜索圆盘整个被遮挡的地方，findBlocker 返回的遮挡物深度也偏了 {:.4}，{}（中位数，[0, 1] 深度；最多 {:.4}）。请用与 pack 相同的权重解包每个通道（对框架的 pack 是 dot(rgbaDepth, vec4(1.0, 1.0 / 256.0, 1.0 / 65536.0, 1.0 / 16777216.0))）。接收点读自己的深度也会偏这么多：偏移再小一点它就会遮挡自己。",
+    ),
+    (" (line {})", "（第 {} 行）"),
+    ("too near", "偏近"),
+    ("too far", "偏远"),
+    (
+        "Hidden today by your bias (it shows as soon as the bias is smaller):",
+        "今天被你的偏移掩盖了（偏移再小一点就会显现）：",
+    ),
 ];

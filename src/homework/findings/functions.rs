@@ -199,7 +199,7 @@ pub(crate) struct TwinSearch {
 }
 
 /// The twin's search at one pixel, over a disk of `radius_uv` around the receiver.
-fn twin_search(twin: &TwinInputs<'_>, p: Vec3, n: Vec3, radius_uv: f32) -> Option<TwinSearch> {
+pub(crate) fn twin_search(twin: &TwinInputs<'_>, p: Vec3, n: Vec3, radius_uv: f32) -> Option<TwinSearch> {
     let s = project_to_light(twin.view, p);
     let size = twin.map.size as i32;
     let texel = 1.0 / size as f32;

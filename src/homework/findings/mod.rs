@@ -145,6 +145,7 @@ pub const FINDINGS: &[FindingKind] = &[
     pcss_steps::PENUMBRA_ESTIMATE_WRONG,
     functions::SAMPLES_NOT_AROUND_RECEIVER,
     shadows::SELF_SHADOWING,
+    pcss_steps::UNPACK_LOSES_DEPTH,
     round_trip::ROUND_TRIP_ACNE,
     penumbra::NO_PENUMBRA,
     penumbra::NO_CONTACT_HARDENING,

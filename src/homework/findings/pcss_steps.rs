@@ -366,3 +366,92 @@ pub(crate) fn light_width_behaved_as_uv(j: &Judged<'_>) -> Option<f32> {
     let lights = light_halves(j, &steps(j));
     (lights.len() >= 50).then(|| 2.0 * median(lights).unwrap_or(f32::NAN)).filter(|w| w.is_finite())
 }
+
+/// `unpack_loses_depth`: where the disk findBlocker searched is blocked (95% or more of it: the
+/// twin's grid rarely finds more at a slab's edge texels), its return over
+/// the lossless map (every bit the pack wrote kept) is off the blockers' average depth on
+/// shadowlab's map by more than this (the median, signed). A sound unpack is off by the sampling
+/// of a sloped blocker, well under it; reading `.r` alone truncates to 1/256, about -1/512.
+const UNPACK_SHIFT: f32 = 1e-3;
+/// The umbra's pixels the twin searches for it, at most.
+const UMBRA_PIXELS: usize = 2000;
+
+/// The student's unpack loses depth the pack stored: findBlocker, reading a map that keeps every
+/// bit, returns the blockers' depth shifted where its whole disk is blocked.
+pub const UNPACK_LOSES_DEPTH: FindingKind =
+    FindingKind { id: "depth_round_trip_wrong", lesson: "hard-shadows", step: 3, judge: unpack_loses_depth };
+
+fn unpack_loses_depth(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if !judged(j, earlier)
+        || has(earlier, "depth_round_trip_wrong")
+        || super::functions::search_broken(earlier)
+    {
+        return None;
+    }
+    let twin = j.e.twin?;
+    let (taps, lossless) = (&j.e.taps.taps, j.e.lossless);
+    let umbra: Vec<usize> = j
+        .shaded
+        .iter()
+        .copied()
+        .filter(|&i| {
+            j.truth(i) <= super::UMBRA
+                && j.faces_light(i)
+                && lossless.ran(i, FIND_BLOCKER)
+                && lossless.returned[i][FIND_BLOCKER].is_finite()
+                && taps[i][FIND_BLOCKER].reads >= 2.0
+                && taps[i][FIND_BLOCKER].max_offset_uv.is_finite()
+                && j.receivers[i].is_some_and(|r| r.inside())
+        })
+        .collect();
+    let step = umbra.len().div_ceil(UMBRA_PIXELS).max(1);
+    let shifts: Vec<f32> = umbra
+        .iter()
+        .step_by(step)
+        .filter_map(|&i| {
+            let (p, n) = (j.e.positions[i]?, twin.normals.get(i).copied().flatten()?);
+            let search = super::functions::twin_search(twin, p, n, taps[i][FIND_BLOCKER].max_offset_uv)?;
+            (search.blocked >= 0.95 && search.z_receiver - search.z_blocker > GAP)
+                .then(|| lossless.returned[i][FIND_BLOCKER] - search.z_blocker)
+        })
+        .filter(|d| d.abs() < 0.05)
+        .collect();
+    if shifts.len() < 40 {
+        return None;
+    }
+    let shift = median(shifts.clone())?;
+    if shift.abs() <= UNPACK_SHIFT {
+        return None;
+    }
+    let mut sizes: Vec<f32> = shifts.iter().map(|d| d.abs()).collect();
+    let largest = percentile(&mut sizes, 0.9)?;
+    let mut figures = BTreeMap::from([
+        ("blocker_depth_shift_median", f64::from(shift)),
+        ("blocker_depth_error_p90", f64::from(largest)),
+        ("points", shifts.len() as f64),
+    ]);
+    let place = super::source_lines::unpack_function(j.e.fragment_source);
+    if let Some((_, line)) = &place {
+        figures.insert("unpack_line", *line as f64);
+    }
+    let name = place.as_ref().map_or("unpack", |(n, _)| n.as_str());
+    let at = place.as_ref().map_or(String::new(), |(_, l)| fill(lang, " (line {})", &[l]));
+    let direction =
+        if shift < 0.0 { crate::i18n::tr(lang, "too near") } else { crate::i18n::tr(lang, "too far") };
+    let explanation = fill(
+        lang,
+        "Your `{}`{} does not give back the depth your pack stored: from a map that keeps every bit, findBlocker returns the blockers' depth {:.4} {} (the median, in [0, 1] depth; up to {:.4}) where the whole disk it searched is blocked. Unpack every channel with the weights your pack used (dot(rgbaDepth, vec4(1.0, 1.0 / 256.0, 1.0 / 65536.0, 1.0 / 16777216.0)) for the framework's pack). A receiver reads its own depth off by as much: with a smaller bias it shadows itself.",
+        &[&name, &at, &shift.abs(), &direction, &largest],
+    );
+    // Today's picture shows it where a receiver already finds itself.
+    let shows = has(earlier, "self_shadowing") || has(earlier, "receiver_counts_as_blocker");
+    let explanation = if shows {
+        explanation
+    } else {
+        format!(
+            "{} {explanation}",
+            crate::i18n::tr(lang, "Hidden today by your bias (it shows as soon as the bias is smaller):")
+        )
+    };
+    Some(Found { latent: !shows, ..Found::new(Some("findBlocker"), figures, explanation) })
+}

@@ -277,6 +277,20 @@ pub fn constant_near(source: &str, values: &[f32]) -> Option<Constant> {
     })
 }
 
+/// The student's function that turns a map read into a depth: the first `NAME(texture2D(` (or
+/// `texture(`) whose NAME the shader defines. (name, the line of its definition's body.)
+pub fn unpack_function(source: &str) -> Option<(String, usize)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let bodies = function_bodies(source, &toks);
+    (0..toks.len()).find_map(|k| {
+        let wraps =
+            text(k + 1) == "(" && matches!(text(k + 2), "texture2D" | "texture") && text(k + 3) == "(";
+        let &(name, open, _) = bodies.iter().find(|b| wraps && b.0 == text(k))?;
+        Some((name.to_string(), toks[open].line))
+    })
+}
+
 /// Every function defined at the top level: (name, token of its body's `{`, token of its `}`).
 fn function_bodies<'s>(
     source: &'s str,
