@@ -9,9 +9,9 @@ use glam::{Vec2, Vec3};
 use std::collections::BTreeMap;
 
 /// The recorded functions' channels (`RECORDED_FUNCTIONS` order).
-const PCF: usize = 1;
-const PCSS: usize = 2;
-const FIND_BLOCKER: usize = 3;
+pub(crate) const PCF: usize = 1;
+pub(crate) const PCSS: usize = 2;
+pub(crate) const FIND_BLOCKER: usize = 3;
 
 /// `search_radius_wrong`: the search radius is NaN or infinite at more than this share of the
 /// pixels findBlocker ran at...
@@ -67,7 +67,7 @@ fn lookups_broken(earlier: &[super::Finding]) -> bool {
     super::has(earlier, "shadows_missing") || super::has(earlier, "light_model_matrix")
 }
 
-fn texel_uv(j: &Judged<'_>) -> f32 {
+pub(crate) fn texel_uv(j: &Judged<'_>) -> f32 {
     1.0 / j.e.light.map_size.max(1) as f32
 }
 

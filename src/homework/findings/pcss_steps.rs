@@ -4,15 +4,11 @@
 //! follows (d_r - d_b) / d_b from findBlocker's own return. Each names the function, the quantity
 //! (theirs and the expected one) and, where the code shows it, the line.
 
+use super::functions::{FIND_BLOCKER, PCF, PCSS, texel_uv};
 use super::source_lines::{reads_map_in, return_of, sample_array_read_unfilled};
 use super::{FindingKind, Found, Judged, has, median};
 use crate::i18n::{Lang, fill};
 use std::collections::BTreeMap;
-
-/// The recorded functions' channels (`RECORDED_FUNCTIONS` order).
-const PCF: usize = 1;
-const PCSS: usize = 2;
-const FIND_BLOCKER: usize = 3;
 
 /// A blocker this far in front of its receiver ([0, 1] depth) is one (the packing's rounding and
 /// the receiver plane's slope over a texel stay under it).
@@ -103,10 +99,6 @@ fn steps_under_blockers<'s>(j: &Judged<'_>, steps: &'s [Step]) -> Vec<&'s Step> 
 /// The light's half widths (uv) the filter radii imply under blockers.
 fn light_halves(j: &Judged<'_>, steps: &[Step]) -> Vec<f32> {
     steps_under_blockers(j, steps).iter().filter_map(|s| s.light_half_uv()).collect()
-}
-
-fn texel_uv(j: &Judged<'_>) -> f32 {
-    1.0 / j.e.light.map_size.max(1) as f32
 }
 
 fn percentile(values: &mut [f32], p: f64) -> Option<f32> {
@@ -286,7 +278,8 @@ fn penumbra_estimate_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lan
     {
         return None;
     }
-    let mut lights = light_halves(j, &steps(j));
+    let steps = steps(j);
+    let mut lights = light_halves(j, &steps);
     if lights.len() < 50 {
         return None;
     }
@@ -298,7 +291,6 @@ fn penumbra_estimate_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lan
     // Where the student's own light (its usual half width) asks for a filter of two texels or
     // more, the radius handed on is under a texel: the estimate lost the distance to the receiver.
     // (A constant or clamped radius is not under a texel there: that is no_contact_hardening's.)
-    let steps = steps(j);
     let asked: Vec<&Step> = steps_under_blockers(j, &steps)
         .into_iter()
         .filter(|s| usual * (s.z_receiver - s.z_blocker) / s.z_blocker >= 2.0 * texel)
