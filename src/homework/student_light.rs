@@ -1,11 +1,13 @@
-//! The student's own light: their `engine.js` says where it is, their `DirectionalLight.js`'s
-//! `CalcLightMVP(translate, scale)` builds each object's `uLightMVP` (run by `light_script`,
-//! shadowlab's own sandboxed interpreter), and shadowlab reads its own copy of the frustum out of
-//! the matrix (`read_light`). A script that fails says so on one line, and the check goes on
-//! with the framework's light.
+//! The student's own light: their `engine.js` makes it, their `DirectionalLight.js`'s
+//! `CalcLightMVP(translate, scale)` builds each object's `uLightMVP` (on the desktop both run in
+//! the student's page, `page`, a real JavaScript engine; in the browser page, in `light_script`,
+//! shadowlab's own sandboxed interpreter, until the page runs them in the browser's engine), and
+//! shadowlab reads its own copy of the frustum out of the matrix (`read_light`). A script that
+//! fails says so on one line, and the check goes on with the framework's light.
 
 use super::light::{HomeworkLight, LightFrom, ModelMatrixError, read_light};
-use super::light_script::{EngineLight, GlCall, LightScript, Limits, engine_light};
+use super::light_script::{EngineLight, GlCall, LightMatrix, ScriptError};
+use super::program::ShaderSource;
 use super::{FRAMEWORK_LIGHT_INTENSITY, HomeworkSource};
 use crate::scene::{Light, LightKind, Scene};
 use glam::{Mat4, Vec3};
@@ -182,14 +184,65 @@ fn frustum_report(light: &Light, focal_point: Vec3) -> FrustumReport {
     }
 }
 
-/// Run the submission's light scripts for `scene` (its light `index` is the framework's) at
-/// `t_s`: the student's light and shadowlab's copy of it, or the framework's with why.
-pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: f32) -> Option<StudentLight> {
+/// A student's light, loaded: each object's matrix on demand.
+trait LightMatrices {
+    fn notes(&self) -> &[String];
+    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError>;
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+impl LightMatrices for super::page::PageLight {
+    fn notes(&self) -> &[String] {
+        self.notes()
+    }
+    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
+        self.light_matrix(translate, scale)
+    }
+}
+
+#[cfg(target_arch = "wasm32")]
+impl LightMatrices for super::light_script::LightScript {
+    fn notes(&self) -> &[String] {
+        self.notes()
+    }
+    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
+        self.light_matrix(translate, scale)
+    }
+}
+
+/// The light engine.js makes and the student's `DirectionalLight.js` loaded: their page run in
+/// a real engine.
+#[cfg(not(target_arch = "wasm32"))]
+fn load_light(
+    script: &ShaderSource,
+    engine: Option<&ShaderSource>,
+) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
+    match super::page::PageLight::load(script, engine, super::page::Limits::default()) {
+        Ok((page, light)) => (light, Ok(Box::new(page))),
+        Err(e) => (EngineLight::framework(), Err(e)),
+    }
+}
+
+/// The light engine.js makes (read without running it) and `DirectionalLight.js` in shadowlab's
+/// own interpreter.
+#[cfg(target_arch = "wasm32")]
+fn load_light(
+    script: &ShaderSource,
+    engine: Option<&ShaderSource>,
+) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
+    use super::light_script::{LightScript, Limits, engine_light};
     let limits = Limits::default();
-    let engine = match &source.engine {
+    let light = match engine {
         Some(file) => engine_light(&file.text, &file.name, limits),
         None => EngineLight::framework(),
     };
+    let loaded = LightScript::load(&script.text, &script.name, &light, limits);
+    (light, loaded.map(|l| Box::new(l) as Box<dyn LightMatrices>))
+}
+
+/// Run the submission's light scripts for `scene` (its light `index` is the framework's) at
+/// `t_s`: the student's light and shadowlab's copy of it, or the framework's with why.
+pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: f32) -> Option<StudentLight> {
     let framework = |error: Option<String>, mut notes: Vec<String>| {
         let light = HomeworkLight::of_scene(scene, index, t_s, FRAMEWORK_LIGHT_INTENSITY)?;
         let shadowlab = scene.lights.get(index)?;
@@ -219,10 +272,10 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
         Some(StudentLight { light, scene: scene.clone(), report })
     };
     let Some(script) = &source.light_script else {
-        return framework(None, engine.notes.clone());
+        return framework(None, Vec::new());
     };
+    let (engine, loaded) = load_light(script, source.engine.as_ref());
     let mut notes = engine.notes.clone();
-    let loaded = LightScript::load(&script.text, &script.name, &engine, limits);
     let mut loaded = match loaded {
         Ok(l) => l,
         Err(e) => return framework(Some(e.to_string()), notes),

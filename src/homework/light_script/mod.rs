@@ -48,6 +48,7 @@ mod tests_fuzz;
 #[cfg(test)]
 mod tests_light;
 
+#[cfg_attr(not(target_arch = "wasm32"), allow(unused_imports))]
 pub use engine_js::engine_light;
 
 use ast::Pattern;

@@ -1,0 +1,223 @@
+// What a student's page sees of a browser, for running their homework in shadowlab's sandbox:
+// a window and document with one canvas, a WebGL context that records instead of drawing, the
+// three.js loaders answered from shadowlab (never the network), and no timers that fire on their
+// own. Runs before any library or student script; everything it keeps lives in `__shadowlab`.
+// The Rust side reads `__shadowlab` back as JSON.
+"use strict";
+
+var window = globalThis;
+var self = globalThis;
+
+(function () {
+    const record = {
+        // Each `new DirectionalLight(...)` / `new PointLight(...)`: the class, the arguments (plain
+        // numbers and arrays), where in the student's code it was made, and the object itself.
+        lights: [],
+        // Requests the page made that shadowlab answers or refuses: {what, url}.
+        requests: [],
+        // console.log and console.error lines (the first 200).
+        console: [],
+        // The callbacks requestAnimationFrame was given, in order (run only when shadowlab asks).
+        frames: [],
+        // Draw calls: {program, framebuffer, uniforms: {name: value}, count}.
+        draws: [],
+        programs: [],
+    };
+    globalThis.__shadowlab = record;
+
+    // The first stack frame in a student's file, as "file:line" (the libraries and this file are
+    // not theirs).
+    record.where = function () {
+        const stack = String(new Error().stack || "").split("\n");
+        for (const frame of stack) {
+            const m = /\(?([^()\s]+?):(\d+)(?::\d+)?\)?\s*$/.exec(frame);
+            if (m && !record.ours(m[1])) return { file: m[1], line: Number(m[2]) };
+        }
+        return { file: "", line: 0 };
+    };
+    record.ours = function (file) {
+        return file.startsWith("shadowlab/") || file.startsWith("lib/");
+    };
+
+    function plain(value, depth) {
+        if (depth > 4) return null;
+        if (typeof value === "number" || typeof value === "boolean" || typeof value === "string") return value;
+        if (value === null || value === undefined) return null;
+        if (ArrayBuffer.isView(value) && value.length <= 64) return Array.from(value);
+        if (Array.isArray(value) && value.length <= 64) return value.map((v) => plain(v, depth + 1));
+        if (typeof value === "object" && typeof value.x === "number" && typeof value.y === "number") {
+            return typeof value.z === "number" ? [value.x, value.y, value.z] : [value.x, value.y];
+        }
+        return null;
+    }
+    record.plain = plain;
+
+    // A light class wrapped so that each construction is recorded (same class, same prototype).
+    record.watchLight = function (kind, cls) {
+        if (typeof cls !== "function" || cls.__shadowlabWatched) return cls;
+        const watched = new Proxy(cls, {
+            construct(target, args, newTarget) {
+                const at = record.where();
+                const entry = { kind, args: args.map((a) => plain(a, 0)), file: at.file, line: at.line, object: null, error: null };
+                record.lights.push(entry);
+                try {
+                    entry.object = Reflect.construct(target, args, newTarget === watched ? target : newTarget);
+                } catch (e) {
+                    entry.error = String(e && e.message !== undefined ? e.message : e);
+                    throw e;
+                }
+                return entry.object;
+            },
+            get(target, key, receiver) {
+                return key === "__shadowlabWatched" ? true : Reflect.get(target, key, receiver);
+            },
+        });
+        return watched;
+    };
+
+    const log = (kind) => (...args) => {
+        if (record.console.length < 200) record.console.push(kind + ": " + args.map(String).join(" ").slice(0, 300));
+    };
+    globalThis.console = { log: log("log"), info: log("log"), warn: log("warn"), error: log("error"), debug: log("log"), assert: (c, ...a) => { if (!c) log("assert")(...a); }, time() {}, timeEnd() {} };
+    globalThis.alert = log("alert");
+
+    // A listener table that never fires on its own.
+    const events = { addEventListener() {}, removeEventListener() {}, dispatchEvent() { return true; } };
+
+    // The WebGL context: real constant values where the framework compares them, a recording of
+    // programs, uniforms and draws, and a no-op for everything else.
+    const GL = {
+        DEPTH_BUFFER_BIT: 0x100, COLOR_BUFFER_BIT: 0x4000, TRIANGLES: 4, LEQUAL: 0x203, LESS: 0x201,
+        CULL_FACE: 0xb44, DEPTH_TEST: 0xb71, BLEND: 0xbe2, TEXTURE_2D: 0xde1, UNSIGNED_BYTE: 0x1401,
+        UNSIGNED_SHORT: 0x1403, UNSIGNED_INT: 0x1405, FLOAT: 0x1406, RGBA: 0x1908, RGB: 0x1907,
+        DEPTH_COMPONENT: 0x1902, NEAREST: 0x2600, LINEAR: 0x2601, TEXTURE_MAG_FILTER: 0x2800,
+        TEXTURE_MIN_FILTER: 0x2801, TEXTURE_WRAP_S: 0x2802, TEXTURE_WRAP_T: 0x2803, REPEAT: 0x2901,
+        CLAMP_TO_EDGE: 0x812f, TEXTURE0: 0x84c0, ARRAY_BUFFER: 0x8892, ELEMENT_ARRAY_BUFFER: 0x8893,
+        STATIC_DRAW: 0x88e4, DYNAMIC_DRAW: 0x88e8, FRAGMENT_SHADER: 0x8b30, VERTEX_SHADER: 0x8b31,
+        COMPILE_STATUS: 0x8b81, LINK_STATUS: 0x8b82, FRAMEBUFFER: 0x8d40, RENDERBUFFER: 0x8d41,
+        COLOR_ATTACHMENT0: 0x8ce0, DEPTH_ATTACHMENT: 0x8d00, FRAMEBUFFER_COMPLETE: 0x8cd5,
+        DEPTH_COMPONENT16: 0x81a5, RGBA16F: 0x881a, RGBA32F: 0x8814, HALF_FLOAT: 0x140b,
+        UNPACK_FLIP_Y_WEBGL: 0x9240, MAX_TEXTURE_SIZE: 0xd33, LINEAR_MIPMAP_LINEAR: 0x2703,
+    };
+    function context(canvas, kind) {
+        let next = 1;
+        const state = { program: null, framebuffer: null };
+        const make = (what, extra) => Object.assign({ __what: what, id: next++ }, extra || {});
+        const uniform = (location, value) => {
+            if (location && location.program) location.program.values[location.name] = plain(value, 0);
+        };
+        const methods = {
+            canvas,
+            drawingBufferWidth: canvas.width,
+            drawingBufferHeight: canvas.height,
+            getContextAttributes: () => ({ alpha: true, depth: true }),
+            getExtension: (name) => ({ __extension: name }),
+            getSupportedExtensions: () => ["WEBGL_depth_texture", "OES_texture_float"],
+            getParameter: (p) => (p === GL.MAX_TEXTURE_SIZE ? 4096 : 0),
+            isContextLost: () => false,
+            createShader: (type) => make("shader", { type, source: "" }),
+            shaderSource: (shader, source) => { if (shader) shader.source = String(source); },
+            getShaderParameter: () => true,
+            getShaderInfoLog: () => "",
+            createProgram: () => {
+                const p = make("program", { shaders: [], values: {} });
+                record.programs.push(p);
+                return p;
+            },
+            attachShader: (program, shader) => { if (program && shader) program.shaders.push(shader); },
+            getProgramParameter: () => true,
+            getProgramInfoLog: () => "",
+            getUniformLocation: (program, name) => (program ? { program, name: String(name) } : null),
+            getAttribLocation: (program, name) => 0,
+            useProgram: (program) => { state.program = program; },
+            bindFramebuffer: (target, fb) => { state.framebuffer = fb || null; },
+            checkFramebufferStatus: () => GL.FRAMEBUFFER_COMPLETE,
+            drawElements: (mode, count) => record.draw(count),
+            drawArrays: (mode, first, count) => record.draw(count),
+        };
+        for (const name of ["1f", "2f", "3f", "4f", "1i", "2i", "3i", "4i"]) {
+            methods["uniform" + name] = (location, ...values) => uniform(location, values.length === 1 ? values[0] : values);
+        }
+        for (const name of ["1fv", "2fv", "3fv", "4fv", "1iv", "2iv", "3iv", "4iv"]) {
+            methods["uniform" + name] = (location, value) => uniform(location, value);
+        }
+        for (const name of ["Matrix2fv", "Matrix3fv", "Matrix4fv"]) {
+            methods["uniform" + name] = (location, transpose, value) => uniform(location, value);
+        }
+        record.draw = function (count) {
+            const p = state.program;
+            if (record.draws.length >= 4096 || !p) return;
+            record.draws.push({ program: p.id, framebuffer: state.framebuffer ? state.framebuffer.id : null, uniforms: Object.assign({}, p.values), count: Number(count) || 0 });
+        };
+        return new Proxy(methods, {
+            get(target, key) {
+                if (key in target) return target[key];
+                if (typeof key === "string" && key in GL) return GL[key];
+                if (typeof key === "string" && /^[A-Z0-9_]+$/.test(key)) return 0x7000 + key.length;
+                if (typeof key === "string" && key.startsWith("create")) return () => make(key.slice(6).toLowerCase());
+                return () => undefined;
+            },
+        });
+    }
+
+    function element(tag) {
+        const el = Object.assign(Object.create(events), {
+            tagName: String(tag).toUpperCase(),
+            style: {},
+            width: 1280,
+            height: 720,
+            clientWidth: 1280,
+            clientHeight: 720,
+            children: [],
+            appendChild(child) { this.children.push(child); return child; },
+            removeChild(child) { return child; },
+            setAttribute() {},
+            getBoundingClientRect: () => ({ left: 0, top: 0, width: 1280, height: 720, right: 1280, bottom: 720 }),
+            focus() {},
+        });
+        el.getContext = function (kind) {
+            const k = String(kind);
+            if (k !== "webgl" && k !== "experimental-webgl" && k !== "webgl2") return null;
+            record.context = k;
+            el.context = el.context || context(el, k);
+            return el.context;
+        };
+        return el;
+    }
+    const canvas = element("canvas");
+    const body = element("body");
+    globalThis.document = Object.assign(Object.create(events), {
+        body,
+        documentElement: element("html"),
+        querySelector: () => canvas,
+        getElementById: () => canvas,
+        getElementsByTagName: () => [canvas],
+        createElement: (tag) => element(tag),
+        createElementNS: (ns, tag) => element(tag),
+    });
+    Object.assign(globalThis, events);
+    globalThis.screen = { width: 1280, height: 720 };
+    globalThis.innerWidth = 1280;
+    globalThis.innerHeight = 720;
+    globalThis.devicePixelRatio = 1;
+    globalThis.navigator = { userAgent: "shadowlab" };
+    globalThis.location = { href: "shadowlab://homework/index.html", search: "", hash: "" };
+    globalThis.performance = { now: () => record.now };
+    record.now = 0;
+    globalThis.requestAnimationFrame = (callback) => {
+        if (typeof callback === "function" && record.frames.length < 16) record.frames.push(callback);
+        return record.frames.length;
+    };
+    globalThis.cancelAnimationFrame = () => {};
+    globalThis.setTimeout = () => 0;
+    globalThis.clearTimeout = () => {};
+    globalThis.setInterval = () => 0;
+    globalThis.clearInterval = () => {};
+    const refuse = (what) => function (url) {
+        record.requests.push({ what, url: String(url) });
+        throw new Error(what + " is not available in shadowlab's check (" + String(url) + ")");
+    };
+    globalThis.fetch = refuse("fetch");
+    globalThis.XMLHttpRequest = function () { this.open = refuse("XMLHttpRequest"); this.send = () => {}; };
+    globalThis.Image = function () { return element("img"); };
+})();

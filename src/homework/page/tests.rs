@@ -1,0 +1,205 @@
+//! The student's page in a real engine: the light their engine.js makes, its CalcLightMVP against
+//! shadowlab's former interpreter (checked against gl-matrix in V8 when it was written), a light
+//! built with three.js, and hostile scripts that each end in one line naming the file.
+
+use std::time::Duration;
+
+use super::*;
+use crate::homework::light_script::{LightScript, Limits as InterpreterLimits};
+
+const EXAMPLE_LIGHT: &str = include_str!("../../../assets/homework/DirectionalLight.js");
+const FRAMEWORK_ENGINE: &str = include_str!("../../../assets/homework/framework/src/engine.js");
+
+fn source(name: &str, text: &str) -> ShaderSource {
+    ShaderSource { name: name.into(), path: None, text: text.into() }
+}
+
+fn load(light: &str, engine: Option<&str>) -> Result<(PageLight, EngineLight), ScriptError> {
+    let engine = engine.map(|e| source("engine.js", e));
+    PageLight::load(&source("DirectionalLight.js", light), engine.as_ref(), Limits::default())
+}
+
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines().position(|l| l.contains(needle)).map_or(0, |i| i + 1)
+}
+
+#[test]
+fn the_light_engine_js_makes_is_recorded_with_its_line() {
+    let engine = FRAMEWORK_ENGINE.replace("const lightPos = [0, 80, 80];", "const lightPos = [10, 90, 70];");
+    let (page, light) = load(EXAMPLE_LIGHT, Some(&engine)).expect("the page runs");
+    assert_eq!(light.position.value, [10.0, 90.0, 70.0]);
+    assert_eq!(light.intensity.value, 5000.0);
+    assert_eq!(light.focal_point.value, [0.0; 3]);
+    assert_eq!(light.position.file, "engine.js");
+    assert_eq!(light.position.line, line_of(&engine, "new DirectionalLight("));
+    assert!(page.notes().is_empty(), "{:?}", page.notes());
+}
+
+#[test]
+fn calc_light_mvp_agrees_with_the_former_interpreter_to_the_bit() {
+    let (mut page, engine_light) = load(EXAMPLE_LIGHT, None).expect("the page runs");
+    let mut old =
+        LightScript::load(EXAMPLE_LIGHT, "DirectionalLight.js", &engine_light, InterpreterLimits::default())
+            .expect("the interpreter loads it");
+    for (t, s) in [([0.0; 3], [1.0; 3]), ([40.0, 0.0, -40.0], [10.0; 3]), ([0.0, 0.0, -30.0], [4.0; 3])] {
+        let new = page.light_matrix(t, s).expect("a matrix");
+        let before = old.light_matrix(t, s).expect("a matrix");
+        assert_eq!(
+            new.clip_from_object.map(f32::to_bits),
+            before.clip_from_object.map(f32::to_bits),
+            "{t:?} {s:?}"
+        );
+        let names = |m: &LightMatrix| m.calls.iter().map(|c| (c.name.clone(), c.line)).collect::<Vec<_>>();
+        assert_eq!(names(&new), names(&before));
+        assert_eq!(new.return_line, before.return_line);
+    }
+}
+
+#[test]
+fn a_light_built_with_three_js_runs() {
+    let light = "class DirectionalLight {
+  constructor(i, c, pos, focal, up, shadow, gl) {
+    this.lightPos = pos; this.focalPoint = focal; this.lightUp = up;
+  }
+  CalcLightMVP(translate, scale) {
+    const camera = new THREE.OrthographicCamera(-100, 100, 100, -100, 0.01, 400);
+    camera.position.set(...this.lightPos);
+    camera.up.set(...this.lightUp);
+    camera.lookAt(...this.focalPoint);
+    camera.updateMatrixWorld();
+    const model = new THREE.Matrix4().compose(new THREE.Vector3(...translate), new THREE.Quaternion(), new THREE.Vector3(...scale));
+    return new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse).multiply(model).elements;
+  }
+}";
+    let (mut page, _) = load(light, None).expect("the page runs");
+    let three = page.light_matrix([40.0, 0.0, -40.0], [10.0; 3]).expect("a matrix");
+    let (mut reference, _) = load(EXAMPLE_LIGHT, None).expect("the page runs");
+    let gl_matrix = reference.light_matrix([40.0, 0.0, -40.0], [10.0; 3]).expect("a matrix");
+    for (a, b) in three.clip_from_object.iter().zip(gl_matrix.clip_from_object) {
+        assert!((a - b).abs() < 1e-5, "{:?} vs {:?}", three.clip_from_object, gl_matrix.clip_from_object);
+    }
+    let camera =
+        three.calls.iter().find(|c| c.name == "THREE.OrthographicCamera").expect("the camera is logged");
+    assert_eq!(camera.line, line_of(light, "new THREE.OrthographicCamera"));
+    assert_eq!(camera.args, vec![-100.0, 100.0, 100.0, -100.0, 0.01, 400.0]);
+}
+
+/// The error of loading `light` (or of its first matrix), which must be one line.
+fn error_of(light: &str, engine: Option<&str>, limits: Limits) -> ScriptError {
+    let e = match PageLight::load(
+        &source("DirectionalLight.js", light),
+        engine.map(|e| source("engine.js", e)).as_ref(),
+        limits,
+    ) {
+        Err(e) => e,
+        Ok((mut page, _)) => match page.light_matrix([0.0; 3], [1.0; 3]) {
+            Err(e) => e,
+            Ok(m) => panic!("expected an error, got {m:?}"),
+        },
+    };
+    assert!(!e.to_string().contains('\n'), "{e}");
+    e
+}
+
+fn with_body(body: &str) -> String {
+    format!(
+        "class DirectionalLight {{\n  constructor() {{}}\n  CalcLightMVP(translate, scale) {{\n{body}\n  }}\n}}\n"
+    )
+}
+
+#[test]
+fn hostile_scripts_each_end_in_one_line_naming_the_file() {
+    let short = Limits { time: Duration::from_millis(300), ..Limits::default() };
+    let cases: [(&str, &str, &str); 6] = [
+        // QuickJS places an interrupted loop on its function's line; the message names the function.
+        ("    while (true) {}", "CalcLightMVP(", "time bound of 0.3 s in CalcLightMVP"),
+        ("    const a = []; for (;;) a.push(new Array(100000).fill(1));", "const a = []", "memory bound"),
+        ("    const f = (n) => f(n + 1) + 1; return f(0);", "const f", "stack bound"),
+        ("    throw new Error('no light today');", "throw new Error", "no light today"),
+        ("    return fetch('http://example.com/light');", "fetch(", "fetch is not available"),
+        ("    document.body.innerHTML = ''; return window.location.href;", "", "returned a string"),
+    ];
+    for (body, needle, message) in cases {
+        let light = with_body(body);
+        let e = error_of(&light, None, short);
+        assert_eq!(e.file, "DirectionalLight.js", "{e}");
+        if !needle.is_empty() {
+            assert_eq!(e.line, line_of(&light, needle), "{e}");
+        }
+        assert!(e.message.contains(message), "{body}: {e}");
+    }
+}
+
+#[test]
+fn a_prototype_trick_cannot_change_what_shadowlab_reads() {
+    // Replacing the built-ins shadowlab reads the result with changes nothing it reads.
+    let light = EXAMPLE_LIGHT.replace(
+        "class DirectionalLight {",
+        "JSON.stringify = () => '{}'; Array.isArray = () => false; Object.prototype.matrix = null;\nclass DirectionalLight {",
+    );
+    let (mut page, _) = load(&light, None).expect("the page runs");
+    let (mut reference, _) = load(EXAMPLE_LIGHT, None).expect("the page runs");
+    let a = page.light_matrix([1.0, 2.0, 3.0], [2.0; 3]).expect("a matrix");
+    let b = reference.light_matrix([1.0, 2.0, 3.0], [2.0; 3]).expect("a matrix");
+    assert_eq!(a.clip_from_object, b.clip_from_object);
+}
+
+#[test]
+fn a_failing_engine_js_is_a_note_and_the_framework_light_is_used() {
+    let engine = "const canvas = document.querySelector('#glcanvas');\nundefinedFunction();\n";
+    let (mut page, light) = load(EXAMPLE_LIGHT, Some(engine)).expect("the page runs");
+    assert_eq!(light.position.value, [0.0, 80.0, 80.0]);
+    assert!(page.notes().iter().any(|n| n.starts_with("engine.js:2: ")), "{:?}", page.notes());
+    assert!(page.notes().iter().any(|n| n.contains("makes no DirectionalLight")), "{:?}", page.notes());
+    page.light_matrix([0.0; 3], [1.0; 3]).expect("the framework's light still has a matrix");
+}
+
+#[test]
+fn a_constructor_that_throws_gets_the_template_fields() {
+    let light = EXAMPLE_LIGHT
+        .replace("this.fbo = new FBO(gl);", "this.fbo = new FBO(gl);\n    throw new Error('no gl');");
+    let (mut page, engine_light) = load(&light, None).expect("the page runs");
+    assert_eq!(engine_light.position.value, [0.0, 80.0, 80.0]);
+    assert!(
+        page.notes().iter().any(|n| n.contains("constructor failed") && n.contains("no gl")),
+        "{:?}",
+        page.notes()
+    );
+    page.light_matrix([0.0; 3], [1.0; 3]).expect("CalcLightMVP runs on the template's fields");
+}
+
+#[test]
+fn a_script_without_the_class_or_method_says_so() {
+    let e = error_of("class Light {}", None, Limits::default());
+    assert_eq!(e.to_string(), "DirectionalLight.js: no class or function named DirectionalLight");
+    let e = error_of("class DirectionalLight { constructor() {} }", None, Limits::default());
+    assert_eq!(e.to_string(), "DirectionalLight.js: DirectionalLight has no CalcLightMVP method");
+    let e = error_of(
+        "class DirectionalLight {\n  CalcLightMVP() {\n    return [1, 2];\n  }\n}",
+        None,
+        Limits::default(),
+    );
+    assert_eq!(
+        e.to_string(),
+        "DirectionalLight.js:2: CalcLightMVP returned an array of 2 elements, not a 4x4 matrix"
+    );
+    let e = error_of(
+        "class DirectionalLight {\n  CalcLightMVP() {\n    let x = (1 + ;\n  }\n}",
+        None,
+        Limits::default(),
+    );
+    assert_eq!((e.file.as_str(), e.line), ("DirectionalLight.js", 3), "{e}");
+}
+
+#[test]
+fn the_last_return_of_a_method_is_found_past_strings_and_comments() {
+    let text = "class L {\n  CalcLightMVP(t, s) {\n    const a = '}'; // return }\n    /* { return */\n    if (t) { return 1; }\n    return `}`;\n  }\n  other() { return 2; }\n}";
+    assert_eq!(last_return(text, 2), Some(6));
+    assert_eq!(last_return(text, 8), Some(8));
+    assert_eq!(last_return("function f() {}", 1), None);
+    assert_eq!(method_line(text), Some(2));
+    assert_eq!(
+        method_line("// CalcLightMVP(x)\nx.CalcLightMVP(1);\nL.prototype.CalcLightMVP = function () {};"),
+        Some(3)
+    );
+}
