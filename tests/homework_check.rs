@@ -65,6 +65,7 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
     vec![
         ("phongFragment.glsl", vec![], &[]),
         ("phongFragment.glsl", script("DirectionalLight.js"), &[]),
+        ("phongFragment.glsl", script("DirectionalLight_three.js"), &[]),
         ("phongFragment.glsl", script("DirectionalLight_no_model.js"), &["light_model_matrix"]),
         ("phongFragment.glsl", script("DirectionalLight_narrow.js"), &["light_frustum_clips"]),
         ("phongFragment.glsl", script("DirectionalLight_low.js"), &["light_frustum_clips"]),

@@ -312,7 +312,18 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
         .calls
         .iter()
         .rev()
-        .find(|c| matches!(c.name.as_str(), "mat4.ortho" | "mat4.perspective" | "mat4.frustum"))
+        .find(|c| {
+            matches!(
+                c.name.as_str(),
+                "mat4.ortho"
+                    | "mat4.perspective"
+                    | "mat4.frustum"
+                    | "THREE.Matrix4.makeOrthographic"
+                    | "THREE.Matrix4.makePerspective"
+                    | "THREE.OrthographicCamera"
+                    | "THREE.PerspectiveCamera"
+            )
+        })
         .map_or(at_origin.return_line, |c| c.line);
     let like = scene.lights.get(index)?;
     let (shadowlab_scene, frustum) = match read_light(clip_from_world, focal_point, like) {
