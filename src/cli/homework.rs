@@ -181,7 +181,7 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
     let mut outcome =
         run_check(&homework, &mut renderer, &shader, &student.scene, &student.light, &request, args.lang)
             .map_err(|e| CliError { code: 1, message: format!("{}: {e}", shader.name) })?;
-    outcome.report.light = Some(student.report);
+    outcome.report.set_light(Some(student.report));
     outcome.report.submission = Some(SubmissionReport::of(&source));
     // Everything encoded before the first file is written: a failure leaves no partial folder.
     let text = report_json(&outcome.report)?;

@@ -62,6 +62,16 @@ pub struct HomeworkLight {
     pub intensity: Vec3,
     /// What the student's model matrix does instead of translate-then-scale, where it is wrong.
     pub model_matrix: Option<ModelMatrixError>,
+    /// The values the student's page gave its own uniforms, by name (empty: none known, all 0).
+    pub page_uniforms: PageUniforms,
+}
+
+/// The uniforms a student's page set on its first frame, by the name their code gave each:
+/// for the camera pass's program and the light pass's. Flat numbers in WebGL's order.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PageUniforms {
+    pub camera: std::collections::BTreeMap<String, Vec<f64>>,
+    pub shadow: std::collections::BTreeMap<String, Vec<f64>>,
 }
 
 impl HomeworkLight {
@@ -81,6 +91,7 @@ impl HomeworkLight {
             position: light.position_at(t_s),
             intensity: intensity_scale * light.intensity * light.color,
             model_matrix: None,
+            page_uniforms: PageUniforms::default(),
         })
     }
 }

@@ -36,6 +36,7 @@ mod program;
 mod rewrite;
 mod run;
 mod session;
+mod student_block;
 pub mod student_light;
 pub mod submission;
 mod translate;

@@ -236,11 +236,12 @@ impl HomeworkRenderer {
         keep: &mut Vec<wgpu::Buffer>,
     ) {
         let black = self.rgba8("unset texture", (1, 1), &[0, 0, 0, 255]).create_view(&Default::default());
-        let student = self.device.create_buffer(&wgpu::BufferDescriptor {
+        // The student's own uniforms, as their page set them for this pass's program.
+        let page = if clip_y_sign > 0.0 { &light.page_uniforms.camera } else { &light.page_uniforms.shadow };
+        let student = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
             label: Some("homework student uniforms"),
-            size: pass.student_block_bytes.max(16).next_multiple_of(16),
+            contents: &pass.student_block.bytes(page),
             usage: wgpu::BufferUsages::UNIFORM,
-            mapped_at_creation: false,
         });
         render.set_pipeline(&pass.pipeline);
         for (index, object) in scene.objects.iter().enumerate() {

@@ -2,7 +2,6 @@
 //! declare, the two translated stages, the framework's vertex layout and WebGL's state (no
 //! culling, depth test LESS). A shader wgpu refuses is an error on one line, not a panic.
 
-use super::interface::STUDENT_BLOCK_BINDING;
 use super::program::TranslatedProgram;
 use super::{BindingKind, HomeworkGpuError, SamplerFilter};
 
@@ -15,8 +14,8 @@ pub(super) struct Pass {
     pub layout: wgpu::BindGroupLayout,
     /// (binding, name, kind) of every resource either stage declares.
     pub bindings: Vec<(u32, String, BindingKind)>,
-    /// Size of the block of the student's own uniforms, bytes (0: none).
-    pub student_block_bytes: u64,
+    /// The block of the student's own uniforms (size 0: none).
+    pub student_block: super::student_block::StudentBlock,
     /// Whether wgpu took the pipeline (a page's browser answers on a later frame).
     answer: crate::render::ScopeAnswer,
     label: String,
@@ -31,24 +30,6 @@ impl Pass {
             Some(e) => Err(HomeworkGpuError(format!("{}: {e}", self.label))),
         })
     }
-}
-
-/// The size of the student's uniform block (binding 1) a WGSL stage declares, bytes.
-fn student_block_bytes(wgsl: &str) -> u64 {
-    let Ok(module) = naga::front::wgsl::parse_str(wgsl) else { return 0 };
-    let mut layouter = naga::proc::Layouter::default();
-    if layouter.update(module.to_ctx()).is_err() {
-        return 0;
-    }
-    module
-        .global_variables
-        .iter()
-        .filter(|(_, g)| {
-            g.binding.as_ref().is_some_and(|b| b.group == 0 && b.binding == STUDENT_BLOCK_BINDING)
-        })
-        .map(|(_, g)| u64::from(layouter[g.ty].size))
-        .max()
-        .unwrap_or(0)
 }
 
 impl Pass {
@@ -149,8 +130,9 @@ impl Pass {
         if let std::task::Poll::Ready(Some(e)) = answer.poll() {
             return Err(HomeworkGpuError(format!("{label}: {e}")));
         }
-        let student_block_bytes =
-            student_block_bytes(&program.vertex.wgsl).max(student_block_bytes(&program.fragment.wgsl));
-        Ok(Self { pipeline, layout, bindings, student_block_bytes, answer, label: label.to_owned() })
+        use super::student_block::StudentBlock;
+        let student_block =
+            StudentBlock::of_wgsl(&program.vertex.wgsl).larger(StudentBlock::of_wgsl(&program.fragment.wgsl));
+        Ok(Self { pipeline, layout, bindings, student_block, answer, label: label.to_owned() })
     }
 }

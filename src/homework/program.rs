@@ -139,6 +139,9 @@ pub struct HomeworkSource {
     /// `lights/DirectionalLight.js` and `engine.js`, where the submission has them.
     pub light_script: Option<ShaderSource>,
     pub engine: Option<ShaderSource>,
+    /// The rest of the student's page (scripts, shaders, index.html), named by their path in the
+    /// submission; empty for a lone shader.
+    pub page: Vec<ShaderSource>,
     pub notes: Vec<String>,
 }
 
@@ -167,7 +170,14 @@ impl HomeworkSource {
             // A shader alone, whatever its extension (as the app and the command line took it).
             let files = HomeworkFiles::with_framework(ShaderSource::read(path)?);
             let name = files.phong_fragment.name.clone();
-            return Ok(Self { name, files, light_script: None, engine: None, notes: Vec::new() });
+            return Ok(Self {
+                name,
+                files,
+                light_script: None,
+                engine: None,
+                page: Vec::new(),
+                notes: Vec::new(),
+            });
         }
         let submission = super::submission::read_path(path, limits).map_err(refused)?;
         let folder = (!crate::files::is_file(path)).then_some(path);
@@ -213,6 +223,7 @@ impl HomeworkSource {
             files,
             light_script: found.light_script.map(source),
             engine: found.engine.map(source),
+            page: found.page.into_iter().map(source).collect(),
             notes: submission.notes,
         }
     }

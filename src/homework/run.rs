@@ -338,6 +338,7 @@ impl CheckRun {
             figures: Some(figures),
             light_width: width.clone(),
             light: None,
+            lights: Vec::new(),
             findings,
         };
         CheckOutcome {

@@ -53,6 +53,10 @@ pub struct HomeworkReport {
     pub light_width: Option<super::LightWidthFit>,
     /// The light the student built (their DirectionalLight.js and engine.js), or the framework's.
     pub light: Option<super::student_light::LightReport>,
+    /// Every light the student's page made, the checked one marked (absent where the page did
+    /// not run).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub lights: Vec<super::student_light::LightEntry>,
     pub findings: Vec<Finding>,
 }
 
@@ -90,6 +94,12 @@ impl SubmissionReport {
 }
 
 impl HomeworkReport {
+    /// The light the check used, with every light the student's page made.
+    pub fn set_light(&mut self, light: Option<super::student_light::LightReport>) {
+        self.lights = light.as_ref().map_or_else(Vec::new, |l| l.lights.clone());
+        self.light = light;
+    }
+
     /// The report of a shader that did not compile.
     pub fn not_compiled(shader: &str, error: &HomeworkError) -> Self {
         Self {
@@ -103,6 +113,7 @@ impl HomeworkReport {
             figures: None,
             light_width: None,
             light: None,
+            lights: Vec::new(),
             findings: Vec::new(),
         }
     }

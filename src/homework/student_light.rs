@@ -5,7 +5,7 @@
 //! shadowlab reads its own copy of the frustum out of the matrix (`read_light`). A script that
 //! fails says so on one line, and the check goes on with the framework's light.
 
-use super::light::{HomeworkLight, LightFrom, ModelMatrixError, read_light};
+use super::light::{HomeworkLight, LightFrom, ModelMatrixError, PageUniforms, read_light};
 use super::light_script::{EngineLight, GlCall, LightMatrix, ScriptError};
 use super::program::ShaderSource;
 use super::{FRAMEWORK_LIGHT_INTENSITY, HomeworkSource};
@@ -37,6 +37,36 @@ pub struct LightReport {
     pub notes: Vec<String>,
     /// How each object's matrix treats its translation and scale (None: as the framework means).
     pub model_matrix: Option<ModelMatrixError>,
+    /// Every light the student's page made, in order (empty where the page did not run).
+    pub lights: Vec<LightEntry>,
+    /// The values the student's page gave the uniforms of the camera pass's and the light
+    /// pass's programs on its first frame, by the names their code uses (empty where the page
+    /// did not run or drew nothing).
+    pub page_uniforms: PageUniformsReport,
+}
+
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct PageUniformsReport {
+    pub camera: std::collections::BTreeMap<String, Vec<f64>>,
+    pub shadow: std::collections::BTreeMap<String, Vec<f64>>,
+}
+
+/// One light the student's page made, as the report lists it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LightEntry {
+    /// `DirectionalLight` or `PointLight`.
+    pub kind: String,
+    /// Where it comes from: for the checked light, the line its matrix is built on; else where
+    /// the page made it.
+    pub from: String,
+    /// Where the student's code made it (`src/engine.js:47`), or `framework`.
+    pub made_at: String,
+    /// Its position as made, world units.
+    pub position: Option<[f32; 3]>,
+    /// Whether the check used it.
+    pub checked: bool,
+    /// Why its constructor or its matrix failed, if one did.
+    pub error: Option<String>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -184,10 +214,18 @@ fn frustum_report(light: &Light, focal_point: Vec3) -> FrustumReport {
     }
 }
 
-/// A student's light, loaded: each object's matrix on demand.
+/// A student's light, loaded: each object's matrix on demand, and what their page made and set.
 trait LightMatrices {
     fn notes(&self) -> &[String];
     fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError>;
+    /// Every light the page made (the checked one marked) as the report lists them.
+    fn lights(&self) -> Vec<LightEntry> {
+        Vec::new()
+    }
+    /// The values the page gave the uniforms of the program whose fragment shader is `fragment`.
+    fn uniforms(&self, _fragment: &str) -> std::collections::BTreeMap<String, Vec<f64>> {
+        std::collections::BTreeMap::new()
+    }
 }
 
 #[cfg(not(target_arch = "wasm32"))]
@@ -197,6 +235,24 @@ impl LightMatrices for super::page::PageLight {
     }
     fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
         self.light_matrix(translate, scale)
+    }
+    fn lights(&self) -> Vec<LightEntry> {
+        let (found, checked) = self.lights();
+        found
+            .iter()
+            .enumerate()
+            .map(|(i, l)| LightEntry {
+                kind: l.kind.clone(),
+                from: l.made_at.clone(),
+                made_at: l.made_at.clone(),
+                position: l.position.map(|p| p.map(|x| x as f32)),
+                checked: Some(i) == checked,
+                error: l.error.clone(),
+            })
+            .collect()
+    }
+    fn uniforms(&self, fragment: &str) -> std::collections::BTreeMap<String, Vec<f64>> {
+        self.draws().uniforms_for(fragment)
     }
 }
 
@@ -216,8 +272,9 @@ impl LightMatrices for super::light_script::LightScript {
 fn load_light(
     script: &ShaderSource,
     engine: Option<&ShaderSource>,
+    page: &[ShaderSource],
 ) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
-    match super::page::PageLight::load(script, engine, super::page::Limits::default()) {
+    match super::page::PageLight::load(script, engine, page, super::page::Limits::default()) {
         Ok((page, light)) => (light, Ok(Box::new(page))),
         Err(e) => (EngineLight::framework(), Err(e)),
     }
@@ -229,6 +286,7 @@ fn load_light(
 fn load_light(
     script: &ShaderSource,
     engine: Option<&ShaderSource>,
+    _page: &[ShaderSource],
 ) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
     use super::light_script::{LightScript, Limits, engine_light};
     let limits = Limits::default();
@@ -240,14 +298,44 @@ fn load_light(
     (light, loaded.map(|l| Box::new(l) as Box<dyn LightMatrices>))
 }
 
+/// The page's lights as the report lists them: the checked one says where its matrix comes from;
+/// where the page made none the check could use, the light it used instead is listed too.
+fn listed_lights(lights: Vec<LightEntry>, used: &HomeworkLight) -> Vec<LightEntry> {
+    if lights.is_empty() {
+        return lights;
+    }
+    let mut listed: Vec<LightEntry> = lights
+        .into_iter()
+        .map(|l| if l.checked { LightEntry { from: used.from.label(), ..l } } else { l })
+        .collect();
+    if !listed.iter().any(|l| l.checked) {
+        listed.insert(
+            0,
+            LightEntry {
+                kind: "DirectionalLight".into(),
+                from: used.from.label(),
+                made_at: "framework".into(),
+                position: Some(used.position.to_array()),
+                checked: true,
+                error: None,
+            },
+        );
+    }
+    listed
+}
+
 /// Run the submission's light scripts for `scene` (its light `index` is the framework's) at
 /// `t_s`: the student's light and shadowlab's copy of it, or the framework's with why.
 pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: f32) -> Option<StudentLight> {
-    let framework = |error: Option<String>, mut notes: Vec<String>| {
+    let framework = |error: Option<String>, mut notes: Vec<String>, mut lights: Vec<LightEntry>| {
         let light = HomeworkLight::of_scene(scene, index, t_s, FRAMEWORK_LIGHT_INTENSITY)?;
         let shadowlab = scene.lights.get(index)?;
         if error.is_some() {
             notes.push("checked with the framework's own light instead".into());
+        }
+        for entry in lights.iter_mut().filter(|l| l.checked) {
+            entry.checked = false;
+            entry.error = entry.error.take().or_else(|| error.clone());
         }
         let report = LightReport {
             from: LightFrom::Framework.label(),
@@ -268,22 +356,33 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
             ),
             notes,
             model_matrix: None,
+            lights,
+            page_uniforms: PageUniformsReport::default(),
         };
         Some(StudentLight { light, scene: scene.clone(), report })
     };
     let Some(script) = &source.light_script else {
-        return framework(None, Vec::new());
+        return framework(None, Vec::new(), Vec::new());
     };
-    let (engine, loaded) = load_light(script, source.engine.as_ref());
+    let (engine, loaded) = load_light(script, source.engine.as_ref(), &source.page);
     let mut notes = engine.notes.clone();
     let mut loaded = match loaded {
         Ok(l) => l,
-        Err(e) => return framework(Some(e.to_string()), notes),
+        Err(e) => return framework(Some(e.to_string()), notes, Vec::new()),
     };
     notes.extend(loaded.notes().iter().cloned());
+    let lights = loaded.lights();
+    let unchecked: Vec<String> =
+        lights.iter().filter(|l| !l.checked).map(|l| format!("{} ({})", l.made_at, l.kind)).collect();
+    if !unchecked.is_empty() {
+        notes.push(format!(
+            "the check judges one light; the page's others are listed, not judged: {}",
+            unchecked.join(", ")
+        ));
+    }
     let at_origin = match loaded.light_matrix([0.0; 3], [1.0; 3]) {
         Ok(m) => m,
-        Err(e) => return framework(Some(e.to_string()), notes),
+        Err(e) => return framework(Some(e.to_string()), notes, lights),
     };
     let clip_from_world = Mat4::from_cols_array(&at_origin.clip_from_object);
     let position = vec3(engine.position.value);
@@ -301,7 +400,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
         let (t, s) = (object.translate, object.scale);
         let matrix = match loaded.light_matrix(t.as_dvec3().to_array(), s.as_dvec3().to_array()) {
             Ok(m) => Mat4::from_cols_array(&m.clip_from_object),
-            Err(e) => return framework(Some(e.to_string()), notes),
+            Err(e) => return framework(Some(e.to_string()), notes, lights),
         };
         if model.is_none() {
             model = model_matrix(matrix, clip_from_world, t, s, position);
@@ -347,6 +446,10 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
         position,
         intensity: engine_intensity,
         model_matrix: model,
+        page_uniforms: PageUniforms {
+            camera: loaded.uniforms(&source.files.phong_fragment.text),
+            shadow: loaded.uniforms(&source.files.shadow_fragment.text),
+        },
     };
     let report = LightReport {
         from: light.from.label(),
@@ -369,6 +472,11 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
         frustum,
         notes,
         model_matrix: model,
+        lights: listed_lights(lights, &light),
+        page_uniforms: PageUniformsReport {
+            camera: light.page_uniforms.camera.clone(),
+            shadow: light.page_uniforms.shadow.clone(),
+        },
     };
     Some(StudentLight { light, scene: shadowlab_scene, report })
 }

@@ -22,6 +22,8 @@ var self = globalThis;
         // Draw calls: {program, framebuffer, uniforms: {name: value}, count}.
         draws: [],
         programs: [],
+        // The frame being drawn: -1 while the page loads, then 0, 1, ... as shadowlab runs them.
+        frame: -1,
     };
     globalThis.__shadowlab = record;
 
@@ -147,7 +149,7 @@ var self = globalThis;
         record.draw = function (count) {
             const p = state.program;
             if (record.draws.length >= 4096 || !p) return;
-            record.draws.push({ program: p.id, framebuffer: state.framebuffer ? state.framebuffer.id : null, uniforms: Object.assign({}, p.values), count: Number(count) || 0 });
+            record.draws.push({ frame: record.frame, program: p.id, framebuffer: state.framebuffer ? state.framebuffer.id : null, uniforms: Object.assign({}, p.values), count: Number(count) || 0 });
         };
         return new Proxy(methods, {
             get(target, key) {
@@ -204,6 +206,28 @@ var self = globalThis;
     globalThis.location = { href: "shadowlab://homework/index.html", search: "", hash: "" };
     globalThis.performance = { now: () => record.now };
     record.now = 0;
+    // Runs the frames the page asked for, `count` times, `step_ms` apart: each frame calls the
+    // callbacks the previous one registered, as a browser does. Returns the first error, or "".
+    record.runFrames = function (count, step_ms) {
+        let first = "";
+        for (let i = 0; i < count; i++) {
+            const callbacks = record.frames;
+            record.frames = [];
+            record.frame = i;
+            record.now = i * step_ms;
+            for (const callback of callbacks) {
+                try {
+                    callback(record.now);
+                } catch (e) {
+                    if (!first) {
+                        const at = String((e && e.stack) || "");
+                        first = String(e && e.message !== undefined ? e.message : e) + "\n" + at;
+                    }
+                }
+            }
+        }
+        return first;
+    };
     globalThis.requestAnimationFrame = (callback) => {
         if (typeof callback === "function" && record.frames.length < 16) record.frames.push(callback);
         return record.frames.length;

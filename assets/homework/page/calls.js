@@ -113,6 +113,15 @@
         return stringify({ matrix, what: null, calls });
     };
 
+    // The programs (their two shaders' sources) and the draws, as JSON.
+    record.drawsJson = function () {
+        const programs = record.programs.map((p) => {
+            const source = (type) => (p.shaders.find((s) => s.type === type) || { source: null }).source;
+            return { id: p.id, vertex: source(0x8b31), fragment: source(0x8b30) };
+        });
+        return stringify({ programs, draws: record.draws });
+    };
+
     // The recorded lights as JSON (without their objects).
     record.lightsJson = function () {
         return stringify(record.lights.map((l) => ({ kind: l.kind, args: l.args, file: l.file, line: l.line, error: l.error })));

@@ -20,14 +20,51 @@
         this.reset = () => {};
     };
 
-    // A request the check answers from `record.files` (the submission's own text files, by path),
-    // or leaves pending.
+    // A request answered from what shadowlab holds, a moment later as a browser would: a text
+    // file from `record.files` (the submission's own by path, else the framework's), a model as a
+    // small stand-in mesh tagged with the request, a material library and an image as stand-ins.
+    // A file shadowlab does not hold stays unanswered.
     function answer(what, url, onLoad) {
-        const path = String(url).replace(/^\.?\//, "");
+        const path = String(url).replace(/^(\.\/)+/, "").replace(/^\//, "");
+        const request = record.requests.length;
         record.requests.push({ what, url: path });
-        const files = record.files || {};
-        const found = Object.keys(files).find((name) => name === path || name.endsWith("/" + path) || path.endsWith("/" + name));
-        if (found !== undefined && typeof onLoad === "function") onLoad(files[found]);
+        if (typeof onLoad !== "function") return;
+        let value;
+        if (what === "OBJLoader") value = model(request, path);
+        else if (what === "MTLLoader") value = { preload() {}, materials: {}, getAsArray: () => [], create: () => null };
+        else if (what === "TextureLoader") value = THREE.Texture ? new THREE.Texture() : {};
+        else if (what === "ImageLoader") value = globalThis.document.createElement("img");
+        else {
+            const files = record.files || {};
+            const names = Object.keys(files);
+            const found = names.find((n) => n === path) || names.find((n) => n.endsWith("/" + path) || path.endsWith("/" + n));
+            if (found === undefined) return;
+            value = files[found];
+        }
+        Promise.resolve().then(() => onLoad(value));
+    }
+
+    // An OBJ's stand-in: one mesh, a quad in the XZ plane with normals and uv, as three.js's
+    // OBJLoader hands it over (a Group whose child isMesh, with BufferGeometry attributes).
+    function model(request, path) {
+        const position = new Float32Array([-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, -1, 1, 0, 1, -1, 0, 1]);
+        const normal = new Float32Array([0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0]);
+        const uv = new Float32Array([0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1]);
+        const attribute = (array, size) => ({ array, itemSize: size, count: array.length / size });
+        const color = (r, g, b) => (THREE.Color ? new THREE.Color(r, g, b) : { r, g, b, toArray: () => [r, g, b] });
+        const mesh = {
+            isMesh: true,
+            name: path,
+            shadowlabRequest: request,
+            geometry: { attributes: { position: attribute(position, 3), normal: attribute(normal, 3), uv: attribute(uv, 2) }, index: null },
+            material: { name: "stand-in", map: null, color: color(1, 1, 1), specular: color(0, 0, 0) },
+        };
+        const group = {
+            isGroup: true,
+            children: [mesh],
+            traverse(f) { f(group); f(mesh); },
+        };
+        return group;
     }
     function loader(what) {
         return function (manager) {
@@ -37,6 +74,7 @@
             this.setMaterials = (m) => { this.materials = m; return this; };
             this.setResourcePath = () => this;
             this.setCrossOrigin = () => this;
+            this.setResponseType = () => this;
             this.load = (url, onLoad) => answer(what, this.path + String(url), onLoad);
         };
     }

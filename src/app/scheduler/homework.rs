@@ -131,7 +131,7 @@ impl HomeworkRunner {
         match stepped {
             Ok(None) => Ok(None),
             Ok(Some(mut outcome)) => {
-                outcome.report.light = light_report.take();
+                outcome.report.set_light(light_report.take());
                 self.running = None;
                 let outcome = Arc::new(outcome);
                 self.last = Some((key, outcome.clone()));

@@ -99,6 +99,14 @@ impl Engine {
     }
 }
 
+/// A message and the stack under it (a frame's error as the page caught it) on one line:
+/// `file:line: message` at the student's frame.
+pub fn one_line(message_and_stack: &str) -> String {
+    let (message, stack) = message_and_stack.split_once('\n').unwrap_or((message_and_stack, ""));
+    let failure = Failure { message: message.to_string(), stack: stack.to_string() };
+    failure.into_error("", &Limits::default()).to_string()
+}
+
 /// What a script threw, as text: its message and stack (or the value, for a throw of a non-error).
 struct Failure {
     message: String,

@@ -12,12 +12,17 @@
 //! builds each object's matrix.
 
 mod engine;
+mod record;
+mod scripts;
 
 #[cfg(test)]
 mod tests;
 
 use engine::Engine;
 pub use engine::Limits;
+use record::MadeLight;
+pub use record::{FoundLight, PageDraws};
+use scripts::{FRAMEWORK_SHADERS, Script, script_list};
 use serde::Deserialize;
 
 use super::light_script::{EngineLight, GlCall, LightMatrix, ScriptError, Sourced};
@@ -32,47 +37,33 @@ const PRELUDE: [(&str, &str); 5] = [
     ("shadowlab/calls.js", include_str!("../../../assets/homework/page/calls.js")),
 ];
 
-/// The framework's `src/` scripts in index.html's order, with shadowlab's copy of each (None: the
-/// student's file only).
-const FRAMEWORK: [(&str, Option<&str>); 16] = [
-    ("shaders/Shader.js", Some(include_str!("../../../assets/homework/framework/src/shaders/Shader.js"))),
-    (
-        "shaders/InternalShader.js",
-        Some(include_str!("../../../assets/homework/framework/src/shaders/InternalShader.js")),
-    ),
-    (
-        "materials/Material.js",
-        Some(include_str!("../../../assets/homework/framework/src/materials/Material.js")),
-    ),
-    (
-        "materials/ShadowMaterial.js",
-        Some(include_str!("../../../assets/homework/framework/src/materials/ShadowMaterial.js")),
-    ),
-    (
-        "materials/PhongMaterial.js",
-        Some(include_str!("../../../assets/homework/framework/src/materials/PhongMaterial.js")),
-    ),
-    ("textures/Texture.js", Some(include_str!("../../../assets/homework/framework/src/textures/Texture.js"))),
-    ("textures/FBO.js", Some(include_str!("../../../assets/homework/framework/src/textures/FBO.js"))),
-    ("objects/Mesh.js", Some(include_str!("../../../assets/homework/framework/src/objects/Mesh.js"))),
-    ("loads/loadOBJ.js", Some(include_str!("../../../assets/homework/framework/src/loads/loadOBJ.js"))),
-    ("loads/loadShader.js", Some(include_str!("../../../assets/homework/framework/src/loads/loadShader.js"))),
-    ("lights/Light.js", Some(include_str!("../../../assets/homework/framework/src/lights/Light.js"))),
-    ("lights/DirectionalLight.js", None),
-    ("lights/PointLight.js", None),
-    (
-        "renderers/WebGLRenderer.js",
-        Some(include_str!("../../../assets/homework/framework/src/renderers/WebGLRenderer.js")),
-    ),
-    (
-        "renderers/MeshRender.js",
-        Some(include_str!("../../../assets/homework/framework/src/renderers/MeshRender.js")),
-    ),
-    ("engine.js", Some(include_str!("../../../assets/homework/framework/src/engine.js"))),
-];
-
 /// Wraps the light classes after their scripts ran, so each construction is recorded.
-const WATCH_LIGHTS: &str = "if (typeof DirectionalLight === 'function') DirectionalLight = __shadowlab.watchLight('DirectionalLight', DirectionalLight);";
+const WATCH_LIGHTS: &str = "try { if (typeof DirectionalLight === 'function') DirectionalLight = __shadowlab.watchLight('DirectionalLight', DirectionalLight); } catch (e) {}\n\
+    try { if (typeof PointLight === 'function') PointLight = __shadowlab.watchLight('PointLight', PointLight); } catch (e) {}";
+
+/// Frames of the page run after it loads, and the time between them (ms, a 60 Hz display).
+const FRAMES: usize = 2;
+const FRAME_MS: f64 = 1000.0 / 60.0;
+
+/// shadowlab's copy of the framework's engine.js, for a submission without one.
+const ENGINE_JS: &str = include_str!("../../../assets/homework/framework/src/engine.js");
+
+/// The script that hands the page its text files (shaders by path), the framework's shaders where
+/// the submission has none of the name.
+fn files_script(page: &[ShaderSource]) -> String {
+    let mut files: std::collections::BTreeMap<String, &str> =
+        FRAMEWORK_SHADERS.iter().map(|(name, text)| ((*name).to_string(), *text)).collect();
+    for file in page {
+        let lower = file.name.to_lowercase();
+        if [".glsl", ".vert", ".frag"].iter().any(|e| lower.ends_with(e)) {
+            // The submission's own file replaces the framework's of the same place.
+            files
+                .retain(|name, _| !file.name.ends_with(name.as_str()) && !name.ends_with(file.name.as_str()));
+            files.insert(file.name.clone(), &file.text);
+        }
+    }
+    format!("__shadowlab.files = {};", serde_json::to_string(&files).unwrap_or_else(|_| "{}".into()))
+}
 
 /// The framework's light, made where the student's engine.js made none.
 const FRAMEWORK_LIGHT: &str = "__shadowlab.light = new DirectionalLight(5000, [1, 1, 1], [0, 80, 80], [0, 0, 0], [0, 1, 0], true, document.querySelector('#glcanvas').getContext('webgl')); 'made'";
@@ -84,16 +75,6 @@ fn template_light(args: &str) -> String {
          ['lightIntensity', 'lightColor', 'lightPos', 'focalPoint', 'lightUp', 'hasShadowMap'].forEach((k, i) => {{ l[k] = a[i]; }}); \
          l.mesh = {{}}; l.mat = {{}}; l.fbo = {{}}; __shadowlab.light = l; return 'made'; }})({args})"
     )
-}
-
-/// One `new DirectionalLight(...)` the page made.
-#[derive(Deserialize)]
-struct MadeLight {
-    kind: String,
-    args: Vec<serde_json::Value>,
-    file: String,
-    line: usize,
-    error: Option<String>,
 }
 
 #[derive(Deserialize)]
@@ -119,6 +100,10 @@ pub struct PageLight {
     /// The line of its last `return` (where a matrix built by hand comes from).
     return_line: usize,
     notes: Vec<String>,
+    /// Every light the page made, in order; the check's is `checked`.
+    found: Vec<FoundLight>,
+    checked: Option<usize>,
+    draws: PageDraws,
 }
 
 fn shadowlab_error(e: ScriptError) -> ScriptError {
@@ -133,6 +118,7 @@ impl PageLight {
     pub fn load(
         light: &ShaderSource,
         engine_js: Option<&ShaderSource>,
+        page: &[ShaderSource],
         limits: Limits,
     ) -> Result<(PageLight, EngineLight), ScriptError> {
         let engine =
@@ -140,31 +126,51 @@ impl PageLight {
         for (file, source) in PRELUDE {
             engine.run_script(file, source).map_err(shadowlab_error)?;
         }
-        let mut notes = Vec::new();
-        for (path, ours) in FRAMEWORK {
-            match path {
-                "lights/DirectionalLight.js" => {
+        engine.run_script("shadowlab/files.js", &files_script(page)).map_err(shadowlab_error)?;
+        let list = script_list(page);
+        let mut notes = list.notes;
+        let mut light_ran = false;
+        for script in &list.scripts {
+            match script {
+                Script::Light => {
                     engine.run_script(&light.name, &light.text)?;
+                    light_ran = true;
+                }
+                Script::Engine => {
+                    if !light_ran {
+                        engine.run_script(&light.name, &light.text)?;
+                        light_ran = true;
+                    }
                     Self::check_class(&engine, &light.name)?;
                     engine.run_script("shadowlab/watch.js", WATCH_LIGHTS).map_err(shadowlab_error)?;
-                }
-                "engine.js" => {
                     let (name, text) = match engine_js {
                         Some(e) => (e.name.as_str(), e.text.as_str()),
-                        None => ("shadowlab/framework/engine.js", ours.unwrap_or_default()),
+                        None => ("shadowlab/framework/engine.js", ENGINE_JS),
                     };
                     if let Err(e) = engine.run_script(name, text) {
                         notes.push(format!("{e} (the rest of {name} did not run)"));
                     }
                 }
-                _ => {
-                    if let Some(text) = ours {
-                        engine
-                            .run_script(&format!("shadowlab/framework/{path}"), text)
-                            .map_err(shadowlab_error)?;
+                Script::Theirs(file) => {
+                    if let Err(e) = engine.run_script(&file.name, &file.text) {
+                        notes.push(format!("{e} (the rest of {} did not run)", file.name));
+                    }
+                }
+                Script::Ours { name, text } => {
+                    if let Err(e) = engine.run_script(name, text) {
+                        notes.push(format!(
+                            "shadowlab's copy of {name} failed beside the page's own scripts ({e})"
+                        ));
                     }
                 }
             }
+        }
+        match engine.eval_string("shadowlab", &format!("__shadowlab.runFrames({FRAMES}, {FRAME_MS})")) {
+            Ok(error) if !error.is_empty() => {
+                notes.push(format!("a frame of the page failed: {}", engine::one_line(&error)))
+            }
+            Ok(_) => {}
+            Err(e) => notes.push(format!("the page's frames did not run to the end ({e})")),
         }
         let made: Vec<MadeLight> =
             serde_json::from_str(&engine.eval_string("shadowlab", "__shadowlab.lightsJson()")?).map_err(
@@ -219,7 +225,24 @@ impl PageLight {
         }
         let method_line = method_line(&light.text).unwrap_or(0);
         let return_line = last_return(&light.text, method_line).unwrap_or(method_line);
-        Ok((PageLight { engine, file: light.name.clone(), method_line, return_line, notes }, engine_light))
+        let draws: PageDraws = engine
+            .eval_string("shadowlab", "__shadowlab.drawsJson()")
+            .ok()
+            .and_then(|json| serde_json::from_str(&json).ok())
+            .unwrap_or_default();
+        let found = made.iter().map(MadeLight::found).collect();
+        let checked = directional.first().map(|(i, _)| *i);
+        let page = PageLight {
+            engine,
+            file: light.name.clone(),
+            method_line,
+            return_line,
+            notes,
+            found,
+            checked,
+            draws,
+        };
+        Ok((page, engine_light))
     }
 
     /// Err where the light's script defines no `DirectionalLight` with a `CalcLightMVP`.
@@ -281,6 +304,16 @@ impl PageLight {
     /// What running the page noticed (a failing engine.js, several lights).
     pub fn notes(&self) -> &[String] {
         &self.notes
+    }
+
+    /// Every light the page made, and which of them the check uses (None: the framework's).
+    pub fn lights(&self) -> (&[FoundLight], Option<usize>) {
+        (&self.found, self.checked)
+    }
+
+    /// What the page drew on its first frames.
+    pub fn draws(&self) -> &PageDraws {
+        &self.draws
     }
 
     /// Calls the light's CalcLightMVP for an object placed by `translate` and `scale` (world

@@ -16,7 +16,7 @@ fn source(name: &str, text: &str) -> ShaderSource {
 
 fn load(light: &str, engine: Option<&str>) -> Result<(PageLight, EngineLight), ScriptError> {
     let engine = engine.map(|e| source("engine.js", e));
-    PageLight::load(&source("DirectionalLight.js", light), engine.as_ref(), Limits::default())
+    PageLight::load(&source("DirectionalLight.js", light), engine.as_ref(), &[], Limits::default())
 }
 
 fn line_of(text: &str, needle: &str) -> usize {
@@ -89,6 +89,7 @@ fn error_of(light: &str, engine: Option<&str>, limits: Limits) -> ScriptError {
     let e = match PageLight::load(
         &source("DirectionalLight.js", light),
         engine.map(|e| source("engine.js", e)).as_ref(),
+        &[],
         limits,
     ) {
         Err(e) => e,
@@ -201,5 +202,41 @@ fn the_last_return_of_a_method_is_found_past_strings_and_comments() {
     assert_eq!(
         method_line("// CalcLightMVP(x)\nx.CalcLightMVP(1);\nL.prototype.CalcLightMVP = function () {};"),
         Some(3)
+    );
+}
+
+const FRAMEWORK_PHONG: &str =
+    include_str!("../../../assets/homework/framework/src/materials/PhongMaterial.js");
+
+#[test]
+fn the_whole_page_runs_and_its_own_uniforms_are_recorded_by_name() {
+    // A page whose PhongMaterial sets a uniform of its own, as many students do.
+    let phong = FRAMEWORK_PHONG.replace(
+        "uLightMVP: { type: 'matrix4fv', value: lightMVP },",
+        "uLightMVP: { type: 'matrix4fv', value: lightMVP },\n            uFrustumSize: { type: '1f', value: 340 },",
+    );
+    let fragment = "uniform float uFrustumSize;\nvoid main() { gl_FragColor = vec4(uFrustumSize); }\n";
+    let page = [
+        source("hw/src/engine.js", FRAMEWORK_ENGINE),
+        source("hw/src/materials/PhongMaterial.js", &phong),
+        source("hw/src/shaders/phongShader/phongFragment.glsl", fragment),
+    ];
+    let (page_light, _) = PageLight::load(
+        &source("hw/src/lights/DirectionalLight.js", EXAMPLE_LIGHT),
+        Some(&page[0]),
+        &page,
+        Limits::default(),
+    )
+    .expect("the page runs");
+    assert!(page_light.notes().is_empty(), "{:?}", page_light.notes());
+    let camera = page_light.draws().uniforms_for(fragment);
+    assert_eq!(camera.get("uFrustumSize"), Some(&vec![340.0]), "{camera:?}");
+    assert_eq!(camera.get("uLightPos"), Some(&vec![0.0, 80.0, 80.0]));
+    let (lights, checked) = page_light.lights();
+    assert_eq!(lights.len(), 1);
+    assert_eq!(checked, Some(0));
+    assert_eq!(
+        lights[0].made_at,
+        format!("hw/src/engine.js:{}", line_of(FRAMEWORK_ENGINE, "new DirectionalLight("))
     );
 }

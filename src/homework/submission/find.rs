@@ -281,6 +281,34 @@ pub(super) fn pick(paths: &[String]) -> Option<Picked> {
     Some(Picked { phong_fragment: phong, others, notes })
 }
 
+/// Most files of a page kept for running it.
+pub(super) const MAX_PAGE_FILES: usize = 400;
+
+/// The rest of the student's page beside the chosen engine.js: every script and shader under its
+/// folder, and the `index.html` in the folder above (where the framework keeps it). Indices into
+/// `paths`, in path order; the second value counts the files left out over `MAX_PAGE_FILES`.
+pub(super) fn page_files(paths: &[String], engine: usize) -> (Vec<usize>, usize) {
+    let Some(engine_path) = paths.get(engine) else { return (Vec::new(), 0) };
+    let src = engine_path.rsplit_once('/').map_or("", |(dir, _)| dir);
+    let root = src.rsplit_once('/').map_or("", |(dir, _)| dir);
+    let under =
+        |dir: &str, path: &str| dir.is_empty() || path.strip_prefix(dir).is_some_and(|r| r.starts_with('/'));
+    let index_html = if root.is_empty() { "index.html".to_string() } else { format!("{root}/index.html") };
+    let mut picked: Vec<usize> = (0..paths.len())
+        .filter(|&i| {
+            let path = &paths[i];
+            let lower = path.to_lowercase();
+            let script = [".js", ".glsl", ".vert", ".frag"].iter().any(|e| lower.ends_with(e));
+            (script && under(src, path) && skip_reason(path).is_none())
+                || path.eq_ignore_ascii_case(&index_html)
+        })
+        .collect();
+    picked.sort_by(|a, b| paths[*a].cmp(&paths[*b]));
+    let left_out = picked.len().saturating_sub(MAX_PAGE_FILES);
+    picked.truncate(MAX_PAGE_FILES);
+    (picked, left_out)
+}
+
 /// The folders above the framework's `src/shaders/phongShader/` part of the chosen path, as far
 /// as the student kept that part: the homework's root, where the other files should be.
 fn homework_root(phong_path: &str) -> Vec<&str> {

@@ -35,6 +35,9 @@ pub struct SubmissionFiles {
     pub light_script: Option<FoundFile>,
     /// engine.js
     pub engine: Option<FoundFile>,
+    /// The rest of the page, for running it: every script and shader under engine.js's folder
+    /// and the `index.html` above it, in path order (empty without an engine.js).
+    pub page: Vec<FoundFile>,
 }
 
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -154,6 +157,7 @@ pub fn read_path(path: &Path, limits: Limits) -> Result<Submission, SubmissionEr
             shadow_vertex: None,
             light_script: None,
             engine: None,
+            page: Vec::new(),
         },
         notes,
     })
@@ -310,6 +314,17 @@ fn assemble(
     let phong_fragment = found(Some(picked.phong_fragment))?
         .ok_or_else(|| SubmissionError::new(at, "lost its phongFragment.glsl"))?;
     let [phong_vertex, shadow_fragment, shadow_vertex, light_script, engine] = picked.others;
+    let (page_indices, left_out) = engine.map_or((Vec::new(), 0), |e| find::page_files(paths, e));
+    if left_out > 0 {
+        notes.push(format!(
+            "the page's first {} scripts and shaders are kept, {left_out} more are not",
+            find::MAX_PAGE_FILES
+        ));
+    }
+    let mut page = Vec::new();
+    for index in page_indices {
+        page.extend(found(Some(index))?);
+    }
     let files = SubmissionFiles {
         phong_fragment,
         phong_vertex: found(phong_vertex)?,
@@ -317,6 +332,7 @@ fn assemble(
         shadow_vertex: found(shadow_vertex)?,
         light_script: found(light_script)?,
         engine: found(engine)?,
+        page,
     };
     // Paths come from the student: a newline in one must not split a note.
     let notes = notes.iter().map(|note| one_line(note)).collect();

@@ -1,0 +1,110 @@
+//! What the student's page did, as the recording stand-ins kept it: the lights it made (with the
+//! line of their code that made each), the programs it built and, per draw, each uniform's value
+//! by the name their code gave it.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+/// One `new DirectionalLight(...)` or `new PointLight(...)` the page made.
+#[derive(Clone, Debug, Deserialize)]
+pub(super) struct MadeLight {
+    pub kind: String,
+    pub args: Vec<serde_json::Value>,
+    pub file: String,
+    pub line: usize,
+    pub error: Option<String>,
+}
+
+/// A light the page made, as a report lists it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FoundLight {
+    /// `DirectionalLight` or `PointLight`.
+    pub kind: String,
+    /// Where the student's code made it (`src/engine.js:47`); `framework` for shadowlab's copy.
+    pub made_at: String,
+    /// Its position as the constructor was given it (world units), where it was three numbers.
+    pub position: Option<[f64; 3]>,
+    /// Why its constructor failed, if it did.
+    pub error: Option<String>,
+}
+
+impl MadeLight {
+    pub(super) fn found(&self) -> FoundLight {
+        let position = self.args.get(2).and_then(|v| {
+            let a = v.as_array()?;
+            (a.len() == 3).then_some([a[0].as_f64()?, a[1].as_f64()?, a[2].as_f64()?])
+        });
+        FoundLight {
+            kind: self.kind.clone(),
+            made_at: if self.line > 0 { format!("{}:{}", self.file, self.line) } else { "framework".into() },
+            position,
+            error: self.error.clone(),
+        }
+    }
+}
+
+#[derive(Clone, Debug, Default, Deserialize)]
+struct Program {
+    id: u64,
+    fragment: Option<String>,
+}
+
+#[derive(Clone, Debug, Default, Deserialize)]
+struct Draw {
+    frame: i64,
+    program: u64,
+    uniforms: BTreeMap<String, serde_json::Value>,
+}
+
+/// The programs the page built and the draws of its first frames.
+#[derive(Clone, Debug, Default, Deserialize)]
+pub struct PageDraws {
+    programs: Vec<Program>,
+    draws: Vec<Draw>,
+}
+
+/// A uniform's value as numbers, in the order WebGL takes them (booleans as 0 and 1).
+fn numbers(value: &serde_json::Value, out: &mut Vec<f64>) {
+    match value {
+        serde_json::Value::Number(n) => out.extend(n.as_f64()),
+        serde_json::Value::Bool(b) => out.push(f64::from(u8::from(*b))),
+        serde_json::Value::Array(items) => items.iter().for_each(|v| numbers(v, out)),
+        _ => {}
+    }
+}
+
+impl PageDraws {
+    /// The uniforms the page set, by name, on the first frame's draws of the program whose
+    /// fragment shader is `fragment` (where draws disagree, the value most of them had).
+    pub fn uniforms_for(&self, fragment: &str) -> BTreeMap<String, Vec<f64>> {
+        let wanted = fragment.trim();
+        let programs: Vec<u64> = self
+            .programs
+            .iter()
+            .filter(|p| p.fragment.as_deref().is_some_and(|f| f.trim() == wanted))
+            .map(|p| p.id)
+            .collect();
+        let first_frame = self.draws.iter().filter(|d| programs.contains(&d.program)).map(|d| d.frame).min();
+        let mut seen: BTreeMap<String, Vec<(Vec<f64>, usize)>> = BTreeMap::new();
+        for draw in
+            self.draws.iter().filter(|d| programs.contains(&d.program) && Some(d.frame) == first_frame)
+        {
+            for (name, value) in &draw.uniforms {
+                let mut v = Vec::new();
+                numbers(value, &mut v);
+                let counts = seen.entry(name.clone()).or_default();
+                match counts.iter_mut().find(|(seen, _)| *seen == v) {
+                    Some((_, n)) => *n += 1,
+                    None => counts.push((v, 1)),
+                }
+            }
+        }
+        seen.into_iter()
+            .filter_map(|(name, counts)| {
+                let best = counts.into_iter().max_by_key(|(_, n)| *n)?;
+                Some((name, best.0))
+            })
+            .collect()
+    }
+}

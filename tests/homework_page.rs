@@ -1,0 +1,147 @@
+//! `shadowlab homework` on a student's whole page, as a process: their own scripts run in order
+//! with shadowlab's copy of the framework where they have none; a light uniform renamed in their
+//! materials and shaders is fed as their page feeds it; a page with two lights lists both, each
+//! with the line of their code that made it.
+
+mod common;
+
+use common::{Run, repo_path};
+use serde_json::Value;
+use std::path::Path;
+
+const SIZE: &str = "480x270";
+
+fn shadowlab<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Run {
+    common::run(common::shadowlab_command().args(args))
+}
+
+fn read(path: &str) -> String {
+    std::fs::read_to_string(repo_path(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
+}
+
+/// `text` with `from` replaced by `to`, which must be in it.
+fn edit(text: &str, from: &str, to: &str) -> String {
+    assert!(text.contains(from), "{from:?} is not in the text");
+    text.replace(from, to)
+}
+
+fn line_of(text: &str, needle: &str) -> usize {
+    text.lines().position(|l| l.contains(needle)).map_or(0, |i| i + 1)
+}
+
+/// Writes `files` (path in the submission, text) under `root` and checks the folder.
+fn check_folder(root: &Path, files: &[(&str, String)]) -> Value {
+    for (path, text) in files {
+        let to = root.join("student/homework1").join(path);
+        std::fs::create_dir_all(to.parent().expect("a parent")).expect("folders");
+        std::fs::write(&to, text).expect("write");
+    }
+    let out = root.join("out");
+    let run = shadowlab(&[
+        "homework",
+        &root.join("student").display().to_string(),
+        "--size",
+        SIZE,
+        "--out",
+        &out.display().to_string(),
+        "--json",
+    ]);
+    assert_eq!(run.code, Some(0), "{}", run.stderr);
+    serde_json::from_str(&run.stdout).expect("the report is JSON")
+}
+
+/// The correct example's light with a `CalcLightVP()` (projection * view, no model matrix).
+fn light_with_vp() -> String {
+    edit(
+        &read("assets/homework/DirectionalLight.js"),
+        "  CalcLightMVP(translate, scale) {",
+        "  CalcLightVP() {
+    const view = mat4.create();
+    const projection = mat4.create();
+    const vp = mat4.create();
+    mat4.lookAt(view, this.lightPos, this.focalPoint, this.lightUp);
+    mat4.ortho(projection, -100, 100, -100, 100, 0.01, 400);
+    mat4.multiply(vp, projection, view);
+    return vp;
+  }
+
+  CalcLightMVP(translate, scale) {",
+    )
+}
+
+#[test]
+fn a_renamed_light_uniform_is_fed_as_the_students_page_feeds_it() {
+    // Their materials set `uLightVP` (no model matrix) and their vertex shaders apply the model
+    // matrix themselves: the framework's `uLightMVP` is never set. A correct solution otherwise.
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let material = |name: &str| {
+        edit(
+            &read(&format!("assets/homework/framework/src/materials/{name}.js")),
+            "uLightMVP: { type: 'matrix4fv', value: lightMVP },",
+            "uLightVP: { type: 'matrix4fv', value: light.CalcLightVP() },",
+        )
+    };
+    let phong_vertex = edit(
+        &edit(
+            &read("assets/homework/framework/phongVertex.glsl"),
+            "uniform mat4 uLightMVP;",
+            "uniform mat4 uLightVP;",
+        ),
+        "uLightMVP * vec4(aVertexPosition, 1.0)",
+        "uLightVP * world",
+    );
+    let shadow_vertex = edit(
+        &edit(
+            &read("assets/homework/framework/shadowVertex.glsl"),
+            "uniform mat4 uLightMVP;",
+            "uniform mat4 uModelMatrix;\nuniform mat4 uLightVP;",
+        ),
+        "uLightMVP * vec4(aVertexPosition, 1.0)",
+        "uLightVP * uModelMatrix * vec4(aVertexPosition, 1.0)",
+    );
+    let files = [
+        ("src/shaders/phongShader/phongFragment.glsl", read("assets/homework/phongFragment.glsl")),
+        ("src/shaders/phongShader/phongVertex.glsl", phong_vertex),
+        ("src/shaders/shadowShader/shadowVertex.glsl", shadow_vertex),
+        ("src/lights/DirectionalLight.js", light_with_vp()),
+        ("src/materials/PhongMaterial.js", material("PhongMaterial")),
+        ("src/materials/ShadowMaterial.js", material("ShadowMaterial")),
+        ("src/engine.js", read("assets/homework/framework/src/engine.js")),
+    ];
+    let report = check_folder(scratch.path(), &files);
+    assert_eq!(report["findings"], serde_json::json!([]), "{:#}", report["findings"]);
+    let light = &report["light"];
+    assert_eq!(light["error"], Value::Null, "{light:#}");
+    for pass in ["camera", "shadow"] {
+        let vp = light["page_uniforms"][pass]["uLightVP"].as_array().expect("uLightVP was recorded");
+        assert_eq!(vp.len(), 16, "{pass}");
+    }
+}
+
+#[test]
+fn a_page_with_two_lights_lists_both_with_the_lines_that_made_them() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let engine = edit(
+        &read("assets/homework/framework/src/engine.js"),
+        "    renderer.addLight(directionLight);",
+        "    renderer.addLight(directionLight);
+    const secondLight = new DirectionalLight(2500, [1, 1, 1], [0, 80, -80], focalPoint, lightUp, true, renderer.gl);
+    renderer.addLight(secondLight);",
+    );
+    let files = [
+        ("src/shaders/phongShader/phongFragment.glsl", read("assets/homework/phongFragment.glsl")),
+        ("src/lights/DirectionalLight.js", read("assets/homework/DirectionalLight.js")),
+        ("src/engine.js", engine.clone()),
+    ];
+    let report = check_folder(scratch.path(), &files);
+    let lights = report["lights"].as_array().expect("the page's lights");
+    assert_eq!(lights.len(), 2, "{lights:#?}");
+    let first = line_of(&engine, "const directionLight = new DirectionalLight(");
+    let second = line_of(&engine, "const secondLight = new DirectionalLight(");
+    assert_eq!(lights[0]["made_at"], format!("homework1/src/engine.js:{first}"));
+    assert_eq!(lights[0]["checked"], true);
+    assert_eq!(lights[0]["from"], report["light"]["from"]);
+    assert_eq!(lights[1]["made_at"], format!("homework1/src/engine.js:{second}"));
+    assert_eq!(lights[1]["checked"], false);
+    assert_eq!(lights[1]["position"], serde_json::json!([0.0, 80.0, -80.0]));
+}
