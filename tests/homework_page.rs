@@ -145,3 +145,40 @@ fn a_page_with_two_lights_lists_both_with_the_lines_that_made_them() {
     assert_eq!(lights[1]["checked"], false);
     assert_eq!(lights[1]["position"], serde_json::json!([0.0, 80.0, -80.0]));
 }
+
+#[test]
+fn a_page_that_asks_for_webgl2_is_refused_in_one_line_naming_where() {
+    // Its passes (float targets, extra passes) are not the framework's WebGL1 ones the check
+    // builds: judging the picture the check would build instead would blame the wrong things.
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let engine = edit(
+        &read("assets/homework/framework/src/engine.js"),
+        "canvas.getContext('webgl')",
+        "canvas.getContext('webgl2')",
+    );
+    let root = scratch.path().join("student/homework1");
+    for (path, text) in [
+        ("src/shaders/phongShader/phongFragment.glsl", read("assets/homework/phongFragment.glsl")),
+        ("src/lights/DirectionalLight.js", read("assets/homework/DirectionalLight.js")),
+        ("src/engine.js", engine.clone()),
+    ] {
+        std::fs::create_dir_all(root.join(path).parent().expect("a parent")).expect("folders");
+        std::fs::write(root.join(path), text).expect("write");
+    }
+    let out = scratch.path().join("out");
+    let run = shadowlab(&[
+        "homework",
+        &scratch.path().join("student").display().to_string(),
+        "--out",
+        &out.display().to_string(),
+    ]);
+    assert_eq!(run.code, Some(2), "{}", run.stderr);
+    let line = line_of(&engine, "getContext('webgl2')");
+    assert_eq!(
+        run.stderr.trim(),
+        format!(
+            "shadowlab: homework1/src/engine.js:{line}: the page asks for a WebGL2 context; the check builds the framework's WebGL1 passes only, so it does not judge this submission"
+        )
+    );
+    assert!(!out.join("report.json").exists(), "nothing is written for a refused submission");
+}

@@ -175,6 +175,9 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
         HomeworkRequest { time_s: args.time, size: args.size, light: args.light, map: MapKind::Framework };
     let student = crate::homework::student_light::student_light(&source, &scene, args.light, args.time)
         .ok_or_else(|| CliError::input(format!("--light {}: no such light", args.light)))?;
+    if let Some(refused) = &student.refused {
+        return Err(CliError::input(refused.clone()));
+    }
     if let Some(error) = &student.report.error {
         eprintln!("shadowlab: warning: {error}; checked with the framework's light instead");
     }

@@ -25,6 +25,7 @@ mod light;
 // the student's page in `page`.
 #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
 mod light_script;
+mod light_source;
 mod light_width;
 mod missing_return;
 #[cfg(not(target_arch = "wasm32"))]

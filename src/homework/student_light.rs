@@ -6,8 +6,8 @@
 //! fails says so on one line, and the check goes on with the framework's light.
 
 use super::light::{HomeworkLight, LightFrom, ModelMatrixError, PageUniforms, read_light};
-use super::light_script::{EngineLight, GlCall, LightMatrix, ScriptError};
-use super::program::ShaderSource;
+use super::light_script::GlCall;
+use super::light_source::load_light;
 use super::{FRAMEWORK_LIGHT_INTENSITY, HomeworkSource};
 use crate::scene::{Light, LightKind, Scene};
 use glam::{Mat4, Vec3};
@@ -140,6 +140,9 @@ pub struct StudentLight {
     pub light: HomeworkLight,
     pub scene: Scene,
     pub report: LightReport,
+    /// Why the check does not judge this submission at all (its page builds passes the check
+    /// cannot), on one line naming where.
+    pub refused: Option<String>,
 }
 
 /// Each scene object's name with its matrix, as the report lists them.
@@ -214,90 +217,6 @@ fn frustum_report(light: &Light, focal_point: Vec3) -> FrustumReport {
     }
 }
 
-/// A student's light, loaded: each object's matrix on demand, and what their page made and set.
-trait LightMatrices {
-    fn notes(&self) -> &[String];
-    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError>;
-    /// Every light the page made (the checked one marked) as the report lists them.
-    fn lights(&self) -> Vec<LightEntry> {
-        Vec::new()
-    }
-    /// The values the page gave the uniforms of the program whose fragment shader is `fragment`.
-    fn uniforms(&self, _fragment: &str) -> std::collections::BTreeMap<String, Vec<f64>> {
-        std::collections::BTreeMap::new()
-    }
-}
-
-#[cfg(not(target_arch = "wasm32"))]
-impl LightMatrices for super::page::PageLight {
-    fn notes(&self) -> &[String] {
-        self.notes()
-    }
-    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
-        self.light_matrix(translate, scale)
-    }
-    fn lights(&self) -> Vec<LightEntry> {
-        let (found, checked) = self.lights();
-        found
-            .iter()
-            .enumerate()
-            .map(|(i, l)| LightEntry {
-                kind: l.kind.clone(),
-                from: l.made_at.clone(),
-                made_at: l.made_at.clone(),
-                position: l.position.map(|p| p.map(|x| x as f32)),
-                checked: Some(i) == checked,
-                error: l.error.clone(),
-            })
-            .collect()
-    }
-    fn uniforms(&self, fragment: &str) -> std::collections::BTreeMap<String, Vec<f64>> {
-        self.draws().uniforms_for(fragment)
-    }
-}
-
-#[cfg(target_arch = "wasm32")]
-impl LightMatrices for super::light_script::LightScript {
-    fn notes(&self) -> &[String] {
-        self.notes()
-    }
-    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
-        self.light_matrix(translate, scale)
-    }
-}
-
-/// The light engine.js makes and the student's `DirectionalLight.js` loaded: their page run in
-/// a real engine.
-#[cfg(not(target_arch = "wasm32"))]
-fn load_light(
-    script: &ShaderSource,
-    engine: Option<&ShaderSource>,
-    page: &[ShaderSource],
-) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
-    match super::page::PageLight::load(script, engine, page, super::page::Limits::default()) {
-        Ok((page, light)) => (light, Ok(Box::new(page))),
-        Err(e) => (EngineLight::framework(), Err(e)),
-    }
-}
-
-/// The light engine.js makes (read without running it) and `DirectionalLight.js` in shadowlab's
-/// own interpreter.
-#[cfg(target_arch = "wasm32")]
-fn load_light(
-    script: &ShaderSource,
-    engine: Option<&ShaderSource>,
-    _page: &[ShaderSource],
-) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
-    use super::light_script::{LightScript, Limits, engine_light};
-    let limits = Limits::default();
-    let light = match engine {
-        Some(file) => engine_light(&file.text, &file.name, limits),
-        None => EngineLight::framework(),
-    };
-    let loaded = LightScript::load(&script.text, &script.name, &light, limits);
-    (light, loaded.map(|l| Box::new(l) as Box<dyn LightMatrices>))
-}
-
 /// The page's lights as the report lists them: the checked one says where its matrix comes from;
 /// where the page made none the check could use, the light it used instead is listed too.
 fn listed_lights(lights: Vec<LightEntry>, used: &HomeworkLight) -> Vec<LightEntry> {
@@ -359,7 +278,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
             lights,
             page_uniforms: PageUniformsReport::default(),
         };
-        Some(StudentLight { light, scene: scene.clone(), report })
+        Some(StudentLight { light, scene: scene.clone(), report, refused: None })
     };
     let Some(script) = &source.light_script else {
         return framework(None, Vec::new(), Vec::new());
@@ -371,6 +290,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
         Err(e) => return framework(Some(e.to_string()), notes, Vec::new()),
     };
     notes.extend(loaded.notes().iter().cloned());
+    let refused = loaded.refusal();
     let lights = loaded.lights();
     let unchecked: Vec<String> =
         lights.iter().filter(|l| !l.checked).map(|l| format!("{} ({})", l.made_at, l.kind)).collect();
@@ -478,7 +398,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
             shadow: light.page_uniforms.shadow.clone(),
         },
     };
-    Some(StudentLight { light, scene: shadowlab_scene, report })
+    Some(StudentLight { light, scene: shadowlab_scene, report, refused })
 }
 
 #[cfg(test)]

@@ -180,7 +180,7 @@ var self = globalThis;
         el.getContext = function (kind) {
             const k = String(kind);
             if (k !== "webgl" && k !== "experimental-webgl" && k !== "webgl2") return null;
-            record.context = k;
+            if (!record.context) record.context = Object.assign({ kind: k }, record.where());
             el.context = el.context || context(el, k);
             return el.context;
         };

@@ -122,6 +122,11 @@
         return stringify({ programs, draws: record.draws });
     };
 
+    // The WebGL context the page asked for first, as JSON: {kind, file, line}, or null.
+    record.contextJson = function () {
+        return stringify(record.context || null);
+    };
+
     // The recorded lights as JSON (without their objects).
     record.lightsJson = function () {
         return stringify(record.lights.map((l) => ({ kind: l.kind, args: l.args, file: l.file, line: l.line, error: l.error })));

@@ -106,6 +106,9 @@ impl HomeworkRunner {
                 let run =
                     match job.source.as_deref().and_then(|source| student_light(source, scene, 0, time_s)) {
                         Some(student) => {
+                            if let Some(refused) = student.refused {
+                                return Err(refused);
+                            }
                             let run = CheckRun::start(
                                 homework,
                                 shader,

@@ -104,6 +104,8 @@ pub struct PageLight {
     found: Vec<FoundLight>,
     checked: Option<usize>,
     draws: PageDraws,
+    /// Where the page asked for a WebGL2 context (`file:line`), if it did.
+    webgl2: Option<String>,
 }
 
 fn shadowlab_error(e: ScriptError) -> ScriptError {
@@ -231,6 +233,12 @@ impl PageLight {
             .and_then(|json| serde_json::from_str(&json).ok())
             .unwrap_or_default();
         let found = made.iter().map(MadeLight::found).collect();
+        let webgl2 = engine
+            .eval_string("shadowlab", "__shadowlab.contextJson()")
+            .ok()
+            .and_then(|json| serde_json::from_str::<Option<record::Context>>(&json).ok().flatten())
+            .filter(|c| c.kind == "webgl2")
+            .map(|c| if c.line > 0 { format!("{}:{}", c.file, c.line) } else { c.file });
         let checked = directional.first().map(|(i, _)| *i);
         let page = PageLight {
             engine,
@@ -241,6 +249,7 @@ impl PageLight {
             found,
             checked,
             draws,
+            webgl2,
         };
         Ok((page, engine_light))
     }
@@ -309,6 +318,12 @@ impl PageLight {
     /// Every light the page made, and which of them the check uses (None: the framework's).
     pub fn lights(&self) -> (&[FoundLight], Option<usize>) {
         (&self.found, self.checked)
+    }
+
+    /// Where the page asked for a WebGL2 context (`file:line`), if it did: its passes are not the
+    /// framework's WebGL1 ones the check builds.
+    pub fn webgl2(&self) -> Option<&str> {
+        self.webgl2.as_deref()
     }
 
     /// What the page drew on its first frames.

@@ -1,0 +1,102 @@
+//! Where a student's light is run: on the desktop, in their page (`page`, a real JavaScript
+//! engine); in the browser page, in `light_script`, shadowlab's own sandboxed interpreter, until
+//! the page runs them in the browser's engine. Both give each object's matrix on demand.
+
+use super::light_script::{EngineLight, LightMatrix, ScriptError};
+use super::program::ShaderSource;
+use super::student_light::LightEntry;
+
+/// A student's light, loaded: each object's matrix on demand, and what their page made and set.
+pub(super) trait LightMatrices {
+    fn notes(&self) -> &[String];
+    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError>;
+    /// Every light the page made (the checked one marked) as the report lists them.
+    fn lights(&self) -> Vec<LightEntry> {
+        Vec::new()
+    }
+    /// Why the check cannot build this page's passes, if it cannot (one line naming where).
+    fn refusal(&self) -> Option<String> {
+        None
+    }
+    /// The values the page gave the uniforms of the program whose fragment shader is `fragment`.
+    fn uniforms(&self, _fragment: &str) -> std::collections::BTreeMap<String, Vec<f64>> {
+        std::collections::BTreeMap::new()
+    }
+}
+
+#[cfg(not(target_arch = "wasm32"))]
+impl LightMatrices for super::page::PageLight {
+    fn notes(&self) -> &[String] {
+        self.notes()
+    }
+    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
+        self.light_matrix(translate, scale)
+    }
+    fn lights(&self) -> Vec<LightEntry> {
+        let (found, checked) = self.lights();
+        found
+            .iter()
+            .enumerate()
+            .map(|(i, l)| LightEntry {
+                kind: l.kind.clone(),
+                from: l.made_at.clone(),
+                made_at: l.made_at.clone(),
+                position: l.position.map(|p| p.map(|x| x as f32)),
+                checked: Some(i) == checked,
+                error: l.error.clone(),
+            })
+            .collect()
+    }
+    fn uniforms(&self, fragment: &str) -> std::collections::BTreeMap<String, Vec<f64>> {
+        self.draws().uniforms_for(fragment)
+    }
+    fn refusal(&self) -> Option<String> {
+        self.webgl2().map(|at| {
+            format!(
+                "{at}: the page asks for a WebGL2 context; the check builds the framework's WebGL1 passes only, so it does not judge this submission"
+            )
+        })
+    }
+}
+
+#[cfg(target_arch = "wasm32")]
+impl LightMatrices for super::light_script::LightScript {
+    fn notes(&self) -> &[String] {
+        self.notes()
+    }
+    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
+        self.light_matrix(translate, scale)
+    }
+}
+
+/// The light engine.js makes and the student's `DirectionalLight.js` loaded: their page run in
+/// a real engine.
+#[cfg(not(target_arch = "wasm32"))]
+pub(super) fn load_light(
+    script: &ShaderSource,
+    engine: Option<&ShaderSource>,
+    page: &[ShaderSource],
+) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
+    match super::page::PageLight::load(script, engine, page, super::page::Limits::default()) {
+        Ok((page, light)) => (light, Ok(Box::new(page))),
+        Err(e) => (EngineLight::framework(), Err(e)),
+    }
+}
+
+/// The light engine.js makes (read without running it) and `DirectionalLight.js` in shadowlab's
+/// own interpreter.
+#[cfg(target_arch = "wasm32")]
+pub(super) fn load_light(
+    script: &ShaderSource,
+    engine: Option<&ShaderSource>,
+    _page: &[ShaderSource],
+) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
+    use super::light_script::{LightScript, Limits, engine_light};
+    let limits = Limits::default();
+    let light = match engine {
+        Some(file) => engine_light(&file.text, &file.name, limits),
+        None => EngineLight::framework(),
+    };
+    let loaded = LightScript::load(&script.text, &script.name, &light, limits);
+    (light, loaded.map(|l| Box::new(l) as Box<dyn LightMatrices>))
+}
