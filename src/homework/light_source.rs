@@ -4,7 +4,7 @@
 
 use super::light_script::{EngineLight, LightMatrix, ScriptError};
 use super::program::ShaderSource;
-use super::student_light::LightEntry;
+use serde::Serialize;
 
 /// A student's light, loaded: each object's matrix on demand, and what their page made and set.
 pub(super) trait LightMatrices {
@@ -99,4 +99,22 @@ pub(super) fn load_light(
     };
     let loaded = LightScript::load(&script.text, &script.name, &light, limits);
     (light, loaded.map(|l| Box::new(l) as Box<dyn LightMatrices>))
+}
+
+/// One light the student's page made, as the report lists it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct LightEntry {
+    /// `DirectionalLight` or `PointLight`.
+    pub kind: String,
+    /// Where it comes from: for the checked light, the line its matrix is built on; else where
+    /// the page made it.
+    pub from: String,
+    /// Where the student's code made it (`src/engine.js:47`), or `framework`.
+    pub made_at: String,
+    /// Its position as made, world units.
+    pub position: Option<[f32; 3]>,
+    /// Whether the check used it.
+    pub checked: bool,
+    /// Why its constructor or its matrix failed, if one did.
+    pub error: Option<String>,
 }

@@ -7,6 +7,7 @@
 
 use super::light::{HomeworkLight, LightFrom, ModelMatrixError, PageUniforms, read_light};
 use super::light_script::GlCall;
+pub use super::light_source::LightEntry;
 use super::light_source::load_light;
 use super::{FRAMEWORK_LIGHT_INTENSITY, HomeworkSource};
 use crate::scene::{Light, LightKind, Scene};
@@ -49,24 +50,6 @@ pub struct LightReport {
 pub struct PageUniformsReport {
     pub camera: std::collections::BTreeMap<String, Vec<f64>>,
     pub shadow: std::collections::BTreeMap<String, Vec<f64>>,
-}
-
-/// One light the student's page made, as the report lists it.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct LightEntry {
-    /// `DirectionalLight` or `PointLight`.
-    pub kind: String,
-    /// Where it comes from: for the checked light, the line its matrix is built on; else where
-    /// the page made it.
-    pub from: String,
-    /// Where the student's code made it (`src/engine.js:47`), or `framework`.
-    pub made_at: String,
-    /// Its position as made, world units.
-    pub position: Option<[f32; 3]>,
-    /// Whether the check used it.
-    pub checked: bool,
-    /// Why its constructor or its matrix failed, if one did.
-    pub error: Option<String>,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
