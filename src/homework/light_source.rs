@@ -25,12 +25,12 @@ pub(super) trait LightMatrices {
 }
 
 #[cfg(not(target_arch = "wasm32"))]
-impl LightMatrices for super::page::PageLight {
+impl LightMatrices for super::page::PageRun {
     fn notes(&self) -> &[String] {
         self.notes()
     }
     fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
-        self.light_matrix(translate, scale)
+        super::page::PageRun::light_matrix(self, translate, scale)
     }
     fn lights(&self) -> Vec<LightEntry> {
         let (found, checked) = self.lights();
@@ -70,15 +70,16 @@ impl LightMatrices for super::light_script::LightScript {
 }
 
 /// The light engine.js makes and the student's `DirectionalLight.js` loaded: their page run in
-/// a real engine.
+/// a real engine, with their light's matrix for each object placed by (translate, scale).
 #[cfg(not(target_arch = "wasm32"))]
 pub(super) fn load_light(
     script: &ShaderSource,
     engine: Option<&ShaderSource>,
     page: &[ShaderSource],
+    objects: &[super::page::Placed],
 ) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
-    match super::page::PageLight::load(script, engine, page, super::page::Limits::default()) {
-        Ok((page, light)) => (light, Ok(Box::new(page))),
+    match super::page::PageRun::run(script, engine, page, objects, super::page::Limits::default()) {
+        Ok(run) => (run.engine_light.clone(), Ok(Box::new(run))),
         Err(e) => (EngineLight::framework(), Err(e)),
     }
 }
@@ -90,6 +91,7 @@ pub(super) fn load_light(
     script: &ShaderSource,
     engine: Option<&ShaderSource>,
     _page: &[ShaderSource],
+    _objects: &[([f64; 3], [f64; 3])],
 ) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
     use super::light_script::{LightScript, Limits, engine_light};
     let limits = Limits::default();

@@ -226,6 +226,11 @@ fn listed_lights(lights: Vec<LightEntry>, used: &HomeworkLight) -> Vec<LightEntr
     listed
 }
 
+/// An object the framework could not place by translation and scale alone.
+fn rotated(object: &crate::scene::Object) -> bool {
+    object.rotate_deg != Vec3::ZERO || !object.is_still()
+}
+
 /// Run the submission's light scripts for `scene` (its light `index` is the framework's) at
 /// `t_s`: the student's light and shadowlab's copy of it, or the framework's with why.
 pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: f32) -> Option<StudentLight> {
@@ -266,7 +271,14 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
     let Some(script) = &source.light_script else {
         return framework(None, Vec::new(), Vec::new());
     };
-    let (engine, loaded) = load_light(script, source.engine.as_ref(), &source.page);
+    // The objects whose matrices the page computes: one at the origin, unscaled (the light's
+    // own matrix), and each object the framework would place by translation and scale.
+    let placed =
+        |o: &crate::scene::Object| (o.translate.as_dvec3().to_array(), o.scale.as_dvec3().to_array());
+    let objects: Vec<([f64; 3], [f64; 3])> = std::iter::once(([0.0; 3], [1.0; 3]))
+        .chain(scene.objects.iter().filter(|o| !rotated(o)).map(placed))
+        .collect();
+    let (engine, loaded) = load_light(script, source.engine.as_ref(), &source.page, &objects);
     let mut notes = engine.notes.clone();
     let mut loaded = match loaded {
         Ok(l) => l,
@@ -293,8 +305,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
     let mut clip_from_object = Vec::new();
     let mut model = None;
     for object in &scene.objects {
-        let rotated = object.rotate_deg != Vec3::ZERO || !object.is_still();
-        if rotated {
+        if rotated(object) {
             // The framework never rotates an object: such an object (a scene of one's own) gets
             // the light's matrix times its whole model matrix.
             clip_from_object.push(clip_from_world * object.world_from_object(t_s));

@@ -22,8 +22,11 @@ var self = globalThis;
         // Draw calls: {program, framebuffer, uniforms: {name: value}, count}.
         draws: [],
         programs: [],
-        // The frame being drawn: -1 while the page loads, then 0, 1, ... as shadowlab runs them.
-        frame: -1,
+        // The page's text files by path, as the loaders answer them (filled by the driver).
+        files: {},
+        // The frame being drawn (-1 while the page loads, then 0, 1, ...), the page's clock (ms)
+        // and the WebGL context it asked for first.
+        state: { frame: -1, now: 0, context: null },
     };
     globalThis.__shadowlab = record;
 
@@ -108,6 +111,11 @@ var self = globalThis;
         const uniform = (location, value) => {
             if (location && location.program) location.program.values[location.name] = plain(value, 0);
         };
+        function draw(count) {
+            const p = state.program;
+            if (record.draws.length >= 4096 || !p) return;
+            record.draws.push({ frame: record.state.frame, program: p.id, framebuffer: state.framebuffer ? state.framebuffer.id : null, uniforms: Object.assign({}, p.values), count: Number(count) || 0 });
+        }
         const methods = {
             canvas,
             drawingBufferWidth: canvas.width,
@@ -134,8 +142,8 @@ var self = globalThis;
             useProgram: (program) => { state.program = program; },
             bindFramebuffer: (target, fb) => { state.framebuffer = fb || null; },
             checkFramebufferStatus: () => GL.FRAMEBUFFER_COMPLETE,
-            drawElements: (mode, count) => record.draw(count),
-            drawArrays: (mode, first, count) => record.draw(count),
+            drawElements: (mode, count) => draw(count),
+            drawArrays: (mode, first, count) => draw(count),
         };
         for (const name of ["1f", "2f", "3f", "4f", "1i", "2i", "3i", "4i"]) {
             methods["uniform" + name] = (location, ...values) => uniform(location, values.length === 1 ? values[0] : values);
@@ -146,11 +154,6 @@ var self = globalThis;
         for (const name of ["Matrix2fv", "Matrix3fv", "Matrix4fv"]) {
             methods["uniform" + name] = (location, transpose, value) => uniform(location, value);
         }
-        record.draw = function (count) {
-            const p = state.program;
-            if (record.draws.length >= 4096 || !p) return;
-            record.draws.push({ frame: record.frame, program: p.id, framebuffer: state.framebuffer ? state.framebuffer.id : null, uniforms: Object.assign({}, p.values), count: Number(count) || 0 });
-        };
         return new Proxy(methods, {
             get(target, key) {
                 if (key in target) return target[key];
@@ -180,7 +183,7 @@ var self = globalThis;
         el.getContext = function (kind) {
             const k = String(kind);
             if (k !== "webgl" && k !== "experimental-webgl" && k !== "webgl2") return null;
-            if (!record.context) record.context = Object.assign({ kind: k }, record.where());
+            if (!record.state.context) record.state.context = Object.assign({ kind: k }, record.where());
             el.context = el.context || context(el, k);
             return el.context;
         };
@@ -204,26 +207,19 @@ var self = globalThis;
     globalThis.devicePixelRatio = 1;
     globalThis.navigator = { userAgent: "shadowlab" };
     globalThis.location = { href: "shadowlab://homework/index.html", search: "", hash: "" };
-    globalThis.performance = { now: () => record.now };
-    record.now = 0;
-    // Runs the frames the page asked for, `count` times, `step_ms` apart: each frame calls the
-    // callbacks the previous one registered, as a browser does. Returns the first error, or "".
-    record.runFrames = function (count, step_ms) {
+    globalThis.performance = { now: () => record.state.now };
+    // Runs frame `index` of the page, `step_ms` after the one before: the callbacks the previous
+    // frame registered, as a browser does. Returns the first error (message, then its stack), or "".
+    record.runFrame = function (index, step_ms) {
         let first = "";
-        for (let i = 0; i < count; i++) {
-            const callbacks = record.frames;
-            record.frames = [];
-            record.frame = i;
-            record.now = i * step_ms;
-            for (const callback of callbacks) {
-                try {
-                    callback(record.now);
-                } catch (e) {
-                    if (!first) {
-                        const at = String((e && e.stack) || "");
-                        first = String(e && e.message !== undefined ? e.message : e) + "\n" + at;
-                    }
-                }
+        const callbacks = record.frames.splice(0);
+        record.state.frame = index;
+        record.state.now = index * step_ms;
+        for (const callback of callbacks) {
+            try {
+                callback(record.state.now);
+            } catch (e) {
+                if (!first) first = String(e && e.message !== undefined ? e.message : e) + "\n" + String((e && e.stack) || "");
             }
         }
         return first;

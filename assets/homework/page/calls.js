@@ -124,7 +124,7 @@
 
     // The WebGL context the page asked for first, as JSON: {kind, file, line}, or null.
     record.contextJson = function () {
-        return stringify(record.context || null);
+        return stringify(record.state.context || null);
     };
 
     // The recorded lights as JSON (without their objects).

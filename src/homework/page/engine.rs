@@ -85,26 +85,68 @@ impl Engine {
         .map_err(|f| f.into_error(file, &self.limits))
     }
 
-    /// Evaluates an expression of shadowlab's own (a call into the page) that returns a string.
-    pub fn eval_string(&self, blame: &str, expression: &str) -> Result<String, ScriptError> {
-        self.bounded(|ctx| {
-            let mut options = EvalOptions::default();
-            options.global = true;
-            options.filename = Some("shadowlab/call.js".into());
-            ctx.eval_with_options::<String, _>(expression.as_bytes().to_vec(), options)
-                .catch(ctx)
-                .map_err(Failure::from)
-        })
-        .map_err(|f| f.into_error(blame, &self.limits))
+    /// Runs the page: driver.js's `runPage` with this engine as its host (`evalScript` runs a
+    /// classic script as global code under its file name), then the promise jobs it queues until
+    /// it settles, all within the time bound. Returns what the driver returns.
+    pub fn run_page(&self, blame: &str, input: &str) -> Result<String, ScriptError> {
+        if let Ok(mut d) = self.deadline.lock() {
+            *d = Some(Instant::now() + self.limits.time);
+        }
+        let out = self.drive_page(input);
+        if let Ok(mut d) = self.deadline.lock() {
+            *d = None;
+        }
+        out.map_err(|f| f.into_error(blame, &self.limits))
     }
-}
 
-/// A message and the stack under it (a frame's error as the page caught it) on one line:
-/// `file:line: message` at the student's frame.
-pub fn one_line(message_and_stack: &str) -> String {
-    let (message, stack) = message_and_stack.split_once('\n').unwrap_or((message_and_stack, ""));
-    let failure = Failure { message: message.to_string(), stack: stack.to_string() };
-    failure.into_error("", &Limits::default()).to_string()
+    fn drive_page(&self, input: &str) -> Result<String, Failure> {
+        let started = self.context.with(|ctx| {
+            let start = || -> rquickjs::Result<rquickjs::Promise<'_>> {
+                let host = rquickjs::Object::new(ctx.clone())?;
+                let eval_script = rquickjs::Function::new(
+                    ctx.clone(),
+                    |ctx: Ctx<'_>, name: String, text: String| -> rquickjs::Result<()> {
+                        let mut options = EvalOptions::default();
+                        options.global = true;
+                        options.strict = false;
+                        options.filename = Some(name);
+                        ctx.eval_with_options::<(), _>(text.into_bytes(), options)
+                    },
+                )?;
+                host.set("evalScript", eval_script)?;
+                let record: rquickjs::Object = ctx.globals().get("__shadowlab")?;
+                let run_page: rquickjs::Function = record.get("runPage")?;
+                run_page.call((host, input.to_string()))
+            };
+            start().catch(&ctx).map(|p| rquickjs::Persistent::save(&ctx, p)).map_err(Failure::from)
+        })?;
+        loop {
+            let settled = self.context.with(|ctx| {
+                let promise =
+                    started.clone().restore(&ctx).map_err(|e| Failure::from(CaughtError::Error(e)))?;
+                promise.result::<String>().map(|r| r.catch(&ctx).map_err(Failure::from)).transpose()
+            })?;
+            if let Some(output) = settled {
+                return Ok(output);
+            }
+            match self._runtime.execute_pending_job() {
+                Ok(true) => {}
+                // A job thrown out of (a bound it hit): the page cannot settle.
+                Err(job) => {
+                    return Err(job.0.with(|ctx| {
+                        Failure::from(CaughtError::from_error(&ctx, rquickjs::Error::Exception))
+                    }));
+                }
+                Ok(false) => {
+                    return Err(Failure {
+                        message: "the page waits for something that never comes (its scripts never finished)"
+                            .into(),
+                        stack: String::new(),
+                    });
+                }
+            }
+        }
+    }
 }
 
 /// What a script threw, as text: its message and stack (or the value, for a throw of a non-error).

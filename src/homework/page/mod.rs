@@ -5,11 +5,12 @@
 //! (assets/homework/framework/lib: gl-matrix 2.7.0 and three.js r125, as the framework's
 //! index.html loads them).
 //!
-//! The scripts run in index.html's order. Where the submission has no file of its own, shadowlab's
-//! copy of the framework's interface stands in (assets/homework/framework/src). Today the page
-//! gives the check its light: every `new DirectionalLight(...)` the student's engine.js makes is
-//! recorded with its arguments and the line that made it, and that light's own `CalcLightMVP`
-//! builds each object's matrix.
+//! The scripts run in index.html's order (`scripts`). Where the submission has no file of its
+//! own, shadowlab's copy of the framework's interface stands in (assets/homework/framework/src).
+//! One script, assets/homework/page/driver.js, runs the whole page whichever engine hosts it:
+//! the scripts, the first frames, then the light's `CalcLightMVP` for each object the check
+//! draws. What it returns (`record`): every light the page made with the line that made it, the
+//! matrices, and each draw's uniforms by the names the student's code uses.
 
 mod engine;
 mod record;
@@ -23,23 +24,21 @@ pub use engine::Limits;
 use record::MadeLight;
 pub use record::{FoundLight, PageDraws};
 use scripts::{FRAMEWORK_SHADERS, Script, script_list};
-use serde::Deserialize;
+use serde::{Deserialize, Serialize};
 
 use super::light_script::{EngineLight, GlCall, LightMatrix, ScriptError, Sourced};
 use super::program::ShaderSource;
 
-/// Shadowlab's stand-ins and the libraries, in the order they run, before the student's scripts.
-const PRELUDE: [(&str, &str); 5] = [
+/// Shadowlab's stand-ins, the libraries and the driver, in the order they run, before the
+/// student's scripts.
+const PRELUDE: [(&str, &str); 6] = [
     ("shadowlab/browser.js", include_str!("../../../assets/homework/page/browser.js")),
     ("lib/three.js", include_str!("../../../assets/homework/framework/lib/three.min.js")),
     ("lib/gl-matrix-min.js", include_str!("../../../assets/homework/framework/lib/gl-matrix-min.js")),
     ("shadowlab/libraries.js", include_str!("../../../assets/homework/page/libraries.js")),
     ("shadowlab/calls.js", include_str!("../../../assets/homework/page/calls.js")),
+    ("shadowlab/driver.js", include_str!("../../../assets/homework/page/driver.js")),
 ];
-
-/// Wraps the light classes after their scripts ran, so each construction is recorded.
-const WATCH_LIGHTS: &str = "try { if (typeof DirectionalLight === 'function') DirectionalLight = __shadowlab.watchLight('DirectionalLight', DirectionalLight); } catch (e) {}\n\
-    try { if (typeof PointLight === 'function') PointLight = __shadowlab.watchLight('PointLight', PointLight); } catch (e) {}";
 
 /// Frames of the page run after it loads, and the time between them (ms, a 60 Hz display).
 const FRAMES: usize = 2;
@@ -48,9 +47,9 @@ const FRAME_MS: f64 = 1000.0 / 60.0;
 /// shadowlab's copy of the framework's engine.js, for a submission without one.
 const ENGINE_JS: &str = include_str!("../../../assets/homework/framework/src/engine.js");
 
-/// The script that hands the page its text files (shaders by path), the framework's shaders where
-/// the submission has none of the name.
-fn files_script(page: &[ShaderSource]) -> String {
+/// The page's text files (shaders by path) as the loaders answer them: the framework's shaders
+/// where the submission has none of the name.
+fn page_files(page: &[ShaderSource]) -> std::collections::BTreeMap<String, &str> {
     let mut files: std::collections::BTreeMap<String, &str> =
         FRAMEWORK_SHADERS.iter().map(|(name, text)| ((*name).to_string(), *text)).collect();
     for file in page {
@@ -62,19 +61,50 @@ fn files_script(page: &[ShaderSource]) -> String {
             files.insert(file.name.clone(), &file.text);
         }
     }
-    format!("__shadowlab.files = {};", serde_json::to_string(&files).unwrap_or_else(|_| "{}".into()))
+    files
 }
 
-/// The framework's light, made where the student's engine.js made none.
-const FRAMEWORK_LIGHT: &str = "__shadowlab.light = new DirectionalLight(5000, [1, 1, 1], [0, 80, 80], [0, 0, 0], [0, 1, 0], true, document.querySelector('#glcanvas').getContext('webgl')); 'made'";
+/// What the driver is given (driver.js's `input`).
+#[derive(Serialize)]
+struct DriverInput<'a> {
+    light: NamedText<'a>,
+    #[serde(rename = "engineName")]
+    engine_name: &'a str,
+    scripts: Vec<DriverScript<'a>>,
+    files: std::collections::BTreeMap<String, &'a str>,
+    objects: Vec<[f64; 6]>,
+    frames: usize,
+    #[serde(rename = "frameMs")]
+    frame_ms: f64,
+    /// For the message of a page that allocates past the bound.
+    #[serde(rename = "memoryMiB")]
+    memory_mib: usize,
+}
 
-/// A light object with the template's fields, for a constructor that throws.
-fn template_light(args: &str) -> String {
-    format!(
-        "(function (a) {{ const l = Object.create(DirectionalLight.prototype); \
-         ['lightIntensity', 'lightColor', 'lightPos', 'focalPoint', 'lightUp', 'hasShadowMap'].forEach((k, i) => {{ l[k] = a[i]; }}); \
-         l.mesh = {{}}; l.mat = {{}}; l.fbo = {{}}; __shadowlab.light = l; return 'made'; }})({args})"
-    )
+#[derive(Serialize)]
+struct NamedText<'a> {
+    name: &'a str,
+    text: &'a str,
+}
+
+#[derive(Serialize)]
+struct DriverScript<'a> {
+    role: &'static str,
+    name: &'a str,
+    text: &'a str,
+}
+
+#[derive(Deserialize)]
+struct Failed {
+    file: String,
+    line: usize,
+    message: String,
+}
+
+impl From<Failed> for ScriptError {
+    fn from(f: Failed) -> Self {
+        ScriptError { file: f.file, line: f.line, message: f.message }
+    }
 }
 
 #[derive(Deserialize)]
@@ -84,25 +114,51 @@ struct CallJson {
     line: usize,
 }
 
+/// One object's matrix as the driver returns it.
 #[derive(Deserialize)]
 struct MatrixJson {
+    #[serde(default)]
     matrix: Option<Vec<serde_json::Value>>,
+    #[serde(default)]
     what: Option<String>,
+    #[serde(default)]
     calls: Vec<CallJson>,
+    #[serde(default)]
+    error: Option<Failed>,
 }
 
-/// The student's light, made by their page and kept alive in its engine.
-pub struct PageLight {
-    engine: Engine,
+#[derive(Deserialize)]
+struct ContextJson {
+    kind: String,
     file: String,
-    /// The line that defines CalcLightMVP (where a report points when the matrix is wrong).
-    method_line: usize,
-    /// The line of its last `return` (where a matrix built by hand comes from).
-    return_line: usize,
+    line: usize,
+}
+
+/// What the driver returns.
+#[derive(Deserialize)]
+struct DriverOutput {
+    fatal: Option<Failed>,
+    notes: Vec<String>,
+    lights: Vec<MadeLight>,
+    checked: Option<usize>,
+    matrices: Vec<MatrixJson>,
+    draws: Option<PageDraws>,
+    context: Option<ContextJson>,
+}
+
+/// An object's place as the framework gives it: (translate, scale), world units.
+pub type Placed = ([f64; 3], [f64; 3]);
+
+/// A student's page, run: their light, what their engine.js gave it, the matrix of each object
+/// asked for, and what the page drew.
+pub struct PageRun {
+    pub engine_light: EngineLight,
     notes: Vec<String>,
     /// Every light the page made, in order; the check's is `checked`.
     found: Vec<FoundLight>,
     checked: Option<usize>,
+    /// Each object's (translate, scale) with its matrix, in the order asked.
+    matrices: Vec<(Placed, Result<LightMatrix, ScriptError>)>,
     draws: PageDraws,
     /// Where the page asked for a WebGL2 context (`file:line`), if it did.
     webgl2: Option<String>,
@@ -112,169 +168,89 @@ fn shadowlab_error(e: ScriptError) -> ScriptError {
     ScriptError { file: "shadowlab".into(), line: 0, message: format!("the page could not start ({e})") }
 }
 
-impl PageLight {
-    /// Runs the page with the student's `DirectionalLight.js` and, where they have one, their
-    /// `engine.js`; returns the light and what engine.js gave it. Err: the light's script fails
-    /// to run or has no `DirectionalLight` with a `CalcLightMVP` (the check then uses the
-    /// framework's light). A failing engine.js is a note, not an error.
-    pub fn load(
+impl PageRun {
+    /// Runs the page with the student's `DirectionalLight.js`, their `engine.js` where they have
+    /// one, and the rest of their `page`; then their light's `CalcLightMVP` for each object
+    /// placed by (translate, scale) in `objects` (world units). Err: the light's script fails to
+    /// run or has no `DirectionalLight` with a `CalcLightMVP` (the check then uses the
+    /// framework's light), or the page ran past a bound. A failing engine.js is a note.
+    pub fn run(
         light: &ShaderSource,
         engine_js: Option<&ShaderSource>,
         page: &[ShaderSource],
+        objects: &[Placed],
         limits: Limits,
-    ) -> Result<(PageLight, EngineLight), ScriptError> {
+    ) -> Result<PageRun, ScriptError> {
         let engine =
             Engine::new(limits).map_err(|m| ScriptError { file: "shadowlab".into(), line: 0, message: m })?;
         for (file, source) in PRELUDE {
             engine.run_script(file, source).map_err(shadowlab_error)?;
         }
-        engine.run_script("shadowlab/files.js", &files_script(page)).map_err(shadowlab_error)?;
         let list = script_list(page);
-        let mut notes = list.notes;
-        let mut light_ran = false;
-        for script in &list.scripts {
-            match script {
-                Script::Light => {
-                    engine.run_script(&light.name, &light.text)?;
-                    light_ran = true;
-                }
+        let engine_source =
+            engine_js.map_or(NamedText { name: "shadowlab/framework/engine.js", text: ENGINE_JS }, |e| {
+                NamedText { name: &e.name, text: &e.text }
+            });
+        let scripts = list
+            .scripts
+            .iter()
+            .map(|s| match s {
+                Script::Light => DriverScript { role: "light", name: &light.name, text: &light.text },
                 Script::Engine => {
-                    if !light_ran {
-                        engine.run_script(&light.name, &light.text)?;
-                        light_ran = true;
-                    }
-                    Self::check_class(&engine, &light.name)?;
-                    engine.run_script("shadowlab/watch.js", WATCH_LIGHTS).map_err(shadowlab_error)?;
-                    let (name, text) = match engine_js {
-                        Some(e) => (e.name.as_str(), e.text.as_str()),
-                        None => ("shadowlab/framework/engine.js", ENGINE_JS),
-                    };
-                    if let Err(e) = engine.run_script(name, text) {
-                        notes.push(format!("{e} (the rest of {name} did not run)"));
-                    }
+                    DriverScript { role: "engine", name: engine_source.name, text: engine_source.text }
                 }
-                Script::Theirs(file) => {
-                    if let Err(e) = engine.run_script(&file.name, &file.text) {
-                        notes.push(format!("{e} (the rest of {} did not run)", file.name));
-                    }
-                }
-                Script::Ours { name, text } => {
-                    if let Err(e) = engine.run_script(name, text) {
-                        notes.push(format!(
-                            "shadowlab's copy of {name} failed beside the page's own scripts ({e})"
-                        ));
-                    }
-                }
-            }
+                Script::Theirs(f) => DriverScript { role: "theirs", name: &f.name, text: &f.text },
+                Script::Ours { name, text } => DriverScript { role: "ours", name, text },
+            })
+            .collect();
+        let input = DriverInput {
+            light: NamedText { name: &light.name, text: &light.text },
+            engine_name: engine_js.map_or("engine.js", |e| e.name.as_str()),
+            scripts,
+            files: page_files(page),
+            objects: objects.iter().map(|(t, s)| [t[0], t[1], t[2], s[0], s[1], s[2]]).collect(),
+            frames: FRAMES,
+            frame_ms: FRAME_MS,
+            memory_mib: limits.memory_bytes >> 20,
+        };
+        let input = serde_json::to_string(&input).map_err(|e| {
+            shadowlab_error(ScriptError { file: "input".into(), line: 0, message: e.to_string() })
+        })?;
+        let output = engine.run_page(&light.name, &input)?;
+        let output: DriverOutput = serde_json::from_str(&output).map_err(|e| {
+            shadowlab_error(ScriptError { file: "driver".into(), line: 0, message: e.to_string() })
+        })?;
+        if let Some(fatal) = output.fatal {
+            return Err(fatal.into());
         }
-        match engine.eval_string("shadowlab", &format!("__shadowlab.runFrames({FRAMES}, {FRAME_MS})")) {
-            Ok(error) if !error.is_empty() => {
-                notes.push(format!("a frame of the page failed: {}", engine::one_line(&error)))
-            }
-            Ok(_) => {}
-            Err(e) => notes.push(format!("the page's frames did not run to the end ({e})")),
-        }
-        let made: Vec<MadeLight> =
-            serde_json::from_str(&engine.eval_string("shadowlab", "__shadowlab.lightsJson()")?).map_err(
-                |e| shadowlab_error(ScriptError { file: "lights".into(), line: 0, message: e.to_string() }),
-            )?;
-        let directional: Vec<(usize, &MadeLight)> =
-            made.iter().enumerate().filter(|(_, l)| l.kind == "DirectionalLight").collect();
-        let engine_name = engine_js.map_or("engine.js", |e| e.name.as_str());
-        let mut engine_light = EngineLight::framework();
-        match directional.first() {
-            None => {
-                notes.push(format!("{engine_name} makes no DirectionalLight: used the framework's light"));
-                if let Err(e) = engine.eval_string(&light.name, FRAMEWORK_LIGHT) {
-                    notes.push(format!(
-                        "the DirectionalLight constructor failed ({e}); used an object with the template's fields instead"
-                    ));
-                    engine.eval_string(
-                        "shadowlab",
-                        &template_light("[5000, [1, 1, 1], [0, 80, 80], [0, 0, 0], [0, 1, 0], true]"),
-                    )?;
-                }
-            }
-            Some(&(index, first)) => {
-                if directional.len() > 1 {
-                    notes.push(format!(
-                        "{} makes {} DirectionalLights; the first (line {}) is used",
-                        first.file,
-                        directional.len(),
-                        first.line
-                    ));
-                }
-                engine_light = Self::engine_light(first, &mut notes);
-                match &first.error {
-                    None => {
-                        engine.eval_string(
-                            "shadowlab",
-                            &format!("__shadowlab.light = __shadowlab.lights[{index}].object; 'made'"),
-                        )?;
-                    }
-                    Some(why) => {
-                        notes.push(format!(
-                            "the DirectionalLight constructor failed ({}:{}: {why}); used an object with the template's fields instead",
-                            first.file, first.line
-                        ));
-                        engine.eval_string(
-                            "shadowlab",
-                            &template_light(&format!("__shadowlab.lights[{index}].args")),
-                        )?;
-                    }
-                }
-            }
-        }
+        let mut notes = list.notes;
+        notes.extend(output.notes);
+        let engine_light = match output.checked.and_then(|i| output.lights.get(i)) {
+            Some(made) => Self::engine_light(made, &mut notes),
+            None => EngineLight::framework(),
+        };
         let method_line = method_line(&light.text).unwrap_or(0);
         let return_line = last_return(&light.text, method_line).unwrap_or(method_line);
-        let draws: PageDraws = engine
-            .eval_string("shadowlab", "__shadowlab.drawsJson()")
-            .ok()
-            .and_then(|json| serde_json::from_str(&json).ok())
-            .unwrap_or_default();
-        let found = made.iter().map(MadeLight::found).collect();
-        let webgl2 = engine
-            .eval_string("shadowlab", "__shadowlab.contextJson()")
-            .ok()
-            .and_then(|json| serde_json::from_str::<Option<record::Context>>(&json).ok().flatten())
+        let matrices = objects
+            .iter()
+            .zip(output.matrices)
+            .map(|(placed, m)| (*placed, matrix(m, &light.name, method_line, return_line)))
+            .collect();
+        let webgl2 = output
+            .context
             .filter(|c| c.kind == "webgl2")
             .map(|c| if c.line > 0 { format!("{}:{}", c.file, c.line) } else { c.file });
-        let checked = directional.first().map(|(i, _)| *i);
-        let page = PageLight {
-            engine,
-            file: light.name.clone(),
-            method_line,
-            return_line,
+        Ok(PageRun {
+            engine_light,
             notes,
-            found,
-            checked,
-            draws,
+            found: output.lights.iter().map(MadeLight::found).collect(),
+            checked: output.checked,
+            matrices,
+            draws: output.draws.unwrap_or_default(),
             webgl2,
-        };
-        Ok((page, engine_light))
+        })
     }
 
-    /// Err where the light's script defines no `DirectionalLight` with a `CalcLightMVP`.
-    fn check_class(engine: &Engine, file: &str) -> Result<(), ScriptError> {
-        let kind = engine.eval_string(
-            file,
-            "typeof DirectionalLight !== 'function' ? 'none' : (DirectionalLight.prototype && typeof DirectionalLight.prototype.CalcLightMVP === 'function') ? 'ok' : 'no method'",
-        )?;
-        let message = match kind.as_str() {
-            "ok" => return Ok(()),
-            "none" => "no class or function named DirectionalLight",
-            _ => "DirectionalLight has no CalcLightMVP method",
-        };
-        Err(ScriptError { file: file.to_string(), line: 0, message: message.into() })
-    }
-}
-
-/// `value` as made on `made`'s line.
-fn sourced<T>(made: &MadeLight, value: T) -> Sourced<T> {
-    Sourced { value, file: made.file.clone(), line: made.line }
-}
-
-impl PageLight {
     /// The light's arguments as engine.js gave them; an argument that is not what the framework
     /// passes keeps the framework's value, with a note.
     fn engine_light(made: &MadeLight, notes: &mut Vec<String>) -> EngineLight {
@@ -331,43 +307,60 @@ impl PageLight {
         &self.draws
     }
 
-    /// Calls the light's CalcLightMVP for an object placed by `translate` and `scale` (world
-    /// units), as the framework's materials call it.
-    pub fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
-        let list = |v: [f64; 3]| format!("[{:?}, {:?}, {:?}]", v[0], v[1], v[2]);
-        let json = self.engine.eval_string(
-            &self.file,
-            &format!("__shadowlab.lightMatrix(__shadowlab.light, {}, {})", list(translate), list(scale)),
-        )?;
-        let read: MatrixJson = serde_json::from_str(&json).map_err(|e| ScriptError {
-            file: self.file.clone(),
-            line: self.method_line,
-            message: e.to_string(),
-        })?;
-        let calls: Vec<GlCall> =
-            read.calls.into_iter().map(|c| GlCall { name: c.name, args: c.args, line: c.line }).collect();
-        let return_line = self.return_line;
-        let Some(values) = read.matrix else {
-            return Err(ScriptError {
-                file: self.file.clone(),
-                line: self.method_line,
-                message: format!(
-                    "CalcLightMVP returned {}, not a 4x4 matrix",
-                    read.what.unwrap_or_else(|| "something else".into())
-                ),
-            });
-        };
-        let mut clip_from_object = [0.0f32; 16];
-        for (slot, v) in clip_from_object.iter_mut().zip(&values) {
-            *slot = match v {
-                serde_json::Value::Number(n) => n.as_f64().unwrap_or(f64::NAN) as f32,
-                serde_json::Value::String(s) if s == "Infinity" => f32::INFINITY,
-                serde_json::Value::String(s) if s == "-Infinity" => f32::NEG_INFINITY,
-                _ => f32::NAN,
-            };
-        }
-        Ok(LightMatrix { clip_from_object, calls, return_line })
+    /// The light's matrix for an object placed by `translate` and `scale`, as the page computed
+    /// it when it ran (an object it was not asked for is an error).
+    pub fn light_matrix(&self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
+        self.matrices
+            .iter()
+            .find(|((t, s), _)| *t == translate && *s == scale)
+            .map(|(_, m)| m.clone())
+            .unwrap_or_else(|| {
+                Err(ScriptError {
+                    file: "shadowlab".into(),
+                    line: 0,
+                    message: format!("no matrix was asked of the page for {translate:?} {scale:?}"),
+                })
+            })
     }
+}
+
+/// `value` as made on `made`'s line.
+fn sourced<T>(made: &MadeLight, value: T) -> Sourced<T> {
+    Sourced { value, file: made.file.clone(), line: made.line }
+}
+
+/// One object's matrix from what the driver returned.
+fn matrix(
+    m: MatrixJson,
+    file: &str,
+    method_line: usize,
+    return_line: usize,
+) -> Result<LightMatrix, ScriptError> {
+    if let Some(error) = m.error {
+        return Err(error.into());
+    }
+    let calls: Vec<GlCall> =
+        m.calls.into_iter().map(|c| GlCall { name: c.name, args: c.args, line: c.line }).collect();
+    let Some(values) = m.matrix else {
+        return Err(ScriptError {
+            file: file.to_string(),
+            line: method_line,
+            message: format!(
+                "CalcLightMVP returned {}, not a 4x4 matrix",
+                m.what.unwrap_or_else(|| "something else".into())
+            ),
+        });
+    };
+    let mut clip_from_object = [0.0f32; 16];
+    for (slot, v) in clip_from_object.iter_mut().zip(&values) {
+        *slot = match v {
+            serde_json::Value::Number(n) => n.as_f64().unwrap_or(f64::NAN) as f32,
+            serde_json::Value::String(s) if s == "Infinity" => f32::INFINITY,
+            serde_json::Value::String(s) if s == "-Infinity" => f32::NEG_INFINITY,
+            _ => f32::NAN,
+        };
+    }
+    Ok(LightMatrix { clip_from_object, calls, return_line })
 }
 
 /// The line that defines `CalcLightMVP` (a method, or an assignment of a function), not a

@@ -44,14 +44,6 @@ impl MadeLight {
     }
 }
 
-/// The WebGL context the page asked for first, and where.
-#[derive(Clone, Debug, Deserialize)]
-pub(super) struct Context {
-    pub kind: String,
-    pub file: String,
-    pub line: usize,
-}
-
 #[derive(Clone, Debug, Default, Deserialize)]
 struct Program {
     id: u64,

@@ -14,9 +14,25 @@ fn source(name: &str, text: &str) -> ShaderSource {
     ShaderSource { name: name.into(), path: None, text: text.into() }
 }
 
-fn load(light: &str, engine: Option<&str>) -> Result<(PageLight, EngineLight), ScriptError> {
+/// The objects the tests ask matrices for: (translate, scale), world units.
+const OBJECTS: [([f64; 3], [f64; 3]); 4] = [
+    ([0.0; 3], [1.0; 3]),
+    ([40.0, 0.0, -40.0], [10.0; 3]),
+    ([0.0, 0.0, -30.0], [4.0; 3]),
+    ([1.0, 2.0, 3.0], [2.0; 3]),
+];
+
+fn load(light: &str, engine: Option<&str>) -> Result<(PageRun, EngineLight), ScriptError> {
     let engine = engine.map(|e| source("engine.js", e));
-    PageLight::load(&source("DirectionalLight.js", light), engine.as_ref(), &[], Limits::default())
+    let run = PageRun::run(
+        &source("DirectionalLight.js", light),
+        engine.as_ref(),
+        &[],
+        &OBJECTS,
+        Limits::default(),
+    )?;
+    let light = run.engine_light.clone();
+    Ok((run, light))
 }
 
 fn line_of(text: &str, needle: &str) -> usize {
@@ -37,7 +53,7 @@ fn the_light_engine_js_makes_is_recorded_with_its_line() {
 
 #[test]
 fn calc_light_mvp_agrees_with_the_former_interpreter_to_the_bit() {
-    let (mut page, engine_light) = load(EXAMPLE_LIGHT, None).expect("the page runs");
+    let (page, engine_light) = load(EXAMPLE_LIGHT, None).expect("the page runs");
     let mut old =
         LightScript::load(EXAMPLE_LIGHT, "DirectionalLight.js", &engine_light, InterpreterLimits::default())
             .expect("the interpreter loads it");
@@ -71,9 +87,9 @@ fn a_light_built_with_three_js_runs() {
     return new THREE.Matrix4().multiplyMatrices(camera.projectionMatrix, camera.matrixWorldInverse).multiply(model).elements;
   }
 }";
-    let (mut page, _) = load(light, None).expect("the page runs");
+    let (page, _) = load(light, None).expect("the page runs");
     let three = page.light_matrix([40.0, 0.0, -40.0], [10.0; 3]).expect("a matrix");
-    let (mut reference, _) = load(EXAMPLE_LIGHT, None).expect("the page runs");
+    let (reference, _) = load(EXAMPLE_LIGHT, None).expect("the page runs");
     let gl_matrix = reference.light_matrix([40.0, 0.0, -40.0], [10.0; 3]).expect("a matrix");
     for (a, b) in three.clip_from_object.iter().zip(gl_matrix.clip_from_object) {
         assert!((a - b).abs() < 1e-5, "{:?} vs {:?}", three.clip_from_object, gl_matrix.clip_from_object);
@@ -86,14 +102,15 @@ fn a_light_built_with_three_js_runs() {
 
 /// The error of loading `light` (or of its first matrix), which must be one line.
 fn error_of(light: &str, engine: Option<&str>, limits: Limits) -> ScriptError {
-    let e = match PageLight::load(
+    let e = match PageRun::run(
         &source("DirectionalLight.js", light),
         engine.map(|e| source("engine.js", e)).as_ref(),
         &[],
+        &OBJECTS,
         limits,
     ) {
         Err(e) => e,
-        Ok((mut page, _)) => match page.light_matrix([0.0; 3], [1.0; 3]) {
+        Ok(page) => match page.light_matrix([0.0; 3], [1.0; 3]) {
             Err(e) => e,
             Ok(m) => panic!("expected an error, got {m:?}"),
         },
@@ -122,7 +139,9 @@ fn hostile_scripts_each_end_in_one_line_naming_the_file() {
     ];
     for (body, needle, message) in cases {
         let light = with_body(body);
-        let e = error_of(&light, None, short);
+        // Only the endless loop waits for the time bound; the others end long before it.
+        let limits = if message.contains("time bound") { short } else { Limits::default() };
+        let e = error_of(&light, None, limits);
         assert_eq!(e.file, "DirectionalLight.js", "{e}");
         if !needle.is_empty() {
             assert_eq!(e.line, line_of(&light, needle), "{e}");
@@ -138,8 +157,8 @@ fn a_prototype_trick_cannot_change_what_shadowlab_reads() {
         "class DirectionalLight {",
         "JSON.stringify = () => '{}'; Array.isArray = () => false; Object.prototype.matrix = null;\nclass DirectionalLight {",
     );
-    let (mut page, _) = load(&light, None).expect("the page runs");
-    let (mut reference, _) = load(EXAMPLE_LIGHT, None).expect("the page runs");
+    let (page, _) = load(&light, None).expect("the page runs");
+    let (reference, _) = load(EXAMPLE_LIGHT, None).expect("the page runs");
     let a = page.light_matrix([1.0, 2.0, 3.0], [2.0; 3]).expect("a matrix");
     let b = reference.light_matrix([1.0, 2.0, 3.0], [2.0; 3]).expect("a matrix");
     assert_eq!(a.clip_from_object, b.clip_from_object);
@@ -148,7 +167,7 @@ fn a_prototype_trick_cannot_change_what_shadowlab_reads() {
 #[test]
 fn a_failing_engine_js_is_a_note_and_the_framework_light_is_used() {
     let engine = "const canvas = document.querySelector('#glcanvas');\nundefinedFunction();\n";
-    let (mut page, light) = load(EXAMPLE_LIGHT, Some(engine)).expect("the page runs");
+    let (page, light) = load(EXAMPLE_LIGHT, Some(engine)).expect("the page runs");
     assert_eq!(light.position.value, [0.0, 80.0, 80.0]);
     assert!(page.notes().iter().any(|n| n.starts_with("engine.js:2: ")), "{:?}", page.notes());
     assert!(page.notes().iter().any(|n| n.contains("makes no DirectionalLight")), "{:?}", page.notes());
@@ -159,7 +178,7 @@ fn a_failing_engine_js_is_a_note_and_the_framework_light_is_used() {
 fn a_constructor_that_throws_gets_the_template_fields() {
     let light = EXAMPLE_LIGHT
         .replace("this.fbo = new FBO(gl);", "this.fbo = new FBO(gl);\n    throw new Error('no gl');");
-    let (mut page, engine_light) = load(&light, None).expect("the page runs");
+    let (page, engine_light) = load(&light, None).expect("the page runs");
     assert_eq!(engine_light.position.value, [0.0, 80.0, 80.0]);
     assert!(
         page.notes().iter().any(|n| n.contains("constructor failed") && n.contains("no gl")),
@@ -221,16 +240,17 @@ fn the_whole_page_runs_and_its_own_uniforms_are_recorded_by_name() {
         source("hw/src/materials/PhongMaterial.js", &phong),
         source("hw/src/shaders/phongShader/phongFragment.glsl", fragment),
     ];
-    let (page_light, _) = PageLight::load(
+    let page_light = PageRun::run(
         &source("hw/src/lights/DirectionalLight.js", EXAMPLE_LIGHT),
         Some(&page[0]),
         &page,
+        &OBJECTS,
         Limits::default(),
     )
     .expect("the page runs");
     assert!(page_light.notes().is_empty(), "{:?}", page_light.notes());
     let camera = page_light.draws().uniforms_for(fragment);
-    assert_eq!(camera.get("uFrustumSize"), Some(&vec![340.0]), "{camera:?}");
+    assert_eq!(camera.get("uFrustumSize"), Some(&vec![340.0]), "{camera:?} {:?}", page_light.notes());
     assert_eq!(camera.get("uLightPos"), Some(&vec![0.0, 80.0, 80.0]));
     let (lights, checked) = page_light.lights();
     assert_eq!(lights.len(), 1);
@@ -239,4 +259,17 @@ fn the_whole_page_runs_and_its_own_uniforms_are_recorded_by_name() {
         lights[0].made_at,
         format!("hw/src/engine.js:{}", line_of(FRAMEWORK_ENGINE, "new DirectionalLight("))
     );
+}
+
+#[test]
+fn an_endless_frame_or_promise_ends_in_one_line_naming_its_file() {
+    let short = Limits { time: Duration::from_millis(300), ..Limits::default() };
+    for engine in [
+        "requestAnimationFrame(function spin() {\n  while (true) {}\n});\n",
+        "Promise.resolve().then(function wait() {\n  for (;;) {}\n});\n",
+    ] {
+        let e = error_of(EXAMPLE_LIGHT, Some(engine), short);
+        assert_eq!(e.file, "engine.js", "{e}");
+        assert!(e.message.contains("time bound of 0.3 s"), "{e}");
+    }
 }

@@ -1,0 +1,165 @@
+// Runs a student's page from start to end, the same way whichever engine hosts it: their scripts
+// in order, their first frames, then their light's CalcLightMVP for each object the check draws.
+// The host gives one thing: `evalScript(name, text)`, which runs a classic script as global code
+// named `name` in stack traces and throws what the script throws. Returns the page's record as
+// JSON (see src/homework/page/run.rs for its fields).
+"use strict";
+
+(function () {
+    const record = globalThis.__shadowlab;
+    const stringify = JSON.stringify;
+    const parse = JSON.parse;
+
+    let memoryMiB = 0;
+
+    // A thrown value as {file, line, message}: the first stack frame in the student's code, the
+    // engine's own words for a bound it hit replaced by which bound.
+    function failure(e, fallbackFile) {
+        let message = String(e && e.message !== undefined ? e.message : e).split(/[\r\n]/)[0];
+        const stack = String((e && e.stack) || "").split("\n");
+        let at = { file: fallbackFile, line: 0, fn: "" };
+        for (const frame of stack) {
+            const m = /^\s*at\s+(?:(.*?)\s+\()?([^()\s]+?):(\d+)(?::\d+)?\)?\s*$/.exec(frame);
+            if (m && !record.ours(m[2])) {
+                at = { file: m[2], line: Number(m[3]), fn: m[1] && m[1] !== "<eval>" ? m[1] : "" };
+                break;
+            }
+        }
+        const within = at.fn ? " in " + at.fn : "";
+        if (/^out of memory$|allocation failed|Array buffer allocation/i.test(message)) {
+            message = "the script used more than its memory bound" + (memoryMiB ? " of " + memoryMiB + " MiB" : "");
+        } else if (/Maximum call stack size exceeded|stack overflow|too much recursion/i.test(message)) {
+            message = "the script recursed deeper than its stack bound" + within + " (endless recursion?)";
+        }
+        return { file: at.file, line: at.line, message };
+    }
+
+    // Lets the promise callbacks the page queued run (a loader's answer, an async material
+    // build, each a few hops), as a browser does between one task and the next.
+    async function settle() {
+        for (let i = 0; i < 256; i++) await null;
+    }
+    const shown = (f) => (f.line > 0 ? f.file + ":" + f.line + ": " : f.file + ": ") + f.message;
+
+    const WATCH =
+        "try { if (typeof DirectionalLight === 'function') DirectionalLight = __shadowlab.watchLight('DirectionalLight', DirectionalLight); } catch (e) {}\n" +
+        "try { if (typeof PointLight === 'function') PointLight = __shadowlab.watchLight('PointLight', PointLight); } catch (e) {}";
+
+    function classProblem() {
+        if (typeof globalThis.__shadowlabLightClass !== "function") return "no class or function named DirectionalLight";
+        const proto = globalThis.__shadowlabLightClass.prototype;
+        return proto && typeof proto.CalcLightMVP === "function" ? null : "DirectionalLight has no CalcLightMVP method";
+    }
+
+    // A light object with the template's fields, for a constructor that throws.
+    function templateLight(args) {
+        const light = Object.create(globalThis.__shadowlabLightClass.prototype);
+        ["lightIntensity", "lightColor", "lightPos", "focalPoint", "lightUp", "hasShadowMap"].forEach((k, i) => {
+            light[k] = args[i];
+        });
+        light.mesh = {};
+        light.mat = {};
+        light.fbo = {};
+        return light;
+    }
+
+    // input: {light: {name, text}, engineName, scripts: [{role, name, text}], files: {path: text},
+    //         objects: [[tx, ty, tz, sx, sy, sz]], frames, frameMs}
+    record.runPage = async function (host, inputJson) {
+        const input = parse(inputJson);
+        memoryMiB = input.memoryMiB || 0;
+        const out = { fatal: null, notes: [], lights: [], checked: null, matrices: [], draws: null, context: null };
+        Object.assign(record.files, input.files);
+        let light = null;
+        let lightRan = false;
+        const runLight = () => {
+            host.evalScript(input.light.name, input.light.text);
+            host.evalScript("shadowlab/light_class.js", "globalThis.__shadowlabLightClass = typeof DirectionalLight === 'function' ? DirectionalLight : undefined;");
+            lightRan = true;
+        };
+        for (const script of input.scripts) {
+            try {
+                if (script.role === "light") {
+                    runLight();
+                } else if (script.role === "engine") {
+                    if (!lightRan) runLight();
+                    const problem = classProblem();
+                    if (problem) {
+                        out.fatal = { file: input.light.name, line: 0, message: problem };
+                        return stringify(out);
+                    }
+                    host.evalScript("shadowlab/watch.js", WATCH);
+                    try {
+                        host.evalScript(script.name, script.text);
+                    } catch (e) {
+                        out.notes.push(shown(failure(e, script.name)) + " (the rest of " + script.name + " did not run)");
+                    }
+                } else {
+                    try {
+                        host.evalScript(script.name, script.text);
+                    } catch (e) {
+                        const f = shown(failure(e, script.name));
+                        out.notes.push(script.role === "ours"
+                            ? "shadowlab's copy of " + script.name + " failed beside the page's own scripts (" + f + ")"
+                            : f + " (the rest of " + script.name + " did not run)");
+                    }
+                }
+            } catch (e) {
+                // The light's own script failed: the check goes on with the framework's light.
+                out.fatal = failure(e, input.light.name);
+                return stringify(out);
+            }
+            await settle();
+        }
+        let frameFailed = false;
+        for (let i = 0; i < input.frames; i++) {
+            const frameError = record.runFrame(i, input.frameMs);
+            if (frameError && !frameFailed) {
+                frameFailed = true;
+                const [message, ...stack] = frameError.split("\n");
+                out.notes.push("a frame of the page failed: " + shown(failure({ message, stack: stack.join("\n") }, "")));
+            }
+            await settle();
+        }
+
+        const made = record.lights;
+        const directional = made.map((l, i) => [i, l]).filter(([, l]) => l.kind === "DirectionalLight");
+        if (directional.length === 0) {
+            out.notes.push(input.engineName + " makes no DirectionalLight: used the framework's light");
+            try {
+                const gl = globalThis.document.querySelector("#glcanvas").getContext("webgl");
+                light = new globalThis.__shadowlabLightClass(5000, [1, 1, 1], [0, 80, 80], [0, 0, 0], [0, 1, 0], true, gl);
+            } catch (e) {
+                out.notes.push("the DirectionalLight constructor failed (" + shown(failure(e, input.light.name)) + "); used an object with the template's fields instead");
+                light = templateLight([5000, [1, 1, 1], [0, 80, 80], [0, 0, 0], [0, 1, 0], true]);
+            }
+        } else {
+            const [index, first] = directional[0];
+            if (directional.length > 1) {
+                out.notes.push(first.file + " makes " + directional.length + " DirectionalLights; the first (line " + first.line + ") is used");
+            }
+            out.checked = index;
+            if (first.error === null) {
+                light = first.object;
+            } else {
+                out.notes.push("the DirectionalLight constructor failed (" + first.file + ":" + first.line + ": " + first.error + "); used an object with the template's fields instead");
+                light = templateLight(first.args);
+            }
+        }
+        out.lights = parse(record.lightsJson());
+        for (const o of input.objects) {
+            try {
+                out.matrices.push(parse(record.lightMatrix(light, o.slice(0, 3), o.slice(3, 6))));
+            } catch (e) {
+                out.matrices.push({ error: failure(e, input.light.name) });
+            }
+        }
+        out.draws = parse(record.drawsJson());
+        out.context = parse(record.contextJson());
+        return stringify(out);
+    };
+
+    // The page's own scripts cannot replace what shadowlab reads back.
+    Object.freeze(record);
+    Object.defineProperty(globalThis, "__shadowlab", { value: record, writable: false, configurable: false });
+})();
