@@ -147,37 +147,52 @@ fn a_page_with_two_lights_lists_both_with_the_lines_that_made_them() {
 }
 
 #[test]
-fn a_page_that_asks_for_webgl2_is_refused_in_one_line_naming_where() {
-    // Its passes (float targets, extra passes) are not the framework's WebGL1 ones the check
+fn a_page_that_renders_into_float_textures_is_refused_in_one_line_naming_where() {
+    // Its maps (moments, a summed-area table) are not the framework's RGBA8 ones the check
     // builds: judging the picture the check would build instead would blame the wrong things.
+    // A WebGL2 context alone is no reason: with RGBA8 maps it is checked as usual.
     let scratch = tempfile::tempdir().expect("a scratch folder");
     let engine = edit(
         &read("assets/homework/framework/src/engine.js"),
         "canvas.getContext('webgl')",
         "canvas.getContext('webgl2')",
     );
-    let root = scratch.path().join("student/homework1");
-    for (path, text) in [
-        ("src/shaders/phongShader/phongFragment.glsl", read("assets/homework/phongFragment.glsl")),
-        ("src/lights/DirectionalLight.js", read("assets/homework/DirectionalLight.js")),
-        ("src/engine.js", engine.clone()),
-    ] {
-        std::fs::create_dir_all(root.join(path).parent().expect("a parent")).expect("folders");
-        std::fs::write(root.join(path), text).expect("write");
+    let files = |fbo: &str| {
+        [
+            ("src/shaders/phongShader/phongFragment.glsl", read("assets/homework/phongFragment.glsl")),
+            ("src/lights/DirectionalLight.js", read("assets/homework/DirectionalLight.js")),
+            ("src/engine.js", engine.clone()),
+            ("src/textures/FBO.js", fbo.to_string()),
+        ]
+    };
+    let rgba8 = read("assets/homework/framework/src/textures/FBO.js");
+    let report = check_folder(&scratch.path().join("webgl2"), &files(&rgba8));
+    assert_eq!(report["findings"], serde_json::json!([]), "{:#}", report["findings"]);
+
+    let float = edit(
+        &rgba8,
+        "gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA, this.width, this.height, 0, gl.RGBA, gl.UNSIGNED_BYTE, null);",
+        "gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, this.width, this.height, 0, gl.RGBA, gl.FLOAT, null);",
+    );
+    let root = scratch.path().join("float");
+    for (path, text) in files(&float) {
+        let to = root.join("student/homework1").join(path);
+        std::fs::create_dir_all(to.parent().expect("a parent")).expect("folders");
+        std::fs::write(&to, text).expect("write");
     }
-    let out = scratch.path().join("out");
+    let out = root.join("out");
     let run = shadowlab(&[
         "homework",
-        &scratch.path().join("student").display().to_string(),
+        &root.join("student").display().to_string(),
         "--out",
         &out.display().to_string(),
     ]);
     assert_eq!(run.code, Some(2), "{}", run.stderr);
-    let line = line_of(&engine, "getContext('webgl2')");
+    let line = line_of(&float, "gl.RGBA32F");
     assert_eq!(
         run.stderr.trim(),
         format!(
-            "shadowlab: homework1/src/engine.js:{line}: the page asks for a WebGL2 context; the check builds the framework's WebGL1 passes only, so it does not judge this submission"
+            "shadowlab: homework1/src/textures/FBO.js:{line}: the page renders into float textures; the check builds the framework's RGBA8 shadow maps only, so it does not judge this submission"
         )
     );
     assert!(!out.join("report.json").exists(), "nothing is written for a refused submission");

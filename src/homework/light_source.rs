@@ -51,9 +51,9 @@ impl LightMatrices for super::page::PageRun {
         self.draws().uniforms_for(fragment)
     }
     fn refusal(&self) -> Option<String> {
-        self.webgl2().map(|at| {
+        self.float_texture().map(|at| {
             format!(
-                "{at}: the page asks for a WebGL2 context; the check builds the framework's WebGL1 passes only, so it does not judge this submission"
+                "{at}: the page renders into float textures; the check builds the framework's RGBA8 shadow maps only, so it does not judge this submission"
             )
         })
     }

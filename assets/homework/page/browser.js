@@ -26,7 +26,7 @@ var self = globalThis;
         files: {},
         // The frame being drawn (-1 while the page loads, then 0, 1, ...), the page's clock (ms)
         // and the WebGL context it asked for first.
-        state: { frame: -1, now: 0, context: null },
+        state: { frame: -1, now: 0, context: null, floatTexture: null },
     };
     globalThis.__shadowlab = record;
 
@@ -142,6 +142,13 @@ var self = globalThis;
             useProgram: (program) => { state.program = program; },
             bindFramebuffer: (target, fb) => { state.framebuffer = fb || null; },
             checkFramebufferStatus: () => GL.FRAMEBUFFER_COMPLETE,
+            // Where the page first makes a float texture (a map the check's RGBA8 passes cannot be).
+            texImage2D: (target, level, internalformat, ...rest) => {
+                const type = rest.length >= 6 ? rest[4] : rest[1];
+                const floats = [GL.RGBA32F, GL.RGBA16F, 0x822e, 0x8230, 0x822d, 0x822f].includes(internalformat)
+                    || [GL.FLOAT, GL.HALF_FLOAT, 0x8d61].includes(type);
+                if (floats && !record.state.floatTexture) record.state.floatTexture = record.where();
+            },
             drawElements: (mode, count) => draw(count),
             drawArrays: (mode, first, count) => draw(count),
         };

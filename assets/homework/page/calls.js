@@ -122,9 +122,10 @@
         return stringify({ programs, draws: record.draws });
     };
 
-    // The WebGL context the page asked for first, as JSON: {kind, file, line}, or null.
+    // The WebGL context the page asked for first ({kind, file, line}) and where it first made a
+    // float texture ({file, line}), each or null, as JSON.
     record.contextJson = function () {
-        return stringify(record.state.context || null);
+        return stringify({ context: record.state.context || null, floatTexture: record.state.floatTexture || null });
     };
 
     // The recorded lights as JSON (without their objects).

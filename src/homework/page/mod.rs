@@ -128,10 +128,22 @@ struct MatrixJson {
 }
 
 #[derive(Deserialize)]
-struct ContextJson {
-    kind: String,
+struct Place {
     file: String,
     line: usize,
+}
+
+impl Place {
+    fn shown(&self) -> String {
+        if self.line > 0 { format!("{}:{}", self.file, self.line) } else { self.file.clone() }
+    }
+}
+
+/// The WebGL context the page asked for, and where it first made a float texture.
+#[derive(Deserialize)]
+struct ContextJson {
+    #[serde(rename = "floatTexture")]
+    float_texture: Option<Place>,
 }
 
 /// What the driver returns.
@@ -160,8 +172,8 @@ pub struct PageRun {
     /// Each object's (translate, scale) with its matrix, in the order asked.
     matrices: Vec<(Placed, Result<LightMatrix, ScriptError>)>,
     draws: PageDraws,
-    /// Where the page asked for a WebGL2 context (`file:line`), if it did.
-    webgl2: Option<String>,
+    /// Where the page first made a float texture (`file:line`), if it did.
+    float_texture: Option<String>,
 }
 
 fn shadowlab_error(e: ScriptError) -> ScriptError {
@@ -236,10 +248,7 @@ impl PageRun {
             .zip(output.matrices)
             .map(|(placed, m)| (*placed, matrix(m, &light.name, method_line, return_line)))
             .collect();
-        let webgl2 = output
-            .context
-            .filter(|c| c.kind == "webgl2")
-            .map(|c| if c.line > 0 { format!("{}:{}", c.file, c.line) } else { c.file });
+        let float_texture = output.context.and_then(|c| c.float_texture).map(|p| p.shown());
         Ok(PageRun {
             engine_light,
             notes,
@@ -247,7 +256,7 @@ impl PageRun {
             checked: output.checked,
             matrices,
             draws: output.draws.unwrap_or_default(),
-            webgl2,
+            float_texture,
         })
     }
 
@@ -296,10 +305,10 @@ impl PageRun {
         (&self.found, self.checked)
     }
 
-    /// Where the page asked for a WebGL2 context (`file:line`), if it did: its passes are not the
-    /// framework's WebGL1 ones the check builds.
-    pub fn webgl2(&self) -> Option<&str> {
-        self.webgl2.as_deref()
+    /// Where the page first made a float texture (`file:line`), if it did: its maps are not the
+    /// framework's RGBA8 ones the check builds (moments for VSM, a summed-area table, ...).
+    pub fn float_texture(&self) -> Option<&str> {
+        self.float_texture.as_deref()
     }
 
     /// What the page drew on its first frames.
