@@ -29,15 +29,16 @@ fn line_of(text: &str, needle: &str) -> usize {
     text.lines().position(|l| l.contains(needle)).map_or(0, |i| i + 1)
 }
 
-/// Writes `files` (path in the submission, text) under `root` and checks the folder.
-fn check_folder(root: &Path, files: &[(&str, String)]) -> Value {
+/// Writes `files` (path in the submission, text) as `root/student/homework1/...` and checks the
+/// folder into `root/out`.
+fn run_folder(root: &Path, files: &[(&str, String)]) -> Run {
     for (path, text) in files {
         let to = root.join("student/homework1").join(path);
         std::fs::create_dir_all(to.parent().expect("a parent")).expect("folders");
         std::fs::write(&to, text).expect("write");
     }
     let out = root.join("out");
-    let run = shadowlab(&[
+    shadowlab(&[
         "homework",
         &root.join("student").display().to_string(),
         "--size",
@@ -45,7 +46,12 @@ fn check_folder(root: &Path, files: &[(&str, String)]) -> Value {
         "--out",
         &out.display().to_string(),
         "--json",
-    ]);
+    ])
+}
+
+/// The report of checking `files` (see `run_folder`), which must succeed.
+fn check_folder(root: &Path, files: &[(&str, String)]) -> Value {
+    let run = run_folder(root, files);
     assert_eq!(run.code, Some(0), "{}", run.stderr);
     serde_json::from_str(&run.stdout).expect("the report is JSON")
 }
@@ -175,18 +181,7 @@ fn a_page_that_renders_into_float_textures_is_refused_in_one_line_naming_where()
         "gl.texImage2D(gl.TEXTURE_2D, 0, gl.RGBA32F, this.width, this.height, 0, gl.RGBA, gl.FLOAT, null);",
     );
     let root = scratch.path().join("float");
-    for (path, text) in files(&float) {
-        let to = root.join("student/homework1").join(path);
-        std::fs::create_dir_all(to.parent().expect("a parent")).expect("folders");
-        std::fs::write(&to, text).expect("write");
-    }
-    let out = root.join("out");
-    let run = shadowlab(&[
-        "homework",
-        &root.join("student").display().to_string(),
-        "--out",
-        &out.display().to_string(),
-    ]);
+    let run = run_folder(&root, &files(&float));
     assert_eq!(run.code, Some(2), "{}", run.stderr);
     let line = line_of(&float, "gl.RGBA32F");
     assert_eq!(
@@ -195,5 +190,5 @@ fn a_page_that_renders_into_float_textures_is_refused_in_one_line_naming_where()
             "shadowlab: homework1/src/textures/FBO.js:{line}: the page renders into float textures; the check builds the framework's RGBA8 shadow maps only, so it does not judge this submission"
         )
     );
-    assert!(!out.join("report.json").exists(), "nothing is written for a refused submission");
+    assert!(!root.join("out/report.json").exists(), "nothing is written for a refused submission");
 }
