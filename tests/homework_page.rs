@@ -119,7 +119,7 @@ fn a_renamed_light_uniform_is_fed_as_the_students_page_feeds_it() {
     let light = &report["light"];
     assert_eq!(light["error"], Value::Null, "{light:#}");
     for pass in ["camera", "shadow"] {
-        let vp = light["page_uniforms"][pass]["uLightVP"].as_array().expect("uLightVP was recorded");
+        let vp = light["page_uniforms"][pass]["other"]["uLightVP"].as_array().expect("uLightVP was recorded");
         assert_eq!(vp.len(), 16, "{pass}");
     }
 }

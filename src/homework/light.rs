@@ -67,11 +67,28 @@ pub struct HomeworkLight {
 }
 
 /// The uniforms a student's page set on its first frame, by the name their code gave each:
-/// for the camera pass's program and the light pass's. Flat numbers in WebGL's order.
-#[derive(Clone, Debug, Default, PartialEq)]
+/// for the camera pass's program and the light pass's.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct PageUniforms {
-    pub camera: std::collections::BTreeMap<String, Vec<f64>>,
-    pub shadow: std::collections::BTreeMap<String, Vec<f64>>,
+    pub camera: ObjectUniforms,
+    pub shadow: ObjectUniforms,
+}
+
+/// One program's uniforms by the kind of object drawn, flat numbers in WebGL's order. The
+/// framework's scene is a floor and models: shadowlab's floor gets what their page set when it
+/// drew its floor, every other object what it set for its models (where a kind was never drawn,
+/// what most of the draws had).
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct ObjectUniforms {
+    pub floor: std::collections::BTreeMap<String, Vec<f64>>,
+    pub other: std::collections::BTreeMap<String, Vec<f64>>,
+}
+
+impl ObjectUniforms {
+    /// The values for `object` of the check's scene.
+    pub fn of(&self, object: &crate::scene::Object) -> &std::collections::BTreeMap<String, Vec<f64>> {
+        if object.name.eq_ignore_ascii_case("floor") { &self.floor } else { &self.other }
+    }
 }
 
 impl HomeworkLight {

@@ -1,12 +1,13 @@
 //! Where a student's light is run: on the desktop, in their page (`page`, a real JavaScript
-//! engine); in the browser page, in `light_script`, shadowlab's own sandboxed interpreter, until
-//! the page runs them in the browser's engine. Both give each object's matrix on demand.
+//! engine, which computes the matrix of each object it is given as it runs); in the browser page,
+//! in `light_script`, shadowlab's own sandboxed interpreter, until the page runs them in the
+//! browser's engine. Both answer each object's matrix.
 
 use super::light_script::{EngineLight, LightMatrix, ScriptError};
 use super::program::ShaderSource;
 use serde::Serialize;
 
-/// A student's light, loaded: each object's matrix on demand, and what their page made and set.
+/// A student's light, loaded: each object's matrix, and what their page made and set.
 pub(super) trait LightMatrices {
     fn notes(&self) -> &[String];
     fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError>;
@@ -19,8 +20,8 @@ pub(super) trait LightMatrices {
         None
     }
     /// The values the page gave the uniforms of the program whose fragment shader is `fragment`.
-    fn uniforms(&self, _fragment: &str) -> std::collections::BTreeMap<String, Vec<f64>> {
-        std::collections::BTreeMap::new()
+    fn uniforms(&self, _fragment: &str) -> super::light::ObjectUniforms {
+        super::light::ObjectUniforms::default()
     }
 }
 
@@ -47,7 +48,7 @@ impl LightMatrices for super::page::PageRun {
             })
             .collect()
     }
-    fn uniforms(&self, fragment: &str) -> std::collections::BTreeMap<String, Vec<f64>> {
+    fn uniforms(&self, fragment: &str) -> super::light::ObjectUniforms {
         self.draws().uniforms_for(fragment)
     }
     fn refusal(&self) -> Option<String> {

@@ -238,13 +238,13 @@ impl HomeworkRenderer {
         let black = self.rgba8("unset texture", (1, 1), &[0, 0, 0, 255]).create_view(&Default::default());
         // The student's own uniforms, as their page set them for this pass's program.
         let page = if clip_y_sign > 0.0 { &light.page_uniforms.camera } else { &light.page_uniforms.shadow };
-        let student = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-            label: Some("homework student uniforms"),
-            contents: &pass.student_block.bytes(page),
-            usage: wgpu::BufferUsages::UNIFORM,
-        });
         render.set_pipeline(&pass.pipeline);
         for (index, object) in scene.objects.iter().enumerate() {
+            let student = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("homework student uniforms"),
+                contents: &pass.student_block.bytes(page.of(object)),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
             let block = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("homework framework uniforms"),
                 contents: &framework_block(scene, light, index, request, clip_y_sign),
@@ -305,9 +305,8 @@ impl HomeworkRenderer {
                 render.set_bind_group(0, &group, &[]);
                 render.draw_indexed(start..start + count, 0, 0..1);
             }
-            keep.extend([block, vertices, indices]);
+            keep.extend([block, vertices, indices, student]);
         }
-        keep.push(student);
     }
 
     /// Render the homework: the light pass into a fresh map, then the camera pass; read back the

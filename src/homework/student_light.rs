@@ -43,13 +43,7 @@ pub struct LightReport {
     /// The values the student's page gave the uniforms of the camera pass's and the light
     /// pass's programs on its first frame, by the names their code uses (empty where the page
     /// did not run or drew nothing).
-    pub page_uniforms: PageUniformsReport,
-}
-
-#[derive(Clone, Debug, Default, PartialEq, Serialize)]
-pub struct PageUniformsReport {
-    pub camera: std::collections::BTreeMap<String, Vec<f64>>,
-    pub shadow: std::collections::BTreeMap<String, Vec<f64>>,
+    pub page_uniforms: PageUniforms,
 }
 
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -264,7 +258,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
             notes,
             model_matrix: None,
             lights,
-            page_uniforms: PageUniformsReport::default(),
+            page_uniforms: PageUniforms::default(),
         };
         Some(StudentLight { light, scene: scene.clone(), report, refused: None })
     };
@@ -387,10 +381,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
         notes,
         model_matrix: model,
         lights: listed_lights(lights, &light),
-        page_uniforms: PageUniformsReport {
-            camera: light.page_uniforms.camera.clone(),
-            shadow: light.page_uniforms.shadow.clone(),
-        },
+        page_uniforms: light.page_uniforms.clone(),
     };
     Some(StudentLight { light, scene: shadowlab_scene, report, refused })
 }

@@ -106,7 +106,9 @@ var self = globalThis;
     };
     function context(canvas, kind) {
         let next = 1;
-        const state = { program: null, framebuffer: null };
+        // The bound program, framebuffer and buffers, and the model request of the last buffer
+        // bound that holds one (a draw's model: its arrays came from a stand-in's answer).
+        const state = { program: null, framebuffer: null, bound: {}, request: null };
         const make = (what, extra) => Object.assign({ __what: what, id: next++ }, extra || {});
         const uniform = (location, value) => {
             if (location && location.program) location.program.values[location.name] = plain(value, 0);
@@ -114,7 +116,7 @@ var self = globalThis;
         function draw(count) {
             const p = state.program;
             if (record.draws.length >= 4096 || !p) return;
-            record.draws.push({ frame: record.state.frame, program: p.id, framebuffer: state.framebuffer ? state.framebuffer.id : null, uniforms: Object.assign({}, p.values), count: Number(count) || 0 });
+            record.draws.push({ frame: record.state.frame, program: p.id, framebuffer: state.framebuffer ? state.framebuffer.id : null, request: state.request, uniforms: Object.assign({}, p.values), count: Number(count) || 0 });
         }
         const methods = {
             canvas,
@@ -142,6 +144,17 @@ var self = globalThis;
             useProgram: (program) => { state.program = program; },
             bindFramebuffer: (target, fb) => { state.framebuffer = fb || null; },
             checkFramebufferStatus: () => GL.FRAMEBUFFER_COMPLETE,
+            bindBuffer: (target, buffer) => {
+                state.bound[target] = buffer || null;
+                if (target === GL.ARRAY_BUFFER) state.request = buffer && typeof buffer.request === "number" ? buffer.request : null;
+            },
+            bufferData: (target, data) => {
+                const buffer = state.bound[target];
+                if (buffer && data && typeof data.shadowlabRequest === "number") {
+                    buffer.request = data.shadowlabRequest;
+                    state.request = buffer.request;
+                }
+            },
             // Where the page first makes a float texture (a map the check's RGBA8 passes cannot be).
             texImage2D: (target, level, internalformat, ...rest) => {
                 const type = rest.length >= 6 ? rest[4] : rest[1];

@@ -119,7 +119,7 @@
             const source = (type) => (p.shaders.find((s) => s.type === type) || { source: null }).source;
             return { id: p.id, vertex: source(0x8b31), fragment: source(0x8b30) };
         });
-        return stringify({ programs, draws: record.draws });
+        return stringify({ programs, draws: record.draws, requests: record.requests });
     };
 
     // The WebGL context the page asked for first ({kind, file, line}) and where it first made a

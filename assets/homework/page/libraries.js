@@ -24,11 +24,19 @@
     // file from `record.files` (the submission's own by path, else the framework's), a model as a
     // small stand-in mesh tagged with the request, a material library and an image as stand-ins.
     // A file shadowlab does not hold stays unanswered.
-    function answer(what, url, onLoad) {
+    function answer(what, url, onLoad, manager) {
         const path = String(url).replace(/^(\.\/)+/, "").replace(/^\//, "");
         const request = record.requests.length;
         record.requests.push({ what, url: path });
-        if (typeof onLoad !== "function") return;
+        // As three.js's loaders tell their LoadingManager: the item starts now, and ends after
+        // its onLoad ran (a page may wait for the manager's onProgress or onLoad instead).
+        const tracked = manager && typeof manager.itemStart === "function" ? manager : null;
+        if (tracked) tracked.itemStart(url);
+        const end = () => { if (tracked) tracked.itemEnd(url); };
+        if (typeof onLoad !== "function") {
+            Promise.resolve().then(end);
+            return;
+        }
         let value;
         if (what === "OBJLoader") value = model(request, path);
         else if (what === "MTLLoader") value = { preload() {}, materials: {}, getAsArray: () => [], create: () => null };
@@ -41,7 +49,13 @@
             if (found === undefined) return;
             value = files[found];
         }
-        Promise.resolve().then(() => onLoad(value));
+        Promise.resolve().then(() => {
+            try {
+                onLoad(value);
+            } finally {
+                end();
+            }
+        });
     }
 
     // An OBJ's stand-in: one mesh, a quad in the XZ plane with normals and uv, as three.js's
@@ -50,6 +64,8 @@
         const position = new Float32Array([-1, 0, -1, 1, 0, -1, 1, 0, 1, -1, 0, -1, 1, 0, 1, -1, 0, 1]);
         const normal = new Float32Array([0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0]);
         const uv = new Float32Array([0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1]);
+        // Each array carries its request, so a draw of it says which model it is.
+        for (const array of [position, normal, uv]) array.shadowlabRequest = request;
         const attribute = (array, size) => ({ array, itemSize: size, count: array.length / size });
         const color = (r, g, b) => (THREE.Color ? new THREE.Color(r, g, b) : { r, g, b, toArray: () => [r, g, b] });
         const mesh = {
@@ -68,14 +84,14 @@
     }
     function loader(what) {
         return function (manager) {
-            this.manager = manager;
+            this.manager = manager || THREE.DefaultLoadingManager;
             this.path = "";
             this.setPath = (p) => { this.path = String(p); return this; };
             this.setMaterials = (m) => { this.materials = m; return this; };
             this.setResourcePath = () => this;
             this.setCrossOrigin = () => this;
             this.setResponseType = () => this;
-            this.load = (url, onLoad) => answer(what, this.path + String(url), onLoad);
+            this.load = (url, onLoad) => answer(what, this.path + String(url), onLoad, this.manager);
         };
     }
     THREE.FileLoader = loader("FileLoader");
@@ -83,12 +99,7 @@
     THREE.OBJLoader = loader("OBJLoader");
     THREE.TextureLoader = loader("TextureLoader");
     THREE.ImageLoader = loader("ImageLoader");
-    THREE.LoadingManager = function () {
-        this.onProgress = null;
-        this.onLoad = null;
-        this.onError = null;
-        this.setURLModifier = () => this;
-    };
+    // three.js's own LoadingManager stays: the stand-in loaders report to it as its loaders do.
 
     // dat.gui: folders and controllers that keep the values the page gives them.
     function controller(object, property) {

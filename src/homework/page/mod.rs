@@ -18,6 +18,8 @@ mod scripts;
 
 #[cfg(test)]
 mod tests;
+#[cfg(test)]
+mod tests_fuzz;
 
 use engine::Engine;
 pub use engine::Limits;

@@ -6,6 +6,8 @@ use std::collections::BTreeMap;
 
 use serde::{Deserialize, Serialize};
 
+use crate::homework::light::ObjectUniforms;
+
 /// One `new DirectionalLight(...)` or `new PointLight(...)` the page made.
 #[derive(Clone, Debug, Deserialize)]
 pub(super) struct MadeLight {
@@ -54,14 +56,57 @@ struct Program {
 struct Draw {
     frame: i64,
     program: u64,
+    /// The model request whose arrays were bound (None: arrays of the page's own, a light cube).
+    #[serde(default)]
+    request: Option<usize>,
     uniforms: BTreeMap<String, serde_json::Value>,
 }
 
-/// The programs the page built and the draws of its first frames.
+/// A file the page asked a loader for.
+#[derive(Clone, Debug, Default, Deserialize)]
+struct Request {
+    url: String,
+}
+
+/// The programs the page built, the files it asked for and the draws of its first frames.
 #[derive(Clone, Debug, Default, Deserialize)]
 pub struct PageDraws {
     programs: Vec<Program>,
     draws: Vec<Draw>,
+    #[serde(default)]
+    requests: Vec<Request>,
+}
+
+/// Which kind of the framework's objects a draw drew.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Kind {
+    Floor,
+    Model,
+    Unknown,
+}
+
+/// Each uniform's value most of `draws` had.
+fn most_common<'a>(draws: impl Iterator<Item = &'a Draw>) -> BTreeMap<String, Vec<f64>> {
+    let mut seen: BTreeMap<String, Vec<(Vec<f64>, usize)>> = BTreeMap::new();
+    for draw in draws {
+        for (name, value) in &draw.uniforms {
+            let mut v = Vec::new();
+            numbers(value, &mut v);
+            let counts = seen.entry(name.clone()).or_default();
+            match counts.iter_mut().find(|(seen, _)| *seen == v) {
+                Some((_, n)) => *n += 1,
+                None => counts.push((v, 1)),
+            }
+        }
+    }
+    seen.into_iter()
+        .filter_map(|(name, counts)| {
+            // The first of the most common: draws come in the page's order.
+            let top = counts.iter().map(|(_, n)| *n).max()?;
+            let best = counts.into_iter().find(|(_, n)| *n == top)?;
+            Some((name, best.0))
+        })
+        .collect()
 }
 
 /// A uniform's value as numbers, in the order WebGL takes them (booleans as 0 and 1).
@@ -76,8 +121,8 @@ fn numbers(value: &serde_json::Value, out: &mut Vec<f64>) {
 
 impl PageDraws {
     /// The uniforms the page set, by name, on the first frame's draws of the program whose
-    /// fragment shader is `fragment` (where draws disagree, the value most of them had).
-    pub fn uniforms_for(&self, fragment: &str) -> BTreeMap<String, Vec<f64>> {
+    /// fragment shader is `fragment`: for its floor and for its models.
+    pub fn uniforms_for(&self, fragment: &str) -> ObjectUniforms {
         let wanted = fragment.trim();
         let programs: Vec<u64> = self
             .programs
@@ -86,25 +131,20 @@ impl PageDraws {
             .map(|p| p.id)
             .collect();
         let first_frame = self.draws.iter().filter(|d| programs.contains(&d.program)).map(|d| d.frame).min();
-        let mut seen: BTreeMap<String, Vec<(Vec<f64>, usize)>> = BTreeMap::new();
-        for draw in
-            self.draws.iter().filter(|d| programs.contains(&d.program) && Some(d.frame) == first_frame)
-        {
-            for (name, value) in &draw.uniforms {
-                let mut v = Vec::new();
-                numbers(value, &mut v);
-                let counts = seen.entry(name.clone()).or_default();
-                match counts.iter_mut().find(|(seen, _)| *seen == v) {
-                    Some((_, n)) => *n += 1,
-                    None => counts.push((v, 1)),
-                }
-            }
-        }
-        seen.into_iter()
-            .filter_map(|(name, counts)| {
-                let best = counts.into_iter().max_by_key(|(_, n)| *n)?;
-                Some((name, best.0))
-            })
-            .collect()
+        let drawn: Vec<&Draw> = self
+            .draws
+            .iter()
+            .filter(|d| programs.contains(&d.program) && Some(d.frame) == first_frame)
+            .collect();
+        let kind = |d: &Draw| match d.request.and_then(|r| self.requests.get(r)) {
+            Some(r) if r.url.to_lowercase().contains("floor") => Kind::Floor,
+            Some(_) => Kind::Model,
+            None => Kind::Unknown,
+        };
+        let of_kind = |k: Kind| {
+            let some: Vec<&Draw> = drawn.iter().copied().filter(|d| kind(d) == k).collect();
+            if some.is_empty() { most_common(drawn.iter().copied()) } else { most_common(some.into_iter()) }
+        };
+        ObjectUniforms { floor: of_kind(Kind::Floor), other: of_kind(Kind::Model) }
     }
 }

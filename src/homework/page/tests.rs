@@ -7,15 +7,15 @@ use std::time::Duration;
 use super::*;
 use crate::homework::light_script::{LightScript, Limits as InterpreterLimits};
 
-const EXAMPLE_LIGHT: &str = include_str!("../../../assets/homework/DirectionalLight.js");
-const FRAMEWORK_ENGINE: &str = include_str!("../../../assets/homework/framework/src/engine.js");
+pub(super) const EXAMPLE_LIGHT: &str = include_str!("../../../assets/homework/DirectionalLight.js");
+pub(super) const FRAMEWORK_ENGINE: &str = include_str!("../../../assets/homework/framework/src/engine.js");
 
-fn source(name: &str, text: &str) -> ShaderSource {
+pub(super) fn source(name: &str, text: &str) -> ShaderSource {
     ShaderSource { name: name.into(), path: None, text: text.into() }
 }
 
 /// The objects the tests ask matrices for: (translate, scale), world units.
-const OBJECTS: [([f64; 3], [f64; 3]); 4] = [
+pub(super) const OBJECTS: [Placed; 4] = [
     ([0.0; 3], [1.0; 3]),
     ([40.0, 0.0, -40.0], [10.0; 3]),
     ([0.0, 0.0, -30.0], [4.0; 3]),
@@ -229,12 +229,13 @@ const FRAMEWORK_PHONG: &str =
 
 #[test]
 fn the_whole_page_runs_and_its_own_uniforms_are_recorded_by_name() {
-    // A page whose PhongMaterial sets a uniform of its own, as many students do.
+    // A page whose PhongMaterial sets uniforms of its own, as many students do: one the same
+    // for every object, one that differs between their floor (scale 4) and their models.
     let phong = FRAMEWORK_PHONG.replace(
         "uLightMVP: { type: 'matrix4fv', value: lightMVP },",
-        "uLightMVP: { type: 'matrix4fv', value: lightMVP },\n            uFrustumSize: { type: '1f', value: 340 },",
+        "uLightMVP: { type: 'matrix4fv', value: lightMVP },\n            uFrustumSize: { type: '1f', value: 340 },\n            uReceiveShadow: { type: '1f', value: scale[0] === 4 ? 1 : 0 },",
     );
-    let fragment = "uniform float uFrustumSize;\nvoid main() { gl_FragColor = vec4(uFrustumSize); }\n";
+    let fragment = "uniform float uFrustumSize;\nuniform float uReceiveShadow;\nvoid main() { gl_FragColor = vec4(uFrustumSize * uReceiveShadow); }\n";
     let page = [
         source("hw/src/engine.js", FRAMEWORK_ENGINE),
         source("hw/src/materials/PhongMaterial.js", &phong),
@@ -250,8 +251,13 @@ fn the_whole_page_runs_and_its_own_uniforms_are_recorded_by_name() {
     .expect("the page runs");
     assert!(page_light.notes().is_empty(), "{:?}", page_light.notes());
     let camera = page_light.draws().uniforms_for(fragment);
-    assert_eq!(camera.get("uFrustumSize"), Some(&vec![340.0]), "{camera:?} {:?}", page_light.notes());
-    assert_eq!(camera.get("uLightPos"), Some(&vec![0.0, 80.0, 80.0]));
+    for kind in [&camera.floor, &camera.other] {
+        assert_eq!(kind.get("uFrustumSize"), Some(&vec![340.0]), "{camera:?}");
+        assert_eq!(kind.get("uLightPos"), Some(&vec![0.0, 80.0, 80.0]));
+    }
+    // Their floor's value goes to shadowlab's floor, their models' to every other object.
+    assert_eq!(camera.floor.get("uReceiveShadow"), Some(&vec![1.0]), "{camera:?}");
+    assert_eq!(camera.other.get("uReceiveShadow"), Some(&vec![0.0]), "{camera:?}");
     let (lights, checked) = page_light.lights();
     assert_eq!(lights.len(), 1);
     assert_eq!(checked, Some(0));

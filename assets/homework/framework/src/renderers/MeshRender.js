@@ -73,10 +73,22 @@ class MeshRender {
         }
     }
 
+    bindAttribute(buffer, name, size) {
+        const gl = this.gl;
+        const location = this.shader.program.attribs[name];
+        gl.bindBuffer(gl.ARRAY_BUFFER, buffer);
+        gl.vertexAttribPointer(location, size, gl.FLOAT, false, 0, 0);
+        gl.enableVertexAttribArray(location);
+    }
+
     draw(camera) {
         const gl = this.gl;
         gl.bindFramebuffer(gl.FRAMEBUFFER, this.material.frameBuffer || null);
         gl.useProgram(this.shader.program.glShaderProgram);
+        if (this.mesh.hasVertices) this.bindAttribute(this.#vertexBuffer, this.mesh.vertexName, 3);
+        if (this.mesh.hasNormals) this.bindAttribute(this.#normalBuffer, this.mesh.normalName, 3);
+        if (this.mesh.hasTexcoords) this.bindAttribute(this.#texcoordBuffer, this.mesh.texcoordName, 2);
+        gl.bindBuffer(gl.ELEMENT_ARRAY_BUFFER, this.#indicesBuffer);
         this.bindCameraParameters(camera);
         this.bindMaterialParameters();
         gl.drawElements(gl.TRIANGLES, this.mesh.count, gl.UNSIGNED_SHORT, 0);
