@@ -30,15 +30,19 @@ var self = globalThis;
     };
     globalThis.__shadowlab = record;
 
-    // The first stack frame in a student's file, as "file:line" (the libraries and this file are
-    // not theirs).
-    record.where = function () {
-        const stack = String(new Error().stack || "").split("\n");
-        for (const frame of stack) {
-            const m = /\(?([^()\s]+?):(\d+)(?::\d+)?\)?\s*$/.exec(frame);
-            if (m && !record.ours(m[1])) return { file: m[1], line: Number(m[2]) };
+    // The first frame of `stack` in a student's file (the libraries and shadowlab's own scripts
+    // are not theirs): {file, line, fn}, fn "" at a script's top level; null where none is.
+    record.theirFrame = function (stack) {
+        for (const frame of String(stack || "").split("\n")) {
+            const m = /^\s*at\s+(?:(.*?)\s+\()?([^()\s]+?):(\d+)(?::\d+)?\)?\s*$/.exec(frame);
+            if (m && !record.ours(m[2])) return { file: m[2], line: Number(m[3]), fn: m[1] && m[1] !== "<eval>" ? m[1] : "" };
         }
-        return { file: "", line: 0 };
+        return null;
+    };
+    // Where in the student's code the current call comes from: {file, line} ("" and 0: nowhere).
+    record.where = function () {
+        const at = record.theirFrame(new Error().stack);
+        return at ? { file: at.file, line: at.line } : { file: "", line: 0 };
     };
     record.ours = function (file) {
         return file.startsWith("shadowlab/") || file.startsWith("lib/");

@@ -16,15 +16,7 @@
     // engine's own words for a bound it hit replaced by which bound.
     function failure(e, fallbackFile) {
         let message = String(e && e.message !== undefined ? e.message : e).split(/[\r\n]/)[0];
-        const stack = String((e && e.stack) || "").split("\n");
-        let at = { file: fallbackFile, line: 0, fn: "" };
-        for (const frame of stack) {
-            const m = /^\s*at\s+(?:(.*?)\s+\()?([^()\s]+?):(\d+)(?::\d+)?\)?\s*$/.exec(frame);
-            if (m && !record.ours(m[2])) {
-                at = { file: m[2], line: Number(m[3]), fn: m[1] && m[1] !== "<eval>" ? m[1] : "" };
-                break;
-            }
-        }
+        const at = record.theirFrame(e && e.stack) || { file: fallbackFile, line: 0, fn: "" };
         const within = at.fn ? " in " + at.fn : "";
         if (/^out of memory$|allocation failed|Array buffer allocation/i.test(message)) {
             message = "the script used more than its memory bound" + (memoryMiB ? " of " + memoryMiB + " MiB" : "");

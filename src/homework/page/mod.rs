@@ -25,7 +25,7 @@ use engine::Engine;
 pub use engine::Limits;
 use record::MadeLight;
 pub use record::{FoundLight, PageDraws};
-use scripts::{FRAMEWORK_SHADERS, Script, script_list};
+use scripts::{ENGINE_JS, FRAMEWORK_SHADERS, Script, script_list};
 use serde::{Deserialize, Serialize};
 
 use super::light_script::{EngineLight, GlCall, LightMatrix, ScriptError, Sourced};
@@ -45,9 +45,6 @@ const PRELUDE: [(&str, &str); 6] = [
 /// Frames of the page run after it loads, and the time between them (ms, a 60 Hz display).
 const FRAMES: usize = 2;
 const FRAME_MS: f64 = 1000.0 / 60.0;
-
-/// shadowlab's copy of the framework's engine.js, for a submission without one.
-const ENGINE_JS: &str = include_str!("../../../assets/homework/framework/src/engine.js");
 
 /// The page's text files (shaders by path) as the loaders answer them: the framework's shaders
 /// where the submission has none of the name.

@@ -41,7 +41,7 @@ pub(super) const FRAMEWORK: [(&str, Option<&str>); 16] = [
         "renderers/MeshRender.js",
         Some(include_str!("../../../assets/homework/framework/src/renderers/MeshRender.js")),
     ),
-    ("engine.js", Some(include_str!("../../../assets/homework/framework/src/engine.js"))),
+    ("engine.js", Some(ENGINE_JS)),
 ];
 
 /// The framework's shaders, answered where the page asks for one the submission does not hold.
@@ -88,11 +88,22 @@ fn file_name(path: &str) -> &str {
     path.rsplit('/').next().unwrap_or(path)
 }
 
-fn ours(path: &str) -> Option<Script<'static>> {
-    FRAMEWORK.iter().find(|(p, _)| path == *p || path.ends_with(&format!("/{p}"))).and_then(|(p, text)| {
-        text.map(|text| Script::Ours { name: format!("shadowlab/framework/{p}"), text })
-    })
+/// Whether `name` (a path in the submission) is the framework's file `path`.
+fn is_framework_file(name: &str, path: &str) -> bool {
+    name == path || name.ends_with(&format!("/{path}"))
 }
+
+/// shadowlab's copy of the framework's file `path` (None: the framework's own has none).
+fn our_copy(path: &str, text: Option<&'static str>) -> Option<Script<'static>> {
+    text.map(|text| Script::Ours { name: format!("shadowlab/framework/{path}"), text })
+}
+
+fn ours(path: &str) -> Option<Script<'static>> {
+    FRAMEWORK.iter().find(|(p, _)| is_framework_file(path, p)).and_then(|(p, text)| our_copy(p, *text))
+}
+
+/// shadowlab's copy of the framework's engine.js, for a submission without one.
+pub(super) const ENGINE_JS: &str = include_str!("../../../assets/homework/framework/src/engine.js");
 
 fn slot(path: &str) -> Option<Script<'static>> {
     match file_name(path) {
@@ -156,14 +167,9 @@ pub(super) fn script_list(page: &[ShaderSource]) -> ScriptList<'_> {
             .filter_map(|(path, text)| {
                 slot(path).or_else(|| {
                     page.iter()
-                        .find(|f| f.name.ends_with(&format!("/{path}")) || f.name == *path)
+                        .find(|f| is_framework_file(&f.name, path))
                         .map(Script::Theirs)
-                        .or_else(|| {
-                            text.map(|text| Script::Ours {
-                                name: format!("shadowlab/framework/{path}"),
-                                text,
-                            })
-                        })
+                        .or_else(|| our_copy(path, *text))
                 })
             })
             .collect();
