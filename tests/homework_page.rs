@@ -1,7 +1,7 @@
 //! `shadowlab homework` on a student's whole page, as a process: their own scripts run in order
 //! with shadowlab's copy of the framework where they have none; a light uniform renamed in their
-//! materials and shaders is fed as their page feeds it; a page with two lights lists both, each
-//! with the line of their code that made it.
+//! materials and shaders is fed as their page feeds it; a page with several lights lists each
+//! with the line of their code that made it, and checks each DirectionalLight on its own.
 
 mod common;
 
@@ -125,14 +125,18 @@ fn a_renamed_light_uniform_is_fed_as_the_students_page_feeds_it() {
 }
 
 #[test]
-fn a_page_with_two_lights_lists_both_with_the_lines_that_made_them() {
+fn each_light_of_a_page_with_several_is_listed_and_checked_on_its_own() {
+    // The bonus: a second light behind the scene (sound) and a third so high that the framework's
+    // far plane (400) leaves the floor out of its map.
     let scratch = tempfile::tempdir().expect("a scratch folder");
     let engine = edit(
         &read("assets/homework/framework/src/engine.js"),
         "    renderer.addLight(directionLight);",
         "    renderer.addLight(directionLight);
     const secondLight = new DirectionalLight(2500, [1, 1, 1], [0, 80, -80], focalPoint, lightUp, true, renderer.gl);
-    renderer.addLight(secondLight);",
+    renderer.addLight(secondLight);
+    const highLight = new DirectionalLight(2500, [1, 1, 1], [0, 420, 1], focalPoint, lightUp, true, renderer.gl);
+    renderer.addLight(highLight);",
     );
     let files = [
         ("src/shaders/phongShader/phongFragment.glsl", read("assets/homework/phongFragment.glsl")),
@@ -141,15 +145,35 @@ fn a_page_with_two_lights_lists_both_with_the_lines_that_made_them() {
     ];
     let report = check_folder(scratch.path(), &files);
     let lights = report["lights"].as_array().expect("the page's lights");
-    assert_eq!(lights.len(), 2, "{lights:#?}");
-    let first = line_of(&engine, "const directionLight = new DirectionalLight(");
-    let second = line_of(&engine, "const secondLight = new DirectionalLight(");
-    assert_eq!(lights[0]["made_at"], format!("homework1/src/engine.js:{first}"));
+    assert_eq!(lights.len(), 3, "{lights:#?}");
+    let made_at = |needle: &str| format!("homework1/src/engine.js:{}", line_of(&engine, needle));
+    assert_eq!(lights[0]["made_at"], made_at("const directionLight = new DirectionalLight("));
     assert_eq!(lights[0]["checked"], true);
     assert_eq!(lights[0]["from"], report["light"]["from"]);
-    assert_eq!(lights[1]["made_at"], format!("homework1/src/engine.js:{second}"));
+    assert_eq!(lights[1]["made_at"], made_at("const secondLight = new DirectionalLight("));
     assert_eq!(lights[1]["checked"], false);
     assert_eq!(lights[1]["position"], serde_json::json!([0.0, 80.0, -80.0]));
+    let ids = |light: &Value| -> Vec<String> {
+        light["findings"]
+            .as_array()
+            .unwrap_or_else(|| panic!("no findings of its own: {light:#}"))
+            .iter()
+            .map(|f| f.as_str().expect("an id").to_string())
+            .collect()
+    };
+    // The first light's are the report's own; the sound second light has none.
+    let report_ids: Vec<String> = report["findings"]
+        .as_array()
+        .expect("findings")
+        .iter()
+        .map(|f| f["id"].as_str().expect("an id").to_string())
+        .collect();
+    assert_eq!(ids(&lights[0]), report_ids);
+    assert_eq!(ids(&lights[1]), Vec::<String>::new());
+    assert!(ids(&lights[2]).contains(&"light_frustum_clips".to_string()), "{:?}", ids(&lights[2]));
+    for picture in ["student_light1.png", "student_light2.png"] {
+        assert!(scratch.path().join("out").join(picture).is_file(), "{picture} is missing");
+    }
 }
 
 #[test]

@@ -7,8 +7,10 @@
 // (python3 -m http.server 8080 --bind 127.0.0.1 --directory dist). Screenshots of each check go
 // to --out (default /tmp/shadowlab-web-test). Exit code 1 when a check fails.
 // The clicks assume the 1280x800 layout of a first start (the top bar on two rows).
-import { mkdirSync, readFileSync } from "node:fs";
-import { join } from "node:path";
+import { execFileSync } from "node:child_process";
+import { mkdirSync, mkdtempSync, readFileSync, writeFileSync } from "node:fs";
+import { tmpdir } from "node:os";
+import { dirname, join } from "node:path";
 import { arg, launchChromium } from "./browser.mjs";
 import { brightShare, countNear, decodePng, floorAndShadow, markerYellow } from "./pixels.mjs";
 
@@ -241,22 +243,11 @@ const checks = [
   {
     name: "homework: a .zip of a homework folder dropped on the page is checked with the student's light",
     async run({ browser, decoder }) {
-      const page = await open(browser);
-      const example = (name) => readFileSync(new URL(`../assets/homework/${name}`, import.meta.url));
       // The correct shader with a light whose box is only 50 world units wide: one finding.
-      const zip = storedZip([
-        ["alice/homework1/src/shaders/phongShader/phongFragment.glsl", example("phongFragment.glsl")],
-        ["alice/homework1/src/lights/DirectionalLight.js", example("DirectionalLight_narrow.js")],
+      const page = await openWith(browser, [
+        ["src/shaders/phongShader/phongFragment.glsl", example("phongFragment.glsl")],
+        ["src/lights/DirectionalLight.js", example("DirectionalLight_narrow.js")],
       ]);
-      const drop = await page.evaluateHandle((bytes) => {
-        const data = new DataTransfer();
-        data.items.add(new File([new Uint8Array(bytes)], "alice.zip", { type: "application/zip" }));
-        return data;
-      }, Array.from(zip));
-      for (const type of ["dragenter", "dragover", "drop"]) {
-        await page.dispatchEvent("#shadowlab_canvas", type, { dataTransfer: drop });
-      }
-      await waitForBody(page, () => ["checked", "error"].includes(document.body.dataset.homework));
       await look(page, decoder, "homework-zip-drop");
       const where = await body(page);
       expect(where.homework === "checked", `the check ended with data-homework=${where.homework}`);
@@ -264,7 +255,123 @@ const checks = [
       return `data-homework=${where.homework}, findings: ${where.findings}`;
     },
   },
+  {
+    name: "homework: a student's page runs in the browser's engine as on the desktop (three.js light, two lights, their uniforms)",
+    async run({ browser, decoder }) {
+      // Their light is built with three.js; their engine.js moves it and makes a second one.
+      const engine = edit(
+        readFileSync(new URL("../assets/homework/framework/src/engine.js", import.meta.url), "utf8"),
+        "    renderer.addLight(directionLight);",
+        "    renderer.addLight(directionLight);\n    renderer.addLight(new DirectionalLight(100, [1, 0, 0], [-50, 60, 40], focalPoint, lightUp, true, renderer.gl));",
+      ).replace("const lightPos = [0, 80, 80];", "const lightPos = [20, 90, 70];");
+      const files = [
+        ["src/shaders/phongShader/phongFragment.glsl", example("phongFragment.glsl")],
+        ["src/lights/DirectionalLight.js", example("DirectionalLight_three.js")],
+        ["src/engine.js", Buffer.from(engine)],
+      ];
+      const desktop = desktopCheck(files).light;
+      const page = await openWith(browser, files);
+      await look(page, decoder, "homework-page-engine");
+      const where = await body(page);
+      expect(where.homework === "checked", `the check ended with data-homework=${where.homework}`);
+      const browserSide = JSON.parse(where.homeworkLight).light;
+      expect(browserSide.error === null, `the page's light failed: ${browserSide.error}`);
+      expect(browserSide.from === desktop.from, `from ${browserSide.from}, desktop ${desktop.from}`);
+      expect(same(browserSide.position, [20, 90, 70]), `position ${browserSide.position}`);
+      const far = [
+        ["the light's matrix", browserSide.clip_from_world, desktop.clip_from_world],
+        ["each object's matrix", browserSide.clip_from_object, desktop.clip_from_object],
+        ["the lights the page made", browserSide.lights, desktop.lights],
+        ["the calls", browserSide.calls, desktop.calls],
+        ["the uniforms their page set", browserSide.page_uniforms, desktop.page_uniforms],
+      ].filter(([, a, b]) => !same(a, b));
+      expect(far.length === 0, far.map(([what, a, b]) => `${what}: ${JSON.stringify(a)} != ${JSON.stringify(b)}`).join("; "));
+      expect(browserSide.lights.length === 2, `${browserSide.lights.length} lights listed`);
+      const uniforms = Object.keys(browserSide.page_uniforms.camera.other || {}).length;
+      expect(uniforms > 0, "no uniform their page set was read");
+      return `matrices, ${browserSide.lights.length} lights, ${browserSide.calls.length} calls and ${uniforms} uniforms as on the desktop`;
+    },
+  },
+  {
+    name: "homework: a page that never ends or does not parse ends in one line naming the file, in the browser too",
+    async run({ browser }) {
+      const light = example("DirectionalLight.js").toString();
+      const broken = edit(light, "    mat4.multiply(mvp, projection, view);", "    mat4.multiply(mvp, projection, view;");
+      const line = broken.split("\n").findIndex((l) => l.includes("view;")) + 1;
+      const engine = "while (true) {}\n";
+      const found = [];
+      for (const [files, expected] of [
+        [[["src/lights/DirectionalLight.js", Buffer.from(broken)]], `homework1/src/lights/DirectionalLight.js:${line}: `],
+        [[["src/lights/DirectionalLight.js", Buffer.from(light)], ["src/engine.js", Buffer.from(engine)]], "homework1/src/engine.js: the script ran past its time bound"],
+      ]) {
+        const shader = ["src/shaders/phongShader/phongFragment.glsl", example("phongFragment.glsl")];
+        const page = await openWith(browser, [shader, ...files]);
+        const where = await body(page);
+        expect(where.homework === "checked", `the check ended with data-homework=${where.homework}`);
+        const error = JSON.parse(where.homeworkLight).light.error || "";
+        expect(error.startsWith(expected) && !error.includes("\n"), `the light's error is ${JSON.stringify(error)}, not ${expected}...`);
+        found.push(error);
+        await page.close();
+      }
+      return found.join(" | ");
+    },
+  },
 ];
+
+const example = (name) => readFileSync(new URL(`../assets/homework/${name}`, import.meta.url));
+
+/** `text` with `from` replaced by `to`, which must be in it. */
+function edit(text, from, to) {
+  expect(text.includes(from), `${JSON.stringify(from)} is not in the text`);
+  return text.replace(from, to);
+}
+
+/** Whether two of the report's values agree, numbers to 1e-6 of their size. */
+function same(a, b) {
+  if (typeof a === "number" && typeof b === "number") return Math.abs(a - b) <= 1e-6 * Math.max(1, Math.abs(a), Math.abs(b));
+  if (Array.isArray(a) && Array.isArray(b)) return a.length === b.length && a.every((x, i) => same(x, b[i]));
+  if (a && b && typeof a === "object" && typeof b === "object") {
+    const keys = new Set([...Object.keys(a), ...Object.keys(b)]);
+    return [...keys].every((k) => same(a[k], b[k]));
+  }
+  return a === b;
+}
+
+/** The desktop's report of the submission `files` ([path in homework1/, bytes]): `shadowlab
+ *  homework` run as a process (built by cargo where it is not). */
+function desktopCheck(files) {
+  const root = mkdtempSync(join(tmpdir(), "shadowlab-web-"));
+  for (const [path, bytes] of files) {
+    const to = join(root, "alice/homework1", path);
+    mkdirSync(dirname(to), { recursive: true });
+    writeFileSync(to, bytes);
+  }
+  const manifest = new URL("../Cargo.toml", import.meta.url).pathname;
+  const stdout = execFileSync(
+    "cargo",
+    ["run", "--release", "--quiet", "--manifest-path", manifest, "--", "homework", join(root, "alice"),
+      "--size", "480x270", "--out", join(root, "out"), "--json"],
+    { encoding: "utf8", maxBuffer: 64 << 20, stdio: ["ignore", "pipe", "inherit"] },
+  );
+  return JSON.parse(stdout);
+}
+
+/** A tab with the submission `files` dropped on it as a zip, once its check has ended. */
+async function openWith(browser, files) {
+  const page = await open(browser);
+  // Named inside the zip as the desktop names them in the folder alice/: homework1/src/...
+  const zip = storedZip(files.map(([path, bytes]) => [`homework1/${path}`, bytes]));
+  const drop = await page.evaluateHandle((bytes) => {
+    const data = new DataTransfer();
+    data.items.add(new File([new Uint8Array(bytes)], "alice.zip", { type: "application/zip" }));
+    return data;
+  }, Array.from(zip));
+  for (const type of ["dragenter", "dragover", "drop"]) {
+    await page.dispatchEvent("#shadowlab_canvas", type, { dataTransfer: drop });
+  }
+  await waitForBody(page, () => ["checked", "error"].includes(document.body.dataset.homework));
+  return page;
+}
 
 /** CRC-32 (IEEE), as a zip's headers carry it. */
 function crc32(bytes) {

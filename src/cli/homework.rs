@@ -173,8 +173,13 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
         .map_err(|e| CliError::input(format!("{}: {e}", shader.name)))?;
     let request =
         HomeworkRequest { time_s: args.time, size: args.size, light: args.light, map: MapKind::Framework };
-    let student = crate::homework::student_light::student_light(&source, &scene, args.light, args.time)
-        .ok_or_else(|| CliError::input(format!("--light {}: no such light", args.light)))?;
+    // The desktop's engine runs the page at once: it is never Pending here.
+    let std::task::Poll::Ready(student) =
+        crate::homework::student_light::student_light(&source, &scene, args.light, args.time)
+    else {
+        return Err(CliError { code: 1, message: "the student's page did not finish running".into() });
+    };
+    let student = student.ok_or_else(|| CliError::input(format!("--light {}: no such light", args.light)))?;
     if let Some(refused) = &student.refused {
         return Err(CliError::input(refused.clone()));
     }
@@ -186,16 +191,56 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
             .map_err(|e| CliError { code: 1, message: format!("{}: {e}", shader.name) })?;
     outcome.report.set_light(Some(student.report));
     outcome.report.submission = Some(SubmissionReport::of(&source));
+    // Each other DirectionalLight of the page, checked on its own as their renderer draws it (a
+    // pass per light, each with its own map): its findings in `lights`, its picture beside.
+    let ids = |report: &HomeworkReport| -> Vec<String> {
+        report.findings.iter().map(|f| f.id.to_string()).collect()
+    };
+    let first_ids = ids(&outcome.report);
+    let mut light_pictures = Vec::new();
+    // Where the page made no light the check could use, the framework's is listed first.
+    let inserted = usize::from(outcome.report.lights.first().is_some_and(|l| l.made_at == "framework"));
+    for listed in 0..outcome.report.lights.len() {
+        let entry = &outcome.report.lights[listed];
+        if entry.checked {
+            outcome.report.lights[listed].findings = Some(first_ids.clone());
+            continue;
+        }
+        if entry.kind != "DirectionalLight" || entry.error.is_some() || listed < inserted {
+            continue;
+        }
+        let std::task::Poll::Ready(Some(other)) = crate::homework::student_light::student_light_of(
+            &source,
+            &scene,
+            args.light,
+            args.time,
+            Some(listed - inserted),
+        ) else {
+            continue;
+        };
+        let entry = &mut outcome.report.lights[listed];
+        if let Some(error) = other.report.error {
+            entry.error = Some(error);
+            continue;
+        }
+        let checked =
+            run_check(&homework, &mut renderer, &shader, &other.scene, &other.light, &request, args.lang)
+                .map_err(|e| CliError { code: 1, message: format!("{}: {e}", shader.name) })?;
+        entry.from = other.report.from;
+        entry.findings = Some(ids(&checked.report));
+        light_pictures.push((format!("student_light{listed}.png"), png(&checked.student_picture())?));
+    }
     // Everything encoded before the first file is written: a failure leaves no partial folder.
     let text = report_json(&outcome.report)?;
-    let pictures = [
-        ("student.png", png(&outcome.student_picture())?),
-        ("student_lossless_map.png", png(&outcome.student_picture_lossless_map())?),
-        ("reference.png", png(&outcome.shadowlab_picture)?),
-        ("visibility.png", png(&outcome.visibility_picture(false))?),
-        ("ground_truth.png", png(&outcome.visibility_picture(true))?),
-        ("difference.png", png(&outcome.difference_picture())?),
+    let mut pictures = vec![
+        ("student.png".to_string(), png(&outcome.student_picture())?),
+        ("student_lossless_map.png".into(), png(&outcome.student_picture_lossless_map())?),
+        ("reference.png".into(), png(&outcome.shadowlab_picture)?),
+        ("visibility.png".into(), png(&outcome.visibility_picture(false))?),
+        ("ground_truth.png".into(), png(&outcome.visibility_picture(true))?),
+        ("difference.png".into(), png(&outcome.difference_picture())?),
     ];
+    pictures.extend(light_pictures);
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::input(format!("{}: {e}", args.out.display())))?;
     for (name, bytes) in &pictures {

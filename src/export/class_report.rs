@@ -100,6 +100,31 @@ pub struct StudentReport {
     pub light_width: Option<WidthPart>,
     #[serde(default)]
     pub findings: Vec<FindingPart>,
+    /// Every light the student's page made (absent where the page did not run).
+    #[serde(default)]
+    pub lights: Vec<PageLightPart>,
+}
+
+/// One light the student's page made, and the findings of its own check where it had one.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+pub struct PageLightPart {
+    #[serde(default)]
+    pub kind: String,
+    #[serde(default)]
+    pub made_at: String,
+    #[serde(default)]
+    pub findings: Option<Vec<String>>,
+}
+
+impl StudentReport {
+    /// The bonus's several lights, where the page made more than one: (lights made, lights
+    /// checked, of those how many without a finding).
+    pub fn several_lights(&self) -> Option<(usize, usize, usize)> {
+        (self.lights.len() > 1).then(|| {
+            let checked: Vec<&Vec<String>> = self.lights.iter().filter_map(|l| l.findings.as_ref()).collect();
+            (self.lights.len(), checked.len(), checked.iter().filter(|f| f.is_empty()).count())
+        })
+    }
 }
 
 #[derive(Clone, Debug, Default, PartialEq, Deserialize)]
@@ -327,7 +352,7 @@ fn csv_text(s: &str) -> String {
 pub fn csv(rows: &[ClassRow]) -> String {
     let mut out = String::from("\u{feff}");
     let mut header: Vec<String> =
-        ["name", "status", "message", "visibility function", "light from", "implied light width"]
+        ["name", "status", "message", "visibility function", "light from", "implied light width", "lights"]
             .iter()
             .map(|h| h.to_string())
             .collect();
@@ -351,6 +376,18 @@ pub fn csv(rows: &[ClassRow]) -> String {
                     (None, None) => String::new(),
                 }
             }),
+            // The bonus: each light the page made, with its own check's findings.
+            csv_text(&report.map_or(String::new(), |r| {
+                r.lights
+                    .iter()
+                    .map(|l| match &l.findings {
+                        Some(f) if f.is_empty() => format!("{} {}: no findings", l.kind, l.made_at),
+                        Some(f) => format!("{} {}: {}", l.kind, l.made_at, f.join(" ")),
+                        None => format!("{} {}: not checked", l.kind, l.made_at),
+                    })
+                    .collect::<Vec<_>>()
+                    .join("; ")
+            })),
         ];
         for kind in FINDINGS {
             let cell = report.map(|r| match r.findings.iter().find(|f| f.id == kind.id) {

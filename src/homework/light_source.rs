@@ -1,11 +1,11 @@
-//! Where a student's light is run: on the desktop, in their page (`page`, a real JavaScript
-//! engine, which computes the matrix of each object it is given as it runs); in the browser page,
-//! in `light_script`, shadowlab's own sandboxed interpreter, until the page runs them in the
-//! browser's engine. Both answer each object's matrix.
+//! Where a student's light is run: in their page (`page`), in a real JavaScript engine that
+//! computes the matrix of each object it is given as it runs: QuickJS on the desktop, the
+//! browser's own engine (a Worker) in the page.
 
-use super::light_script::{EngineLight, LightMatrix, ScriptError};
+use super::page::{EngineLight, LightMatrix, ScriptError};
 use super::program::ShaderSource;
 use serde::Serialize;
+use std::task::Poll;
 
 /// A student's light, loaded: each object's matrix, and what their page made and set.
 pub(super) trait LightMatrices {
@@ -23,9 +23,13 @@ pub(super) trait LightMatrices {
     fn uniforms(&self, _fragment: &str) -> super::light::ObjectUniforms {
         super::light::ObjectUniforms::default()
     }
+    /// Makes `light_matrix` answer for the page's light `index` (as `lights` numbers them), and
+    /// gives that light as engine.js made it; None where it has no matrices.
+    fn select(&mut self, _index: usize) -> Option<EngineLight> {
+        None
+    }
 }
 
-#[cfg(not(target_arch = "wasm32"))]
 impl LightMatrices for super::page::PageRun {
     fn notes(&self) -> &[String] {
         self.notes()
@@ -45,11 +49,15 @@ impl LightMatrices for super::page::PageRun {
                 position: l.position.map(|p| p.map(|x| x as f32)),
                 checked: Some(i) == checked,
                 error: l.error.clone(),
+                findings: None,
             })
             .collect()
     }
     fn uniforms(&self, fragment: &str) -> super::light::ObjectUniforms {
         self.draws().uniforms_for(fragment)
+    }
+    fn select(&mut self, index: usize) -> Option<EngineLight> {
+        super::page::PageRun::select(self, index)
     }
     fn refusal(&self) -> Option<String> {
         self.float_texture().map(|at| {
@@ -60,48 +68,28 @@ impl LightMatrices for super::page::PageRun {
     }
 }
 
-#[cfg(target_arch = "wasm32")]
-impl LightMatrices for super::light_script::LightScript {
-    fn notes(&self) -> &[String] {
-        self.notes()
-    }
-    fn light_matrix(&mut self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
-        self.light_matrix(translate, scale)
-    }
-}
+/// The light engine.js made (the framework's where the page failed), and each object's matrix or
+/// why there is none.
+pub(super) type LoadedLight = (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>);
 
 /// The light engine.js makes and the student's `DirectionalLight.js` loaded: their page run in
 /// a real engine, with their light's matrix for each object placed by (translate, scale).
-#[cfg(not(target_arch = "wasm32"))]
+/// Pending in the browser until its Worker answers (the desktop answers at once).
 pub(super) fn load_light(
     script: &ShaderSource,
     engine: Option<&ShaderSource>,
     page: &[ShaderSource],
     objects: &[super::page::Placed],
-) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
-    match super::page::PageRun::run(script, engine, page, objects, super::page::Limits::default()) {
-        Ok(run) => (run.engine_light.clone(), Ok(Box::new(run))),
+) -> Poll<LoadedLight> {
+    use super::page::{Limits, PageRun};
+    #[cfg(not(target_arch = "wasm32"))]
+    let run = Poll::Ready(PageRun::run(script, engine, page, objects, Limits::default()));
+    #[cfg(target_arch = "wasm32")]
+    let run = PageRun::poll(script, engine, page, objects, Limits::default());
+    run.map(|run| match run {
+        Ok(run) => (run.engine_light.clone(), Ok(Box::new(run) as Box<dyn LightMatrices>)),
         Err(e) => (EngineLight::framework(), Err(e)),
-    }
-}
-
-/// The light engine.js makes (read without running it) and `DirectionalLight.js` in shadowlab's
-/// own interpreter.
-#[cfg(target_arch = "wasm32")]
-pub(super) fn load_light(
-    script: &ShaderSource,
-    engine: Option<&ShaderSource>,
-    _page: &[ShaderSource],
-    _objects: &[([f64; 3], [f64; 3])],
-) -> (EngineLight, Result<Box<dyn LightMatrices>, ScriptError>) {
-    use super::light_script::{LightScript, Limits, engine_light};
-    let limits = Limits::default();
-    let light = match engine {
-        Some(file) => engine_light(&file.text, &file.name, limits),
-        None => EngineLight::framework(),
-    };
-    let loaded = LightScript::load(&script.text, &script.name, &light, limits);
-    (light, loaded.map(|l| Box::new(l) as Box<dyn LightMatrices>))
+    })
 }
 
 /// One light the student's page made, as the report lists it.
@@ -116,8 +104,12 @@ pub struct LightEntry {
     pub made_at: String,
     /// Its position as made, world units.
     pub position: Option<[f32; 3]>,
-    /// Whether the check used it.
+    /// Whether this check used it.
     pub checked: bool,
     /// Why its constructor or its matrix failed, if one did.
     pub error: Option<String>,
+    /// The findings of its own check (ids), where it had one: each DirectionalLight of the page
+    /// is checked on its own by `shadowlab homework`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub findings: Option<Vec<String>>,
 }

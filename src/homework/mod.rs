@@ -21,14 +21,9 @@ mod instrument;
 mod interface;
 mod lex;
 mod light;
-// The page's own engine (the browser's) replaces this interpreter there next; the desktop runs
-// the student's page in `page`.
-#[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
-mod light_script;
 mod light_source;
 mod light_width;
 mod missing_return;
-#[cfg(not(target_arch = "wasm32"))]
 mod page;
 mod pass;
 mod penumbra;

@@ -1,18 +1,20 @@
 //! The student's own light: their `engine.js` makes it, their `DirectionalLight.js`'s
-//! `CalcLightMVP(translate, scale)` builds each object's `uLightMVP` (on the desktop both run in
-//! the student's page, `page`, a real JavaScript engine; in the browser page, in `light_script`,
-//! shadowlab's own sandboxed interpreter, until the page runs them in the browser's engine), and
+//! `CalcLightMVP(translate, scale)` builds each object's `uLightMVP` (both run in the student's
+//! whole page, `page`, in a real JavaScript engine: QuickJS on the desktop, the browser's own in
+//! the page), and
 //! shadowlab reads its own copy of the frustum out of the matrix (`read_light`). A script that
 //! fails says so on one line, and the check goes on with the framework's light.
 
 use super::light::{HomeworkLight, LightFrom, ModelMatrixError, PageUniforms, read_light};
-use super::light_script::GlCall;
 pub use super::light_source::LightEntry;
-use super::light_source::load_light;
+use super::light_source::{LightMatrices, load_light};
+use super::page::{EngineLight, GlCall, ScriptError};
+use super::program::ShaderSource;
 use super::{FRAMEWORK_LIGHT_INTENSITY, HomeworkSource};
 use crate::scene::{Light, LightKind, Scene};
 use glam::{Mat4, Vec3};
 use serde::Serialize;
+use std::task::Poll;
 
 /// The light's part of a check's report.
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -214,6 +216,7 @@ fn listed_lights(lights: Vec<LightEntry>, used: &HomeworkLight) -> Vec<LightEntr
                 position: Some(used.position.to_array()),
                 checked: true,
                 error: None,
+                findings: None,
             },
         );
     }
@@ -226,44 +229,28 @@ fn rotated(object: &crate::scene::Object) -> bool {
 }
 
 /// Run the submission's light scripts for `scene` (its light `index` is the framework's) at
-/// `t_s`: the student's light and shadowlab's copy of it, or the framework's with why.
-pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: f32) -> Option<StudentLight> {
-    let framework = |error: Option<String>, mut notes: Vec<String>, mut lights: Vec<LightEntry>| {
-        let light = HomeworkLight::of_scene(scene, index, t_s, FRAMEWORK_LIGHT_INTENSITY)?;
-        let shadowlab = scene.lights.get(index)?;
-        if error.is_some() {
-            notes.push("checked with the framework's own light instead".into());
-        }
-        for entry in lights.iter_mut().filter(|l| l.checked) {
-            entry.checked = false;
-            entry.error = entry.error.take().or_else(|| error.clone());
-        }
-        let report = LightReport {
-            from: LightFrom::Framework.label(),
-            error,
-            position: light.position.to_array(),
-            position_from: "framework".into(),
-            focal_point: shadowlab.target.to_array(),
-            up: shadowlab.up.to_array(),
-            clip_from_world: cols(light.clip_from_world),
-            clip_from_object: named_matrices(scene, &light.clip_from_object),
-            calls: Vec::new(),
-            frustum: with_depth_share(
-                frustum_report(shadowlab, shadowlab.target),
-                light.clip_from_world,
-                scene,
-                t_s,
-                &mut notes,
-            ),
-            notes,
-            model_matrix: None,
-            lights,
-            page_uniforms: PageUniforms::default(),
-        };
-        Some(StudentLight { light, scene: scene.clone(), report, refused: None })
-    };
+/// `t_s`: the student's light and shadowlab's copy of it, or the framework's with why. Pending
+/// in the browser until the page's Worker has run their page (the desktop answers at once).
+pub fn student_light(
+    source: &HomeworkSource,
+    scene: &Scene,
+    index: usize,
+    t_s: f32,
+) -> Poll<Option<StudentLight>> {
+    student_light_of(source, scene, index, t_s, None)
+}
+
+/// As `student_light`, for the page's light `page_light` (as the report's `lights` number them;
+/// None: the one the check uses first). None for a light of the page without matrices.
+pub fn student_light_of(
+    source: &HomeworkSource,
+    scene: &Scene,
+    index: usize,
+    t_s: f32,
+    page_light: Option<usize>,
+) -> Poll<Option<StudentLight>> {
     let Some(script) = &source.light_script else {
-        return framework(None, Vec::new(), Vec::new());
+        return Poll::Ready(framework_light(scene, index, t_s, None, Vec::new(), Vec::new()));
     };
     // The objects whose matrices the page computes: one at the origin, unscaled (the light's
     // own matrix), and each object the framework would place by translation and scale.
@@ -272,26 +259,95 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
     let objects: Vec<([f64; 3], [f64; 3])> = std::iter::once(([0.0; 3], [1.0; 3]))
         .chain(scene.objects.iter().filter(|o| !rotated(o)).map(placed))
         .collect();
-    let (engine, loaded) = load_light(script, source.engine.as_ref(), &source.page, &objects);
+    load_light(script, source.engine.as_ref(), &source.page, &objects).map(|(engine, loaded)| {
+        light_of_page(source, script, scene, (index, t_s), page_light, engine, loaded)
+    })
+}
+
+/// The framework's light for `scene`'s light `index`, with why the student's was not used
+/// (`error`), the notes so far and the lights their page made.
+fn framework_light(
+    scene: &Scene,
+    index: usize,
+    t_s: f32,
+    error: Option<String>,
+    mut notes: Vec<String>,
+    mut lights: Vec<LightEntry>,
+) -> Option<StudentLight> {
+    let light = HomeworkLight::of_scene(scene, index, t_s, FRAMEWORK_LIGHT_INTENSITY)?;
+    let shadowlab = scene.lights.get(index)?;
+    if error.is_some() {
+        notes.push("checked with the framework's own light instead".into());
+    }
+    for entry in lights.iter_mut().filter(|l| l.checked) {
+        entry.checked = false;
+        entry.error = entry.error.take().or_else(|| error.clone());
+    }
+    let report = LightReport {
+        from: LightFrom::Framework.label(),
+        error,
+        position: light.position.to_array(),
+        position_from: "framework".into(),
+        focal_point: shadowlab.target.to_array(),
+        up: shadowlab.up.to_array(),
+        clip_from_world: cols(light.clip_from_world),
+        clip_from_object: named_matrices(scene, &light.clip_from_object),
+        calls: Vec::new(),
+        frustum: with_depth_share(
+            frustum_report(shadowlab, shadowlab.target),
+            light.clip_from_world,
+            scene,
+            t_s,
+            &mut notes,
+        ),
+        notes,
+        model_matrix: None,
+        lights,
+        page_uniforms: PageUniforms::default(),
+    };
+    Some(StudentLight { light, scene: scene.clone(), report, refused: None })
+}
+
+/// The student's light from their page's run (`engine`: the light engine.js made; `loaded`:
+/// each object's matrix, or why there is none).
+fn light_of_page(
+    source: &HomeworkSource,
+    script: &ShaderSource,
+    scene: &Scene,
+    (index, t_s): (usize, f32),
+    page_light: Option<usize>,
+    engine: EngineLight,
+    loaded: Result<Box<dyn LightMatrices>, ScriptError>,
+) -> Option<StudentLight> {
     let mut notes = engine.notes.clone();
     let mut loaded = match loaded {
         Ok(l) => l,
-        Err(e) => return framework(Some(e.to_string()), notes, Vec::new()),
+        Err(e) => return framework_light(scene, index, t_s, Some(e.to_string()), notes, Vec::new()),
     };
     notes.extend(loaded.notes().iter().cloned());
     let refused = loaded.refusal();
-    let lights = loaded.lights();
+    let mut lights = loaded.lights();
+    let engine = match page_light {
+        None => engine,
+        Some(wanted) => {
+            let engine = loaded.select(wanted)?;
+            for (i, l) in lights.iter_mut().enumerate() {
+                l.checked = i == wanted;
+            }
+            engine
+        }
+    };
     let unchecked: Vec<String> =
         lights.iter().filter(|l| !l.checked).map(|l| format!("{} ({})", l.made_at, l.kind)).collect();
     if !unchecked.is_empty() {
         notes.push(format!(
-            "the check judges one light; the page's others are listed, not judged: {}",
+            "this check is of one of the page's lights; the others: {} (each DirectionalLight gets a check of its own from `shadowlab homework`, a PointLight none)",
             unchecked.join(", ")
         ));
     }
     let at_origin = match loaded.light_matrix([0.0; 3], [1.0; 3]) {
         Ok(m) => m,
-        Err(e) => return framework(Some(e.to_string()), notes, lights),
+        Err(e) => return framework_light(scene, index, t_s, Some(e.to_string()), notes, lights),
     };
     let clip_from_world = Mat4::from_cols_array(&at_origin.clip_from_object);
     let position = vec3(engine.position.value);
@@ -308,7 +364,7 @@ pub fn student_light(source: &HomeworkSource, scene: &Scene, index: usize, t_s: 
         let (t, s) = (object.translate, object.scale);
         let matrix = match loaded.light_matrix(t.as_dvec3().to_array(), s.as_dvec3().to_array()) {
             Ok(m) => Mat4::from_cols_array(&m.clip_from_object),
-            Err(e) => return framework(Some(e.to_string()), notes, lights),
+            Err(e) => return framework_light(scene, index, t_s, Some(e.to_string()), notes, lights),
         };
         if model.is_none() {
             model = model_matrix(matrix, clip_from_world, t, s, position);

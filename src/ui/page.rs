@@ -3,7 +3,9 @@
 //! `data-frames` (the renders that reached the views), where the student is (`data-lesson`,
 //! `data-step` from 1, `data-lang`, `data-technique`), `data-probe` (the probed pixel, `x,y`,
 //! once its values are in), `data-homework` (`checking`, `checked`, `error` or empty) with
-//! `data-findings` (the check's finding ids), and `data-links` (links are followed).
+//! `data-findings` (the check's finding ids) and `data-homework-light` (the light the check used
+//! and every light the student's page made, as the report's JSON has them), and `data-links`
+//! (links are followed).
 
 use crate::app::AppState;
 use crate::app::link;
@@ -53,15 +55,20 @@ pub(super) fn publish(frames: u64, state: &AppState) {
         None => (String::new(), String::new()),
     };
     let probe = state.probe.as_ref().map_or(String::new(), |p| format!("{},{}", p.pixel[0], p.pixel[1]));
-    let (homework, findings) = match &state.homework {
-        None => (String::new(), String::new()),
-        Some(hw) if hw.error.is_some() || hw.gpu_error.is_some() => ("error".into(), String::new()),
+    let (homework, findings, light) = match &state.homework {
+        None => (String::new(), String::new(), String::new()),
+        Some(hw) if hw.error.is_some() || hw.gpu_error.is_some() => {
+            ("error".into(), String::new(), String::new())
+        }
         Some(hw) if hw.checked() => {
             let ids: Vec<&str> =
                 hw.outcome.iter().flat_map(|o| o.report.findings.iter().map(|f| f.id)).collect();
-            ("checked".into(), ids.join(","))
+            let light = hw.outcome.as_ref().map_or(String::new(), |o| {
+                serde_json::json!({ "light": o.report.light, "lights": o.report.lights }).to_string()
+            });
+            ("checked".into(), ids.join(","), light)
         }
-        Some(_) => ("checking".into(), String::new()),
+        Some(_) => ("checking".into(), String::new(), String::new()),
     };
     let now = vec![
         ("data-frames", frames.to_string()),
@@ -72,6 +79,7 @@ pub(super) fn publish(frames: u64, state: &AppState) {
         ("data-probe", probe),
         ("data-homework", homework),
         ("data-findings", findings),
+        ("data-homework-light", light),
         ("data-links", "1".into()),
     ];
     if PUBLISHED.with_borrow(|published| *published == now) {

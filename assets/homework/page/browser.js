@@ -224,14 +224,18 @@ var self = globalThis;
         createElement: (tag) => element(tag),
         createElementNS: (ns, tag) => element(tag),
     });
-    Object.assign(globalThis, events);
-    globalThis.screen = { width: 1280, height: 720 };
-    globalThis.innerWidth = 1280;
-    globalThis.innerHeight = 720;
-    globalThis.devicePixelRatio = 1;
-    globalThis.navigator = { userAgent: "shadowlab" };
-    globalThis.location = { href: "shadowlab://homework/index.html", search: "", hash: "" };
-    globalThis.performance = { now: () => record.state.now };
+    // Own properties of the global object: in a browser's Worker some of these names are
+    // read-only accessors of its prototype, which an assignment cannot replace.
+    const define = (name, value) =>
+        Object.defineProperty(globalThis, name, { value, writable: true, configurable: true, enumerable: true });
+    for (const name of ["addEventListener", "removeEventListener", "dispatchEvent"]) define(name, events[name]);
+    define("screen", { width: 1280, height: 720 });
+    define("innerWidth", 1280);
+    define("innerHeight", 720);
+    define("devicePixelRatio", 1);
+    define("navigator", { userAgent: "shadowlab" });
+    define("location", { href: "shadowlab://homework/index.html", search: "", hash: "" });
+    define("performance", { now: () => record.state.now });
     // Runs frame `index` of the page, `step_ms` after the one before: the callbacks the previous
     // frame registered, as a browser does. Returns the first error (message, then its stack), or "".
     record.runFrame = function (index, step_ms) {
@@ -248,20 +252,27 @@ var self = globalThis;
         }
         return first;
     };
-    globalThis.requestAnimationFrame = (callback) => {
+    define("requestAnimationFrame", (callback) => {
         if (typeof callback === "function" && record.frames.length < 16) record.frames.push(callback);
         return record.frames.length;
-    };
-    globalThis.cancelAnimationFrame = () => {};
-    globalThis.setTimeout = () => 0;
-    globalThis.clearTimeout = () => {};
-    globalThis.setInterval = () => 0;
-    globalThis.clearInterval = () => {};
+    });
+    define("cancelAnimationFrame", () => {});
+    define("setTimeout", () => 0);
+    define("clearTimeout", () => {});
+    define("setInterval", () => 0);
+    define("clearInterval", () => {});
     const refuse = (what) => function (url) {
         record.requests.push({ what, url: String(url) });
         throw new Error(what + " is not available in shadowlab's check (" + String(url) + ")");
     };
-    globalThis.fetch = refuse("fetch");
-    globalThis.XMLHttpRequest = function () { this.open = refuse("XMLHttpRequest"); this.send = () => {}; };
-    globalThis.Image = function () { return element("img"); };
+    define("fetch", refuse("fetch"));
+    define("XMLHttpRequest", function () { this.open = refuse("XMLHttpRequest"); this.send = () => {}; });
+    define("Image", function () { return element("img"); });
+    // What a browser's Worker has beyond a page's scripts: the network, other workers, storage,
+    // and the channel the check's answer goes back on.
+    for (const name of ["importScripts", "WebSocket", "EventSource", "Worker", "SharedWorker", "BroadcastChannel"]) {
+        define(name, refuse(name));
+    }
+    for (const name of ["postMessage", "close"]) define(name, () => undefined);
+    for (const name of ["indexedDB", "caches", "onmessage"]) define(name, undefined);
 })();

@@ -1,8 +1,10 @@
 // Runs a student's page from start to end, the same way whichever engine hosts it: their scripts
 // in order, their first frames, then their light's CalcLightMVP for each object the check draws.
-// The host gives one thing: `evalScript(name, text)`, which runs a classic script as global code
-// named `name` in stack traces and throws what the script throws. Returns the page's record as
-// JSON (see src/homework/page/run.rs for its fields).
+// The host gives `evalScript(name, text)`, which runs a classic script as global code named
+// `name` in stack traces and throws what the script throws, and may give `step(file, what)`, told
+// what runs next (a host that can only stop the page from outside names it in its message), and
+// `engine`, its name.
+// Returns the page's record as JSON (src/homework/page/mod.rs reads it).
 "use strict";
 
 (function () {
@@ -11,19 +13,53 @@
     const parse = JSON.parse;
 
     let memoryMiB = 0;
+    // The page's other lights whose matrices are computed for checks of their own.
+    const MAX_OTHER_LIGHTS = 7;
+    // Whether the host's engine is QuickJS (the desktop's), whose two habits are undone below.
+    let quickjs = false;
+    // Each script's lines by file name, for placing an error the engine put on an earlier line.
+    const linesOf = {};
+
+    // QuickJS records a line only at names and calls: a property read through `this` or a
+    // result (`this.light.lightPos`) is placed on the line of the last of those. Where the
+    // property an error names is not on its line, the first line after it that reads it is.
+    // An assignment to a constant is placed after it: the last line before that assigns it is.
+    function placed(at, message) {
+        const lines = linesOf[at.file];
+        if (!quickjs || !lines || at.line < 1) return at.line;
+        const constant = /^'([A-Za-z_$][\w$]*)' is read-only$/.exec(message);
+        if (constant) {
+            const name = constant[1].replace(/\$/g, "\\$");
+            const assigns = new RegExp("(^|[^\\w$.])" + name + "\\s*([-+*/%&|^]|\\*\\*|<<|>>>?)?=(?!=)|(\\+\\+|--)\\s*" + name + "(?![\\w$])|(^|[^\\w$.])" + name + "\\s*(\\+\\+|--)");
+            for (let i = at.line - 1; i >= Math.max(0, at.line - 40); i--) {
+                if (assigns.test(lines[i]) && !/^\s*(const|let|var)\s/.test(lines[i])) return i + 1;
+            }
+            return at.line;
+        }
+        const m = /property '([A-Za-z_$][\w$]*)'/.exec(message);
+        if (!m) return at.line;
+        const name = m[1];
+        const reads = (line) => line !== undefined && line.includes("." + name);
+        if ((lines[at.line - 1] || "").includes(name)) return at.line;
+        for (let i = at.line; i < Math.min(lines.length, at.line + 40); i++) {
+            if (reads(lines[i])) return i + 1;
+        }
+        return at.line;
+    }
 
     // A thrown value as {file, line, message}: the first stack frame in the student's code, the
-    // engine's own words for a bound it hit replaced by which bound.
+    // engine's own words for a bound it hit replaced by which bound (QuickJS, out of memory with
+    // no room left even for the error, throws null).
     function failure(e, fallbackFile) {
         let message = String(e && e.message !== undefined ? e.message : e).split(/[\r\n]/)[0];
         const at = record.theirFrame(e && e.stack) || { file: fallbackFile, line: 0, fn: "" };
         const within = at.fn ? " in " + at.fn : "";
-        if (/^out of memory$|allocation failed|Array buffer allocation/i.test(message)) {
+        if (/^out of memory$|allocation failed|Array buffer allocation/i.test(message) || (e === null && quickjs)) {
             message = "the script used more than its memory bound" + (memoryMiB ? " of " + memoryMiB + " MiB" : "");
         } else if (/Maximum call stack size exceeded|stack overflow|too much recursion/i.test(message)) {
             message = "the script recursed deeper than its stack bound" + within + " (endless recursion?)";
         }
-        return { file: at.file, line: at.line, message };
+        return { file: at.file, line: placed(at, message), message };
     }
 
     // Lets the promise callbacks the page queued run (a loader's answer, an async material
@@ -60,7 +96,10 @@
     record.runPage = async function (host, inputJson) {
         const input = parse(inputJson);
         memoryMiB = input.memoryMiB || 0;
-        const out = { fatal: null, notes: [], lights: [], checked: null, matrices: [], draws: null, context: null };
+        quickjs = host.engine === "quickjs";
+        for (const script of input.scripts) linesOf[script.name] = script.text.split("\n");
+        linesOf[input.light.name] = input.light.text.split("\n");
+        const out = { fatal: null, notes: [], lights: [], checked: null, matrices: [], others: [], draws: null, context: null };
         Object.assign(record.files, input.files);
         let light = null;
         let lightRan = false;
@@ -103,8 +142,12 @@
             }
             await settle();
         }
+        const step = (file, what) => {
+            if (typeof host.step === "function") host.step(file, what);
+        };
         let frameFailed = false;
         for (let i = 0; i < input.frames; i++) {
+            step("", "the page's frame " + i + " (its requestAnimationFrame callbacks)");
             const frameError = record.runFrame(i, input.frameMs);
             if (frameError && !frameFailed) {
                 frameFailed = true;
@@ -128,7 +171,7 @@
         } else {
             const [index, first] = directional[0];
             if (directional.length > 1) {
-                out.notes.push(first.file + " makes " + directional.length + " DirectionalLights; the first (line " + first.line + ") is used");
+                out.notes.push(first.file + " makes " + directional.length + " DirectionalLights; the first (line " + first.line + ") is the one the check's main pictures show");
             }
             out.checked = index;
             if (first.error === null) {
@@ -139,12 +182,28 @@
             }
         }
         out.lights = parse(record.lightsJson());
+        step(input.light.name, "CalcLightMVP");
         for (const o of input.objects) {
             try {
                 out.matrices.push(parse(record.lightMatrix(light, o.slice(0, 3), o.slice(3, 6))));
             } catch (e) {
                 out.matrices.push({ error: failure(e, input.light.name) });
             }
+        }
+        // Each other DirectionalLight the page made, for a check of its own (the bonus: one map
+        // per light, each pass drawn with that light's matrices).
+        out.others = [];
+        for (const [index, other] of directional.slice(1, 1 + MAX_OTHER_LIGHTS)) {
+            if (other.error !== null) continue;
+            step(input.light.name, "CalcLightMVP of the light made on " + other.file + ":" + other.line);
+            const matrices = input.objects.map((o) => {
+                try {
+                    return parse(record.lightMatrix(other.object, o.slice(0, 3), o.slice(3, 6)));
+                } catch (e) {
+                    return { error: failure(e, input.light.name) };
+                }
+            });
+            out.others.push({ index, matrices });
         }
         out.draws = parse(record.drawsJson());
         out.context = parse(record.contextJson());

@@ -102,30 +102,36 @@ impl HomeworkRunner {
                 }
                 let request = HomeworkRequest { time_s, size, light: 0, map: MapKind::Framework };
                 let shader: &ShaderSource = &job.program.files.phong_fragment;
-                // The student's own light where their submission has its scripts.
-                let run =
-                    match job.source.as_deref().and_then(|source| student_light(source, scene, 0, time_s)) {
-                        Some(student) => {
-                            if let Some(refused) = student.refused {
-                                return Err(refused);
-                            }
-                            let run = CheckRun::start(
-                                homework,
-                                shader,
-                                &student.scene,
-                                &student.light,
-                                &request,
-                                job.lang,
-                            );
-                            (run.map_err(|e| e.to_string())?, Some(student.report))
-                        }
-                        None => {
-                            let light = HomeworkLight::of_scene(scene, 0, time_s, FRAMEWORK_LIGHT_INTENSITY)
-                                .ok_or_else(|| "the scene has no light".to_string())?;
-                            let run = CheckRun::start(homework, shader, scene, &light, &request, job.lang);
-                            (run.map_err(|e| e.to_string())?, None)
-                        }
+                // The student's own light where their submission has its scripts (in the browser,
+                // their page's Worker answers a frame or more later).
+                let student =
+                    match job.source.as_deref().map(|source| student_light(source, scene, 0, time_s)) {
+                        Some(std::task::Poll::Pending) => return Ok(None),
+                        Some(std::task::Poll::Ready(student)) => student,
+                        None => None,
                     };
+                let run = match student {
+                    Some(student) => {
+                        if let Some(refused) = student.refused {
+                            return Err(refused);
+                        }
+                        let run = CheckRun::start(
+                            homework,
+                            shader,
+                            &student.scene,
+                            &student.light,
+                            &request,
+                            job.lang,
+                        );
+                        (run.map_err(|e| e.to_string())?, Some(student.report))
+                    }
+                    None => {
+                        let light = HomeworkLight::of_scene(scene, 0, time_s, FRAMEWORK_LIGHT_INTENSITY)
+                            .ok_or_else(|| "the scene has no light".to_string())?;
+                        let run = CheckRun::start(homework, shader, scene, &light, &request, job.lang);
+                        (run.map_err(|e| e.to_string())?, None)
+                    }
+                };
                 let (_, run, light) = slot.insert((key.clone(), run.0, run.1));
                 (run, light)
             }

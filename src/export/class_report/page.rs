@@ -122,6 +122,22 @@ pub(super) fn html(lang: Lang, rows: &[ClassRow], reports_in: Lang) -> String {
         escape(&fill(lang, "{} submissions", &[&rows.len()])),
         escape(&counts.join(list_separator(lang))),
     );
+    // The bonus: who made several lights, and how their lights fared on checks of their own.
+    let several: Vec<(usize, usize, usize)> =
+        rows.iter().filter_map(|r| r.report.as_ref().filter(|r| r.compiled)?.several_lights()).collect();
+    if !several.is_empty() {
+        let checked: usize = several.iter().map(|(_, c, _)| c).sum();
+        let clean: usize = several.iter().map(|(.., n)| n).sum();
+        let _ = writeln!(
+            h,
+            "<p class=\"bonus\">{}</p>",
+            escape(&fill(
+                lang,
+                "Submissions with several lights (the bonus): {}; of their {} lights checked, {} without a finding",
+                &[&several.len(), &checked, &clean]
+            ))
+        );
+    }
     ranked_table(&mut h, lang, rows);
     students_table(&mut h, lang, rows);
     for (i, row) in rows.iter().enumerate() {
@@ -238,6 +254,26 @@ fn light_line(lang: Lang, report: &StudentReport) -> Option<String> {
     Some(line)
 }
 
+/// The bonus: each light the page made, with what its own check found.
+fn lights_list(h: &mut String, lang: Lang, report: &StudentReport) {
+    let _ = writeln!(h, "<p>{}</p>\n<ul class=\"lights\">", escape(tr(lang, "The lights their page made:")));
+    for light in &report.lights {
+        let verdict = match &light.findings {
+            Some(f) if f.is_empty() => tr(lang, "no findings").to_string(),
+            Some(f) => f.join(list_separator(lang)),
+            None => tr(lang, "not checked (a point light, or a light without matrices)").to_string(),
+        };
+        let _ = writeln!(
+            h,
+            "<li><code>{}</code> {}: {}</li>",
+            escape(&light.made_at),
+            escape(&light.kind),
+            escape(&verdict)
+        );
+    }
+    h.push_str("</ul>\n");
+}
+
 fn student(h: &mut String, lang: Lang, i: usize, row: &ClassRow, reports_in: Lang) {
     let _ = write!(
         h,
@@ -259,6 +295,9 @@ fn student(h: &mut String, lang: Lang, i: usize, row: &ClassRow, reports_in: Lan
     if let Some(report) = report.filter(|r| r.compiled) {
         if let Some(line) = light_line(lang, report) {
             let _ = writeln!(h, "<p>{line}</p>");
+        }
+        if report.several_lights().is_some() {
+            lights_list(h, lang, report);
         }
         findings(h, lang, report, reports_in);
     }

@@ -132,7 +132,7 @@ fn the_csv_has_a_row_per_student_and_a_column_per_finding() {
     let records = parse_csv(&text);
     assert_eq!(records.len(), rows.len() + 1);
     let header = &records[0];
-    assert_eq!(header.len(), 6 + FINDINGS.len() + 1);
+    assert_eq!(header.len(), 7 + FINDINGS.len() + 1);
     assert!(records.iter().all(|r| r.len() == header.len()), "{records:?}");
     let column = |name: &str| header.iter().position(|h| h == name).expect(name);
     assert_eq!(records[1][0], "Smith, \"Al\"");
@@ -256,4 +256,47 @@ fn a_light_width_is_told_only_where_a_light_casts_the_widths() {
     // Widths of no light's shape: a fit through them is no light's width.
     assert_eq!(part(Some(false), None).measured(), None);
     assert_eq!(part(None, Some(0.4)).measured(), None);
+}
+
+#[test]
+fn the_bonus_lights_are_counted_and_each_listed_with_its_own_findings() {
+    let mut rows = class();
+    let light = |made_at: &str, kind: &str, findings: Option<&[&str]>| PageLightPart {
+        kind: kind.into(),
+        made_at: made_at.into(),
+        findings: findings.map(|f| f.iter().map(|id| id.to_string()).collect()),
+    };
+    if let Some(report) = rows[1].report.as_mut() {
+        report.lights = vec![
+            light("homework1/src/engine.js:27", "DirectionalLight", Some(&[])),
+            light("homework1/src/engine.js:31", "DirectionalLight", Some(&["light_frustum_clips"])),
+            light("homework1/src/engine.js:35", "PointLight", None),
+        ];
+    }
+    assert_eq!(rows[1].report.as_ref().and_then(|r| r.several_lights()), Some((3, 2, 1)));
+    assert_eq!(rows[0].report.as_ref().and_then(|r| r.several_lights()), None);
+    let html = page::html(Lang::En, &rows, Lang::En);
+    assert!(
+        html.contains(
+            "Submissions with several lights (the bonus): 1; of their 2 lights checked, 1 without a finding"
+        ),
+        "{html}"
+    );
+    assert!(
+        html.contains(
+            "<li><code>homework1/src/engine.js:31</code> DirectionalLight: light_frustum_clips</li>"
+        )
+    );
+    assert!(html.contains("engine.js:35</code> PointLight: not checked"));
+    let zh = page::html(Lang::Zh, &rows, Lang::En);
+    assert!(zh.contains("多光源作业（加分项）：1 份"), "{zh}");
+    let records = parse_csv(&csv(&rows));
+    let column = records[0].iter().position(|h| h == "lights").expect("a lights column");
+    assert_eq!(
+        records[2][column],
+        "DirectionalLight homework1/src/engine.js:27: no findings; \
+         DirectionalLight homework1/src/engine.js:31: light_frustum_clips; \
+         PointLight homework1/src/engine.js:35: not checked"
+    );
+    assert_eq!(records[1][column], "");
 }

@@ -7,29 +7,12 @@
 //! Every failure is one line naming the student's file and line (`engine.js:12: ...`).
 
 use std::sync::{Arc, Mutex};
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use rquickjs::context::EvalOptions;
 use rquickjs::{CatchResultExt, CaughtError, Context, Ctx, Runtime};
 
-use super::ScriptError;
-
-/// Bounds on one page.
-#[derive(Clone, Copy, Debug)]
-pub struct Limits {
-    /// Bytes the engine may allocate in all (libraries included).
-    pub memory_bytes: usize,
-    /// Bytes of native stack the engine's recursion may use.
-    pub stack_bytes: usize,
-    /// Wall-clock time one script (or one call into the page) may run.
-    pub time: Duration,
-}
-
-impl Default for Limits {
-    fn default() -> Self {
-        Limits { memory_bytes: 192 << 20, stack_bytes: 512 << 10, time: Duration::from_secs(4) }
-    }
-}
+use super::{Limits, ScriptError};
 
 /// A fresh engine with the page's bounds. Not shared between pages.
 pub struct Engine {
@@ -114,6 +97,7 @@ impl Engine {
                     },
                 )?;
                 host.set("evalScript", eval_script)?;
+                host.set("engine", "quickjs")?;
                 let record: rquickjs::Object = ctx.globals().get("__shadowlab")?;
                 let run_page: rquickjs::Function = record.get("runPage")?;
                 run_page.call((host, input.to_string()))

@@ -12,86 +12,29 @@
 //! draws. What it returns (`record`): every light the page made with the line that made it, the
 //! matrices, and each draw's uniforms by the names the student's code uses.
 
+mod answer;
+#[cfg(not(target_arch = "wasm32"))]
 mod engine;
+mod input;
 mod record;
 mod scripts;
+#[cfg(target_arch = "wasm32")]
+mod worker;
 
 #[cfg(test)]
 mod tests;
 #[cfg(test)]
+mod tests_errors;
+#[cfg(test)]
 mod tests_fuzz;
 
-use engine::Engine;
-pub use engine::Limits;
+use input::{PRELUDE, driver_input};
 use record::MadeLight;
 pub use record::{FoundLight, PageDraws};
-use scripts::{ENGINE_JS, FRAMEWORK_SHADERS, Script, script_list};
-use serde::{Deserialize, Serialize};
+use serde::Deserialize;
 
-use super::light_script::{EngineLight, GlCall, LightMatrix, ScriptError, Sourced};
 use super::program::ShaderSource;
-
-/// Shadowlab's stand-ins, the libraries and the driver, in the order they run, before the
-/// student's scripts.
-const PRELUDE: [(&str, &str); 6] = [
-    ("shadowlab/browser.js", include_str!("../../../assets/homework/page/browser.js")),
-    ("lib/three.js", include_str!("../../../assets/homework/framework/lib/three.min.js")),
-    ("lib/gl-matrix-min.js", include_str!("../../../assets/homework/framework/lib/gl-matrix-min.js")),
-    ("shadowlab/libraries.js", include_str!("../../../assets/homework/page/libraries.js")),
-    ("shadowlab/calls.js", include_str!("../../../assets/homework/page/calls.js")),
-    ("shadowlab/driver.js", include_str!("../../../assets/homework/page/driver.js")),
-];
-
-/// Frames of the page run after it loads, and the time between them (ms, a 60 Hz display).
-const FRAMES: usize = 2;
-const FRAME_MS: f64 = 1000.0 / 60.0;
-
-/// The page's text files (shaders by path) as the loaders answer them: the framework's shaders
-/// where the submission has none of the name.
-fn page_files(page: &[ShaderSource]) -> std::collections::BTreeMap<String, &str> {
-    let mut files: std::collections::BTreeMap<String, &str> =
-        FRAMEWORK_SHADERS.iter().map(|(name, text)| ((*name).to_string(), *text)).collect();
-    for file in page {
-        let lower = file.name.to_lowercase();
-        if [".glsl", ".vert", ".frag"].iter().any(|e| lower.ends_with(e)) {
-            // The submission's own file replaces the framework's of the same place.
-            files
-                .retain(|name, _| !file.name.ends_with(name.as_str()) && !name.ends_with(file.name.as_str()));
-            files.insert(file.name.clone(), &file.text);
-        }
-    }
-    files
-}
-
-/// What the driver is given (driver.js's `input`).
-#[derive(Serialize)]
-struct DriverInput<'a> {
-    light: NamedText<'a>,
-    #[serde(rename = "engineName")]
-    engine_name: &'a str,
-    scripts: Vec<DriverScript<'a>>,
-    files: std::collections::BTreeMap<String, &'a str>,
-    objects: Vec<[f64; 6]>,
-    frames: usize,
-    #[serde(rename = "frameMs")]
-    frame_ms: f64,
-    /// For the message of a page that allocates past the bound.
-    #[serde(rename = "memoryMiB")]
-    memory_mib: usize,
-}
-
-#[derive(Serialize)]
-struct NamedText<'a> {
-    name: &'a str,
-    text: &'a str,
-}
-
-#[derive(Serialize)]
-struct DriverScript<'a> {
-    role: &'static str,
-    name: &'a str,
-    text: &'a str,
-}
+pub use answer::{EngineLight, GlCall, LightMatrix, ScriptError, Sourced};
 
 #[derive(Deserialize)]
 struct Failed {
@@ -145,6 +88,13 @@ struct ContextJson {
     float_texture: Option<Place>,
 }
 
+/// Another DirectionalLight's matrices, by its index among the lights the page made.
+#[derive(Deserialize)]
+struct OtherLightJson {
+    index: usize,
+    matrices: Vec<MatrixJson>,
+}
+
 /// What the driver returns.
 #[derive(Deserialize)]
 struct DriverOutput {
@@ -153,9 +103,33 @@ struct DriverOutput {
     lights: Vec<MadeLight>,
     checked: Option<usize>,
     matrices: Vec<MatrixJson>,
+    #[serde(default)]
+    others: Vec<OtherLightJson>,
     draws: Option<PageDraws>,
     context: Option<ContextJson>,
 }
+
+/// Bounds on one page. The browser bounds a Worker's memory and stack by its own limits; the
+/// time bound holds on both sides.
+#[derive(Clone, Copy, Debug)]
+pub struct Limits {
+    /// Bytes the engine may allocate in all (libraries included).
+    pub memory_bytes: usize,
+    /// Bytes of native stack the engine's recursion may use.
+    #[cfg_attr(target_arch = "wasm32", allow(dead_code))]
+    pub stack_bytes: usize,
+    /// Wall-clock time one script (or one call into the page) may run.
+    pub time: std::time::Duration,
+}
+
+impl Default for Limits {
+    fn default() -> Self {
+        Limits { memory_bytes: 192 << 20, stack_bytes: 512 << 10, time: std::time::Duration::from_secs(4) }
+    }
+}
+
+/// Each object's (translate, scale) with its light matrix, or why there is none.
+type Matrices = Vec<(Placed, Result<LightMatrix, ScriptError>)>;
 
 /// An object's place as the framework gives it: (translate, scale), world units.
 pub type Placed = ([f64; 3], [f64; 3]);
@@ -169,7 +143,12 @@ pub struct PageRun {
     found: Vec<FoundLight>,
     checked: Option<usize>,
     /// Each object's (translate, scale) with its matrix, in the order asked.
-    matrices: Vec<(Placed, Result<LightMatrix, ScriptError>)>,
+    matrices: Matrices,
+    /// The same for each other DirectionalLight the page made, by its index in `found`, with
+    /// the light as engine.js made it.
+    others: Vec<(usize, EngineLight, Matrices)>,
+    /// The light whose matrices `light_matrix` answers (None: the checked one).
+    selected: Option<usize>,
     draws: PageDraws,
     /// Where the page first made a float texture (`file:line`), if it did.
     float_texture: Option<String>,
@@ -185,6 +164,7 @@ impl PageRun {
     /// placed by (translate, scale) in `objects` (world units). Err: the light's script fails to
     /// run or has no `DirectionalLight` with a `CalcLightMVP` (the check then uses the
     /// framework's light), or the page ran past a bound. A failing engine.js is a note.
+    #[cfg(not(target_arch = "wasm32"))]
     pub fn run(
         light: &ShaderSource,
         engine_js: Option<&ShaderSource>,
@@ -192,49 +172,52 @@ impl PageRun {
         objects: &[Placed],
         limits: Limits,
     ) -> Result<PageRun, ScriptError> {
-        let engine =
-            Engine::new(limits).map_err(|m| ScriptError { file: "shadowlab".into(), line: 0, message: m })?;
+        let (input, notes) = driver_input(light, engine_js, page, objects, limits)?;
+        let engine = engine::Engine::new(limits).map_err(|m| ScriptError {
+            file: "shadowlab".into(),
+            line: 0,
+            message: m,
+        })?;
         for (file, source) in PRELUDE {
             engine.run_script(file, source).map_err(shadowlab_error)?;
         }
-        let list = script_list(page);
-        let engine_source =
-            engine_js.map_or(NamedText { name: "shadowlab/framework/engine.js", text: ENGINE_JS }, |e| {
-                NamedText { name: &e.name, text: &e.text }
-            });
-        let scripts = list
-            .scripts
-            .iter()
-            .map(|s| match s {
-                Script::Light => DriverScript { role: "light", name: &light.name, text: &light.text },
-                Script::Engine => {
-                    DriverScript { role: "engine", name: engine_source.name, text: engine_source.text }
-                }
-                Script::Theirs(f) => DriverScript { role: "theirs", name: &f.name, text: &f.text },
-                Script::Ours { name, text } => DriverScript { role: "ours", name, text },
-            })
-            .collect();
-        let input = DriverInput {
-            light: NamedText { name: &light.name, text: &light.text },
-            engine_name: engine_js.map_or("engine.js", |e| e.name.as_str()),
-            scripts,
-            files: page_files(page),
-            objects: objects.iter().map(|(t, s)| [t[0], t[1], t[2], s[0], s[1], s[2]]).collect(),
-            frames: FRAMES,
-            frame_ms: FRAME_MS,
-            memory_mib: limits.memory_bytes >> 20,
-        };
-        let input = serde_json::to_string(&input).map_err(|e| {
-            shadowlab_error(ScriptError { file: "input".into(), line: 0, message: e.to_string() })
-        })?;
         let output = engine.run_page(&light.name, &input)?;
-        let output: DriverOutput = serde_json::from_str(&output).map_err(|e| {
+        Self::from_output(&output, light, objects, notes)
+    }
+
+    /// The same run as the desktop's `run`, in the browser's own engine (a Worker of the page):
+    /// Pending until the Worker answers; the answer is kept, so asking again for the same page
+    /// and objects is Ready at once.
+    #[cfg(target_arch = "wasm32")]
+    pub fn poll(
+        light: &ShaderSource,
+        engine_js: Option<&ShaderSource>,
+        page: &[ShaderSource],
+        objects: &[Placed],
+        limits: Limits,
+    ) -> std::task::Poll<Result<PageRun, ScriptError>> {
+        let (input, notes) = match driver_input(light, engine_js, page, objects, limits) {
+            Ok(made) => made,
+            Err(e) => return std::task::Poll::Ready(Err(e)),
+        };
+        worker::poll(&PRELUDE, &input, &light.name, limits.time)
+            .map(|output| output.and_then(|output| Self::from_output(&output, light, objects, notes)))
+    }
+
+    /// The run from what driver.js returned (`output`, JSON), whichever engine ran it; `notes`
+    /// come first (what reading the script list noticed).
+    fn from_output(
+        output: &str,
+        light: &ShaderSource,
+        objects: &[Placed],
+        mut notes: Vec<String>,
+    ) -> Result<PageRun, ScriptError> {
+        let output: DriverOutput = serde_json::from_str(output).map_err(|e| {
             shadowlab_error(ScriptError { file: "driver".into(), line: 0, message: e.to_string() })
         })?;
         if let Some(fatal) = output.fatal {
             return Err(fatal.into());
         }
-        let mut notes = list.notes;
         notes.extend(output.notes);
         let engine_light = match output.checked.and_then(|i| output.lights.get(i)) {
             Some(made) => Self::engine_light(made, &mut notes),
@@ -242,10 +225,21 @@ impl PageRun {
         };
         let method_line = method_line(&light.text).unwrap_or(0);
         let return_line = last_return(&light.text, method_line).unwrap_or(method_line);
-        let matrices = objects
-            .iter()
-            .zip(output.matrices)
-            .map(|(placed, m)| (*placed, matrix(m, &light.name, method_line, return_line)))
+        let placed = |matrices: Vec<MatrixJson>| -> Matrices {
+            objects
+                .iter()
+                .zip(matrices)
+                .map(|(placed, m)| (*placed, matrix(m, &light.name, method_line, return_line)))
+                .collect()
+        };
+        let matrices = placed(output.matrices);
+        let others = output
+            .others
+            .into_iter()
+            .filter_map(|other| {
+                let made = output.lights.get(other.index)?;
+                Some((other.index, Self::engine_light(made, &mut Vec::new()), placed(other.matrices)))
+            })
             .collect();
         let float_texture = output.context.and_then(|c| c.float_texture).map(|p| p.shown());
         Ok(PageRun {
@@ -254,6 +248,8 @@ impl PageRun {
             found: output.lights.iter().map(MadeLight::found).collect(),
             checked: output.checked,
             matrices,
+            others,
+            selected: None,
             draws: output.draws.unwrap_or_default(),
             float_texture,
         })
@@ -315,10 +311,27 @@ impl PageRun {
         &self.draws
     }
 
+    /// Makes `light_matrix` answer for the page's light `index` (one of `other_lights`, or the
+    /// checked one), and gives that light as engine.js made it; None for a light without
+    /// matrices.
+    pub fn select(&mut self, index: usize) -> Option<EngineLight> {
+        if Some(index) == self.checked {
+            self.selected = None;
+            return Some(self.engine_light.clone());
+        }
+        let (_, light, _) = self.others.iter().find(|(i, ..)| *i == index)?;
+        self.selected = Some(index);
+        Some(light.clone())
+    }
+
     /// The light's matrix for an object placed by `translate` and `scale`, as the page computed
     /// it when it ran (an object it was not asked for is an error).
     pub fn light_matrix(&self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
-        self.matrices
+        let matrices = match self.selected {
+            Some(index) => self.others.iter().find(|(i, ..)| *i == index).map_or(&[][..], |(.., m)| &m[..]),
+            None => &self.matrices[..],
+        };
+        matrices
             .iter()
             .find(|((t, s), _)| *t == translate && *s == scale)
             .map(|(_, m)| m.clone())

@@ -1,11 +1,10 @@
 //! The student's page in a real engine: the light their engine.js makes, its CalcLightMVP against
-//! shadowlab's former interpreter (checked against gl-matrix in V8 when it was written), a light
-//! built with three.js, and hostile scripts that each end in one line naming the file.
+//! the same matrices composed here with glam, a light built with three.js, and hostile scripts
+//! that each end in one line naming the file.
 
 use std::time::Duration;
 
 use super::*;
-use crate::homework::light_script::{LightScript, Limits as InterpreterLimits};
 
 pub(super) const EXAMPLE_LIGHT: &str = include_str!("../../../assets/homework/DirectionalLight.js");
 pub(super) const FRAMEWORK_ENGINE: &str = include_str!("../../../assets/homework/framework/src/engine.js");
@@ -52,22 +51,37 @@ fn the_light_engine_js_makes_is_recorded_with_its_line() {
 }
 
 #[test]
-fn calc_light_mvp_agrees_with_the_former_interpreter_to_the_bit() {
-    let (page, engine_light) = load(EXAMPLE_LIGHT, None).expect("the page runs");
-    let mut old =
-        LightScript::load(EXAMPLE_LIGHT, "DirectionalLight.js", &engine_light, InterpreterLimits::default())
-            .expect("the interpreter loads it");
+fn calc_light_mvp_is_the_matrix_its_gl_matrix_calls_compose() {
+    // The example light: ortho(-100, 100, -100, 100, 0.01, 400) * lookAt(light, focal, up) *
+    // translate * scale, composed here in f64 by glam (gl-matrix computes in f64 and stores each
+    // matrix in a Float32Array: a few f32 ulps apart at most).
+    let (page, light) = load(EXAMPLE_LIGHT, None).expect("the page runs");
+    let [eye, focal, up] =
+        [light.position.value, light.focal_point.value, light.up.value].map(glam::DVec3::from);
+    let view_clip = glam::DMat4::orthographic_rh_gl(-100.0, 100.0, -100.0, 100.0, 0.01, 400.0)
+        * glam::DMat4::look_at_rh(eye, focal, up);
     for (t, s) in [([0.0; 3], [1.0; 3]), ([40.0, 0.0, -40.0], [10.0; 3]), ([0.0, 0.0, -30.0], [4.0; 3])] {
-        let new = page.light_matrix(t, s).expect("a matrix");
-        let before = old.light_matrix(t, s).expect("a matrix");
-        assert_eq!(
-            new.clip_from_object.map(f32::to_bits),
-            before.clip_from_object.map(f32::to_bits),
-            "{t:?} {s:?}"
-        );
-        let names = |m: &LightMatrix| m.calls.iter().map(|c| (c.name.clone(), c.line)).collect::<Vec<_>>();
-        assert_eq!(names(&new), names(&before));
-        assert_eq!(new.return_line, before.return_line);
+        let expected = view_clip
+            * glam::DMat4::from_translation(glam::DVec3::from(t))
+            * glam::DMat4::from_scale(glam::DVec3::from(s));
+        let got = page.light_matrix(t, s).expect("a matrix");
+        for (a, b) in got.clip_from_object.iter().zip(expected.to_cols_array()) {
+            assert!((f64::from(*a) - b).abs() <= 1e-6 * b.abs().max(1.0), "{t:?} {s:?}: {a} vs {b}");
+        }
+        let names: Vec<(String, usize)> = got.calls.iter().map(|c| (c.name.clone(), c.line)).collect();
+        let at = |needle: &str| line_of(EXAMPLE_LIGHT, needle);
+        let expected_calls = [
+            ("mat4.translate", at("mat4.translate(")),
+            ("mat4.scale", at("mat4.scale(")),
+            ("mat4.lookAt", at("mat4.lookAt(")),
+            ("mat4.ortho", at("mat4.ortho(")),
+            ("mat4.multiply", at("mat4.multiply(mvp, projection")),
+            ("mat4.multiply", at("mat4.multiply(mvp, mvp")),
+        ];
+        let calls: Vec<(String, usize)> =
+            names.into_iter().filter(|(name, _)| name != "mat4.create").collect();
+        assert_eq!(calls, expected_calls.map(|(n, l)| (n.to_string(), l)).to_vec());
+        assert_eq!(got.return_line, line_of(EXAMPLE_LIGHT, "return mvp;"));
     }
 }
 
