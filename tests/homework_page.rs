@@ -1,7 +1,8 @@
 //! `shadowlab homework` on a student's whole page, as a process: their own scripts run in order
 //! with shadowlab's copy of the framework where they have none; a light uniform renamed in their
 //! materials and shaders is fed as their page feeds it; a page with several lights lists each
-//! with the line of their code that made it, and checks each DirectionalLight on its own.
+//! with the line of their code that made it, and checks each DirectionalLight on its own, and
+//! again at the times of their animation where it had moved.
 
 mod common;
 
@@ -126,17 +127,24 @@ fn a_renamed_light_uniform_is_fed_as_the_students_page_feeds_it() {
 
 #[test]
 fn each_light_of_a_page_with_several_is_listed_and_checked_on_its_own() {
-    // The bonus: a second light behind the scene (sound) and a third so high that the framework's
-    // far plane (400) leaves the floor out of its map.
+    // The bonus: a second light behind the scene (sound) that orbits the y axis, its angle from
+    // the page's clock, and a third so high that the framework's far plane (400) leaves the floor
+    // out of its map.
     let scratch = tempfile::tempdir().expect("a scratch folder");
     let engine = edit(
-        &read("assets/homework/framework/src/engine.js"),
-        "    renderer.addLight(directionLight);",
-        "    renderer.addLight(directionLight);
+        &edit(
+            &read("assets/homework/framework/src/engine.js"),
+            "    renderer.addLight(directionLight);",
+            "    renderer.addLight(directionLight);
     const secondLight = new DirectionalLight(2500, [1, 1, 1], [0, 80, -80], focalPoint, lightUp, true, renderer.gl);
     renderer.addLight(secondLight);
     const highLight = new DirectionalLight(2500, [1, 1, 1], [0, 420, 1], focalPoint, lightUp, true, renderer.gl);
     renderer.addLight(highLight);",
+        ),
+        "        renderer.render();",
+        "        renderer.render();
+        const angle = Date.now() * 0.001;
+        secondLight.lightPos = [-80 * Math.sin(angle), 80, -80 * Math.cos(angle)];",
     );
     let files = [
         ("src/shaders/phongShader/phongFragment.glsl", read("assets/homework/phongFragment.glsl")),
@@ -171,7 +179,21 @@ fn each_light_of_a_page_with_several_is_listed_and_checked_on_its_own() {
     assert_eq!(ids(&lights[0]), report_ids);
     assert_eq!(ids(&lights[1]), Vec::<String>::new());
     assert!(ids(&lights[2]).contains(&"light_frustum_clips".to_string()), "{:?}", ids(&lights[2]));
-    for picture in ["student_light1.png", "student_light2.png"] {
+    // The orbiting light is checked again where it had moved: at 0.5, 1 and 2 s of the page's
+    // animation (the first 60 Hz frame at or after each), each with its position and findings.
+    assert_eq!(lights[1]["moved_at_s"], serde_json::json!([0.5, 1.0, 2.0]));
+    let at_times = lights[1]["at_times"].as_array().expect("its checks at those times");
+    assert_eq!(at_times.len(), 3, "{at_times:#?}");
+    for check in at_times {
+        let t = check["time_s"].as_f64().expect("a time");
+        let x = check["position"][0].as_f64().expect("a position");
+        assert!((x + 80.0 * t.sin()).abs() < 1e-3, "at {t} s the light is at x = {x}");
+        assert!(check["findings"].is_array(), "{check:#}");
+    }
+    assert!(lights[0].get("moved_at_s").is_none() && lights[2].get("moved_at_s").is_none());
+    for picture in
+        ["student_light1.png", "student_light2.png", "student_light1_t0.5s.png", "student_light1_t2.0s.png"]
+    {
         assert!(scratch.path().join("out").join(picture).is_file(), "{picture} is missing");
     }
 }

@@ -191,45 +191,18 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
             .map_err(|e| CliError { code: 1, message: format!("{}: {e}", shader.name) })?;
     outcome.report.set_light(Some(student.report));
     outcome.report.submission = Some(SubmissionReport::of(&source));
-    // Each other DirectionalLight of the page, checked on its own as their renderer draws it (a
-    // pass per light, each with its own map): its findings in `lights`, its picture beside.
-    let ids = |report: &HomeworkReport| -> Vec<String> {
-        report.findings.iter().map(|f| f.id.to_string()).collect()
-    };
-    let first_ids = ids(&outcome.report);
-    let mut light_pictures = Vec::new();
-    // Where the page made no light the check could use, the framework's is listed first.
-    let inserted = usize::from(outcome.report.lights.first().is_some_and(|l| l.made_at == "framework"));
-    for listed in 0..outcome.report.lights.len() {
-        let entry = &outcome.report.lights[listed];
-        if entry.checked {
-            outcome.report.lights[listed].findings = Some(first_ids.clone());
-            continue;
-        }
-        if entry.kind != "DirectionalLight" || entry.error.is_some() || listed < inserted {
-            continue;
-        }
-        let std::task::Poll::Ready(Some(other)) = crate::homework::student_light::student_light_of(
-            &source,
-            &scene,
-            args.light,
-            args.time,
-            Some(listed - inserted),
-        ) else {
-            continue;
-        };
-        let entry = &mut outcome.report.lights[listed];
-        if let Some(error) = other.report.error {
-            entry.error = Some(error);
-            continue;
-        }
-        let checked =
-            run_check(&homework, &mut renderer, &shader, &other.scene, &other.light, &request, args.lang)
-                .map_err(|e| CliError { code: 1, message: format!("{}: {e}", shader.name) })?;
-        entry.from = other.report.from;
-        entry.findings = Some(ids(&checked.report));
-        light_pictures.push((format!("student_light{listed}.png"), png(&checked.student_picture())?));
-    }
+    let light_pictures = super::homework_lights::check_each_light(
+        &super::homework_lights::Check {
+            homework: &homework,
+            shader: &shader,
+            source: &source,
+            scene: &scene,
+        },
+        &mut renderer,
+        &request,
+        (args.light, args.time, args.lang),
+        &mut outcome.report,
+    )?;
     // Everything encoded before the first file is written: a failure leaves no partial folder.
     let text = report_json(&outcome.report)?;
     let mut pictures = vec![
@@ -240,7 +213,9 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
         ("ground_truth.png".into(), png(&outcome.visibility_picture(true))?),
         ("difference.png".into(), png(&outcome.difference_picture())?),
     ];
-    pictures.extend(light_pictures);
+    for (name, picture) in light_pictures {
+        pictures.push((name, png(&picture)?));
+    }
     std::fs::create_dir_all(&args.out)
         .map_err(|e| CliError::input(format!("{}: {e}", args.out.display())))?;
     for (name, bytes) in &pictures {

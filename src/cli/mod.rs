@@ -6,6 +6,7 @@ mod bench;
 mod export_cmd;
 mod homework;
 mod homework_class;
+mod homework_lights;
 mod parse;
 
 pub use parse::MAX_TIME_S;

@@ -114,15 +114,46 @@ pub struct PageLightPart {
     pub made_at: String,
     #[serde(default)]
     pub findings: Option<Vec<String>>,
+    /// Its checks where the page's animation had moved it.
+    #[serde(default)]
+    pub at_times: Vec<TimedPart>,
+}
+
+/// A light's check at one time of the page's animation.
+#[derive(Clone, Debug, Default, PartialEq, Deserialize)]
+pub struct TimedPart {
+    #[serde(default)]
+    pub time_s: f64,
+    #[serde(default)]
+    pub findings: Vec<String>,
+}
+
+impl PageLightPart {
+    /// What its checks found, in one line: `no findings`, or the ids, then each time's.
+    pub fn verdict(&self, no_findings: &str, not_checked: &str, at: impl Fn(f64) -> String) -> String {
+        let list = |f: &[String]| if f.is_empty() { no_findings.to_string() } else { f.join(" ") };
+        let mut verdict = self.findings.as_deref().map_or(not_checked.to_string(), list);
+        for timed in &self.at_times {
+            verdict.push_str(&format!("; {}: {}", at(timed.time_s), list(&timed.findings)));
+        }
+        verdict
+    }
 }
 
 impl StudentReport {
-    /// The bonus's several lights, where the page made more than one: (lights made, lights
-    /// checked, of those how many without a finding).
-    pub fn several_lights(&self) -> Option<(usize, usize, usize)> {
-        (self.lights.len() > 1).then(|| {
-            let checked: Vec<&Vec<String>> = self.lights.iter().filter_map(|l| l.findings.as_ref()).collect();
-            (self.lights.len(), checked.len(), checked.iter().filter(|f| f.is_empty()).count())
+    /// The bonus, where the page made several lights or moved one: (lights made, checks of
+    /// them, of those how many without a finding).
+    pub fn bonus(&self) -> Option<(usize, usize, usize)> {
+        let moved = self.lights.iter().any(|l| !l.at_times.is_empty());
+        (self.lights.len() > 1 || moved).then(|| {
+            let checks: Vec<&[String]> = self
+                .lights
+                .iter()
+                .flat_map(|l| {
+                    l.findings.as_deref().into_iter().chain(l.at_times.iter().map(|t| &t.findings[..]))
+                })
+                .collect();
+            (self.lights.len(), checks.len(), checks.iter().filter(|f| f.is_empty()).count())
         })
     }
 }
@@ -380,13 +411,12 @@ pub fn csv(rows: &[ClassRow]) -> String {
             csv_text(&report.map_or(String::new(), |r| {
                 r.lights
                     .iter()
-                    .map(|l| match &l.findings {
-                        Some(f) if f.is_empty() => format!("{} {}: no findings", l.kind, l.made_at),
-                        Some(f) => format!("{} {}: {}", l.kind, l.made_at, f.join(" ")),
-                        None => format!("{} {}: not checked", l.kind, l.made_at),
+                    .map(|l| {
+                        let verdict = l.verdict("no findings", "not checked", |t| format!("at {t} s"));
+                        format!("{} {}: {verdict}", l.kind, l.made_at)
                     })
                     .collect::<Vec<_>>()
-                    .join("; ")
+                    .join(" | ")
             })),
         ];
         for kind in FINDINGS {

@@ -23,9 +23,10 @@ pub(super) trait LightMatrices {
     fn uniforms(&self, _fragment: &str) -> super::light::ObjectUniforms {
         super::light::ObjectUniforms::default()
     }
-    /// Makes `light_matrix` answer for the page's light `index` (as `lights` numbers them), and
-    /// gives that light as engine.js made it; None where it has no matrices.
-    fn select(&mut self, _index: usize) -> Option<EngineLight> {
+    /// Makes `light_matrix` answer for the page's light `index` (as `lights` numbers them), as
+    /// the page loaded or at `seconds` of its animation, and gives that light as engine.js made
+    /// it (moved where the animation took it); None where it has no matrices then.
+    fn select(&mut self, _index: usize, _seconds: Option<f64>) -> Option<EngineLight> {
         None
     }
 }
@@ -50,14 +51,17 @@ impl LightMatrices for super::page::PageRun {
                 checked: Some(i) == checked,
                 error: l.error.clone(),
                 findings: None,
+                light_width: None,
+                moved_at_s: self.times_of(i),
+                at_times: Vec::new(),
             })
             .collect()
     }
     fn uniforms(&self, fragment: &str) -> super::light::ObjectUniforms {
         self.draws().uniforms_for(fragment)
     }
-    fn select(&mut self, index: usize) -> Option<EngineLight> {
-        super::page::PageRun::select(self, index)
+    fn select(&mut self, index: usize, seconds: Option<f64>) -> Option<EngineLight> {
+        super::page::PageRun::select(self, index, seconds)
     }
     fn refusal(&self) -> Option<String> {
         self.float_texture().map(|at| {
@@ -112,4 +116,24 @@ pub struct LightEntry {
     /// is checked on its own by `shadowlab homework`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub findings: Option<Vec<String>>,
+    /// What the slabs said of the light its check's shader behaves as; `law_holds` is null where
+    /// too few of the check scene's slabs cast a measurable shadow under this light to judge.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub light_width: Option<super::LightWidthFit>,
+    /// The times (seconds of the page's animation) at which the check looked again and found it
+    /// moved: an orbit, a light their code moves each frame.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub moved_at_s: Vec<f64>,
+    /// Its checks at those times, by `shadowlab homework`.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub at_times: Vec<TimedCheck>,
+}
+
+/// A light's check at one time of the page's animation.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct TimedCheck {
+    pub time_s: f64,
+    /// Where the animation had taken the light, world units.
+    pub position: [f32; 3],
+    pub findings: Vec<String>,
 }

@@ -6,7 +6,7 @@
 //! fails says so on one line, and the check goes on with the framework's light.
 
 use super::light::{HomeworkLight, LightFrom, ModelMatrixError, PageUniforms, read_light};
-pub use super::light_source::LightEntry;
+pub use super::light_source::{LightEntry, TimedCheck};
 use super::light_source::{LightMatrices, load_light};
 use super::page::{EngineLight, GlCall, ScriptError};
 use super::program::ShaderSource;
@@ -217,6 +217,9 @@ fn listed_lights(lights: Vec<LightEntry>, used: &HomeworkLight) -> Vec<LightEntr
                 checked: true,
                 error: None,
                 findings: None,
+                light_width: None,
+                moved_at_s: Vec::new(),
+                at_times: Vec::new(),
             },
         );
     }
@@ -240,14 +243,22 @@ pub fn student_light(
     student_light_of(source, scene, index, t_s, None)
 }
 
-/// As `student_light`, for the page's light `page_light` (as the report's `lights` number them;
-/// None: the one the check uses first). None for a light of the page without matrices.
+/// One of the page's lights (as the report's `lights` number them), as the page loaded or at
+/// `time_s` seconds of its animation (one of the light's `moved_at_s`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PageLight {
+    pub index: usize,
+    pub time_s: Option<f64>,
+}
+
+/// As `student_light`, for the page's light `page_light` (None: the one the check uses first).
+/// None for a light of the page without matrices then.
 pub fn student_light_of(
     source: &HomeworkSource,
     scene: &Scene,
     index: usize,
     t_s: f32,
-    page_light: Option<usize>,
+    page_light: Option<PageLight>,
 ) -> Poll<Option<StudentLight>> {
     let Some(script) = &source.light_script else {
         return Poll::Ready(framework_light(scene, index, t_s, None, Vec::new(), Vec::new()));
@@ -315,7 +326,7 @@ fn light_of_page(
     script: &ShaderSource,
     scene: &Scene,
     (index, t_s): (usize, f32),
-    page_light: Option<usize>,
+    page_light: Option<PageLight>,
     engine: EngineLight,
     loaded: Result<Box<dyn LightMatrices>, ScriptError>,
 ) -> Option<StudentLight> {
@@ -330,9 +341,9 @@ fn light_of_page(
     let engine = match page_light {
         None => engine,
         Some(wanted) => {
-            let engine = loaded.select(wanted)?;
+            let engine = loaded.select(wanted.index, wanted.time_s)?;
             for (i, l) in lights.iter_mut().enumerate() {
-                l.checked = i == wanted;
+                l.checked = i == wanted.index;
             }
             engine
         }

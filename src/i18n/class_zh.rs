@@ -14,9 +14,10 @@ pub(super) const CLASS: &[(&str, &str)] = &[
     ("The lights their page made:", "其页面创建的光源："),
     ("not checked (a point light, or a light without matrices)", "未检查（点光源，或没有矩阵的光源）"),
     (
-        "Submissions with several lights (the bonus): {}; of their {} lights checked, {} without a finding",
-        "多光源作业（加分项）：{} 份；检查了其中 {} 个光源，{} 个没有发现问题",
+        "Submissions with several or moving lights (the bonus): {}; of their {} light checks, {} without a finding",
+        "多光源或动态光源作业（加分项）：{} 份；共检查光源 {} 次，{} 次没有发现问题",
     ),
+    ("at {} s", "第 {} 秒"),
     ("← class {} ({} submissions)", "← 班级 {}（{} 份作业）"),
     ("{} submissions", "共 {} 份作业"),
     ("checked@class", "已检查"),

@@ -25,8 +25,8 @@ var self = globalThis;
         // The page's text files by path, as the loaders answer them (filled by the driver).
         files: {},
         // The frame being drawn (-1 while the page loads, then 0, 1, ...), the page's clock (ms)
-        // and the WebGL context it asked for first.
-        state: { frame: -1, now: 0, context: null, floatTexture: null },
+        // and the WebGL context it asked for first; draws are recorded while `recordDraws` holds.
+        state: { frame: -1, now: 0, context: null, floatTexture: null, recordDraws: true },
     };
     globalThis.__shadowlab = record;
 
@@ -119,7 +119,7 @@ var self = globalThis;
         };
         function draw(count) {
             const p = state.program;
-            if (record.draws.length >= 4096 || !p) return;
+            if (record.draws.length >= 4096 || !p || !record.state.recordDraws) return;
             record.draws.push({ frame: record.state.frame, program: p.id, framebuffer: state.framebuffer ? state.framebuffer.id : null, request: state.request, uniforms: Object.assign({}, p.values), count: Number(count) || 0 });
         }
         const methods = {
@@ -236,6 +236,19 @@ var self = globalThis;
     define("navigator", { userAgent: "shadowlab" });
     define("location", { href: "shadowlab://homework/index.html", search: "", hash: "" });
     define("performance", { now: () => record.state.now });
+    // The page's clock for Date too (animation code reads Date.now()): it starts at 0, so a run
+    // is the same every time.
+    const RealDate = Date;
+    class PageDate extends RealDate {
+        constructor(...args) {
+            if (args.length === 0) super(record.state.now);
+            else super(...args);
+        }
+        static now() {
+            return record.state.now;
+        }
+    }
+    define("Date", PageDate);
     // Runs frame `index` of the page, `step_ms` after the one before: the callbacks the previous
     // frame registered, as a browser does. Returns the first error (message, then its stack), or "".
     record.runFrame = function (index, step_ms) {

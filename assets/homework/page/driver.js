@@ -2,8 +2,8 @@
 // in order, their first frames, then their light's CalcLightMVP for each object the check draws.
 // The host gives `evalScript(name, text)`, which runs a classic script as global code named
 // `name` in stack traces and throws what the script throws, and may give `step(file, what)`, told
-// what runs next (a host that can only stop the page from outside names it in its message), and
-// `engine`, its name.
+// what runs next (a host that can only stop the page from outside names it in its message),
+// `elapsedMs()`, the wall-clock time since the page started, and `engine`, its name.
 // Returns the page's record as JSON (src/homework/page/mod.rs reads it).
 "use strict";
 
@@ -91,6 +91,47 @@
         return light;
     }
 
+    // Each object's matrix under `object` (a light), or the error of computing it.
+    function matricesOf(input, object) {
+        return input.objects.map((o) => {
+            try {
+                return parse(record.lightMatrix(object, o.slice(0, 3), o.slice(3, 6)));
+            } catch (e) {
+                return { error: failure(e, input.light.name) };
+            }
+        });
+    }
+
+    // The page's animation: its frames run on to each time the check looks again (input.times,
+    // seconds); there, each light whose matrices changed (an orbit, a light their code moves) is
+    // kept in out.timed with its position then. The first frames' draws stay the ones read. The
+    // frames stop at half the time bound (host.elapsedMs), with a note.
+    async function followAnimation(host, input, out, light, runFrames, step) {
+        out.timed = [];
+        record.state.recordDraws = false;
+        const lights = (out.checked === null ? [] : [[out.checked, light, out.matrices]]).concat(
+            out.others.map((o) => [o.index, o.object, o.matrices]));
+        const still = lights.map(([, , matrices]) => stringify(matrices.map((m) => m.matrix || null)));
+        const elapsed = () => (typeof host.elapsedMs === "function" ? host.elapsedMs() : 0);
+        let frames = input.frames;
+        for (const seconds of input.times || []) {
+            // The first frame whose clock reaches `seconds` is the last one run.
+            const until = Math.ceil((seconds * 1000) / input.frameMs) + 1;
+            if (elapsed() > input.timeMs / 2) {
+                out.notes.push("the page's animation was followed to " + (((frames - 1) * input.frameMs) / 1000).toFixed(1) + " s only (half the time bound)");
+                break;
+            }
+            frames = await runFrames(until);
+            lights.forEach(([index, object], k) => {
+                step(input.light.name, "CalcLightMVP at " + seconds + " s");
+                const matrices = matricesOf(input, object);
+                if (stringify(matrices.map((m) => m.matrix || null)) !== still[k]) {
+                    out.timed.push({ index, seconds, position: record.plain(object && object.lightPos, 0), matrices });
+                }
+            });
+        }
+    }
+
     // input: {light: {name, text}, engineName, scripts: [{role, name, text}], files: {path: text},
     //         objects: [[tx, ty, tz, sx, sy, sz]], frames, frameMs}
     record.runPage = async function (host, inputJson) {
@@ -146,16 +187,21 @@
             if (typeof host.step === "function") host.step(file, what);
         };
         let frameFailed = false;
-        for (let i = 0; i < input.frames; i++) {
-            step("", "the page's frame " + i + " (its requestAnimationFrame callbacks)");
-            const frameError = record.runFrame(i, input.frameMs);
-            if (frameError && !frameFailed) {
-                frameFailed = true;
-                const [message, ...stack] = frameError.split("\n");
-                out.notes.push("a frame of the page failed: " + shown(failure({ message, stack: stack.join("\n") }, "")));
+        let frame = 0;
+        const runFrames = async (until) => {
+            for (; frame < until; frame++) {
+                step("", "the page's frame " + frame + " (its requestAnimationFrame callbacks)");
+                const frameError = record.runFrame(frame, input.frameMs);
+                if (frameError && !frameFailed) {
+                    frameFailed = true;
+                    const [message, ...stack] = frameError.split("\n");
+                    out.notes.push("a frame of the page failed: " + shown(failure({ message, stack: stack.join("\n") }, "")));
+                }
+                await settle();
             }
-            await settle();
-        }
+            return frame;
+        };
+        await runFrames(input.frames);
 
         const made = record.lights;
         const directional = made.map((l, i) => [i, l]).filter(([, l]) => l.kind === "DirectionalLight");
@@ -203,8 +249,10 @@
                     return { error: failure(e, input.light.name) };
                 }
             });
-            out.others.push({ index, matrices });
+            out.others.push({ index, matrices, object: other.object });
         }
+        await followAnimation(host, input, out, light, runFrames, step);
+        out.others.forEach((o) => delete o.object);
         out.draws = parse(record.drawsJson());
         out.context = parse(record.contextJson());
         return stringify(out);

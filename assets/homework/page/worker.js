@@ -17,6 +17,8 @@
     const parse = JSON.parse;
     const stringify = JSON.stringify;
     const then = Promise.prototype.then;
+    const clock = performance.now.bind(performance);
+    let started = 0;
     let nonce = "";
 
     // The message of compiling `text` as a function body (not run), or null where it compiles.
@@ -71,6 +73,7 @@
         self.onmessage = null;
         const message = parse(event.data);
         nonce = message.nonce;
+        started = clock();
         for (const [name, text] of message.prelude) {
             try {
                 evalScript(name, text);
@@ -79,7 +82,7 @@
                 return;
             }
         }
-        const running = globalThis.__shadowlab.runPage({ evalScript, step, engine: "browser" }, message.input);
+        const running = globalThis.__shadowlab.runPage({ evalScript, step, elapsedMs: () => clock() - started, engine: "browser" }, message.input);
         then.call(
             running,
             (output) => post(stringify({ nonce, output })),

@@ -122,9 +122,10 @@ pub(super) fn html(lang: Lang, rows: &[ClassRow], reports_in: Lang) -> String {
         escape(&fill(lang, "{} submissions", &[&rows.len()])),
         escape(&counts.join(list_separator(lang))),
     );
-    // The bonus: who made several lights, and how their lights fared on checks of their own.
+    // The bonus: who made several lights or moved one, and how their lights fared on checks of
+    // their own.
     let several: Vec<(usize, usize, usize)> =
-        rows.iter().filter_map(|r| r.report.as_ref().filter(|r| r.compiled)?.several_lights()).collect();
+        rows.iter().filter_map(|r| r.report.as_ref().filter(|r| r.compiled)?.bonus()).collect();
     if !several.is_empty() {
         let checked: usize = several.iter().map(|(_, c, _)| c).sum();
         let clean: usize = several.iter().map(|(.., n)| n).sum();
@@ -133,7 +134,7 @@ pub(super) fn html(lang: Lang, rows: &[ClassRow], reports_in: Lang) -> String {
             "<p class=\"bonus\">{}</p>",
             escape(&fill(
                 lang,
-                "Submissions with several lights (the bonus): {}; of their {} lights checked, {} without a finding",
+                "Submissions with several or moving lights (the bonus): {}; of their {} light checks, {} without a finding",
                 &[&several.len(), &checked, &clean]
             ))
         );
@@ -258,11 +259,11 @@ fn light_line(lang: Lang, report: &StudentReport) -> Option<String> {
 fn lights_list(h: &mut String, lang: Lang, report: &StudentReport) {
     let _ = writeln!(h, "<p>{}</p>\n<ul class=\"lights\">", escape(tr(lang, "The lights their page made:")));
     for light in &report.lights {
-        let verdict = match &light.findings {
-            Some(f) if f.is_empty() => tr(lang, "no findings").to_string(),
-            Some(f) => f.join(list_separator(lang)),
-            None => tr(lang, "not checked (a point light, or a light without matrices)").to_string(),
-        };
+        let verdict = light.verdict(
+            tr(lang, "no findings"),
+            tr(lang, "not checked (a point light, or a light without matrices)"),
+            |t| fill(lang, "at {} s", &[&t]),
+        );
         let _ = writeln!(
             h,
             "<li><code>{}</code> {}: {}</li>",
@@ -296,7 +297,7 @@ fn student(h: &mut String, lang: Lang, i: usize, row: &ClassRow, reports_in: Lan
         if let Some(line) = light_line(lang, report) {
             let _ = writeln!(h, "<p>{line}</p>");
         }
-        if report.several_lights().is_some() {
+        if report.bonus().is_some() {
             lights_list(h, lang, report);
         }
         findings(h, lang, report, reports_in);

@@ -265,6 +265,7 @@ fn the_bonus_lights_are_counted_and_each_listed_with_its_own_findings() {
         kind: kind.into(),
         made_at: made_at.into(),
         findings: findings.map(|f| f.iter().map(|id| id.to_string()).collect()),
+        at_times: Vec::new(),
     };
     if let Some(report) = rows[1].report.as_mut() {
         report.lights = vec![
@@ -272,30 +273,32 @@ fn the_bonus_lights_are_counted_and_each_listed_with_its_own_findings() {
             light("homework1/src/engine.js:31", "DirectionalLight", Some(&["light_frustum_clips"])),
             light("homework1/src/engine.js:35", "PointLight", None),
         ];
+        // The second light orbits: checked again at 1 s of the page's animation.
+        report.lights[1].at_times = vec![TimedPart { time_s: 1.0, findings: Vec::new() }];
     }
-    assert_eq!(rows[1].report.as_ref().and_then(|r| r.several_lights()), Some((3, 2, 1)));
-    assert_eq!(rows[0].report.as_ref().and_then(|r| r.several_lights()), None);
+    assert_eq!(rows[1].report.as_ref().and_then(|r| r.bonus()), Some((3, 3, 2)));
+    assert_eq!(rows[0].report.as_ref().and_then(|r| r.bonus()), None);
     let html = page::html(Lang::En, &rows, Lang::En);
     assert!(
         html.contains(
-            "Submissions with several lights (the bonus): 1; of their 2 lights checked, 1 without a finding"
+            "Submissions with several or moving lights (the bonus): 1; of their 3 light checks, 2 without a finding"
         ),
         "{html}"
     );
     assert!(
         html.contains(
-            "<li><code>homework1/src/engine.js:31</code> DirectionalLight: light_frustum_clips</li>"
+            "<li><code>homework1/src/engine.js:31</code> DirectionalLight: light_frustum_clips; at 1 s: no findings</li>"
         )
     );
     assert!(html.contains("engine.js:35</code> PointLight: not checked"));
     let zh = page::html(Lang::Zh, &rows, Lang::En);
-    assert!(zh.contains("多光源作业（加分项）：1 份"), "{zh}");
+    assert!(zh.contains("多光源或动态光源作业（加分项）：1 份") && zh.contains("第 1 秒"), "{zh}");
     let records = parse_csv(&csv(&rows));
     let column = records[0].iter().position(|h| h == "lights").expect("a lights column");
     assert_eq!(
         records[2][column],
-        "DirectionalLight homework1/src/engine.js:27: no findings; \
-         DirectionalLight homework1/src/engine.js:31: light_frustum_clips; \
+        "DirectionalLight homework1/src/engine.js:27: no findings | \
+         DirectionalLight homework1/src/engine.js:31: light_frustum_clips; at 1 s: no findings | \
          PointLight homework1/src/engine.js:35: not checked"
     );
     assert_eq!(records[1][column], "");

@@ -98,6 +98,10 @@ impl Engine {
                 )?;
                 host.set("evalScript", eval_script)?;
                 host.set("engine", "quickjs")?;
+                let started = Instant::now();
+                let elapsed_ms =
+                    rquickjs::Function::new(ctx.clone(), move || started.elapsed().as_secs_f64() * 1000.0)?;
+                host.set("elapsedMs", elapsed_ms)?;
                 let record: rquickjs::Object = ctx.globals().get("__shadowlab")?;
                 let run_page: rquickjs::Function = record.get("runPage")?;
                 run_page.call((host, input.to_string()))

@@ -25,6 +25,10 @@ pub(super) const PRELUDE: [(&str, &str); 6] = [
 const FRAMES: usize = 2;
 const FRAME_MS: f64 = 1000.0 / 60.0;
 
+/// When the check looks at the page's lights again, seconds of their animation: a light that
+/// moved by then gets a check of its own at that time.
+const LOOK_AGAIN_S: [f64; 3] = [0.5, 1.0, 2.0];
+
 /// The page's text files (shaders by path) as the loaders answer them: the framework's shaders
 /// where the submission has none of the name.
 fn page_files(page: &[ShaderSource]) -> std::collections::BTreeMap<String, &str> {
@@ -57,6 +61,11 @@ struct DriverInput<'a> {
     /// For the message of a page that allocates past the bound.
     #[serde(rename = "memoryMiB")]
     memory_mib: usize,
+    /// The time bound, ms: the page's animation is followed for half of it at most.
+    #[serde(rename = "timeMs")]
+    time_ms: f64,
+    /// The times the check looks at the page's lights again, seconds (an orbit, a light moved).
+    times: &'static [f64],
 }
 
 #[derive(Serialize)]
@@ -106,6 +115,8 @@ pub(super) fn driver_input(
         frames: FRAMES,
         frame_ms: FRAME_MS,
         memory_mib: limits.memory_bytes >> 20,
+        time_ms: limits.time.as_secs_f64() * 1000.0,
+        times: &LOOK_AGAIN_S,
     };
     let json = serde_json::to_string(&input).map_err(|e| ScriptError {
         file: "shadowlab".into(),

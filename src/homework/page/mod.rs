@@ -16,6 +16,7 @@ mod answer;
 #[cfg(not(target_arch = "wasm32"))]
 mod engine;
 mod input;
+mod lines;
 mod record;
 mod scripts;
 #[cfg(target_arch = "wasm32")]
@@ -29,6 +30,7 @@ mod tests_errors;
 mod tests_fuzz;
 
 use input::{PRELUDE, driver_input};
+use lines::{last_return, method_line};
 use record::MadeLight;
 pub use record::{FoundLight, PageDraws};
 use serde::Deserialize;
@@ -95,6 +97,16 @@ struct OtherLightJson {
     matrices: Vec<MatrixJson>,
 }
 
+/// A light's matrices later in the page's animation, where they changed.
+#[derive(Deserialize)]
+struct TimedLightJson {
+    index: usize,
+    seconds: f64,
+    #[serde(default)]
+    position: Option<Vec<f64>>,
+    matrices: Vec<MatrixJson>,
+}
+
 /// What the driver returns.
 #[derive(Deserialize)]
 struct DriverOutput {
@@ -105,6 +117,8 @@ struct DriverOutput {
     matrices: Vec<MatrixJson>,
     #[serde(default)]
     others: Vec<OtherLightJson>,
+    #[serde(default)]
+    timed: Vec<TimedLightJson>,
     draws: Option<PageDraws>,
     context: Option<ContextJson>,
 }
@@ -147,8 +161,12 @@ pub struct PageRun {
     /// The same for each other DirectionalLight the page made, by its index in `found`, with
     /// the light as engine.js made it.
     others: Vec<(usize, EngineLight, Matrices)>,
-    /// The light whose matrices `light_matrix` answers (None: the checked one).
-    selected: Option<usize>,
+    /// Where the page's animation changed a light's matrices: the light's index, the time
+    /// (seconds), its position then (world units) and each object's matrix.
+    timed: Vec<(usize, f64, Option<[f64; 3]>, Matrices)>,
+    /// The light (and time) whose matrices `light_matrix` answers (None: the checked one as
+    /// the page loaded).
+    selected: Option<(usize, Option<f64>)>,
     draws: PageDraws,
     /// Where the page first made a float texture (`file:line`), if it did.
     float_texture: Option<String>,
@@ -233,6 +251,14 @@ impl PageRun {
                 .collect()
         };
         let matrices = placed(output.matrices);
+        let timed = output
+            .timed
+            .into_iter()
+            .map(|t| {
+                let position = t.position.filter(|p| p.len() == 3).map(|p| [p[0], p[1], p[2]]);
+                (t.index, t.seconds, position, placed(t.matrices))
+            })
+            .collect();
         let others = output
             .others
             .into_iter()
@@ -249,6 +275,7 @@ impl PageRun {
             checked: output.checked,
             matrices,
             others,
+            timed,
             selected: None,
             draws: output.draws.unwrap_or_default(),
             float_texture,
@@ -311,25 +338,43 @@ impl PageRun {
         &self.draws
     }
 
-    /// Makes `light_matrix` answer for the page's light `index` (one of `other_lights`, or the
-    /// checked one), and gives that light as engine.js made it; None for a light without
-    /// matrices.
-    pub fn select(&mut self, index: usize) -> Option<EngineLight> {
-        if Some(index) == self.checked {
-            self.selected = None;
-            return Some(self.engine_light.clone());
+    /// The times (seconds) at which the page's animation changed light `index`'s matrices.
+    pub fn times_of(&self, index: usize) -> Vec<f64> {
+        self.timed.iter().filter(|(i, ..)| *i == index).map(|(_, t, ..)| *t).collect()
+    }
+
+    /// Makes `light_matrix` answer for the page's light `index` (one it computed matrices for),
+    /// as the page loaded or at `seconds` of its animation (one of `times_of`), and gives that
+    /// light as engine.js made it, moved where the animation took it; None for a light or a time
+    /// without matrices.
+    pub fn select(&mut self, index: usize, seconds: Option<f64>) -> Option<EngineLight> {
+        let mut light = if Some(index) == self.checked {
+            self.engine_light.clone()
+        } else {
+            self.others.iter().find(|(i, ..)| *i == index)?.1.clone()
+        };
+        if let Some(at) = seconds {
+            let (.., position, _) = self.timed.iter().find(|(i, t, ..)| *i == index && *t == at)?;
+            if let Some(p) = position {
+                light.position.value = *p;
+            }
         }
-        let (_, light, _) = self.others.iter().find(|(i, ..)| *i == index)?;
-        self.selected = Some(index);
-        Some(light.clone())
+        self.selected = (Some(index) != self.checked || seconds.is_some()).then_some((index, seconds));
+        Some(light)
     }
 
     /// The light's matrix for an object placed by `translate` and `scale`, as the page computed
     /// it when it ran (an object it was not asked for is an error).
     pub fn light_matrix(&self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
         let matrices = match self.selected {
-            Some(index) => self.others.iter().find(|(i, ..)| *i == index).map_or(&[][..], |(.., m)| &m[..]),
             None => &self.matrices[..],
+            Some((index, Some(at))) => {
+                self.timed.iter().find(|(i, t, ..)| *i == index && *t == at).map_or(&[][..], |(.., m)| &m[..])
+            }
+            Some((index, None)) if Some(index) == self.checked => &self.matrices[..],
+            Some((index, None)) => {
+                self.others.iter().find(|(i, ..)| *i == index).map_or(&[][..], |(.., m)| &m[..])
+            }
         };
         matrices
             .iter()
@@ -382,74 +427,4 @@ fn matrix(
         };
     }
     Ok(LightMatrix { clip_from_object, calls, return_line })
-}
-
-/// The line that defines `CalcLightMVP` (a method, or an assignment of a function), not a
-/// comment or a call.
-fn method_line(text: &str) -> Option<usize> {
-    const NAME: &str = "CalcLightMVP";
-    text.lines()
-        .position(|line| {
-            let code = line.trim_start();
-            if code.starts_with("//") || code.starts_with('*') || code.starts_with("/*") {
-                return false;
-            }
-            code.match_indices(NAME).any(|(at, _)| {
-                let after = code[at + NAME.len()..].trim_start();
-                let called = code[..at].ends_with('.');
-                after.starts_with('=') || (!called && (after.starts_with('(') || after.starts_with(':')))
-            })
-        })
-        .map(|i| i + 1)
-}
-
-/// The line of the last `return` in the function whose definition starts on `from` (1-based):
-/// its body's braces matched past strings, template literals and comments.
-fn last_return(text: &str, from: usize) -> Option<usize> {
-    let lines: Vec<&str> = text.lines().collect();
-    let (mut depth, mut opened, mut found) = (0usize, false, None);
-    let mut in_block_comment = false;
-    for (index, line) in lines.iter().enumerate().skip(from.checked_sub(1)?) {
-        let chars: Vec<char> = line.chars().collect();
-        let mut i = 0;
-        let mut quote: Option<char> = None;
-        while i < chars.len() {
-            let (c, next) = (chars[i], chars.get(i + 1).copied());
-            if in_block_comment {
-                if c == '*' && next == Some('/') {
-                    in_block_comment = false;
-                    i += 1;
-                }
-            } else if let Some(q) = quote {
-                if c == '\\' {
-                    i += 1;
-                } else if c == q {
-                    quote = None;
-                }
-            } else if c == '/' && next == Some('/') {
-                break;
-            } else if c == '/' && next == Some('*') {
-                in_block_comment = true;
-                i += 1;
-            } else if matches!(c, '\'' | '"' | '`') {
-                quote = Some(c);
-            } else if c == '{' {
-                depth += 1;
-                opened = true;
-            } else if c == '}' {
-                depth = depth.saturating_sub(1);
-                if opened && depth == 0 {
-                    return found;
-                }
-            } else if opened
-                && chars[i..].starts_with(&['r', 'e', 't', 'u', 'r', 'n'])
-                && (i == 0 || !(chars[i - 1].is_alphanumeric() || chars[i - 1] == '_'))
-                && !chars.get(i + 6).is_some_and(|c| c.is_alphanumeric() || *c == '_')
-            {
-                found = Some(index + 1);
-            }
-            i += 1;
-        }
-    }
-    found
 }

@@ -293,3 +293,41 @@ fn an_endless_frame_or_promise_ends_in_one_line_naming_its_file() {
         assert!(e.message.contains("time bound of 0.3 s"), "{e}");
     }
 }
+
+/// The framework's engine.js whose main loop moves the light as `moving` says each frame.
+fn animated_engine(moving: &str) -> String {
+    let engine = FRAMEWORK_ENGINE
+        .replace("        renderer.render();", &format!("        renderer.render();\n        {moving}"));
+    assert_ne!(engine, FRAMEWORK_ENGINE, "the main loop's render call is where it was");
+    engine
+}
+
+#[test]
+fn a_light_the_page_moves_is_looked_at_again_where_it_moved() {
+    // An orbit about y, its angle from the page's clock (Date.now, as real homework writes it).
+    let engine = animated_engine(
+        "const a = Date.now() * 0.001; directionLight.lightPos = [80 * Math.sin(a), 80, 80 * Math.cos(a)];",
+    );
+    let (mut page, _) = load(EXAMPLE_LIGHT, Some(&engine)).expect("the page runs");
+    let times = page.times_of(0);
+    assert_eq!(times, vec![0.5, 1.0, 2.0]);
+    for t in times {
+        let light = page.select(0, Some(t)).expect("the light then");
+        // The frame that reaches t runs at a whole number of 60 Hz frames.
+        let seconds = (t * 60.0).ceil() / 60.0;
+        let expected = [80.0 * seconds.sin(), 80.0, 80.0 * seconds.cos()];
+        for (got, want) in light.position.value.iter().zip(expected) {
+            assert!((got - want).abs() < 1e-9, "at {t} s: {:?} vs {expected:?}", light.position.value);
+        }
+        // Its matrices are the light's there: the origin lies on its axis, at its distance.
+        let m = page.light_matrix([0.0; 3], [1.0; 3]).expect("a matrix").clip_from_object;
+        let origin = glam::Mat4::from_cols_array(&m) * glam::Vec4::W;
+        assert!(origin.x.abs() < 1e-5 && origin.y.abs() < 1e-5, "{origin}");
+    }
+    // Back to the light as the page loaded.
+    let light = page.select(0, None).expect("the light");
+    assert_eq!(light.position.value, [0.0, 80.0, 80.0]);
+    // A page that moves nothing is not looked at again.
+    let (still, _) = load(EXAMPLE_LIGHT, None).expect("the page runs");
+    assert!(still.times_of(0).is_empty());
+}
