@@ -104,16 +104,22 @@
 
     // The page's animation: its frames run on to each time the check looks again (input.times,
     // seconds); there, each light whose matrices changed (an orbit, a light their code moves) is
-    // kept in out.timed with its position then. The first frames' draws stay the ones read. The
-    // frames stop at half the time bound (host.elapsedMs), with a note.
+    // kept in out.timed with its position then. Only a page whose lights move from frame to
+    // frame is followed; its first frames' draws stay the ones read. The frames stop at half the
+    // time bound (host.elapsedMs), with a note.
     async function followAnimation(host, input, out, light, runFrames, step) {
         out.timed = [];
         record.state.recordDraws = false;
-        const lights = (out.checked === null ? [] : [[out.checked, light, out.matrices]]).concat(
-            out.others.map((o) => [o.index, o.object, o.matrices]));
+        // Lights whose CalcLightMVP gave every matrix (one that failed is not run again).
+        const lights = (out.checked === null ? [] : [[out.checked, light, out.matrices]])
+            .concat(out.others.map((o) => [o.index, o.object, o.matrices]))
+            .filter(([, , matrices]) => matrices.every((m) => Array.isArray(m.matrix)));
         const still = lights.map(([, , matrices]) => stringify(matrices.map((m) => m.matrix || null)));
         const elapsed = () => (typeof host.elapsedMs === "function" ? host.elapsedMs() : 0);
-        let frames = input.frames;
+        const changed = (object, k) => stringify(matricesOf(input, object).map((m) => m.matrix || null)) !== still[k];
+        // One frame more first: a page whose lights it leaves where they are is not followed.
+        let frames = await runFrames(input.frames + 1);
+        if (!lights.some(([, object], k) => changed(object, k))) return;
         for (const seconds of input.times || []) {
             // The first frame whose clock reaches `seconds` is the last one run.
             const until = Math.ceil((seconds * 1000) / input.frameMs) + 1;
