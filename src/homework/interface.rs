@@ -111,6 +111,32 @@ pub(super) fn is_precision(word: &str) -> bool {
     matches!(word, "highp" | "mediump" | "lowp")
 }
 
+/// Words GLSL ES 1.00 leaves free for names (WebGL compiles `vec2 sample;`) that GLSL 450 with
+/// Vulkan's additions keeps for itself: a student's name of this kind is renamed (`sample_`).
+pub(super) fn is_glsl450_keyword(word: &str) -> bool {
+    matches!(
+        word,
+        "sample"
+            | "patch"
+            | "subroutine"
+            | "buffer"
+            | "shared"
+            | "coherent"
+            | "restrict"
+            | "readonly"
+            | "writeonly"
+            | "precise"
+            | "smooth"
+            | "centroid"
+            | "noperspective"
+            | "layout"
+            | "atomic_uint"
+            | "sampler"
+            | "subpassInput"
+            | "demote"
+    )
+}
+
 /// The global `uniform` / `varying` / `attribute` declarations of a source, from its tokens.
 pub(super) fn declarations(source: &str, toks: &[Token]) -> Result<Vec<Declaration>, HomeworkError> {
     let text = |t: &Token| &source[t.start..t.end];

@@ -26,7 +26,7 @@ use super::instrument::{
 };
 use super::interface::{
     Binding, BindingKind, CLIP_Y_SIGN, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface,
-    STUDENT_BLOCK_BINDING, attribute_location, declarations, is_precision, texture_call,
+    STUDENT_BLOCK_BINDING, attribute_location, declarations, is_glsl450_keyword, is_precision, texture_call,
 };
 use super::lex::{Kind, Token, check_size, depth_in, matching, matching_open, tokens};
 use super::missing_return::{ends_with_return, zero_of};
@@ -273,7 +273,8 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
         }
     }
 
-    // Token by token: precision qualifiers, `const in`, gl_FragColor, texture2D, passing samplers.
+    // Token by token: precision qualifiers, `const in`, gl_FragColor, texture2D, passing samplers,
+    // names GLSL 450 keeps for itself.
     let mut i = 0;
     while i < toks.len() {
         if used[i] {
@@ -327,6 +328,8 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
             edits.replace(t.start, toks[i + 2].end, format!("{call}(sampler2D({tex}, {tex}_sampler)"));
             i += 3;
             continue;
+        } else if t.kind == Kind::Ident && is_glsl450_keyword(word) {
+            edits.replace(t.start, t.end, format!("{word}_"));
         } else if t.kind == Kind::Ident
             && (textures.iter().any(|n| n == word)
                 || bodies.iter().any(|b| b.open < i && i < b.close && b.samplers.iter().any(|s| s == word)))

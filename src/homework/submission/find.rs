@@ -56,6 +56,35 @@ impl Kind {
     pub(super) fn of(file_name: &str) -> Option<Kind> {
         Kind::ALL.into_iter().find(|k| k.file_name().eq_ignore_ascii_case(file_name))
     }
+
+    /// Which framework file `path` is among the submission's `paths`: by its name, or a shader
+    /// the student renamed (`phongShader/phong.frag`, loaded by that name from their loadOBJ.js):
+    /// the only `.frag` (`.vert`) in the framework's folder for it, where no file of the
+    /// framework's name is in the submission.
+    fn of_path(path: &str, paths: &[String]) -> Option<Kind> {
+        let (dir, name) = path.rsplit_once('/').unwrap_or(("", path));
+        if let Some(kind) = Kind::of(name) {
+            return Some(kind);
+        }
+        let lower = name.to_lowercase();
+        let extension = [".frag", ".vert"].into_iter().find(|e| lower.ends_with(e))?;
+        let folder = dir.rsplit('/').next().unwrap_or(dir);
+        let kind = match (extension, folder.to_lowercase().as_str()) {
+            (".frag", "phongshader") => Kind::PhongFragment,
+            (".vert", "phongshader") => Kind::PhongVertex,
+            (".frag", "shadowshader") => Kind::ShadowFragment,
+            (".vert", "shadowshader") => Kind::ShadowVertex,
+            _ => return None,
+        };
+        let named = paths.iter().any(|p| p.rsplit('/').next().and_then(Kind::of) == Some(kind));
+        let siblings = paths
+            .iter()
+            .filter(|p| {
+                p.rsplit_once('/').is_some_and(|(d, n)| d == dir && n.to_lowercase().ends_with(extension))
+            })
+            .count();
+        (!named && siblings == 1).then_some(kind)
+    }
 }
 
 /// Why a path is never looked at, if it is one of those: tool folders and macOS metadata.
@@ -206,7 +235,7 @@ fn choose(kind: Kind, paths: &[String], root: &[&str]) -> (Option<usize>, Option
     let mut ranked: Vec<(Rank, usize)> = paths
         .iter()
         .enumerate()
-        .filter(|(_, p)| p.rsplit('/').next().and_then(Kind::of) == Some(kind))
+        .filter(|(_, p)| Kind::of_path(p, paths) == Some(kind))
         .map(|(i, p)| (rank(kind, p, root), i))
         .collect();
     ranked.sort();
@@ -237,7 +266,7 @@ fn choose(kind: Kind, paths: &[String], root: &[&str]) -> (Option<usize>, Option
 pub(super) fn level_homeworks(paths: &[String]) -> Vec<String> {
     let mut ranked: Vec<Rank> = paths
         .iter()
-        .filter(|p| p.rsplit('/').next().and_then(Kind::of) == Some(Kind::PhongFragment))
+        .filter(|p| Kind::of_path(p, paths) == Some(Kind::PhongFragment))
         .map(|p| rank(Kind::PhongFragment, p, &[]))
         .collect();
     ranked.sort();
@@ -277,6 +306,19 @@ pub(super) fn pick(paths: &[String]) -> Option<Picked> {
         let (index, note) = choose(kind, paths, &root);
         *slot = index;
         notes.extend(note);
+    }
+    for (kind, index) in
+        std::iter::once((Kind::PhongFragment, Some(phong))).chain(Kind::ALL.into_iter().skip(1).zip(others))
+    {
+        let path = index.and_then(|i| paths.get(i)).map_or("", String::as_str);
+        let name = path.rsplit('/').next().unwrap_or(path);
+        if !path.is_empty() && Kind::of(name).is_none() {
+            notes.push(format!(
+                "read {path} as the {}: the only shader of its kind in its {}/, and no file of the framework's name",
+                kind.file_name(),
+                kind.parent()
+            ));
+        }
     }
     Some(Picked { phong_fragment: phong, others, notes })
 }
@@ -444,5 +486,46 @@ mod tests {
         assert!(skip_reason("a/node_modules/x/engine.js").is_some());
         assert!(skip_reason(".git/x").is_some());
         assert!(skip_reason("hw1/src/engine.js").is_none());
+    }
+
+    #[test]
+    fn renamed_shaders_stand_in_where_the_framework_names_are_missing() {
+        let paths: Vec<String> = [
+            "hw1/src/shaders/phongShader/phong.frag",
+            "hw1/src/shaders/phongShader/phong.vert",
+            "hw1/src/shaders/shadowShader/shadow.frag",
+            "hw1/src/shaders/shadowShader/shadow.vert",
+            "hw1/src/shaders/lightShader/lightCube.frag",
+            "hw1/src/lights/DirectionalLight.js",
+        ]
+        .map(String::from)
+        .to_vec();
+        let picked = pick(&paths).expect("a phong fragment shader");
+        assert_eq!(paths[picked.phong_fragment], "hw1/src/shaders/phongShader/phong.frag");
+        let named: Vec<Option<&str>> = picked.others.iter().map(|i| i.map(|i| paths[i].as_str())).collect();
+        assert_eq!(
+            named,
+            vec![
+                Some("hw1/src/shaders/phongShader/phong.vert"),
+                Some("hw1/src/shaders/shadowShader/shadow.frag"),
+                Some("hw1/src/shaders/shadowShader/shadow.vert"),
+                Some("hw1/src/lights/DirectionalLight.js"),
+                None,
+            ]
+        );
+        assert!(
+            picked
+                .notes
+                .iter()
+                .any(|n| n
+                    .starts_with("read hw1/src/shaders/phongShader/phong.frag as the phongFragment.glsl"))
+        );
+        // A file of the framework's name wins; two .frag files in one folder name none.
+        let mut named_too = paths.clone();
+        named_too.push("hw1/src/shaders/phongShader/phongFragment.glsl".into());
+        let picked = pick(&named_too).expect("a phong fragment shader");
+        assert_eq!(named_too[picked.phong_fragment], "hw1/src/shaders/phongShader/phongFragment.glsl");
+        let two = ["a/phongShader/one.frag", "a/phongShader/two.frag"].map(String::from).to_vec();
+        assert!(pick(&two).is_none());
     }
 }

@@ -313,3 +313,14 @@ fn macros_that_name_themselves_or_each_other_many_times_are_read_once() {
     let source = fragment(&format!("{chain}#if M0\n#endif\nfloat f(float x, int n) {{ return x; }}"));
     assert_eq!(source_refusals(&source, Stage::Fragment), vec![]);
 }
+
+#[test]
+fn names_webgl_allows_and_glsl_450_keeps_are_renamed_not_refused() {
+    // WebGL 1 compiles these names; GLSL 450 (and Vulkan's GLSL) keeps them as keywords.
+    for name in ["sample", "patch", "buffer", "shared", "smooth", "sampler", "precise"] {
+        let source = fragment(&format!(
+            "float f(float x, int n) {{ vec2 {name} = poissonDisk[0] * x; return {name}.x + float(n); }}"
+        ));
+        assert_eq!(refused(&source, Stage::Fragment), None, "`{name}` as a local");
+    }
+}
