@@ -44,6 +44,11 @@ mkdir -p "$dist"
 wasm-bindgen --target web --no-typescript --out-dir "$dist" --out-name shadowlab \
     "$CARGO_TARGET_DIR/$target/$profile/shadowlab.wasm"
 cp web/index.html "$dist/index.html"
+# The framework's libraries a student's page runs with (their Worker loads them from here; kept out
+# of the wasm): the same files the desktop program includes.
+mkdir -p "$dist/homework/lib"
+cp assets/homework/framework/lib/three.min.js assets/homework/framework/lib/three.LICENSE \
+    assets/homework/framework/lib/gl-matrix-min.js "$dist/homework/lib/"
 
 wasm="$dist/shadowlab_bg.wasm"
 wasm_opt="$(command -v wasm-opt || true)"

@@ -1,6 +1,7 @@
 // The browser's host for a student's page: src/homework/page/worker.rs starts this in a
-// dedicated Worker of its own, posts it one message (JSON: {nonce, prelude: [[name, text]],
-// input}) and reads back what driver.js returns. Each script runs as a classic script
+// dedicated Worker of its own, posts it one message (JSON: {nonce, prelude: [[name, text] or
+// [name, null, url] for a library the page serves], input}) and reads back what driver.js
+// returns. Each script runs as a classic script
 // (importScripts of its text, named by a sourceURL), so its top-level classes and `let`s are
 // global as in the student's own page. Everything this needs is taken before any script runs:
 // browser.js then takes the Worker's network, its other workers and its channel away.
@@ -8,6 +9,7 @@
 
 (function () {
     const post = self.postMessage.bind(self);
+    const fetchPage = self.fetch.bind(self);
     const load = self.importScripts.bind(self);
     const makeUrl = URL.createObjectURL.bind(URL);
     const revokeUrl = URL.revokeObjectURL.bind(URL);
@@ -69,12 +71,26 @@
         post(stringify({ nonce, running: file, what }));
     }
 
-    self.onmessage = function (event) {
+    // A library the page serves, as text (before any script runs: nothing has been taken yet).
+    async function served(name, url) {
+        const response = await fetchPage(url);
+        if (!response.ok) throw new Error("the page could not load " + name + " (" + url + ": " + response.status + ")");
+        return response.text();
+    }
+
+    self.onmessage = async function (event) {
         self.onmessage = null;
         const message = parse(event.data);
         nonce = message.nonce;
         started = clock();
-        for (const [name, text] of message.prelude) {
+        let prelude;
+        try {
+            prelude = await Promise.all(message.prelude.map(async ([name, text, url]) => [name, text === null ? await served(name, url) : text]));
+        } catch (e) {
+            post(stringify({ nonce, failed: { file: "shadowlab", line: 0, message: String(e && e.message) } }));
+            return;
+        }
+        for (const [name, text] of prelude) {
             try {
                 evalScript(name, text);
             } catch (e) {

@@ -10,15 +10,35 @@ use super::{Limits, Placed};
 use crate::homework::page::ScriptError;
 use crate::homework::program::ShaderSource;
 
+/// A prelude script's text: in the program, or (in the page, for the framework's libraries, which
+/// the page serves beside its wasm to keep them out of it) a file at this path under the page.
+pub(super) enum Text {
+    Included(&'static str),
+    #[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+    Served(&'static str),
+}
+
+/// One of the framework's libraries: in the desktop program, included; in the page, served from
+/// `homework/lib/` beside the wasm (web/build.sh copies it there).
+macro_rules! library {
+    ($file:literal) => {{
+        #[cfg(not(target_arch = "wasm32"))]
+        let text = Text::Included(include_str!(concat!("../../../assets/homework/framework/lib/", $file)));
+        #[cfg(target_arch = "wasm32")]
+        let text = Text::Served(concat!("homework/lib/", $file));
+        text
+    }};
+}
+
 /// Shadowlab's stand-ins, the libraries and the driver, in the order they run, before the
 /// student's scripts.
-pub(super) const PRELUDE: [(&str, &str); 6] = [
-    ("shadowlab/browser.js", include_str!("../../../assets/homework/page/browser.js")),
-    ("lib/three.js", include_str!("../../../assets/homework/framework/lib/three.min.js")),
-    ("lib/gl-matrix-min.js", include_str!("../../../assets/homework/framework/lib/gl-matrix-min.js")),
-    ("shadowlab/libraries.js", include_str!("../../../assets/homework/page/libraries.js")),
-    ("shadowlab/calls.js", include_str!("../../../assets/homework/page/calls.js")),
-    ("shadowlab/driver.js", include_str!("../../../assets/homework/page/driver.js")),
+pub(super) const PRELUDE: [(&str, Text); 6] = [
+    ("shadowlab/browser.js", Text::Included(include_str!("../../../assets/homework/page/browser.js"))),
+    ("lib/three.js", library!("three.min.js")),
+    ("lib/gl-matrix-min.js", library!("gl-matrix-min.js")),
+    ("shadowlab/libraries.js", Text::Included(include_str!("../../../assets/homework/page/libraries.js"))),
+    ("shadowlab/calls.js", Text::Included(include_str!("../../../assets/homework/page/calls.js"))),
+    ("shadowlab/driver.js", Text::Included(include_str!("../../../assets/homework/page/driver.js"))),
 ];
 
 /// Frames of the page run after it loads, and the time between them (ms, a 60 Hz display).

@@ -196,7 +196,14 @@ impl PageRun {
             line: 0,
             message: m,
         })?;
-        for (file, source) in PRELUDE {
+        for (file, text) in &PRELUDE {
+            let input::Text::Included(source) = text else {
+                return Err(shadowlab_error(ScriptError {
+                    file: (*file).into(),
+                    line: 0,
+                    message: "served to the page only".into(),
+                }));
+            };
             engine.run_script(file, source).map_err(shadowlab_error)?;
         }
         let output = engine.run_page(&light.name, &input)?;

@@ -17,6 +17,7 @@ use wasm_bindgen::JsCast;
 use wasm_bindgen::closure::Closure;
 
 use super::ScriptError;
+use super::input::Text;
 
 const WORKER_JS: &str = include_str!("../../../assets/homework/page/worker.js");
 
@@ -76,7 +77,7 @@ struct ScriptErrorJson {
 /// driver.js's answer for `input`, run with `prelude` in a Worker: Pending until it comes (the
 /// Worker is started on the first call). `blame` names the file of a failure that names none.
 pub(super) fn poll(
-    prelude: &[(&str, &str)],
+    prelude: &[(&str, Text)],
     input: &str,
     blame: &str,
     time: Duration,
@@ -115,7 +116,7 @@ fn shadowlab(message: String) -> ScriptError {
 }
 
 fn start(
-    prelude: &[(&str, &str)],
+    prelude: &[(&str, Text)],
     input: &str,
     input_hash: u64,
     blame: &str,
@@ -203,8 +204,20 @@ fn start(
         )
         .map_err(refused)?;
 
-    let prelude: Vec<[&str; 2]> = prelude.iter().map(|(name, text)| [*name, *text]).collect();
-    let message = serde_json::json!({ "nonce": nonce, "prelude": prelude, "input": input });
+    // Each script as [name, text], or [name, null, url] for a library the page serves (the
+    // Worker, started from a Blob, is given the whole address).
+    let page = window.location().href().map_err(refused)?;
+    let mut scripts = Vec::new();
+    for (name, text) in prelude {
+        scripts.push(match text {
+            Text::Included(text) => serde_json::json!([name, text]),
+            Text::Served(path) => {
+                let url = web_sys::Url::new_with_base(path, &page).map_err(refused)?.href();
+                serde_json::json!([name, null, url])
+            }
+        });
+    }
+    let message = serde_json::json!({ "nonce": nonce, "prelude": scripts, "input": input });
     worker.post_message(&wasm_bindgen::JsValue::from_str(&message.to_string())).map_err(refused)?;
     Ok(Run { input_hash, state, worker, _on_message: on_message, _on_error: on_error })
 }
