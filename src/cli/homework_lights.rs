@@ -70,15 +70,15 @@ pub(super) fn check_each_light(
         if entry.kind != "DirectionalLight" || entry.error.is_some() {
             continue;
         }
-        let Some(index) = listed.checked_sub(inserted) else {
+        let checked = entry.checked;
+        // The framework's light listed first is the checked one too, and no light of the page.
+        let index = listed.checked_sub(inserted);
+        if checked {
             report.lights[listed].findings = Some(ids(report));
             report.lights[listed].light_width = report.light_width.clone();
-            continue;
-        };
-        if entry.checked {
-            report.lights[listed].findings = Some(ids(report));
-            report.lights[listed].light_width = report.light_width.clone();
-        } else {
+        }
+        let Some(index) = index else { continue };
+        if !checked {
             match check_light(check, renderer, request, settings, PageLight { index, time_s: None })? {
                 None => continue,
                 Some(Err(error)) => {

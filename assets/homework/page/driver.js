@@ -15,7 +15,7 @@
     let memoryMiB = 0;
     // The page's other lights whose matrices are computed for checks of their own.
     const MAX_OTHER_LIGHTS = 7;
-    // Whether the host's engine is QuickJS (the desktop's), whose two habits are undone below.
+    // Whether the host's engine is QuickJS (the desktop's), whose three habits are undone below.
     let quickjs = false;
     // Each script's lines by file name, for placing an error the engine put on an earlier line.
     const linesOf = {};
@@ -114,9 +114,11 @@
         const lights = (out.checked === null ? [] : [[out.checked, light, out.matrices]])
             .concat(out.others.map((o) => [o.index, o.object, o.matrices]))
             .filter(([, , matrices]) => matrices.every((m) => Array.isArray(m.matrix)));
-        const still = lights.map(([, , matrices]) => stringify(matrices.map((m) => m.matrix || null)));
+        // The matrices alone (not the calls that made them), to tell whether a light moved.
+        const fingerprint = (matrices) => stringify(matrices.map((m) => m.matrix || null));
+        const still = lights.map(([, , matrices]) => fingerprint(matrices));
         const elapsed = () => (typeof host.elapsedMs === "function" ? host.elapsedMs() : 0);
-        const changed = (object, k) => stringify(matricesOf(input, object).map((m) => m.matrix || null)) !== still[k];
+        const changed = (object, k) => fingerprint(matricesOf(input, object)) !== still[k];
         // One frame more first: a page whose lights it leaves where they are is not followed.
         let frames = await runFrames(input.frames + 1);
         if (!lights.some(([, object], k) => changed(object, k))) return;
@@ -131,7 +133,7 @@
             lights.forEach(([index, object], k) => {
                 step(input.light.name, "CalcLightMVP at " + seconds + " s");
                 const matrices = matricesOf(input, object);
-                if (stringify(matrices.map((m) => m.matrix || null)) !== still[k]) {
+                if (fingerprint(matrices) !== still[k]) {
                     out.timed.push({ index, seconds, position: record.plain(object && object.lightPos, 0), matrices });
                 }
             });
@@ -235,27 +237,13 @@
         }
         out.lights = parse(record.lightsJson());
         step(input.light.name, "CalcLightMVP");
-        for (const o of input.objects) {
-            try {
-                out.matrices.push(parse(record.lightMatrix(light, o.slice(0, 3), o.slice(3, 6))));
-            } catch (e) {
-                out.matrices.push({ error: failure(e, input.light.name) });
-            }
-        }
+        out.matrices = matricesOf(input, light);
         // Each other DirectionalLight the page made, for a check of its own (the bonus: one map
         // per light, each pass drawn with that light's matrices).
-        out.others = [];
         for (const [index, other] of directional.slice(1, 1 + MAX_OTHER_LIGHTS)) {
             if (other.error !== null) continue;
             step(input.light.name, "CalcLightMVP of the light made on " + other.file + ":" + other.line);
-            const matrices = input.objects.map((o) => {
-                try {
-                    return parse(record.lightMatrix(other.object, o.slice(0, 3), o.slice(3, 6)));
-                } catch (e) {
-                    return { error: failure(e, input.light.name) };
-                }
-            });
-            out.others.push({ index, matrices, object: other.object });
+            out.others.push({ index, matrices: matricesOf(input, other.object), object: other.object });
         }
         await followAnimation(host, input, out, light, runFrames, step);
         out.others.forEach((o) => delete o.object);

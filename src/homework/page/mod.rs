@@ -148,6 +148,18 @@ type Matrices = Vec<(Placed, Result<LightMatrix, ScriptError>)>;
 /// An object's place as the framework gives it: (translate, scale), world units.
 pub type Placed = ([f64; 3], [f64; 3]);
 
+/// One light's matrix for each object asked, as the page loaded or at a time of its animation.
+struct LightSet {
+    /// The light's index among those the page made (None: the framework's light, used where the
+    /// page made no DirectionalLight).
+    index: Option<usize>,
+    /// Seconds of the page's animation (None: as the page loaded).
+    seconds: Option<f64>,
+    /// The light as engine.js made it, moved where the animation had taken it.
+    light: EngineLight,
+    matrices: Matrices,
+}
+
 /// A student's page, run: their light, what their engine.js gave it, the matrix of each object
 /// asked for, and what the page drew.
 pub struct PageRun {
@@ -156,17 +168,11 @@ pub struct PageRun {
     /// Every light the page made, in order; the check's is `checked`.
     found: Vec<FoundLight>,
     checked: Option<usize>,
-    /// Each object's (translate, scale) with its matrix, in the order asked.
-    matrices: Matrices,
-    /// The same for each other DirectionalLight the page made, by its index in `found`, with
-    /// the light as engine.js made it.
-    others: Vec<(usize, EngineLight, Matrices)>,
-    /// Where the page's animation changed a light's matrices: the light's index, the time
-    /// (seconds), its position then (world units) and each object's matrix.
-    timed: Vec<(usize, f64, Option<[f64; 3]>, Matrices)>,
-    /// The light (and time) whose matrices `light_matrix` answers (None: the checked one as
-    /// the page loaded).
-    selected: Option<(usize, Option<f64>)>,
+    /// Each light's matrices the page computed: first the checked light's as the page loaded,
+    /// then each other DirectionalLight's, then each light's where its animation had moved it.
+    sets: Vec<LightSet>,
+    /// The set `light_matrix` answers from (an index into `sets`).
+    selected: usize,
     draws: PageDraws,
     /// Where the page first made a float texture (`file:line`), if it did.
     float_texture: Option<String>,
@@ -257,33 +263,43 @@ impl PageRun {
                 .map(|(placed, m)| (*placed, matrix(m, &light.name, method_line, return_line)))
                 .collect()
         };
-        let matrices = placed(output.matrices);
-        let timed = output
-            .timed
-            .into_iter()
-            .map(|t| {
-                let position = t.position.filter(|p| p.len() == 3).map(|p| [p[0], p[1], p[2]]);
-                (t.index, t.seconds, position, placed(t.matrices))
-            })
-            .collect();
-        let others = output
-            .others
-            .into_iter()
-            .filter_map(|other| {
-                let made = output.lights.get(other.index)?;
-                Some((other.index, Self::engine_light(made, &mut Vec::new()), placed(other.matrices)))
-            })
-            .collect();
+        let mut sets = vec![LightSet {
+            index: output.checked,
+            seconds: None,
+            light: engine_light.clone(),
+            matrices: placed(output.matrices),
+        }];
+        for other in output.others {
+            if let Some(made) = output.lights.get(other.index) {
+                let light = Self::engine_light(made, &mut Vec::new());
+                sets.push(LightSet {
+                    index: Some(other.index),
+                    seconds: None,
+                    light,
+                    matrices: placed(other.matrices),
+                });
+            }
+        }
+        for timed in output.timed {
+            let Some(loaded) = sets.iter().find(|s| s.index == Some(timed.index) && s.seconds.is_none())
+            else {
+                continue;
+            };
+            let mut light = loaded.light.clone();
+            if let Some(p) = timed.position.filter(|p| p.len() == 3) {
+                light.position.value = [p[0], p[1], p[2]];
+            }
+            let matrices = placed(timed.matrices);
+            sets.push(LightSet { index: Some(timed.index), seconds: Some(timed.seconds), light, matrices });
+        }
         let float_texture = output.context.and_then(|c| c.float_texture).map(|p| p.shown());
         Ok(PageRun {
             engine_light,
             notes,
             found: output.lights.iter().map(MadeLight::found).collect(),
             checked: output.checked,
-            matrices,
-            others,
-            timed,
-            selected: None,
+            sets,
+            selected: 0,
             draws: output.draws.unwrap_or_default(),
             float_texture,
         })
@@ -347,7 +363,7 @@ impl PageRun {
 
     /// The times (seconds) at which the page's animation changed light `index`'s matrices.
     pub fn times_of(&self, index: usize) -> Vec<f64> {
-        self.timed.iter().filter(|(i, ..)| *i == index).map(|(_, t, ..)| *t).collect()
+        self.sets.iter().filter(|s| s.index == Some(index)).filter_map(|s| s.seconds).collect()
     }
 
     /// Makes `light_matrix` answer for the page's light `index` (one it computed matrices for),
@@ -355,35 +371,15 @@ impl PageRun {
     /// light as engine.js made it, moved where the animation took it; None for a light or a time
     /// without matrices.
     pub fn select(&mut self, index: usize, seconds: Option<f64>) -> Option<EngineLight> {
-        let mut light = if Some(index) == self.checked {
-            self.engine_light.clone()
-        } else {
-            self.others.iter().find(|(i, ..)| *i == index)?.1.clone()
-        };
-        if let Some(at) = seconds {
-            let (.., position, _) = self.timed.iter().find(|(i, t, ..)| *i == index && *t == at)?;
-            if let Some(p) = position {
-                light.position.value = *p;
-            }
-        }
-        self.selected = (Some(index) != self.checked || seconds.is_some()).then_some((index, seconds));
-        Some(light)
+        self.selected = self.sets.iter().position(|s| s.index == Some(index) && s.seconds == seconds)?;
+        Some(self.sets[self.selected].light.clone())
     }
 
     /// The light's matrix for an object placed by `translate` and `scale`, as the page computed
     /// it when it ran (an object it was not asked for is an error).
     pub fn light_matrix(&self, translate: [f64; 3], scale: [f64; 3]) -> Result<LightMatrix, ScriptError> {
-        let matrices = match self.selected {
-            None => &self.matrices[..],
-            Some((index, Some(at))) => {
-                self.timed.iter().find(|(i, t, ..)| *i == index && *t == at).map_or(&[][..], |(.., m)| &m[..])
-            }
-            Some((index, None)) if Some(index) == self.checked => &self.matrices[..],
-            Some((index, None)) => {
-                self.others.iter().find(|(i, ..)| *i == index).map_or(&[][..], |(.., m)| &m[..])
-            }
-        };
-        matrices
+        self.sets[self.selected]
+            .matrices
             .iter()
             .find(|((t, s), _)| *t == translate && *s == scale)
             .map(|(_, m)| m.clone())
