@@ -34,7 +34,7 @@ fn load(light: &str, engine: Option<&str>) -> Result<(PageRun, EngineLight), Scr
     Ok((run, light))
 }
 
-fn line_of(text: &str, needle: &str) -> usize {
+pub(super) fn line_of(text: &str, needle: &str) -> usize {
     text.lines().position(|l| l.contains(needle)).map_or(0, |i| i + 1)
 }
 

@@ -4,17 +4,13 @@
 
 use std::time::Duration;
 
-use super::tests::{OBJECTS, source};
+use super::tests::{OBJECTS, line_of, source};
 use super::*;
 
 fn with_body(body: &str) -> String {
     format!(
         "class DirectionalLight {{\n  constructor() {{}}\n  CalcLightMVP(translate, scale) {{\n    const m = mat4.create();\n{body}\n    return m;\n  }}\n}}\n"
     )
-}
-
-fn line_of(text: &str, needle: &str) -> usize {
-    text.lines().position(|l| l.contains(needle)).map_or(0, |i| i + 1)
 }
 
 /// The one-line error of running `light` (loading it, or its first matrix).
