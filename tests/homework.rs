@@ -257,3 +257,49 @@ fn the_framework_block_is_laid_out_where_the_renderer_writes_it() {
     assert_eq!(sign.offset, CLIP_Y_SIGN_OFFSET_BYTES);
     assert_eq!(layouter[block.ty].size, FRAMEWORK_UNIFORMS_SIZE_BYTES);
 }
+
+/// The bonus's lights in arrays indexed by light: shadowlab checks one light at a time, every
+/// element holding it, so each array reads as the framework's single name, on the same lines.
+#[test]
+fn the_frameworks_per_light_names_declared_as_arrays_read_the_light_checked() {
+    let (v, f) = check_program("phongVertex_lights.glsl", "phongFragment_lights.glsl");
+    let layout = Interface::gather(&[&data("phongVertex_lights.glsl"), &data("phongFragment_lights.glsl")])
+        .expect("an interface");
+    assert_eq!(
+        layout.per_light,
+        ["uLightIntensity", "uLightMVP", "uLightPos", "uShadowMap", "vPositionFromLight"]
+    );
+    assert!(layout.extra_uniforms.is_empty() && layout.extra_varyings.is_empty(), "{layout:?}");
+    let line = |r: &shadowlab::homework::Rewritten, n: usize| {
+        r.glsl.split('\n').nth(r.prelude_lines + n - 1).map(str::trim).map(String::from)
+    };
+    assert_eq!(
+        line(&v.rewritten, 24).as_deref(),
+        Some("vPositionFromLight = uLightMVP * vec4(aVertexPosition, 1.0);")
+    );
+    assert_eq!(
+        line(&f.rewritten, 49).as_deref(),
+        Some("float visibility = useShadowMap(uShadowMap, uShadowMap_sampler, vec4(shadowCoord, 1.0));")
+    );
+    assert_eq!(
+        line(&f.rewritten, 50).as_deref(),
+        Some("sum += visibility * radiance(albedo, uLightPos, uLightIntensity);")
+    );
+    // The varying is the framework's one location, and the receiver's uv is read from it.
+    assert!(f.rewritten.glsl.contains("layout(location = 3) in vec4 vPositionFromLight;"));
+    assert!(f.rewritten.glsl.contains("shadowlab_receiver_uv = vPositionFromLight.xy"));
+    // The light pass picks its matrix by the page's uLightIndex: a uniform of the student's own.
+    let shadow = data("shadowVertex_lights.glsl");
+    let layout = Interface::gather(&[&shadow, &data("shadowFragment.glsl")]).expect("an interface");
+    assert_eq!(layout.extra_uniforms, [("uLightIndex".to_string(), "int".to_string())]);
+    let s = translate("shadowVertex.glsl", &shadow, Stage::Vertex, &layout).unwrap_or_else(|e| panic!("{e}"));
+    assert_wgsl_valid("shadowVertex_lights.glsl", &s.wgsl);
+    // A per-light name of another type is still refused on its line.
+    let wrong = data("phongVertex_lights.glsl").replace("uniform mat4 uLightMVP[", "uniform mat3 uLightMVP[");
+    let error = Interface::gather(&[&wrong]).expect_err("a wrong type");
+    assert_eq!(error.line(), Some(10));
+    assert!(
+        error.to_string().contains("uLightMVP is a mat4 in the framework, declared mat3[NUM_LIGHTS]"),
+        "{error}"
+    );
+}

@@ -198,6 +198,60 @@ fn each_light_of_a_page_with_several_is_listed_and_checked_on_its_own() {
     }
 }
 
+/// The bonus in arrays indexed by light (`uLightMVP[NUM_LIGHTS]`, `uShadowMap[NUM_LIGHTS]`, a
+/// light pass that picks its matrix by `uLightIndex`): each light is checked on its own, every
+/// element holding it, and a mistake in the loop they share is found on each.
+#[test]
+fn lights_in_arrays_indexed_by_light_are_each_checked() {
+    let engine = edit(
+        &read("assets/homework/framework/src/engine.js"),
+        "    renderer.addLight(directionLight);",
+        "    renderer.addLight(directionLight);
+    const secondLight = new DirectionalLight(2500, [1, 1, 1], [0, 80, -80], focalPoint, lightUp, true, renderer.gl);
+    renderer.addLight(secondLight);",
+    );
+    let fragment = read("tests/data/homework/phongFragment_lights.glsl");
+    let files = |fragment: String| {
+        [
+            ("src/shaders/phongShader/phongFragment.glsl", fragment),
+            ("src/shaders/phongShader/phongVertex.glsl", read("tests/data/homework/phongVertex_lights.glsl")),
+            (
+                "src/shaders/shadowShader/shadowVertex.glsl",
+                read("tests/data/homework/shadowVertex_lights.glsl"),
+            ),
+            ("src/lights/DirectionalLight.js", read("assets/homework/DirectionalLight.js")),
+            ("src/engine.js", engine.clone()),
+        ]
+    };
+    let findings_of_each = |report: &Value| -> Vec<Vec<String>> {
+        let lights = report["lights"].as_array().expect("the page's lights");
+        assert_eq!(lights.len(), 2, "{lights:#?}");
+        lights
+            .iter()
+            .map(|l| {
+                let ids = l["findings"].as_array().unwrap_or_else(|| panic!("not checked: {l:#}"));
+                ids.iter().map(|f| f.as_str().expect("an id").to_string()).collect()
+            })
+            .collect()
+    };
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let sound = check_folder(scratch.path(), &files(fragment.clone()));
+    assert_eq!(findings_of_each(&sound), [Vec::<String>::new(), Vec::new()]);
+    let notes = sound["submission"]["notes"].to_string();
+    assert!(
+        notes.contains("uLightMVP, uLightPos, uShadowMap, vPositionFromLight are arrays by light"),
+        "{notes}"
+    );
+    assert!(scratch.path().join("out/student_light1.png").is_file());
+    // No bias in the loop both lights run: each shadows itself.
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let unbiased =
+        check_folder(scratch.path(), &files(edit(&fragment, "#define BIAS 0.003", "#define BIAS 0.0")));
+    for (light, ids) in findings_of_each(&unbiased).iter().enumerate() {
+        assert!(ids.contains(&"self_shadowing".to_string()), "light {light}: {ids:?}");
+    }
+}
+
 #[test]
 fn a_page_that_renders_into_float_textures_is_refused_in_one_line_naming_where() {
     // Its maps (moments, a summed-area table) are not the framework's RGBA8 ones the check

@@ -87,7 +87,17 @@ pub struct Interface {
     pub extra_uniforms: Vec<(String, String)>,
     /// A student's own `sampler2D` uniforms, sorted by name; bindings from 6 on, two each.
     pub extra_textures: Vec<String>,
+    /// The framework's per-light names a student declared as arrays, one element per light
+    /// (`uLightMVP[NUM_LIGHTS]`, `uShadowMap[2]`, `vPositionFromLight[2]`), sorted. shadowlab
+    /// checks one light at a time: every element holds the light checked, so the rewrite reads
+    /// each as the framework's single one (`uLightMVP[l]` is `uLightMVP`).
+    pub per_light: Vec<String>,
 }
+
+/// The framework's names that hold one light's data, which a page with several lights may turn
+/// into arrays indexed by light.
+pub const PER_LIGHT_NAMES: [&str; 5] =
+    ["uLightMVP", "uLightPos", "uLightIntensity", "uShadowMap", "vPositionFromLight"];
 
 /// The types a student's own uniform may have (WGSL allows no `bool` in a uniform buffer).
 const BLOCK_TYPES: [&str; 13] = [
@@ -212,6 +222,23 @@ impl Interface {
             for d in declarations(source, &tokens(source))? {
                 for (name, suffix) in &d.names {
                     let fail = |message: String| HomeworkError::Rewrite { line: d.line, message };
+                    if !suffix.is_empty() && PER_LIGHT_NAMES.contains(&name.as_str()) {
+                        let framework_type = match name.as_str() {
+                            "uShadowMap" => "sampler2D",
+                            "vPositionFromLight" => "vec4",
+                            _ => {
+                                FRAMEWORK_UNIFORMS.iter().find(|f| f.name == name).map_or("", |f| f.glsl_type)
+                            }
+                        };
+                        if d.glsl_type != framework_type {
+                            return Err(fail(format!(
+                                "{name} is a {framework_type} in the framework, declared {}{suffix} here",
+                                d.glsl_type
+                            )));
+                        }
+                        out.per_light.push(name.clone());
+                        continue;
+                    }
                     match d.qualifier.as_str() {
                         "varying" if !FRAMEWORK_VARYINGS.contains(&name.as_str()) => {
                             out.extra_varyings.push(name.clone())
@@ -257,7 +284,14 @@ impl Interface {
         out.extra_uniforms.sort();
         out.extra_textures.sort();
         out.extra_textures.dedup();
+        out.per_light.sort();
+        out.per_light.dedup();
         Ok(out)
+    }
+
+    /// `name` is one of the framework's per-light names declared as an array by light.
+    pub fn is_per_light(&self, name: &str) -> bool {
+        self.per_light.iter().any(|n| n == name)
     }
 
     /// The location of a varying, shared by both stages.

@@ -143,7 +143,9 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
     let declares_position_from_light = decls.iter().any(|d| {
         d.qualifier == "varying"
             && d.glsl_type == "vec4"
-            && d.names.iter().any(|(n, s)| n == POSITION_FROM_LIGHT && s.is_empty())
+            && d.names
+                .iter()
+                .any(|(n, s)| n == POSITION_FROM_LIGHT && (s.is_empty() || layout.is_per_light(n)))
     });
     let mut own_attributes: Vec<String> = decls
         .iter()
@@ -158,6 +160,8 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
         let mut parts = Vec::new();
         for (name, suffix) in &d.names {
             let ty = &d.glsl_type;
+            // An array by light is declared as the framework's one (see `Interface::per_light`).
+            let suffix = if layout.is_per_light(name) { "" } else { suffix.as_str() };
             match (d.qualifier.as_str(), stage) {
                 ("varying", _) => {
                     let location = layout.varying_location(name).ok_or_else(|| {
@@ -290,10 +294,22 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
             edits.replace(t.start, toks[i + 1].start, "");
         } else if word == "gl_FragColor" && stage == Stage::Fragment {
             edits.replace(t.start, t.end, FRAG_COLOR);
+        } else if layout.is_per_light(word) && next(1) == Some("[") {
+            // `uLightMVP[l]` reads the light checked, as every element holds it.
+            let close = matching(source, &toks, i + 1, "[", "]");
+            let name = if textures.iter().any(|n| n == word) {
+                format!("{word}, {word}_sampler")
+            } else {
+                word.into()
+            };
+            edits.replace(t.start, toks[close].end, name);
+            i = close + 1;
+            continue;
         } else if let Some(call) = texture_call(word)
             && next(1) == Some("(")
-            && next(3) == Some(",")
-            && toks[i + 2].kind == Kind::Ident
+            && toks.get(i + 2).is_some_and(|t| t.kind == Kind::Ident)
+            && let tex_last = per_light_index_end(source, &toks, layout, i + 2)
+            && toks.get(tex_last + 1).is_some_and(|t| &source[t.start..t.end] == ",")
         {
             let tex = text(i + 2);
             // At level 0, explicitly: every texture here has one level, so the picture is the
@@ -311,7 +327,8 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
             };
             // The uv of a 2D read goes through the tap (fragment stage: inside a recorded
             // function it records where the read lands).
-            let uv_start = (i + 3..close).find(|&k| text(k) == "," && depth_in(source, &toks, i + 1, k) == 1);
+            let uv_start =
+                (tex_last + 1..close).find(|&k| text(k) == "," && depth_in(source, &toks, i + 1, k) == 1);
             if stage == Stage::Fragment
                 && matches!(call, "texture" | "textureLod")
                 && let Some(comma) = uv_start
@@ -325,8 +342,8 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
             if call != texture_call(word).unwrap_or_default() {
                 edits.replace(toks[close].start, toks[close].start, ", 0.0");
             }
-            edits.replace(t.start, toks[i + 2].end, format!("{call}(sampler2D({tex}, {tex}_sampler)"));
-            i += 3;
+            edits.replace(t.start, toks[tex_last].end, format!("{call}(sampler2D({tex}, {tex}_sampler)"));
+            i = tex_last + 1;
             continue;
         } else if t.kind == Kind::Ident && is_glsl450_keyword(word) {
             edits.replace(t.start, t.end, format!("{word}_"));
@@ -364,6 +381,17 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
         recorded,
         has_main: main.is_some(),
     })
+}
+
+/// The last token of a texture argument at `at`: the name, or the `]` of a per-light array's
+/// index after it.
+fn per_light_index_end(source: &str, toks: &[Token], layout: &Interface, at: usize) -> usize {
+    let text = |i: usize| &source[toks[i].start..toks[i].end];
+    if layout.is_per_light(text(at)) && at + 1 < toks.len() && text(at + 1) == "[" {
+        matching(source, toks, at + 1, "[", "]")
+    } else {
+        at
+    }
 }
 
 /// The lines before the student's: the version, the uniform blocks, the colour output.

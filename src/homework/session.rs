@@ -88,9 +88,28 @@ impl SubmissionReport {
                 ("DirectionalLight.js".into(), script(&source.light_script)),
                 ("engine.js".into(), script(&source.engine)),
             ],
-            notes: source.notes.clone(),
+            notes: source.notes.iter().cloned().chain(per_light_note(source)).collect(),
         }
     }
+}
+
+/// The note on the framework's per-light names a submission declares as arrays by light.
+fn per_light_note(source: &super::HomeworkSource) -> Option<String> {
+    let f = &source.files;
+    let mut names = Vec::new();
+    for texts in
+        [[&f.phong_vertex.text, &f.phong_fragment.text], [&f.shadow_vertex.text, &f.shadow_fragment.text]]
+    {
+        names.extend(super::Interface::gather(&[texts[0], texts[1]]).ok()?.per_light);
+    }
+    names.sort();
+    names.dedup();
+    (!names.is_empty()).then(|| {
+        format!(
+            "{} are arrays by light: each light is checked on its own, with every element holding it",
+            names.join(", ")
+        )
+    })
 }
 
 impl HomeworkReport {

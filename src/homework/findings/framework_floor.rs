@@ -67,7 +67,9 @@ fn depth_of(clip_from_world: Mat4, p: Vec3) -> Option<(Vec2, f32)> {
 
 /// The framework's floor under the student's light (`clip_from_world`, GL clip conventions, the
 /// matrix an object at the origin gets: the floor's own is that times its model matrix).
-pub fn coverage(clip_from_world: Mat4) -> Option<FloorCoverage> {
+/// `unwritten_lit`: their lookup reads a texel never written (depth 0) as lit (a guard such as
+/// `if (d < EPS) return 1.0;`), so only texels the floor wrote can darken it.
+pub fn coverage(clip_from_world: Mat4, unwritten_lit: bool) -> Option<FloorCoverage> {
     let world_from_clip = clip_from_world.inverse();
     if !world_from_clip.is_finite() {
         return None;
@@ -95,6 +97,9 @@ pub fn coverage(clip_from_world: Mat4) -> Option<FloorCoverage> {
             let wrapped = uv - uv.floor();
             let texel = (wrapped * MAP_SIZE as f32).as_uvec2().min(glam::UVec2::splat(MAP_SIZE as u32 - 1));
             let stored = map[texel.y as usize * MAP_SIZE + texel.x as usize];
+            if unwritten_lit && stored == 0.0 {
+                continue;
+            }
             let past_far = depth > 1.0;
             if past_far || stored + DARKER_BY < depth {
                 dark += 1;
@@ -127,19 +132,25 @@ mod tests {
     fn the_framework_floor_is_covered_by_the_frameworks_light_and_not_by_short_or_narrow_ones() {
         // ±100 and far 400: the floor's x edges (±111.7) wrap onto floor texels of the same depth
         // (the light lies in the yz plane): nothing is dark.
-        let framework = coverage(light(100.0, 400.0)).expect("a coverage");
+        let framework = coverage(light(100.0, 400.0), false).expect("a coverage");
         assert!(framework.dark_share < 0.005, "{framework:?}");
         // Far 200: the far end of the floor lies 213 world units from the light; the band beyond
         // about 200 (z < -123) is dark, all of it past the far plane.
-        let short = coverage(light(100.0, 200.0)).expect("a coverage");
+        let short = coverage(light(100.0, 200.0), false).expect("a coverage");
         assert!((0.05..0.15).contains(&short.dark_share), "{short:?}");
         assert!(short.beyond_far_share > 0.99, "{short:?}");
         assert!((short.z_range.0 + 141.7).abs() < 2.0 && (short.z_range.1 + 123.0).abs() < 3.0, "{short:?}");
         // ±80: the far floor (v up to 100.2) wraps to rows nothing covers: a band dark at the far
         // end, not past the far plane.
-        let narrow = coverage(light(80.0, 400.0)).expect("a coverage");
+        let narrow = coverage(light(80.0, 400.0), false).expect("a coverage");
         assert!(narrow.dark_share > 0.05, "{narrow:?}");
         assert!(narrow.beyond_far_share < 0.01, "{narrow:?}");
         assert!(narrow.z_range.0 < -140.0, "{narrow:?}");
+        // A lookup that reads a texel never written as lit leaves both bands lit: the floor past
+        // the far plane is clipped, so its own texels are never written either.
+        for (half, far) in [(80.0, 400.0), (100.0, 200.0)] {
+            let guarded = coverage(light(half, far), true).expect("a coverage");
+            assert!(guarded.dark_share < 0.005, "±{half}, far {far}: {guarded:?}");
+        }
     }
 }

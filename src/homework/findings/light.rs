@@ -83,7 +83,8 @@ fn light_frustum_clips(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -
 /// The check scene fits the student's light, but the framework's own floor, where their page
 /// draws it, does not: a band of it is dark for the frustum alone.
 fn framework_floor_clipped(j: &Judged<'_>, lang: Lang) -> Option<Found> {
-    let floor = super::framework_floor::coverage(j.e.light.clip_from_world)?;
+    let unwritten_lit = super::source_lines::unwritten_texel_lit(j.e.fragment_source).is_some();
+    let floor = super::framework_floor::coverage(j.e.light.clip_from_world, unwritten_lit)?;
     if floor.dark_share <= CLIPPED_SHARE {
         return None;
     }

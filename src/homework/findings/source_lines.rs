@@ -88,7 +88,10 @@ pub fn depth_test_constants(source: &str) -> Vec<Constant> {
     let compares: std::collections::BTreeSet<usize> = toks
         .iter()
         .enumerate()
-        .filter(|&(i, t)| !t.in_directive && matches!(word(i), "<" | ">") && in_function(t.line).is_some())
+        // `step(z, depth + BIAS)` compares too (1 where depth + BIAS >= z).
+        .filter(|&(i, t)| {
+            !t.in_directive && matches!(word(i), "<" | ">" | "step") && in_function(t.line).is_some()
+        })
         .map(|(_, t)| t.line)
         .filter(|&line| !toks.iter().enumerate().any(|(i, t)| t.line == line && word(i) == "for"))
         .collect();
@@ -408,6 +411,37 @@ pub fn return_of(source: &str, function: &str, value: f32) -> Option<(usize, Opt
     })
 }
 
+/// Where a recorded function reads a texel never written (depth 0, the framework never clears
+/// its map) as lit: a value compared alone with a small constant, then `return 1.0`
+/// (`if (closestDepth < EPS) { return 1.0; }`). The comparison's line.
+pub fn unwritten_texel_lit(source: &str) -> Option<usize> {
+    let toks = tokens(source);
+    let word = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let small = |i: usize| {
+        let value = match toks.get(i)?.kind {
+            Kind::Number => word(i).trim_end_matches(['f', 'F']).parse::<f64>().ok(),
+            Kind::Ident => toks.iter().enumerate().find_map(|(k, t)| {
+                let define = t.kind == Kind::Directive && word(k).trim_start_matches('#').trim() == "define";
+                (define && word(k + 1) == word(i)).then(|| word(k + 2).parse::<f64>().ok()).flatten()
+            }),
+            _ => None,
+        }?;
+        (value > 0.0 && value < 0.2).then_some(())
+    };
+    function_bodies(source, &toks)
+        .into_iter()
+        .filter(|(name, ..)| RECORDED_FUNCTIONS.contains(name))
+        .find_map(|(_, open, close)| {
+            (open..close).find_map(|k| {
+                let alone = word(k) == "<" && word(k.wrapping_sub(2)) == "(" && word(k + 2) == ")";
+                let after = if word(k + 3) == "{" { k + 4 } else { k + 3 };
+                let returns_lit = word(after) == "return"
+                    && word(after + 1).trim_end_matches(['f', 'F']).parse::<f64>() == Ok(1.0);
+                (alone && returns_lit && small(k + 1).is_some()).then(|| toks[k].line)
+            })
+        })
+}
+
 /// The first line of `function`'s body that reads the map itself (`texture2D`, `texture`, or an
 /// `unpack` call), not through another function of the student's that does.
 pub fn reads_map_in(source: &str, function: &str) -> Option<usize> {
@@ -447,6 +481,14 @@ mod tests {
             ]
         );
         assert!(found.iter().all(|c| c.added), "{found:?}");
+        // A comparison written as `step` has its bias too.
+        let stepped =
+            SHADER.replace("return c.z - bias > 0.5 ? 0.0 : 1.0;", "return step(c.z, 0.5 + 0.004);");
+        assert!(
+            depth_test_constants(&stepped)
+                .iter()
+                .any(|c| c.text == "0.004" && c.added && c.function == Some("useShadowMap"))
+        );
         // A threshold compared alone (a texel never written) is no bias.
         let guarded = SHADER.replace("return c.z < v + 0.015", "return v < 0.015");
         let threshold = depth_test_constants(&guarded);
@@ -457,6 +499,25 @@ mod tests {
         float findBlocker(vec2 uv, float z) {\n  float d = texture2D(m, uv + disk[0]).r;\n  if (d <= 4.0) {\n    return 0.0;\n  }\n  return -1.0;\n}\n\
         float PCSS(vec4 c) {\n  float b = findBlocker(c.xy, c.z);\n  float r = unpack(texture2D(m, c.xy));\n  fill(c.xy);\n  return r - b;\n}\n\
         void main() { PCSS(vec4(0.0)); }\n";
+
+    #[test]
+    fn a_guard_that_reads_a_texel_never_written_as_lit_is_found_on_its_line() {
+        let guarded = "#define EPS 1e-3\nfloat useShadowMap(vec4 c) {\n  float d = unpack(texture2D(m, c.xy));\n  \
+            if (d < EPS) {\n    return 1.0;\n  }\n  return d < c.z - EPS ? 0.0 : 1.0;\n}\n";
+        assert_eq!(unwritten_texel_lit(guarded), Some(4));
+        // On one line, with a literal.
+        assert_eq!(
+            unwritten_texel_lit(
+                &guarded.replace("(d < EPS) {\n    return 1.0;\n  }", "(d < 0.001) return 1.0;")
+            ),
+            Some(4)
+        );
+        // A bias (compared with a difference) or a guard that shadows is not it.
+        assert_eq!(unwritten_texel_lit(&guarded.replace("return 1.0;\n  }\n", "return 0.0;\n  }\n")), None);
+        assert_eq!(unwritten_texel_lit(&guarded.replace("(d < EPS)", "(c.z - d < EPS)")), None);
+        // Outside the recorded functions it is not on the lookup's path.
+        assert_eq!(unwritten_texel_lit(&guarded.replace("useShadowMap", "helper")), None);
+    }
 
     #[test]
     fn the_lines_of_pcss_steps_are_found() {
