@@ -252,6 +252,103 @@ fn lights_in_arrays_indexed_by_light_are_each_checked() {
     }
 }
 
+/// A lamp: a PointLight whose CalcLightMVP is a perspective projection, a map of distances to it
+/// (over a far plane of the page's own uniform), the object's model matrix sent under a name of
+/// the page's own (`uLightModel`), lookups outside its frustum taken as lit. The check runs it
+/// as their page does: the lamp is the light checked, named where its projection is built, its
+/// model-matrix uniform gets each check object's own, the map's distances are sound, and the
+/// framework's floor outside the frustum is named as unshadowed, not as a black band.
+#[test]
+fn a_lamp_with_a_map_of_distances_is_checked_as_the_page_draws_it() {
+    let lamp = "class PointLight {
+  constructor(lightIntensity, lightColor, lightPos, focalPoint, lightUp, hasShadowMap, gl) {
+    this.mesh = Mesh.cube(setTransform(0, 0, 0, 0.2, 0.2, 0.2, 0));
+    this.mat = new EmissiveMaterial(lightIntensity, lightColor);
+    this.lightPos = lightPos;
+    this.focalPoint = focalPoint;
+    this.lightUp = lightUp;
+    this.hasShadowMap = hasShadowMap;
+    this.fbo = new FBO(gl);
+  }
+
+  CalcLightMVP(translate, scale) {
+    const model = mat4.create();
+    const view = mat4.create();
+    const projection = mat4.create();
+    mat4.translate(model, model, translate);
+    mat4.scale(model, model, scale);
+    mat4.lookAt(view, this.lightPos, this.focalPoint, this.lightUp);
+    mat4.perspective(projection, Math.PI / 2, 1, 1, 300);
+    const mvp = mat4.create();
+    mat4.multiply(mvp, projection, view);
+    mat4.multiply(mvp, mvp, model);
+    return mvp;
+  }
+}
+";
+    let engine = edit(
+        &read("assets/homework/framework/src/engine.js"),
+        "const directionLight = new DirectionalLight(5000, [1, 1, 1], lightPos,",
+        "const directionLight = new PointLight(5000, [1, 1, 1], [0, 90, 50],",
+    );
+    let far = "uLightFarPlane: { type: '1f', value: 300 },";
+    let shadow_material = edit(
+        &read("assets/homework/framework/src/materials/ShadowMaterial.js"),
+        "uLightMVP: { type: 'matrix4fv', value: lightMVP },",
+        &format!(
+            "uLightMVP: {{ type: 'matrix4fv', value: lightMVP }}, {far}
+            uLightModel: {{ type: 'matrix4fv', value: mat4.scale(mat4.create(), mat4.fromTranslation(mat4.create(), translate), scale) }},"
+        ),
+    );
+    let phong_material = edit(
+        &read("assets/homework/framework/src/materials/PhongMaterial.js"),
+        "uLightMVP: { type: 'matrix4fv', value: lightMVP },",
+        &format!("uLightMVP: {{ type: 'matrix4fv', value: lightMVP }}, {far}"),
+    );
+    let fragment = read("tests/data/homework/phongFragment_lamp.glsl");
+    let files = [
+        ("src/shaders/phongShader/phongFragment.glsl", fragment.clone()),
+        ("src/shaders/shadowShader/shadowVertex.glsl", read("tests/data/homework/shadowVertex_lamp.glsl")),
+        (
+            "src/shaders/shadowShader/shadowFragment.glsl",
+            read("tests/data/homework/shadowFragment_lamp.glsl"),
+        ),
+        ("src/lights/DirectionalLight.js", read("assets/homework/DirectionalLight.js")),
+        ("src/lights/PointLight.js", lamp.to_string()),
+        ("src/materials/ShadowMaterial.js", shadow_material),
+        ("src/materials/PhongMaterial.js", phong_material),
+        ("src/engine.js", engine),
+    ];
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let report = check_folder(scratch.path(), &files);
+    let light = &report["light"];
+    assert_eq!(light["error"], Value::Null, "{light:#}");
+    assert_eq!(
+        light["from"],
+        format!("homework1/src/lights/PointLight.js:{}", line_of(lamp, "mat4.perspective("))
+    );
+    assert_eq!(light["frustum"]["kind"], "perspective", "{:#}", light["frustum"]);
+    assert_eq!(report["lights"][0]["kind"], "PointLight");
+    assert_eq!(report["lights"][0]["checked"], true);
+    assert_eq!(light["page_uniforms"]["shadow"]["model_matrices"], serde_json::json!(["uLightModel"]));
+    let ids: Vec<&str> =
+        report["findings"].as_array().expect("findings").iter().filter_map(|f| f["id"].as_str()).collect();
+    assert!(!ids.contains(&"depth_round_trip_wrong"), "{:#}", report["findings"]);
+    let clips = report["findings"]
+        .as_array()
+        .and_then(|f| f.iter().find(|f| f["id"] == "light_frustum_clips"))
+        .unwrap_or_else(|| panic!("the floor outside the lamp's frustum: {:#}", report["findings"]));
+    let said = clips["explanation"].as_str().expect("an explanation");
+    assert!(
+        said.contains(&format!(
+            "Your line {} takes whatever lies outside the map as lit",
+            line_of(&fragment, "if (coord.x < 0.0")
+        )),
+        "{said}"
+    );
+    assert_eq!(ids, ["light_frustum_clips"], "{:#}", report["findings"]);
+}
+
 #[test]
 fn a_page_that_renders_into_float_textures_is_refused_in_one_line_naming_where() {
     // Its maps (moments, a summed-area table) are not the framework's RGBA8 ones the check

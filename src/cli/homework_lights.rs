@@ -1,4 +1,5 @@
-//! The homework's bonus, checked: each DirectionalLight of a student's page on its own, as their
+//! The homework's bonus, checked: each light of a student's page with a shadow map of its own
+//! (every DirectionalLight, a PointLight whose class has a CalcLightMVP) on its own, as their
 //! renderer draws it (a pass per light, each with its own map), and each light again at the times
 //! of their animation where it had moved (an orbit, a light their code moves each frame). Findings
 //! go into the report's `lights`, pictures beside (`student_light1.png`, `student_light0_t1.0s.png`).
@@ -52,7 +53,7 @@ fn check_light(
     Ok(Some(Ok((outcome, student.light.position.to_array()))))
 }
 
-/// Checks each other DirectionalLight of the page, and each light at the times it had moved;
+/// Checks each other light of the page with a map of its own, and each light at the times it had moved;
 /// fills `report.lights` (the first light's findings are the report's own) and returns the
 /// pictures to write, by file name.
 pub(super) fn check_each_light(
@@ -67,7 +68,8 @@ pub(super) fn check_each_light(
     let inserted = usize::from(report.lights.first().is_some_and(|l| l.made_at == "framework"));
     for listed in 0..report.lights.len() {
         let entry = &report.lights[listed];
-        if entry.kind != "DirectionalLight" || entry.error.is_some() {
+        // A light the page computed no matrices for (a lamp without a map) has no set: skipped below.
+        if entry.error.is_some() {
             continue;
         }
         let checked = entry.checked;

@@ -82,12 +82,27 @@ pub struct PageUniforms {
 pub struct ObjectUniforms {
     pub floor: std::collections::BTreeMap<String, Vec<f64>>,
     pub other: std::collections::BTreeMap<String, Vec<f64>>,
+    /// Their own names for the drawn object's model matrix (`uLightModel`): each gets the check
+    /// object's own, as their code sends each object's.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub model_matrices: Vec<String>,
 }
 
 impl ObjectUniforms {
-    /// The values for `object` of the check's scene.
-    pub fn of(&self, object: &crate::scene::Object) -> &std::collections::BTreeMap<String, Vec<f64>> {
-        if object.name.eq_ignore_ascii_case("floor") { &self.floor } else { &self.other }
+    /// The values for `object` of the check's scene at `t_s` seconds.
+    pub fn of(
+        &self,
+        object: &crate::scene::Object,
+        t_s: f32,
+    ) -> std::collections::BTreeMap<String, Vec<f64>> {
+        let mut values =
+            if object.name.eq_ignore_ascii_case("floor") { &self.floor } else { &self.other }.clone();
+        let model: Vec<f64> =
+            object.world_from_object(t_s).to_cols_array().iter().map(|v| f64::from(*v)).collect();
+        for name in &self.model_matrices {
+            values.insert(name.clone(), model.clone());
+        }
+        values
     }
 }
 

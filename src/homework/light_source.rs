@@ -112,7 +112,7 @@ pub struct LightEntry {
     pub checked: bool,
     /// Why its constructor or its matrix failed, if one did.
     pub error: Option<String>,
-    /// The findings of its own check (ids), where it had one: each DirectionalLight of the page
+    /// The findings of its own check (ids), where it had one: each light of the page with a map
     /// is checked on its own by `shadowlab homework`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub findings: Option<Vec<String>>,

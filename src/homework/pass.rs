@@ -242,7 +242,7 @@ impl HomeworkRenderer {
         for (index, object) in scene.objects.iter().enumerate() {
             let student = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
                 label: Some("homework student uniforms"),
-                contents: &pass.student_block.bytes(page.of(object)),
+                contents: &pass.student_block.bytes(&page.of(object, request.time_s)),
                 usage: wgpu::BufferUsages::UNIFORM,
             });
             let block = self.device.create_buffer_init(&wgpu::util::BufferInitDescriptor {

@@ -352,7 +352,7 @@ fn light_of_page(
         lights.iter().filter(|l| !l.checked).map(|l| format!("{} ({})", l.made_at, l.kind)).collect();
     if !unchecked.is_empty() {
         notes.push(format!(
-            "this check is of one of the page's lights; the others: {} (each DirectionalLight gets a check of its own from `shadowlab homework`, a PointLight none)",
+            "this check is of one of the page's lights; the others: {} (each with a CalcLightMVP gets a check of its own from `shadowlab homework`)",
             unchecked.join(", ")
         ));
     }
@@ -382,23 +382,25 @@ fn light_of_page(
         }
         clip_from_object.push(matrix);
     }
-    let projection_line = at_origin
-        .calls
-        .iter()
-        .rev()
-        .find(|c| {
-            matches!(
-                c.name.as_str(),
-                "mat4.ortho"
-                    | "mat4.perspective"
-                    | "mat4.frustum"
-                    | "THREE.Matrix4.makeOrthographic"
-                    | "THREE.Matrix4.makePerspective"
-                    | "THREE.OrthographicCamera"
-                    | "THREE.PerspectiveCamera"
-            )
-        })
-        .map_or(at_origin.return_line, |c| c.line);
+    let projection = at_origin.calls.iter().rev().find(|c| {
+        matches!(
+            c.name.as_str(),
+            "mat4.ortho"
+                | "mat4.perspective"
+                | "mat4.frustum"
+                | "THREE.Matrix4.makeOrthographic"
+                | "THREE.Matrix4.makePerspective"
+                | "THREE.OrthographicCamera"
+                | "THREE.PerspectiveCamera"
+        )
+    });
+    // The projection's call, in whichever of their scripts the light's class is (a PointLight's
+    // CalcLightMVP lives in PointLight.js); else the `return` of DirectionalLight.js's method.
+    let (projection_file, projection_line) = match projection {
+        Some(c) if !c.file.is_empty() => (c.file.clone(), c.line),
+        Some(c) => (script.name.clone(), c.line),
+        None => (script.name.clone(), at_origin.return_line),
+    };
     let like = scene.lights.get(index)?;
     let (shadowlab_scene, frustum) = match read_light(clip_from_world, focal_point, like) {
         Ok(read) => {
@@ -415,7 +417,7 @@ fn light_of_page(
     let frustum = with_depth_share(frustum, clip_from_world, scene, t_s, &mut notes);
     let engine_intensity = (engine.intensity.value as f32) * vec3(engine.color.value);
     let light = HomeworkLight {
-        from: LightFrom::Script { file: script.name.clone(), line: projection_line },
+        from: LightFrom::Script { file: projection_file, line: projection_line },
         clip_from_object,
         clip_from_world,
         position,

@@ -31,7 +31,8 @@
         if (typeof f !== "function") return;
         owner[key] = function (...args) {
             if (logging && log.length < 4096) {
-                log.push({ name, args: numbers(skipOut ? args.slice(1) : args, []), line: record.where().line });
+                const at = record.where();
+                log.push({ name, args: numbers(skipOut ? args.slice(1) : args, []), file: at.file, line: at.line });
             }
             return f.apply(this, args);
         };
@@ -55,7 +56,10 @@
             const C = THREE[cls];
             if (typeof C !== "function") continue;
             const logged = function (...args) {
-                if (logging && log.length < 4096) log.push({ name: "THREE." + cls, args: numbers(args, []), line: record.where().line });
+                if (logging && log.length < 4096) {
+                    const at = record.where();
+                    log.push({ name: "THREE." + cls, args: numbers(args, []), file: at.file, line: at.line });
+                }
                 return Reflect.construct(C, args, new.target || logged);
             };
             logged.prototype = C.prototype;

@@ -212,7 +212,11 @@
         await runFrames(input.frames);
 
         const made = record.lights;
-        const directional = made.map((l, i) => [i, l]).filter(([, l]) => l.kind === "DirectionalLight");
+        // The lights with a shadow map of their own: every DirectionalLight, and a PointLight
+        // whose class has a CalcLightMVP (the framework's has none: a lamp without a map).
+        const casting = (l) =>
+            l.kind === "DirectionalLight" || (l.object !== null && typeof l.object === "object" && typeof l.object.CalcLightMVP === "function");
+        const directional = made.map((l, i) => [i, l]).filter(([, l]) => casting(l));
         if (directional.length === 0) {
             out.notes.push(input.engineName + " makes no DirectionalLight: used the framework's light");
             try {
@@ -225,7 +229,8 @@
         } else {
             const [index, first] = directional[0];
             if (directional.length > 1) {
-                out.notes.push(first.file + " makes " + directional.length + " DirectionalLights; the first (line " + first.line + ") is the one the check's main pictures show");
+                const kinds = [...new Set(directional.map(([, l]) => l.kind))].join(" and ");
+                out.notes.push(first.file + " makes " + directional.length + " lights with a shadow map (" + kinds + "); the first (line " + first.line + ") is the one the check's main pictures show");
             }
             out.checked = index;
             if (first.error === null) {
@@ -238,12 +243,14 @@
         out.lights = parse(record.lightsJson());
         step(input.light.name, "CalcLightMVP");
         out.matrices = matricesOf(input, light);
+        // Where the light is once the first frames ran (an animation may have moved it already).
+        out.position = record.plain(light && light.lightPos, 0);
         // Each other DirectionalLight the page made, for a check of its own (the bonus: one map
         // per light, each pass drawn with that light's matrices).
         for (const [index, other] of directional.slice(1, 1 + MAX_OTHER_LIGHTS)) {
             if (other.error !== null) continue;
             step(input.light.name, "CalcLightMVP of the light made on " + other.file + ":" + other.line);
-            out.others.push({ index, matrices: matricesOf(input, other.object), object: other.object });
+            out.others.push({ index, matrices: matricesOf(input, other.object), object: other.object, position: record.plain(other.object.lightPos, 0) });
         }
         await followAnimation(host, input, out, light, runFrames, step);
         out.others.forEach((o) => delete o.object);

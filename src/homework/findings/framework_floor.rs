@@ -34,6 +34,11 @@ pub struct FloorCoverage {
     /// The dark points' extent in world z and x (the band), world units.
     pub z_range: (f32, f32),
     pub x_range: (f32, f32),
+    /// Share of the floor's points outside the frustum (their lookup outside [0, 1], or their
+    /// depth past the far plane), and their extent in world z and x.
+    pub outside_share: f64,
+    pub outside_z_range: (f32, f32),
+    pub outside_x_range: (f32, f32),
 }
 
 /// The floor point at a map texel: where the light's ray through it meets y = 0, inside the
@@ -81,8 +86,10 @@ pub fn coverage(clip_from_world: Mat4, unwritten_lit: bool) -> Option<FloorCover
             floor_depth_at(clip_from_world, world_from_clip, uv * 2.0 - 1.0).unwrap_or(0.0)
         })
         .collect();
-    let (mut dark, mut beyond, mut seen) = (0usize, 0usize, 0usize);
-    let (mut z_range, mut x_range) = ((f32::INFINITY, f32::NEG_INFINITY), (f32::INFINITY, f32::NEG_INFINITY));
+    let (mut dark, mut beyond, mut seen, mut outside) = (0usize, 0usize, 0usize, 0usize);
+    let empty = (f32::INFINITY, f32::NEG_INFINITY);
+    let (mut z_range, mut x_range, mut outside_z, mut outside_x) = (empty, empty, empty, empty);
+    let widen = |range: &mut (f32, f32), v: f32| *range = (range.0.min(v), range.1.max(v));
     for j in 0..SAMPLES {
         for i in 0..SAMPLES {
             let f = (Vec2::new(i as f32, j as f32) + 0.5) / SAMPLES as f32;
@@ -93,6 +100,11 @@ pub fn coverage(clip_from_world: Mat4, unwritten_lit: bool) -> Option<FloorCover
             );
             let Some((uv, depth)) = depth_of(clip_from_world, p) else { continue };
             seen += 1;
+            if uv.cmplt(Vec2::ZERO).any() || uv.cmpgt(Vec2::ONE).any() || depth > 1.0 {
+                outside += 1;
+                widen(&mut outside_z, p.z);
+                widen(&mut outside_x, p.x);
+            }
             // REPEAT: the texel a lookup outside [0, 1] wraps to.
             let wrapped = uv - uv.floor();
             let texel = (wrapped * MAP_SIZE as f32).as_uvec2().min(glam::UVec2::splat(MAP_SIZE as u32 - 1));
@@ -104,8 +116,8 @@ pub fn coverage(clip_from_world: Mat4, unwritten_lit: bool) -> Option<FloorCover
             if past_far || stored + DARKER_BY < depth {
                 dark += 1;
                 beyond += usize::from(past_far);
-                z_range = (z_range.0.min(p.z), z_range.1.max(p.z));
-                x_range = (x_range.0.min(p.x), x_range.1.max(p.x));
+                widen(&mut z_range, p.z);
+                widen(&mut x_range, p.x);
             }
         }
     }
@@ -114,6 +126,9 @@ pub fn coverage(clip_from_world: Mat4, unwritten_lit: bool) -> Option<FloorCover
         beyond_far_share: beyond as f64 / dark.max(1) as f64,
         z_range,
         x_range,
+        outside_share: outside as f64 / seen as f64,
+        outside_z_range: outside_z,
+        outside_x_range: outside_x,
     })
 }
 

@@ -85,6 +85,9 @@ fn light_frustum_clips(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -
 fn framework_floor_clipped(j: &Judged<'_>, lang: Lang) -> Option<Found> {
     let unwritten_lit = super::source_lines::unwritten_texel_lit(j.e.fragment_source).is_some();
     let floor = super::framework_floor::coverage(j.e.light.clip_from_world, unwritten_lit)?;
+    if let Some(line) = super::source_lines::outside_map_lit(j.e.fragment_source) {
+        return (floor.outside_share > CLIPPED_SHARE).then(|| floor_outside_lit(&floor, line, lang));
+    }
     if floor.dark_share <= CLIPPED_SHARE {
         return None;
     }
@@ -123,4 +126,32 @@ fn framework_floor_clipped(j: &Judged<'_>, lang: Lang) -> Option<Found> {
             ],
         ),
     ))
+}
+
+/// The framework's floor reaches outside the student's frustum, and their shader takes what lies
+/// outside the map as lit (line `line`): no black band, but no shadow can fall there.
+fn floor_outside_lit(floor: &super::framework_floor::FloorCoverage, line: usize, lang: Lang) -> Found {
+    Found::new(
+        Some("CalcLightMVP"),
+        BTreeMap::from([
+            ("framework_floor_outside_share", floor.outside_share),
+            ("outside_lit_line", line as f64),
+            ("framework_floor_outside_z_min", f64::from(floor.outside_z_range.0)),
+            ("framework_floor_outside_z_max", f64::from(floor.outside_z_range.1)),
+            ("framework_floor_outside_x_min", f64::from(floor.outside_x_range.0)),
+            ("framework_floor_outside_x_max", f64::from(floor.outside_x_range.1)),
+        ]),
+        fill(
+            lang,
+            "On the framework's own scene {:.0}% of the floor lies outside your light's frustum (z = {:.0} to {:.0}, x {:.0} to {:.0} world units; the floor spans z -142 to 82 and x -112 to 112, as the framework's engine.js lays it out). Your line {} takes whatever lies outside the map as lit, so there is no black band, but no shadow can fall there: an object standing there casts none. Make the frustum wide and deep enough for the framework's floor.",
+            &[
+                &(100.0 * floor.outside_share),
+                &floor.outside_z_range.0,
+                &floor.outside_z_range.1,
+                &floor.outside_x_range.0,
+                &floor.outside_x_range.1,
+                &line,
+            ],
+        ),
+    )
 }

@@ -411,6 +411,29 @@ pub fn return_of(source: &str, function: &str, value: f32) -> Option<(usize, Opt
     })
 }
 
+/// Where the shader takes a lookup outside the map as lit: an `if` whose condition compares a
+/// coordinate (`c.x`, `coord.y`) below 0.0 and one above 1.0, and whose branch sets or returns
+/// 1.0 (`if (c.x < 0.0 || c.x > 1.0 || ...) { visibility = 1.0; }`). The `if`'s line.
+pub fn outside_map_lit(source: &str) -> Option<usize> {
+    let toks = tokens(source);
+    let word = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let number = |i: usize| word(i).trim_end_matches(['f', 'F']).parse::<f64>().ok();
+    let coordinate = |i: usize| i >= 2 && matches!(word(i), "x" | "y" | "s" | "t") && word(i - 1) == ".";
+    (0..toks.len()).find_map(|k| {
+        if word(k) != "if" || word(k + 1) != "(" {
+            return None;
+        }
+        let close = matching(source, &toks, k + 1, "(", ")");
+        let below = (k + 2..close).any(|i| word(i) == "<" && coordinate(i - 1) && number(i + 1) == Some(0.0));
+        let above = (k + 2..close).any(|i| word(i) == ">" && coordinate(i - 1) && number(i + 1) == Some(1.0));
+        let branch_end =
+            if word(close + 1) == "{" { matching(source, &toks, close + 1, "{", "}") } else { close + 6 };
+        let lit = (close + 1..branch_end.min(toks.len()))
+            .any(|i| matches!(word(i), "=" | "return") && number(i + 1) == Some(1.0) && word(i + 2) == ";");
+        (below && above && lit).then(|| toks[k].line)
+    })
+}
+
 /// Where a recorded function reads a texel never written (depth 0, the framework never clears
 /// its map) as lit: a value compared alone with a small constant, then `return 1.0`
 /// (`if (closestDepth < EPS) { return 1.0; }`). The comparison's line.
@@ -517,6 +540,17 @@ mod tests {
         assert_eq!(unwritten_texel_lit(&guarded.replace("(d < EPS)", "(c.z - d < EPS)")), None);
         // Outside the recorded functions it is not on the lookup's path.
         assert_eq!(unwritten_texel_lit(&guarded.replace("useShadowMap", "helper")), None);
+    }
+
+    #[test]
+    fn a_lookup_outside_the_map_taken_as_lit_is_found_on_its_line() {
+        let shader = "void main() {\n  vec3 c = v.xyz / v.w * 0.5 + 0.5;\n  float visibility;\n  \
+            if (c.x < 0.0 || c.x > 1.0 || c.y < 0.0 || c.y > 1.0) {\n    visibility = 1.0;\n  } else {\n    \
+            visibility = PCF(m, c);\n  }\n}\n";
+        assert_eq!(outside_map_lit(shader), Some(4));
+        // One side only, or a branch that shadows, is not it.
+        assert_eq!(outside_map_lit(&shader.replace(" || c.x > 1.0 || c.y < 0.0 || c.y > 1.0", "")), None);
+        assert_eq!(outside_map_lit(&shader.replace("visibility = 1.0;", "visibility = 0.0;")), None);
     }
 
     #[test]

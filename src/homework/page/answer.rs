@@ -71,6 +71,8 @@ pub struct GlCall {
     pub name: String,
     /// The numeric arguments only (vectors and matrices flattened), not the `out` array.
     pub args: Vec<f64>,
+    /// The script of theirs the call was made from (`src/lights/PointLight.js`).
+    pub file: String,
     pub line: usize,
 }
 

@@ -55,6 +55,8 @@ impl From<Failed> for ScriptError {
 struct CallJson {
     name: String,
     args: Vec<f64>,
+    #[serde(default)]
+    file: String,
     line: usize,
 }
 
@@ -95,6 +97,9 @@ struct ContextJson {
 struct OtherLightJson {
     index: usize,
     matrices: Vec<MatrixJson>,
+    /// Its `lightPos` when the matrices were computed (after the first frames).
+    #[serde(default)]
+    position: Option<Vec<f64>>,
 }
 
 /// A light's matrices later in the page's animation, where they changed.
@@ -115,6 +120,9 @@ struct DriverOutput {
     lights: Vec<MadeLight>,
     checked: Option<usize>,
     matrices: Vec<MatrixJson>,
+    /// The checked light's `lightPos` when its matrices were computed (after the first frames).
+    #[serde(default)]
+    position: Option<Vec<f64>>,
     #[serde(default)]
     others: Vec<OtherLightJson>,
     #[serde(default)]
@@ -250,10 +258,13 @@ impl PageRun {
             return Err(fatal.into());
         }
         notes.extend(output.notes);
-        let engine_light = match output.checked.and_then(|i| output.lights.get(i)) {
+        let mut engine_light = match output.checked.and_then(|i| output.lights.get(i)) {
             Some(made) => Self::engine_light(made, &mut notes),
             None => EngineLight::framework(),
         };
+        if output.checked.is_some() {
+            moved_by_first_frames(&mut engine_light, output.position.as_deref(), &mut notes);
+        }
         let method_line = method_line(&light.text).unwrap_or(0);
         let return_line = last_return(&light.text, method_line).unwrap_or(method_line);
         let placed = |matrices: Vec<MatrixJson>| -> Matrices {
@@ -271,7 +282,8 @@ impl PageRun {
         }];
         for other in output.others {
             if let Some(made) = output.lights.get(other.index) {
-                let light = Self::engine_light(made, &mut Vec::new());
+                let mut light = Self::engine_light(made, &mut Vec::new());
+                moved_by_first_frames(&mut light, other.position.as_deref(), &mut notes);
                 sets.push(LightSet {
                     index: Some(other.index),
                     seconds: None,
@@ -393,6 +405,22 @@ impl PageRun {
     }
 }
 
+/// The light where the page's first frames left it (`at`, its `lightPos` then), with a note
+/// where that is not where it was made: their uniforms and their matrices are the moved ones.
+fn moved_by_first_frames(light: &mut EngineLight, at: Option<&[f64]>, notes: &mut Vec<String>) {
+    let Some(&[x, y, z]) = at else { return };
+    let made = light.position.value;
+    if [x, y, z].iter().all(|v| v.is_finite())
+        && made.iter().zip([x, y, z]).any(|(a, b)| (a - b).abs() > 1e-6)
+    {
+        notes.push(format!(
+            "the light made on {}:{} at ({}, {}, {}) was at ({x:.1}, {y:.1}, {z:.1}) when the page drew its first frames: the check uses it there",
+            light.position.file, light.position.line, made[0], made[1], made[2]
+        ));
+        light.position.value = [x, y, z];
+    }
+}
+
 /// `value` as made on `made`'s line.
 fn sourced<T>(made: &MadeLight, value: T) -> Sourced<T> {
     Sourced { value, file: made.file.clone(), line: made.line }
@@ -408,8 +436,11 @@ fn matrix(
     if let Some(error) = m.error {
         return Err(error.into());
     }
-    let calls: Vec<GlCall> =
-        m.calls.into_iter().map(|c| GlCall { name: c.name, args: c.args, line: c.line }).collect();
+    let calls: Vec<GlCall> = m
+        .calls
+        .into_iter()
+        .map(|c| GlCall { name: c.name, args: c.args, file: c.file, line: c.line })
+        .collect();
     let Some(values) = m.matrix else {
         return Err(ScriptError {
             file: file.to_string(),

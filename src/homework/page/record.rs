@@ -145,6 +145,52 @@ impl PageDraws {
             let some: Vec<&Draw> = drawn.iter().copied().filter(|d| kind(d) == k).collect();
             if some.is_empty() { most_common(drawn.iter().copied()) } else { most_common(some.into_iter()) }
         };
-        ObjectUniforms { floor: of_kind(Kind::Floor), other: of_kind(Kind::Model) }
+        ObjectUniforms {
+            floor: of_kind(Kind::Floor),
+            other: of_kind(Kind::Model),
+            model_matrices: model_matrices(&drawn),
+        }
     }
+}
+
+/// The framework's names, which the check sets itself.
+const FRAMEWORK_NAMES: [&str; 9] = [
+    "uModelMatrix",
+    "uViewMatrix",
+    "uProjectionMatrix",
+    "uLightMVP",
+    "uCameraPos",
+    "uLightPos",
+    "uLightIntensity",
+    "uKs",
+    "uKd",
+];
+
+/// The uniforms of the page's own naming that hold the drawn object's model matrix: on every
+/// draw that set both, the value was that draw's `uModelMatrix`, and on one at least it was
+/// not the identity (which any matrix left alone is).
+fn model_matrices(draws: &[&Draw]) -> Vec<String> {
+    let matrix = |draw: &Draw, name: &str| {
+        let mut v = Vec::new();
+        numbers(draw.uniforms.get(name)?, &mut v);
+        (v.len() == 16).then_some(v)
+    };
+    let same = |a: &[f64], b: &[f64]| a.iter().zip(b).all(|(x, y)| (x - y).abs() <= 1e-6 * (1.0 + y.abs()));
+    let identity: Vec<f64> = (0..16).map(|k| if k % 5 == 0 { 1.0 } else { 0.0 }).collect();
+    let names: std::collections::BTreeSet<&String> = draws
+        .iter()
+        .flat_map(|d| d.uniforms.keys())
+        .filter(|n| !FRAMEWORK_NAMES.contains(&n.as_str()))
+        .collect();
+    names
+        .into_iter()
+        .filter(|name| {
+            let pairs: Vec<(Vec<f64>, Vec<f64>)> =
+                draws.iter().filter_map(|d| Some((matrix(d, name)?, matrix(d, "uModelMatrix")?))).collect();
+            !pairs.is_empty()
+                && pairs.iter().all(|(own, model)| same(own, model))
+                && pairs.iter().any(|(own, _)| !same(own, &identity))
+        })
+        .cloned()
+        .collect()
 }

@@ -324,9 +324,19 @@ fn a_light_the_page_moves_is_looked_at_again_where_it_moved() {
         let origin = glam::Mat4::from_cols_array(&m) * glam::Vec4::W;
         assert!(origin.x.abs() < 1e-5 && origin.y.abs() < 1e-5, "{origin}");
     }
-    // Back to the light as the page loaded.
+    // Back to the light as the page drew its first frames (two, at 60 Hz: the last at 1/60 s),
+    // where the matrices of those frames put it, with a note that it was made elsewhere.
     let light = page.select(0, None).expect("the light");
-    assert_eq!(light.position.value, [0.0, 80.0, 80.0]);
+    let first = 1.0f64 / 60.0;
+    let expected = [80.0 * first.sin(), 80.0, 80.0 * first.cos()];
+    for (got, want) in light.position.value.iter().zip(expected) {
+        assert!((got - want).abs() < 1e-9, "{:?} vs {expected:?}", light.position.value);
+    }
+    assert!(
+        page.notes().iter().any(|n| n.contains("at (0, 80, 80) was at (1.3, 80.0, 80.0)")),
+        "{:?}",
+        page.notes()
+    );
     // A page that moves nothing is not looked at again.
     let (still, _) = load(EXAMPLE_LIGHT, None).expect("the page runs");
     assert!(still.times_of(0).is_empty());
