@@ -169,7 +169,9 @@ fn each_light_of_a_page_with_several_is_listed_and_checked_on_its_own() {
             .map(|f| f.as_str().expect("an id").to_string())
             .collect()
     };
-    // The first light's are the report's own; the sound second light has none.
+    // The first light's are the report's own. The second is sound but for one thing: the
+    // framework's materials compute the first light's matrix only, so the page never draws with
+    // the second's (nor the third's).
     let report_ids: Vec<String> = report["findings"]
         .as_array()
         .expect("findings")
@@ -177,7 +179,8 @@ fn each_light_of_a_page_with_several_is_listed_and_checked_on_its_own() {
         .map(|f| f["id"].as_str().expect("an id").to_string())
         .collect();
     assert_eq!(ids(&lights[0]), report_ids);
-    assert_eq!(ids(&lights[1]), Vec::<String>::new());
+    assert_eq!(ids(&lights[1]), ["light_not_drawn"]);
+    assert!(ids(&lights[2]).contains(&"light_not_drawn".to_string()), "{:?}", ids(&lights[2]));
     assert!(ids(&lights[2]).contains(&"light_frustum_clips".to_string()), "{:?}", ids(&lights[2]));
     // The orbiting light is checked again where it had moved: at 0.5, 1 and 2 s of the page's
     // animation (the first 60 Hz frame at or after each), each with its position and findings.
@@ -210,9 +213,25 @@ fn lights_in_arrays_indexed_by_light_are_each_checked() {
     const secondLight = new DirectionalLight(2500, [1, 1, 1], [0, 80, -80], focalPoint, lightUp, true, renderer.gl);
     renderer.addLight(secondLight);",
     );
+    // Their materials set each element by name, from the page's list of lights.
+    let engine = edit(
+        &engine,
+        "    renderer.addLight(secondLight);",
+        "    renderer.addLight(secondLight);\n    window.pageLights = [directionLight, secondLight];",
+    );
+    let material = |name: &str| {
+        edit(
+            &read(&format!("assets/homework/framework/src/materials/{name}.js")),
+            "uLightMVP: { type: 'matrix4fv', value: lightMVP },",
+            "'uLightMVP[0]': { type: 'matrix4fv', value: window.pageLights[0].CalcLightMVP(translate, scale) },
+            'uLightMVP[1]': { type: 'matrix4fv', value: window.pageLights[1].CalcLightMVP(translate, scale) },",
+        )
+    };
     let fragment = read("tests/data/homework/phongFragment_lights.glsl");
     let files = |fragment: String| {
         [
+            ("src/materials/PhongMaterial.js", material("PhongMaterial")),
+            ("src/materials/ShadowMaterial.js", material("ShadowMaterial")),
             ("src/shaders/phongShader/phongFragment.glsl", fragment),
             ("src/shaders/phongShader/phongVertex.glsl", read("tests/data/homework/phongVertex_lights.glsl")),
             (
@@ -347,6 +366,94 @@ fn a_lamp_with_a_map_of_distances_is_checked_as_the_page_draws_it() {
         "{said}"
     );
     assert_eq!(ids, ["light_frustum_clips"], "{:#}", report["findings"]);
+}
+
+/// The ids of a report's findings.
+fn finding_ids(report: &Value) -> Vec<String> {
+    report["findings"]
+        .as_array()
+        .expect("findings")
+        .iter()
+        .filter_map(|f| f["id"].as_str().map(String::from))
+        .collect()
+}
+
+/// The explanation of the report's finding `id`.
+fn explanation_of<'r>(report: &'r Value, id: &str) -> &'r str {
+    report["findings"]
+        .as_array()
+        .and_then(|f| f.iter().find(|f| f["id"] == id))
+        .and_then(|f| f["explanation"].as_str())
+        .unwrap_or_else(|| panic!("no {id}: {:#}", report["findings"]))
+}
+
+/// Things that move in the page's animation, and the `uLightMVP` its draws get: computed once
+/// in the framework's materials (as they load), it does not follow a light or an object that
+/// the main loop moves; computed again each frame, it does. A second light the materials never
+/// compute a matrix for is never drawn with.
+#[test]
+fn what_moves_is_checked_against_the_light_matrices_the_page_draws_with() {
+    let framework_engine = read("assets/homework/framework/src/engine.js");
+    let in_main_loop = |moving: &str| {
+        edit(
+            &framework_engine,
+            "        renderer.render();",
+            &format!("        {moving}\n        renderer.render();"),
+        )
+    };
+    let check = |engine: String| {
+        let files = [
+            ("src/shaders/phongShader/phongFragment.glsl", read("assets/homework/phongFragment.glsl")),
+            ("src/lights/DirectionalLight.js", read("assets/homework/DirectionalLight.js")),
+            ("src/engine.js", engine),
+        ];
+        let scratch = tempfile::tempdir().expect("a scratch folder");
+        check_folder(scratch.path(), &files)
+    };
+    // The small Mary slides up and down; its uLightMVP is the one its material computed.
+    let slide = "for (const m of renderer.meshes) { if (m.mesh.transform.translate[2] === -40) m.mesh.transform.translate[1] = 10 * Math.sin(Date.now() * 0.002); }";
+    let stale_object = check(in_main_loop(slide));
+    assert_eq!(finding_ids(&stale_object), ["light_matrix_stale"], "{:#}", stale_object["findings"]);
+    let said = explanation_of(&stale_object, "light_matrix_stale");
+    assert!(said.contains("From 0.5 s of your page's animation assets/mary/Marry.obj moves"), "{said}");
+    let material = read("assets/homework/framework/src/materials/PhongMaterial.js");
+    let line = line_of(&material, "light.CalcLightMVP(");
+    assert!(
+        said.contains(&format!(
+            "only while it loads (src/materials/PhongMaterial.js:{line} (the framework's)"
+        )),
+        "{said}"
+    );
+    // Computed again each frame, for both passes: sound.
+    let recomputed = format!(
+        "{slide} for (const m of renderer.meshes.concat(renderer.shadowMeshes)) m.material.uniforms.uLightMVP.value = directionLight.CalcLightMVP(m.mesh.transform.translate, m.mesh.transform.scale);"
+    );
+    let followed = check(in_main_loop(&recomputed));
+    assert_eq!(finding_ids(&followed), Vec::<String>::new(), "{:#}", followed["findings"]);
+    // The one light orbits; the materials keep the matrix of where it was.
+    let orbit =
+        "const a = Date.now() * 0.001; directionLight.lightPos = [80 * Math.sin(a), 80, 80 * Math.cos(a)];";
+    let stale_light = check(in_main_loop(orbit));
+    assert!(
+        finding_ids(&stale_light).contains(&"light_matrix_stale".to_string()),
+        "{:#}",
+        stale_light["findings"]
+    );
+    let said = explanation_of(&stale_light, "light_matrix_stale");
+    assert!(said.contains("From 0.5 s of your page's animation the light has moved"), "{said}");
+    // A second light added to the framework: its materials compute the first light's matrix
+    // only, so no draw is ever made with the second's.
+    let second = edit(
+        &framework_engine,
+        "    renderer.addLight(directionLight);",
+        "    renderer.addLight(directionLight);
+    const secondLight = new DirectionalLight(2500, [1, 1, 1], [0, 80, -80], focalPoint, lightUp, true, renderer.gl);
+    renderer.addLight(secondLight);",
+    );
+    let report = check(second);
+    let lights = report["lights"].as_array().expect("lights");
+    assert_eq!(lights[0]["findings"], serde_json::json!([]), "{lights:#?}");
+    assert_eq!(lights[1]["findings"], serde_json::json!(["light_not_drawn"]), "{lights:#?}");
 }
 
 #[test]

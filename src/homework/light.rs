@@ -64,6 +64,8 @@ pub struct HomeworkLight {
     pub model_matrix: Option<ModelMatrixError>,
     /// The values the student's page gave its own uniforms, by name (empty: none known, all 0).
     pub page_uniforms: PageUniforms,
+    /// Draws of the page's animation whose uLightMVP for this light did not follow what moved.
+    pub stale: Vec<super::page::StaleMatrix>,
 }
 
 /// The uniforms a student's page set on its first frame, by the name their code gave each:
@@ -123,6 +125,7 @@ impl HomeworkLight {
             position: light.position_at(t_s),
             intensity: intensity_scale * light.intensity * light.color,
             model_matrix: None,
+            stale: Vec::new(),
             page_uniforms: PageUniforms::default(),
         })
     }

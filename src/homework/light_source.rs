@@ -23,6 +23,10 @@ pub(super) trait LightMatrices {
     fn uniforms(&self, _fragment: &str) -> super::light::ObjectUniforms {
         super::light::ObjectUniforms::default()
     }
+    /// Draws of the page's animation whose uLightMVP did not follow what moved.
+    fn stale(&self) -> Vec<super::page::StaleMatrix> {
+        Vec::new()
+    }
     /// Makes `light_matrix` answer for the page's light `index` (as `lights` numbers them), as
     /// the page loaded or at `seconds` of its animation, and gives that light as engine.js made
     /// it (moved where the animation took it); None where it has no matrices then.
@@ -59,6 +63,9 @@ impl LightMatrices for super::page::PageRun {
     }
     fn uniforms(&self, fragment: &str) -> super::light::ObjectUniforms {
         self.draws().uniforms_for(fragment)
+    }
+    fn stale(&self) -> Vec<super::page::StaleMatrix> {
+        super::page::PageRun::stale(self).to_vec()
     }
     fn select(&mut self, index: usize, seconds: Option<f64>) -> Option<EngineLight> {
         super::page::PageRun::select(self, index, seconds)

@@ -320,6 +320,7 @@ impl CheckRun {
                 clip_from_world: self.light.clip_from_world,
                 width: width.as_ref(),
                 model_matrix: self.light.model_matrix,
+                stale: &self.light.stale,
             },
             twin: Some(&twin),
             fragment_source: &self.fragment_source,

@@ -277,6 +277,12 @@ pub fn student_light_of(
 
 /// The framework's light for `scene`'s light `index`, with why the student's was not used
 /// (`error`), the notes so far and the lights their page made.
+/// The framework's light standing in for one the page's CalcLightMVP could not give, still
+/// refused where the page is (a float-texture page is not judged, whatever light it has).
+fn refused_too(light: Option<StudentLight>, refused: Option<String>) -> Option<StudentLight> {
+    light.map(|l| StudentLight { refused, ..l })
+}
+
 fn framework_light(
     scene: &Scene,
     index: usize,
@@ -338,6 +344,9 @@ fn light_of_page(
     notes.extend(loaded.notes().iter().cloned());
     let refused = loaded.refusal();
     let mut lights = loaded.lights();
+    // The page's light this check is of (as its `lights` are numbered).
+    let page_index = page_light.map(|p| p.index).or_else(|| lights.iter().position(|l| l.checked));
+    let stale: Vec<_> = loaded.stale().into_iter().filter(|s| Some(s.light) == page_index).collect();
     let engine = match page_light {
         None => engine,
         Some(wanted) => {
@@ -358,7 +367,12 @@ fn light_of_page(
     }
     let at_origin = match loaded.light_matrix([0.0; 3], [1.0; 3]) {
         Ok(m) => m,
-        Err(e) => return framework_light(scene, index, t_s, Some(e.to_string()), notes, lights),
+        Err(e) => {
+            return refused_too(
+                framework_light(scene, index, t_s, Some(e.to_string()), notes, lights),
+                refused,
+            );
+        }
     };
     let clip_from_world = Mat4::from_cols_array(&at_origin.clip_from_object);
     let position = vec3(engine.position.value);
@@ -375,7 +389,12 @@ fn light_of_page(
         let (t, s) = (object.translate, object.scale);
         let matrix = match loaded.light_matrix(t.as_dvec3().to_array(), s.as_dvec3().to_array()) {
             Ok(m) => Mat4::from_cols_array(&m.clip_from_object),
-            Err(e) => return framework_light(scene, index, t_s, Some(e.to_string()), notes, lights),
+            Err(e) => {
+                return refused_too(
+                    framework_light(scene, index, t_s, Some(e.to_string()), notes, lights),
+                    refused,
+                );
+            }
         };
         if model.is_none() {
             model = model_matrix(matrix, clip_from_world, t, s, position);
@@ -423,6 +442,7 @@ fn light_of_page(
         position,
         intensity: engine_intensity,
         model_matrix: model,
+        stale,
         page_uniforms: PageUniforms {
             camera: loaded.uniforms(&source.files.phong_fragment.text),
             shadow: loaded.uniforms(&source.files.shadow_fragment.text),

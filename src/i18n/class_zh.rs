@@ -81,6 +81,14 @@ pub(super) const CLASS: &[(&str, &str)] = &[
         "光源视锥没有包住场景，部分场景落在阴影贴图之外。",
     ),
     (
+        "The page never draws with this light's matrix: its shadows are another light's.",
+        "页面从未用这盏光源的矩阵绘制：它的阴影其实是另一盏光源的。",
+    ),
+    (
+        "A light or an object moves, but the uLightMVP its draws get stays where it was.",
+        "光源或物体在动，但绘制时拿到的 uLightMVP 还停留在原来的位置。",
+    ),
+    (
         "Shadows are missing: the lookups never meet the blockers (wrong space or units).",
         "阴影不见了：查询碰不到遮挡物（坐标空间或单位用错）。",
     ),

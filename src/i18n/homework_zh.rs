@@ -246,4 +246,37 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "Hidden today by your bias (it shows as soon as the bias is smaller):",
         "今天被你的偏移掩盖了（偏移再小一点就会显现）：",
     ),
+    (
+        "On the framework's own scene {:.0}% of the floor lies outside your light's frustum (z = {:.0} to {:.0}, x {:.0} to {:.0} world units; the floor spans z -142 to 82 and x -112 to 112, as the framework's engine.js lays it out). Your line {} takes whatever lies outside the map as lit, so there is no black band, but no shadow can fall there: an object standing there casts none. Make the frustum wide and deep enough for the framework's floor.",
+        "在框架自己的场景中，{:.0}% 的地面落在你的光源视锥之外（z 从 {:.0} 到 {:.0}、x 从 {:.0} 到 {:.0} 个世界单位；按框架 engine.js 的布置，地面范围是 z -142 到 82、x -112 到 112）。你的第 {} 行把阴影贴图之外的一切当作被照亮，所以不会出现黑带，但那里也不会落下任何阴影：站在那里的物体不投影。请把视锥做得足够宽、足够深，盖住框架的地面。",
+    ),
+    ("your page never calls CalcLightMVP itself", "你的页面自己从不调用 CalcLightMVP"),
+    (
+        "your page calls CalcLightMVP only while it loads ({}), never in a frame",
+        "你的页面只在加载时调用 CalcLightMVP（{}），从不在某一帧里调用",
+    ),
+    (
+        "your page calls CalcLightMVP at {}, but not for these draws",
+        "你的页面在 {} 调用 CalcLightMVP，但不是为这些绘制调用的",
+    ),
+    (
+        "your page calls CalcLightMVP at {}, for another light",
+        "你的页面在 {} 调用 CalcLightMVP，算的是另一盏光源",
+    ),
+    (
+        "From {:.1} s of your page's animation the light has moved, but the uLightMVP its draws get is the one of where it was when the page loaded: {}. The light pass and the lookups keep the old light while the shading follows the new one, so the shadows do not move with it.",
+        "从你页面动画的第 {:.1} 秒起，光源已经移动了，但绘制时拿到的 uLightMVP 仍是页面加载时它所在位置的矩阵：{}。光源 pass 和查询还停在旧的光源，着色却跟着新的光源，所以阴影不会随它移动。",
+    ),
+    (
+        "From {:.1} s of your page's animation {} moves (its uModelMatrix changes), but its uLightMVP still places it where it was loaded: {}. Its shadow stays where it was, and it shadows itself as if it had not moved.",
+        "从你页面动画的第 {:.1} 秒起，{} 在移动（它的 uModelMatrix 在变），但它的 uLightMVP 仍把它放在加载时的位置：{}。它的阴影停在原处，它对自己的遮挡也像没有动过一样。",
+    ),
+    (
+        "Compute uLightMVP again each frame, after the light or the object moves, for both passes.",
+        "请在光源或物体移动之后，每一帧为两个 pass 重新计算 uLightMVP。",
+    ),
+    (
+        "Your page never draws with this light's matrix: no uniform of any draw holds its CalcLightMVP ({}). Its shadow map is drawn with another light's matrix, or not at all, so the shadows your page shows for it are another light's. Give each light its own materials (or uniforms) with its own uLightMVP and its own map, for both passes. What shadowlab shows for this light is what your shaders would do if it were drawn.",
+        "你的页面从未用这盏光源的矩阵绘制：没有任何一次绘制的 uniform 里有它的 CalcLightMVP（{}）。它的阴影贴图是用另一盏光源的矩阵画的，或者根本没画，所以你的页面为它显示的阴影其实是另一盏光源的。请为每盏光源准备自己的材质（或 uniform），带上它自己的 uLightMVP 和自己的阴影贴图，两个 pass 都要。shadowlab 为这盏光源显示的，是假如它被画出来时你的着色器会给出的结果。",
+    ),
 ];

@@ -26,16 +26,25 @@ var self = globalThis;
         files: {},
         // The frame being drawn (-1 while the page loads, then 0, 1, ...), the page's clock (ms)
         // and the WebGL context it asked for first; draws are recorded while `recordDraws` holds.
-        state: { frame: -1, now: 0, context: null, floatTexture: null, recordDraws: true },
+        state: { frame: -1, now: 0, context: null, floatTexture: null, recordDraws: true, checking: false },
+        // Where the page itself calls a light's CalcLightMVP: {file, line, first, last} (frames;
+        // -1 while it loads), one entry per place.
+        calcCalls: [],
     };
     globalThis.__shadowlab = record;
 
     // The first frame of `stack` in a student's file (the libraries and shadowlab's own scripts
     // are not theirs): {file, line, fn}, fn "" at a script's top level; null where none is.
-    record.theirFrame = function (stack) {
+    record.theirFrame = function (stack, framework) {
         for (const frame of String(stack || "").split("\n")) {
             const m = /^\s*at\s+(?:(.*?)\s+\()?([^()\s]+?):(\d+)(?::\d+)?\)?\s*$/.exec(frame);
-            if (m && !record.ours(m[2])) return { file: m[2], line: Number(m[3]), fn: m[1] && m[1] !== "<eval>" ? m[1] : "" };
+            if (!m) continue;
+            const fn = m[1] && m[1] !== "<eval>" ? m[1] : "";
+            // With `framework`, shadowlab's copy of the framework's own files counts too.
+            if (framework && m[2].startsWith("shadowlab/framework/")) {
+                return { file: "src/" + m[2].slice("shadowlab/framework/".length), line: Number(m[3]), fn, framework: true };
+            }
+            if (!record.ours(m[2])) return { file: m[2], line: Number(m[3]), fn };
         }
         return null;
     };
@@ -64,6 +73,27 @@ var self = globalThis;
     // A light class wrapped so that each construction is recorded (same class, same prototype).
     record.watchLight = function (kind, cls) {
         if (typeof cls !== "function" || cls.__shadowlabWatched) return cls;
+        // The page's own calls of CalcLightMVP (not the check's): where, and in which frames.
+        const proto = cls.prototype;
+        const method = proto && proto.CalcLightMVP;
+        if (typeof method === "function" && !method.__shadowlabWatched) {
+            const watchedMethod = function (...args) {
+                if (!record.state.checking) {
+                    const at = record.theirFrame(new Error().stack, true) || { file: "", line: 0 };
+                    const frame = record.state.frame;
+                    const seen = record.calcCalls.find((c) => c.file === at.file && c.line === at.line);
+                    if (seen) seen.last = frame;
+                    else if (record.calcCalls.length < 64) record.calcCalls.push({ file: at.file, line: at.line, framework: !!at.framework, first: frame, last: frame });
+                }
+                return method.apply(this, args);
+            };
+            watchedMethod.__shadowlabWatched = true;
+            // The check reads the parameters' names and calls the page's own method.
+            watchedMethod.__shadowlabOriginal = method;
+            try {
+                proto.CalcLightMVP = watchedMethod;
+            } catch (e) {}
+        }
         const watched = new Proxy(cls, {
             construct(target, args, newTarget) {
                 const at = record.where();

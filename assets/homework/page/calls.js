@@ -79,8 +79,9 @@
     // `translate` and `scale`: parameters go by name (rot -> [0, 0, 0], trans, scal), others by
     // position. Returns JSON: {matrix: [16 numbers] | null, what: "…", calls: […]}.
     record.lightMatrix = function (light, translate, scale) {
-        const method = light && light.CalcLightMVP;
-        if (typeof method !== "function") return stringify({ matrix: null, what: "no CalcLightMVP method", calls: [] });
+        const found = light && light.CalcLightMVP;
+        if (typeof found !== "function") return stringify({ matrix: null, what: "no CalcLightMVP method", calls: [] });
+        const method = typeof found.__shadowlabOriginal === "function" ? found.__shadowlabOriginal : found;
         let names = parameters(method);
         const rest = names.some((n) => n.startsWith("..."));
         if (rest || names.length === 0) names = ["", ""];
@@ -92,11 +93,13 @@
         });
         log.length = 0;
         logging = true;
+        record.state.checking = true;
         let result;
         try {
             result = method.apply(light, args);
         } finally {
             logging = false;
+            record.state.checking = false;
         }
         const calls = log.slice();
         if (result && typeof result === "object" && isArray(result.elements)) result = result.elements;

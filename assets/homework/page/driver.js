@@ -102,6 +102,109 @@
         });
     }
 
+    // a * b for column-major 4x4 matrices (gl-matrix's layout).
+    function times(a, b) {
+        const out = new Array(16);
+        for (let c = 0; c < 4; c++) {
+            for (let r = 0; r < 4; r++) {
+                let sum = 0;
+                for (let k = 0; k < 4; k++) sum += a[k * 4 + r] * b[c * 4 + k];
+                out[c * 4 + r] = sum;
+            }
+        }
+        return out;
+    }
+    const same = (a, b) => Array.isArray(a) && Array.isArray(b) && a.length === 16 && b.length === 16
+        && a.every((v, i) => Math.abs(v - b[i]) <= 1e-4 * (1 + Math.abs(b[i])));
+    const matrixOf = (value) => {
+        const numbers = Array.isArray(value) ? value.flat(2) : null;
+        return numbers && numbers.length === 16 && numbers.every((v) => typeof v === "number") ? numbers : null;
+    };
+    // A light's projection * view: its CalcLightMVP for an object at the origin, unscaled.
+    const viewProjection = (object) => {
+        try {
+            const m = parse(record.lightMatrix(object, [0, 0, 0], [1, 1, 1])).matrix;
+            return Array.isArray(m) && m.every((v) => typeof v === "number") ? m : null;
+        } catch (e) {
+            return null;
+        }
+    };
+
+    // Each made light's projection * view at the end of each frame the page ran (-1: as it
+    // loaded), by the index of `record.lights`: a draw of frame f was made with the light as it
+    // was at the end of frame f - 1 or of frame f (whether the page moves it before or after it
+    // draws).
+    let vpAt = {};
+    function snapshot(frame) {
+        vpAt[frame] = record.lights.map((l) => (l.object ? viewProjection(l.object) : null));
+    }
+    const vpsOf = (frame, index) =>
+        [frame - 1, frame].map((f) => (vpAt[f] || [])[index]).filter((vp) => Array.isArray(vp));
+    // uLightMVP (or any matrix uniform) `m` of a draw with model `model` is light `index`'s at `frame`.
+    const isLights = (m, model, frame, index) =>
+        vpsOf(frame, index).some((vp) => same(m, vp) || (model && same(m, times(vp, model))));
+
+    // The draws of one frame whose uLightMVP no longer follows the page: a draw that matched a
+    // light's matrix times its own uModelMatrix on the first frames, and now matches only the
+    // light as it was (the light moved, its matrix was not computed again) or the object as it
+    // was (the object moved). {kind: "light" | "object", light, request} each, once.
+    function staleDraws(frame, lights) {
+        const drawn = (f) => record.draws.filter((d) => d.frame === f);
+        const firstFrame = Math.min(...record.draws.map((d) => d.frame));
+        const first = drawn(firstFrame);
+        const ordinal = (list, d) => list.filter((o) => o.program === d.program && o.request === d.request).indexOf(d);
+        const found = [];
+        const now = drawn(frame);
+        for (const d of now) {
+            const mvp = matrixOf(d.uniforms.uLightMVP);
+            const model = matrixOf(d.uniforms.uModelMatrix);
+            const was = first.filter((o) => o.program === d.program && o.request === d.request)[ordinal(now, d)];
+            const modelThen = was && matrixOf(was.uniforms.uModelMatrix);
+            const mvpThen = was && matrixOf(was.uniforms.uLightMVP);
+            if (!mvp || !model || !modelThen || !mvpThen) continue;
+            const matchedThen = lights.some(([index]) => vpsOf(firstFrame, index).some((vp) => same(mvpThen, times(vp, modelThen))));
+            if (!matchedThen || lights.some(([index]) => vpsOf(frame, index).some((vp) => same(mvp, times(vp, model))))) continue;
+            let kind = null;
+            let light = null;
+            for (const [index] of lights) {
+                const then = vpsOf(firstFrame, index);
+                const current = vpsOf(frame, index);
+                const moved = then.some((vp) => !current.some((c) => same(vp, c)));
+                if (moved && then.some((vp) => same(mvp, times(vp, model)))) [kind, light] = ["light", index];
+                else if (!same(model, modelThen) && current.concat(then).some((vp) => same(mvp, times(vp, modelThen)))) [kind, light] = ["object", index];
+                if (kind) break;
+            }
+            if (kind && !found.some((f) => f.kind === kind && f.light === light && f.request === d.request)) {
+                found.push({ kind, light, request: d.request });
+            }
+        }
+        return found;
+    }
+
+    // Of a page with several lights with a map, each whose matrix no draw of the first frames
+    // holds in any uniform (its uLightMVP, an element of an array, a name of the page's own;
+    // times the draw's uModelMatrix, or alone): the page never draws with that light.
+    function undrawnLights(out, light) {
+        const lights = (out.checked === null ? [] : [[out.checked, light]])
+            .concat(out.others.map((o) => [o.index, o.object]));
+        if (lights.length < 2 || record.draws.length === 0) return;
+        const firstFrame = Math.min(...record.draws.map((d) => d.frame));
+        const draws = record.draws.filter((d) => d.frame === firstFrame);
+        const used = lights.map(([index]) =>
+            vpsOf(firstFrame, index).length === 0 ||
+            draws.some((d) => {
+                const model = matrixOf(d.uniforms.uModelMatrix);
+                return Object.values(d.uniforms).some((v) => {
+                    const m = matrixOf(v);
+                    return m && isLights(m, model, firstFrame, index);
+                });
+            }));
+        if (!used.some((u) => u)) return;
+        lights.forEach(([index], k) => {
+            if (!used[k]) out.stale.push({ seconds: 0, kind: "none", light: index, request: null });
+        });
+    }
+
     // The page's animation: its frames run on to each time the check looks again (input.times,
     // seconds); there, each light whose matrices changed (an orbit, a light their code moves) is
     // kept in out.timed with its position then. Only a page whose lights move from frame to
@@ -119,9 +222,16 @@
         const still = lights.map(([, , matrices]) => fingerprint(matrices));
         const elapsed = () => (typeof host.elapsedMs === "function" ? host.elapsedMs() : 0);
         const changed = (object, k) => fingerprint(matricesOf(input, object)) !== still[k];
-        // One frame more first: a page whose lights it leaves where they are is not followed.
+        // Whether the models the page draws move: their uModelMatrix on a later frame.
+        const models = (f) => stringify(record.draws.filter((d) => d.frame === f).map((d) => d.uniforms.uModelMatrix || null));
+        // One frame more first: a page whose lights and models it leaves where they are is not
+        // followed.
+        const firstFrame = record.draws.length ? Math.min(...record.draws.map((d) => d.frame)) : 0;
+        record.state.recordDraws = true;
         let frames = await runFrames(input.frames + 1);
-        if (!lights.some(([, object], k) => changed(object, k))) return;
+        record.state.recordDraws = false;
+        const modelsMove = record.draws.some((d) => d.frame === frames - 1) && models(frames - 1) !== models(firstFrame);
+        if (!lights.some(([, object], k) => changed(object, k)) && !modelsMove) return;
         for (const seconds of input.times || []) {
             // The first frame whose clock reaches `seconds` is the last one run.
             const until = Math.ceil((seconds * 1000) / input.frameMs) + 1;
@@ -129,7 +239,13 @@
                 out.notes.push("the page's animation was followed to " + (((frames - 1) * input.frameMs) / 1000).toFixed(1) + " s only (half the time bound)");
                 break;
             }
+            frames = await runFrames(until - 1);
+            record.state.recordDraws = true;
             frames = await runFrames(until);
+            record.state.recordDraws = false;
+            for (const stale of staleDraws(frames - 1, lights)) {
+                out.stale.push(Object.assign({ seconds }, stale));
+            }
             lights.forEach(([index, object], k) => {
                 step(input.light.name, "CalcLightMVP at " + seconds + " s");
                 const matrices = matricesOf(input, object);
@@ -144,11 +260,12 @@
     //         objects: [[tx, ty, tz, sx, sy, sz]], frames, frameMs}
     record.runPage = async function (host, inputJson) {
         const input = parse(inputJson);
+        vpAt = {};
         memoryMiB = input.memoryMiB || 0;
         quickjs = host.engine === "quickjs";
         for (const script of input.scripts) linesOf[script.name] = script.text.split("\n");
         linesOf[input.light.name] = input.light.text.split("\n");
-        const out = { fatal: null, notes: [], lights: [], checked: null, matrices: [], others: [], draws: null, context: null };
+        const out = { fatal: null, notes: [], lights: [], checked: null, matrices: [], others: [], draws: null, context: null, stale: [], calcCalls: [] };
         Object.assign(record.files, input.files);
         let light = null;
         let lightRan = false;
@@ -206,9 +323,13 @@
                     out.notes.push("a frame of the page failed: " + shown(failure({ message, stack: stack.join("\n") }, "")));
                 }
                 await settle();
+                snapshot(frame);
             }
             return frame;
         };
+        // Each light's matrices as the page loaded, before any frame moved it (what materials
+        // built while loading hold).
+        snapshot(-1);
         await runFrames(input.frames);
 
         const made = record.lights;
@@ -252,8 +373,10 @@
             step(input.light.name, "CalcLightMVP of the light made on " + other.file + ":" + other.line);
             out.others.push({ index, matrices: matricesOf(input, other.object), object: other.object, position: record.plain(other.object.lightPos, 0) });
         }
+        undrawnLights(out, light);
         await followAnimation(host, input, out, light, runFrames, step);
         out.others.forEach((o) => delete o.object);
+        out.calcCalls = record.calcCalls.slice();
         out.draws = parse(record.drawsJson());
         out.context = parse(record.contextJson());
         return stringify(out);

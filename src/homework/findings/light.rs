@@ -155,3 +155,94 @@ fn floor_outside_lit(floor: &super::framework_floor::FloorCoverage, line: usize,
         ),
     )
 }
+
+/// The page's animation moves the light or an object, and the `uLightMVP` its draws get does not
+/// follow: the shadows stay where they were. Read from the page's own draws (driver.js), at the
+/// times the check looks again.
+pub const LIGHT_MATRIX_STALE: FindingKind =
+    FindingKind { id: "light_matrix_stale", lesson: "multi-light", step: 4, judge: light_matrix_stale };
+
+fn light_matrix_stale(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if super::has(earlier, "light_not_drawn") {
+        return None;
+    }
+    let moved = || j.e.light.stale.iter().filter(|s| s.moved != "none");
+    let first = moved().min_by(|a, b| a.time_s.total_cmp(&b.time_s))?;
+    let light_moved = j.e.light.stale.iter().find(|s| s.moved == "light");
+    let objects: Vec<String> = {
+        let mut names: Vec<String> =
+            j.e.light.stale.iter().filter(|s| s.moved == "object").filter_map(|s| s.object.clone()).collect();
+        names.dedup();
+        names
+    };
+    let computed = computed_where(first, lang);
+    let what = match (light_moved, objects.is_empty()) {
+        (Some(_), _) => fill(
+            lang,
+            "From {:.1} s of your page's animation the light has moved, but the uLightMVP its draws get is the one of where it was when the page loaded: {}. The light pass and the lookups keep the old light while the shading follows the new one, so the shadows do not move with it.",
+            &[&first.time_s, &computed],
+        ),
+        (None, false) => fill(
+            lang,
+            "From {:.1} s of your page's animation {} moves (its uModelMatrix changes), but its uLightMVP still places it where it was loaded: {}. Its shadow stays where it was, and it shadows itself as if it had not moved.",
+            &[&first.time_s, &objects.join(", "), &computed],
+        ),
+        (None, true) => return None,
+    };
+    let mut figures = BTreeMap::from([
+        ("first_time_s", first.time_s),
+        ("stale_draws", moved().count() as f64),
+        ("light_moved", f64::from(u8::from(light_moved.is_some()))),
+    ]);
+    figures.insert("objects_moved", objects.len() as f64);
+    Some(Found::new(
+        Some("CalcLightMVP"),
+        figures,
+        what + " "
+            + tr(
+                lang,
+                "Compute uLightMVP again each frame, after the light or the object moves, for both passes.",
+            ),
+    ))
+}
+
+/// Where the page computes its light matrices, as a finding says it.
+fn computed_where(stale: &crate::homework::page::StaleMatrix, lang: Lang) -> String {
+    if stale.computed_at.is_empty() {
+        tr(lang, "your page never calls CalcLightMVP itself").to_string()
+    } else if stale.computed_only_while_loading {
+        fill(
+            lang,
+            "your page calls CalcLightMVP only while it loads ({}), never in a frame",
+            &[&stale.computed_at.join(", ")],
+        )
+    } else {
+        fill(
+            lang,
+            "your page calls CalcLightMVP at {}, but not for these draws",
+            &[&stale.computed_at.join(", ")],
+        )
+    }
+}
+
+/// A page with several lights never draws with this one's matrix: no uniform of any draw of its
+/// first frames holds it (the framework's materials compute uLightMVP for the first light only).
+pub const LIGHT_NOT_DRAWN: FindingKind =
+    FindingKind { id: "light_not_drawn", lesson: "multi-light", step: 1, judge: light_not_drawn };
+
+fn light_not_drawn(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
+    let none = j.e.light.stale.iter().find(|s| s.moved == "none")?;
+    let computed = match none.computed_at.as_slice() {
+        [] => tr(lang, "your page never calls CalcLightMVP itself").to_string(),
+        at => fill(lang, "your page calls CalcLightMVP at {}, for another light", &[&at.join(", ")]),
+    };
+    Some(Found::new(
+        Some("CalcLightMVP"),
+        BTreeMap::from([("draws_with_its_matrix", 0.0)]),
+        fill(
+            lang,
+            "Your page never draws with this light's matrix: no uniform of any draw holds its CalcLightMVP ({}). Its shadow map is drawn with another light's matrix, or not at all, so the shadows your page shows for it are another light's. Give each light its own materials (or uniforms) with its own uLightMVP and its own map, for both passes. What shadowlab shows for this light is what your shaders would do if it were drawn.",
+            &[&computed],
+        ),
+    ))
+}

@@ -133,6 +133,8 @@ pub const FINDINGS: &[FindingKind] = &[
     visibility::VISIBILITY_SCALED,
     light::LIGHT_MODEL_MATRIX,
     light::LIGHT_FRUSTUM_CLIPS,
+    light::LIGHT_NOT_DRAWN,
+    light::LIGHT_MATRIX_STALE,
     shadows::SHADOWS_MISSING,
     shadows::PETER_PANNING,
     shadows::UMBRA_NOT_DARK,
@@ -168,6 +170,8 @@ pub struct LightInputs<'a> {
     pub width: Option<&'a LightWidthFit>,
     /// What the student's model matrix does instead of translate-then-scale, where it is wrong.
     pub model_matrix: Option<super::ModelMatrixError>,
+    /// Draws of the page's animation whose uLightMVP for this light did not follow what moved.
+    pub stale: &'a [crate::homework::page::StaleMatrix],
 }
 
 /// The per-pixel inputs of a check, all of one view's size, rows top first.

@@ -19,6 +19,7 @@ mod input;
 mod lines;
 mod record;
 mod scripts;
+mod stale;
 #[cfg(target_arch = "wasm32")]
 mod worker;
 
@@ -36,7 +37,7 @@ pub use record::{FoundLight, PageDraws};
 use serde::Deserialize;
 
 use super::program::ShaderSource;
-pub use answer::{EngineLight, GlCall, LightMatrix, ScriptError, Sourced};
+pub use answer::{EngineLight, GlCall, LightMatrix, ScriptError, Sourced, StaleMatrix};
 
 #[derive(Deserialize)]
 struct Failed {
@@ -129,6 +130,10 @@ struct DriverOutput {
     timed: Vec<TimedLightJson>,
     draws: Option<PageDraws>,
     context: Option<ContextJson>,
+    #[serde(default)]
+    stale: Vec<stale::StaleJson>,
+    #[serde(default, rename = "calcCalls")]
+    calc_calls: Vec<stale::CalcCallJson>,
 }
 
 /// Bounds on one page. The browser bounds a Worker's memory and stack by its own limits; the
@@ -184,6 +189,8 @@ pub struct PageRun {
     draws: PageDraws,
     /// Where the page first made a float texture (`file:line`), if it did.
     float_texture: Option<String>,
+    /// Draws of its animation whose uLightMVP did not follow what moved.
+    stale: Vec<StaleMatrix>,
 }
 
 fn shadowlab_error(e: ScriptError) -> ScriptError {
@@ -312,6 +319,7 @@ impl PageRun {
             checked: output.checked,
             sets,
             selected: 0,
+            stale: stale::stale_matrices(&output.stale, &output.calc_calls, output.draws.as_ref()),
             draws: output.draws.unwrap_or_default(),
             float_texture,
         })
@@ -369,6 +377,11 @@ impl PageRun {
     }
 
     /// What the page drew on its first frames.
+    /// The draws of its animation whose uLightMVP did not follow what moved.
+    pub fn stale(&self) -> &[StaleMatrix] {
+        &self.stale
+    }
+
     pub fn draws(&self) -> &PageDraws {
         &self.draws
     }

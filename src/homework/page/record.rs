@@ -120,6 +120,11 @@ fn numbers(value: &serde_json::Value, out: &mut Vec<f64>) {
 }
 
 impl PageDraws {
+    /// The file the page asked a loader for as request `index`.
+    pub fn request_url(&self, index: usize) -> Option<String> {
+        self.requests.get(index).map(|r| r.url.clone())
+    }
+
     /// The uniforms the page set, by name, on the first frame's draws of the program whose
     /// fragment shader is `fragment`: for its floor and for its models.
     pub fn uniforms_for(&self, fragment: &str) -> ObjectUniforms {
