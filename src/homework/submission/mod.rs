@@ -273,6 +273,26 @@ fn read_folder(root: &Path, shown: &str, limits: &Limits) -> Result<Submission, 
     })
 }
 
+/// Where a submission's scripts are ES modules (a port to a bundler such as Vite): the first
+/// `.js` file with a line that starts `import ... from` or `export `, and that line.
+fn es_module_at(
+    paths: &[String],
+    read: &mut impl FnMut(usize) -> Result<String, SubmissionError>,
+) -> Option<(String, usize)> {
+    let mut scripts: Vec<usize> =
+        (0..paths.len()).filter(|&i| paths[i].to_lowercase().ends_with(".js")).collect();
+    // engine.js first: the page's entry.
+    scripts.sort_by_key(|&i| (!paths[i].ends_with("engine.js"), paths[i].clone()));
+    scripts.into_iter().take(8).find_map(|i| {
+        let text = read(i).ok()?;
+        let line = text.lines().position(|l| {
+            let l = l.trim_start();
+            (l.starts_with("import ") && l.contains(" from ")) || l.starts_with("export ")
+        })?;
+        Some((paths[i].clone(), line + 1))
+    })
+}
+
 /// Picks the files among `paths` and reads the chosen ones with `read`.
 fn assemble(
     name: &str,
@@ -283,6 +303,12 @@ fn assemble(
 ) -> Result<Submission, SubmissionError> {
     let nested: Vec<&String> = paths.iter().filter(|p| p.to_lowercase().ends_with(".zip")).collect();
     let Some(picked) = find::pick(paths) else {
+        if let Some((file, line)) = es_module_at(paths, &mut read) {
+            let message = format!(
+                "{file}:{line}: an ES-module port of the framework (`import ... from`, its shaders imported as strings): the check runs the framework's classic scripts only, so it does not judge this submission"
+            );
+            return Err(SubmissionError::new(at, message));
+        }
         let hint = match nested.first() {
             Some(inner) => format!("; it holds {}, which is not opened", zip::shown(inner)),
             None => String::new(),

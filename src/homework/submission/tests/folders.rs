@@ -226,3 +226,25 @@ fn homeworks_side_by_side_are_a_class_not_one_homework() {
     let (_dir, root) = folder("erin", &files);
     assert_eq!(found_paths(&read(&root)), framework_paths("homework1/"));
 }
+
+#[test]
+fn an_es_module_port_is_refused_naming_its_first_import() {
+    let files = vec![
+        (
+            "src/engine.js".to_string(),
+            b"// a bundler's entry\nimport * as THREE from 'three';\nexport function main() {}\n".to_vec(),
+        ),
+        (
+            "src/materials/PhongMaterial.js".to_string(),
+            b"import fragmentShader from '../shaders/phong/fragment.glsl?raw';\n".to_vec(),
+        ),
+        file("src/shaders/phong/fragment.glsl"),
+    ];
+    let (_dir, root) = folder("erin", &files);
+    let err = read_path(&root, Limits::default()).expect_err("not the framework's scripts");
+    let shown = err.to_string();
+    assert!(
+        shown.ends_with("erin: src/engine.js:2: an ES-module port of the framework (`import ... from`, its shaders imported as strings): the check runs the framework's classic scripts only, so it does not judge this submission"),
+        "{shown}"
+    );
+}
