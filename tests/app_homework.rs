@@ -235,3 +235,59 @@ fn a_zip_handed_over_is_checked_and_one_without_a_homework_is_refused() {
     assert!(error.as_deref().is_some_and(|e| e.contains("empty.zip")), "{error:?}");
     assert_eq!(finding_ids(&h), ["nan_blocker_depth"]);
 }
+
+/// The bonus in the app: a page with two lights lists both in the panel; choosing the second
+/// checks it (its own matrices, its own findings), and its animation's times are offered.
+#[test]
+fn each_light_of_the_page_is_checked_when_chosen_in_the_panel() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let folder = scratch.path().join("bea");
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let engine = std::fs::read_to_string(root.join("assets/homework/framework/src/engine.js"))
+        .expect("the framework's engine.js")
+        .replace(
+            "    renderer.addLight(directionLight);",
+            "    renderer.addLight(directionLight);
+    const highLight = new DirectionalLight(2500, [1, 1, 1], [0, 420, 1], focalPoint, lightUp, true, renderer.gl);
+    renderer.addLight(highLight);",
+        )
+        .replace(
+            "        renderer.render();",
+            "        renderer.render();\n        highLight.lightPos = [Math.sin(Date.now() * 0.001), 420, 1];",
+        );
+    for (path, text) in [
+        ("homework1/src/shaders/phongShader/phongFragment.glsl", example("phongFragment.glsl")),
+        ("homework1/src/lights/DirectionalLight.js", example("DirectionalLight.js")),
+        ("homework1/src/engine.js", engine),
+    ] {
+        let to = folder.join(path);
+        std::fs::create_dir_all(to.parent().expect("a parent")).expect("folders");
+        std::fs::write(to, text).expect("write");
+    }
+    let mut h = harness();
+    h.get_by_label("file").click();
+    h.run_steps(1);
+    h.get_by_label("file").type_text(&folder.display().to_string());
+    h.run_steps(1);
+    h.get_by_label("Open").click();
+    settle_check(&mut h);
+    let checked_position = |h: &Harness<'_, ShadowlabApp>| {
+        h.state().homework.as_ref().and_then(|hw| Some(hw.outcome.as_ref()?.report.light.as_ref()?.position))
+    };
+    assert_eq!(checked_position(&h), Some([0.0, 80.0, 80.0]));
+    h.get_by_label("the page's lights: the check is of the one chosen");
+    // The high light (far 400 leaves the floor out of its map), chosen by a click.
+    h.get_by_label_contains("2 DirectionalLight (engine.js:").click();
+    h.run_steps(1);
+    settle_check(&mut h);
+    let position = checked_position(&h).expect("a light");
+    assert!((position[1] - 420.0).abs() < 1e-3, "{position:?}");
+    assert!(finding_ids(&h).contains(&"light_frustum_clips"), "{:?}", finding_ids(&h));
+    // Its animation moves it: the times the check looks again at are offered, and one is checked.
+    h.get_by_label("1.0 s").click();
+    h.run_steps(1);
+    settle_check(&mut h);
+    let position = checked_position(&h).expect("a light");
+    let t = (1.0f32 * 60.0).ceil() / 60.0;
+    assert!((position[0] - t.sin()).abs() < 1e-3, "{position:?}");
+}

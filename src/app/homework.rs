@@ -79,6 +79,9 @@ pub struct HomeworkState {
     pub outcome: Option<Arc<CheckOutcome>>,
     /// The generation `outcome` was worked out for.
     pub outcome_generation: u64,
+    /// Which of the page's lights the check is of (None: the first), and which `outcome` is of.
+    pub page_light: Option<crate::homework::student_light::PageLight>,
+    pub outcome_light: Option<crate::homework::student_light::PageLight>,
     pub picture: HomeworkPicture,
     /// Times the files were read again after a change on disk.
     pub reloads: u64,
@@ -104,6 +107,8 @@ impl HomeworkState {
             gpu_error: None,
             outcome: None,
             outcome_generation: 0,
+            page_light: None,
+            outcome_light: None,
             picture: HomeworkPicture::default(),
             reloads: 0,
         };
@@ -172,7 +177,9 @@ impl HomeworkState {
 
     /// A check of the current program is on screen.
     pub fn checked(&self) -> bool {
-        self.outcome.is_some() && self.outcome_generation == self.generation
+        self.outcome.is_some()
+            && self.outcome_generation == self.generation
+            && self.outcome_light == self.page_light
     }
 }
 

@@ -279,4 +279,5 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "Your page never draws with this light's matrix: no uniform of any draw holds its CalcLightMVP ({}). Its shadow map is drawn with another light's matrix, or not at all, so the shadows your page shows for it are another light's. Give each light its own materials (or uniforms) with its own uLightMVP and its own map, for both passes. What shadowlab shows for this light is what your shaders would do if it were drawn.",
         "你的页面从未用这盏光源的矩阵绘制：没有任何一次绘制的 uniform 里有它的 CalcLightMVP（{}）。它的阴影贴图是用另一盏光源的矩阵画的，或者根本没画，所以你的页面为它显示的阴影其实是另一盏光源的。请为每盏光源准备自己的材质（或 uniform），带上它自己的 uLightMVP 和自己的阴影贴图，两个 pass 都要。shadowlab 为这盏光源显示的，是假如它被画出来时你的着色器会给出的结果。",
     ),
+    (" (the framework's)", "（框架自带的）"),
 ];

@@ -363,4 +363,7 @@ pub(super) const UI: &[(&str, &str)] = &[
     ),
     ("your light did not run: {}", "你的光源没能运行：{}"),
     ("could not open the homework", "无法打开作业"),
+    ("the page's lights: the check is of the one chosen", "页面里的光源：检查的是选中的那一盏"),
+    ("its animation at", "它的动画在"),
+    ("the first frames", "最初几帧"),
 ];

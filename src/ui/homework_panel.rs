@@ -136,6 +136,7 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
         },
     );
     ui.label(fill(lang, "light from {}", &[&light]));
+    page_lights(state, ui, report);
     if let Some(fit) = report.light_width.as_ref() {
         if let Some(bound) = fit.narrower_than_world {
             ui.label(fill(
@@ -211,5 +212,60 @@ pub fn show(state: &mut AppState, ui: &mut Ui) {
     }
     if let Some((lesson, step)) = open_step {
         state.go_to_step(lesson, step);
+    }
+}
+
+/// The page's lights with a map of their own, and the times of its animation where one had moved:
+/// choosing one checks it (the bonus: each light on its own, as its pass and its map draw it).
+fn page_lights(state: &mut AppState, ui: &mut Ui, report: &crate::homework::HomeworkReport) {
+    use crate::homework::student_light::PageLight;
+    let lang = state.lang;
+    let Some(homework) = state.homework.as_mut() else { return };
+    // Where the page made no light the check could use, the framework's is listed first.
+    let inserted = usize::from(report.lights.first().is_some_and(|l| l.made_at == "framework"));
+    let choices: Vec<(usize, &crate::homework::student_light::LightEntry)> = report
+        .lights
+        .iter()
+        .enumerate()
+        .skip(inserted)
+        .filter(|(_, l)| l.error.is_none())
+        .map(|(listed, l)| (listed - inserted, l))
+        .collect();
+    if choices.len() < 2 && choices.iter().all(|(_, l)| l.moved_at_s.is_empty()) {
+        return;
+    }
+    ui.add_space(4.0);
+    ui.label(RichText::new(tr(lang, "the page's lights: the check is of the one chosen")).strong());
+    // Until one is chosen, the check is of the light its report marks as checked.
+    let current = homework.page_light.or_else(|| {
+        choices.iter().find(|(_, l)| l.checked).map(|(index, _)| PageLight { index: *index, time_s: None })
+    });
+    let mut chosen = current.unwrap_or(PageLight { index: 0, time_s: None });
+    ui.horizontal_wrapped(|ui| {
+        for (index, light) in &choices {
+            let label = format!("{} {} ({})", index + 1, light.kind, file_and_line(&light.made_at, lang));
+            if ui.selectable_label(chosen.index == *index, label).clicked() {
+                chosen = PageLight { index: *index, time_s: None };
+            }
+        }
+    });
+    if let Some((_, light)) = choices.iter().find(|(i, _)| *i == chosen.index)
+        && !light.moved_at_s.is_empty()
+    {
+        ui.horizontal_wrapped(|ui| {
+            ui.label(tr(lang, "its animation at"));
+            if ui.selectable_label(chosen.time_s.is_none(), tr(lang, "the first frames")).clicked() {
+                chosen.time_s = None;
+            }
+            for &t in &light.moved_at_s {
+                if ui.selectable_label(chosen.time_s == Some(t), format!("{t:.1} s")).clicked() {
+                    chosen.time_s = Some(t);
+                }
+            }
+        });
+    }
+    if Some(chosen) != current {
+        homework.page_light = Some(chosen);
+        state.mark_dirty();
     }
 }

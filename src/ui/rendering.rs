@@ -200,12 +200,13 @@ impl ShadowlabApp {
                         self.show_probe_reference(light, done, total, value);
                     }
                 }
-                RenderEvent::Homework { job: _, generation, outcome } => {
+                RenderEvent::Homework { job: _, generation, page_light, outcome } => {
                     if let Some(homework) = self.state.homework.as_mut() {
                         match outcome {
                             Ok(outcome) => {
                                 homework.outcome = Some(outcome);
                                 homework.outcome_generation = generation;
+                                homework.outcome_light = page_light;
                                 homework.gpu_error = None;
                             }
                             Err(message) => homework.gpu_error = Some(message),
@@ -430,6 +431,7 @@ impl ShadowlabApp {
                     source: h.source.clone(),
                     generation: h.generation,
                     lang: self.state.lang,
+                    page_light: h.page_light,
                 })
             }),
             preview,

@@ -3,7 +3,7 @@
 //! its frame for the probe and the ground truths), a piece at a time without waiting where the
 //! scheduler polls, and the last outcome kept while nothing it depends on changes.
 
-use crate::homework::student_light::{LightReport, student_light};
+use crate::homework::student_light::{LightReport, PageLight, student_light_of};
 use crate::homework::{
     CheckOutcome, CheckRun, FRAMEWORK_LIGHT_INTENSITY, HomeworkLight, HomeworkProgram, HomeworkRenderer,
     HomeworkRequest, HomeworkSource, MapKind, ShaderSource,
@@ -23,6 +23,8 @@ pub struct HomeworkJob {
     pub generation: u64,
     /// The language of the findings' explanations.
     pub lang: Lang,
+    /// Which of the page's lights (and when in its animation) the check is of; None: the first.
+    pub page_light: Option<PageLight>,
 }
 
 /// What a check's outcome depends on.
@@ -36,6 +38,7 @@ struct CheckKey {
     objects: usize,
     size: (u32, u32),
     time_bits: u32,
+    page_light: Option<PageLight>,
 }
 
 /// The homework's GPU side in a scheduler.
@@ -75,6 +78,7 @@ impl HomeworkRunner {
             objects: scene.objects.len(),
             size,
             time_bits: time_s.to_bits(),
+            page_light: job.page_light,
         };
         if let Some((_, outcome)) = self.last.as_ref().filter(|(k, _)| *k == key) {
             return Ok(Some(outcome.clone()));
@@ -104,12 +108,15 @@ impl HomeworkRunner {
                 let shader: &ShaderSource = &job.program.files.phong_fragment;
                 // The student's own light where their submission has its scripts (in the browser,
                 // their page's Worker answers a frame or more later).
-                let student =
-                    match job.source.as_deref().map(|source| student_light(source, scene, 0, time_s)) {
-                        Some(std::task::Poll::Pending) => return Ok(None),
-                        Some(std::task::Poll::Ready(student)) => student,
-                        None => None,
-                    };
+                let student = match job
+                    .source
+                    .as_deref()
+                    .map(|source| student_light_of(source, scene, 0, time_s, job.page_light))
+                {
+                    Some(std::task::Poll::Pending) => return Ok(None),
+                    Some(std::task::Poll::Ready(student)) => student,
+                    None => None,
+                };
                 let run = match student {
                     Some(student) => {
                         if let Some(refused) = student.refused {

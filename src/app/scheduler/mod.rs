@@ -182,6 +182,8 @@ pub enum RenderEvent {
     Homework {
         job: u64,
         generation: u64,
+        /// Which of the page's lights the check was of (None: the first).
+        page_light: Option<crate::homework::student_light::PageLight>,
         outcome: Result<std::sync::Arc<crate::homework::CheckOutcome>, String>,
     },
     Failed {
@@ -301,7 +303,13 @@ impl Renderers {
                 match stepped.transpose() {
                     None => Ok(Stage::Homework),
                     Some(outcome) => {
-                        send(RenderEvent::Homework { job: id, generation: homework.generation, outcome });
+                        let page_light = homework.page_light;
+                        send(RenderEvent::Homework {
+                            job: id,
+                            generation: homework.generation,
+                            page_light,
+                            outcome,
+                        });
                         Ok(Stage::ViewReference)
                     }
                 }

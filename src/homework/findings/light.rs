@@ -206,6 +206,11 @@ fn light_matrix_stale(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) ->
     ))
 }
 
+/// The places the page calls CalcLightMVP, as a finding lists them in `lang`.
+fn places(at: &[String], lang: Lang) -> String {
+    at.join(", ").replace(" (the framework's)", tr(lang, " (the framework's)"))
+}
+
 /// Where the page computes its light matrices, as a finding says it.
 fn computed_where(stale: &crate::homework::page::StaleMatrix, lang: Lang) -> String {
     if stale.computed_at.is_empty() {
@@ -214,13 +219,13 @@ fn computed_where(stale: &crate::homework::page::StaleMatrix, lang: Lang) -> Str
         fill(
             lang,
             "your page calls CalcLightMVP only while it loads ({}), never in a frame",
-            &[&stale.computed_at.join(", ")],
+            &[&places(&stale.computed_at, lang)],
         )
     } else {
         fill(
             lang,
             "your page calls CalcLightMVP at {}, but not for these draws",
-            &[&stale.computed_at.join(", ")],
+            &[&places(&stale.computed_at, lang)],
         )
     }
 }
@@ -234,7 +239,7 @@ fn light_not_drawn(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<F
     let none = j.e.light.stale.iter().find(|s| s.moved == "none")?;
     let computed = match none.computed_at.as_slice() {
         [] => tr(lang, "your page never calls CalcLightMVP itself").to_string(),
-        at => fill(lang, "your page calls CalcLightMVP at {}, for another light", &[&at.join(", ")]),
+        at => fill(lang, "your page calls CalcLightMVP at {}, for another light", &[&places(at, lang)]),
     };
     Some(Found::new(
         Some("CalcLightMVP"),
