@@ -330,7 +330,13 @@ fn the_frame_driven_scheduler_checks_a_homework_without_waiting() {
         thumbnails: false,
         preview: false,
         map_texels: 256,
-        homework: Some(HomeworkJob { program: program.clone(), source: None, generation: 1, lang: Lang::En }),
+        homework: Some(HomeworkJob {
+            program: program.clone(),
+            source: None,
+            generation: 1,
+            lang: Lang::En,
+            page_light: None,
+        }),
     };
     let mut driven = FrameDriven::new(shadowlab::render::headless_adapter().expect("an adapter"));
     driven.submit(job);
