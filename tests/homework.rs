@@ -303,3 +303,28 @@ fn the_frameworks_per_light_names_declared_as_arrays_read_the_light_checked() {
         "{error}"
     );
 }
+
+/// A uniform of the student's own sized by a `#define` of one stage: the block both stages declare
+/// has the size written out (the other stage may not define the name).
+#[test]
+fn an_array_uniform_sized_by_a_define_is_declared_with_its_size_in_both_stages() {
+    let fragment = data("phongFragment.glsl").replace(
+        "uniform vec3 uKs;",
+        "uniform vec3 uKs;\n#define NUM_WEIGHTS 3\nuniform vec4 uWeights[NUM_WEIGHTS];",
+    );
+    let vertex = data("phongVertex.glsl");
+    let layout = Interface::gather(&[&vertex, &fragment]).expect("an interface");
+    assert_eq!(layout.extra_uniforms, [("uWeights".to_string(), "vec4[3]".to_string())]);
+    let v = translate("phongVertex.glsl", &vertex, Stage::Vertex, &layout).unwrap_or_else(|e| panic!("{e}"));
+    let f = translate("phongFragment.glsl", &fragment, Stage::Fragment, &layout)
+        .unwrap_or_else(|e| panic!("{e}"));
+    for t in [&v, &f] {
+        assert!(
+            t.rewritten.glsl.contains("uniform ShadowlabStudent { vec4 uWeights[3]; };"),
+            "{}",
+            t.rewritten.glsl
+        );
+    }
+    assert_wgsl_valid("phongVertex.glsl", &v.wgsl);
+    assert_wgsl_valid("phongFragment.glsl", &f.wgsl);
+}

@@ -221,6 +221,10 @@ impl Interface {
         for source in sources {
             for d in declarations(source, &tokens(source))? {
                 for (name, suffix) in &d.names {
+                    // `[NUM]` with `#define NUM 4` in this stage is `[4]` in both (the other
+                    // stage, which declares the block too, may not define NUM).
+                    let resolved = resolve_sizes(source, suffix);
+                    let suffix = &resolved;
                     let fail = |message: String| HomeworkError::Rewrite { line: d.line, message };
                     if !suffix.is_empty() && PER_LIGHT_NAMES.contains(&name.as_str()) {
                         let framework_type = match name.as_str() {
@@ -316,6 +320,46 @@ fn texture_binding(name: &str, extra_textures: &[String]) -> Option<(u32, Sample
         Some((FIRST_STUDENT_TEXTURE_BINDING + 2 * i, SamplerFilter::Linear))
     };
     framework.or_else(extra)
+}
+
+/// An array suffix of a declaration in `source` with its `#define`d sizes written out
+/// (`[NUM]` with `#define NUM 4` is `[4]`).
+pub(super) fn resolve_sizes(source: &str, suffix: &str) -> String {
+    integer_defines(source).iter().fold(suffix.to_string(), |s, (name, value)| replace_word(&s, name, value))
+}
+
+/// A source's `#define NAME <integer>` lines: (name, value), the last definition of a name last.
+fn integer_defines(source: &str) -> Vec<(String, String)> {
+    source
+        .lines()
+        .filter_map(|line| {
+            let rest = line.trim_start().strip_prefix('#')?.trim_start().strip_prefix("define")?;
+            let mut words = rest.split_whitespace();
+            let (name, value) = (words.next()?, words.next()?);
+            (words.next().is_none() && value.parse::<u32>().is_ok())
+                .then(|| (name.to_string(), value.to_string()))
+        })
+        .collect()
+}
+
+/// `text` with each whole word `word` replaced by `with`.
+fn replace_word(text: &str, word: &str, with: &str) -> String {
+    let is_name = |c: char| c.is_ascii_alphanumeric() || c == '_';
+    let mut out = String::with_capacity(text.len());
+    let mut rest = text;
+    while let Some(at) = rest.find(word) {
+        let before = rest[..at].chars().next_back();
+        let after = rest[at + word.len()..].chars().next();
+        out.push_str(&rest[..at]);
+        if before.is_some_and(is_name) || after.is_some_and(is_name) {
+            out.push_str(word);
+        } else {
+            out.push_str(with);
+        }
+        rest = &rest[at + word.len()..];
+    }
+    out.push_str(rest);
+    out
 }
 
 /// The location of a vertex attribute: the framework's first, then the source's own by name.

@@ -26,7 +26,8 @@ use super::instrument::{
 };
 use super::interface::{
     Binding, BindingKind, CLIP_Y_SIGN, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface,
-    STUDENT_BLOCK_BINDING, attribute_location, declarations, is_glsl450_keyword, is_precision, texture_call,
+    STUDENT_BLOCK_BINDING, attribute_location, declarations, is_glsl450_keyword, is_precision, resolve_sizes,
+    texture_call,
 };
 use super::lex::{Kind, Token, check_size, depth_in, matching, matching_open, tokens};
 use super::missing_return::{ends_with_return, zero_of};
@@ -197,7 +198,7 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
                     textures.push(name.clone());
                 }
                 (_, _) => {
-                    let declared = format!("{ty}{suffix}");
+                    let declared = format!("{ty}{}", resolve_sizes(source, suffix));
                     let framework = FRAMEWORK_UNIFORMS.iter().find(|f| f.name == name);
                     let known = match framework {
                         Some(f) => f.glsl_type == declared,
