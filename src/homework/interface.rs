@@ -223,6 +223,7 @@ impl Interface {
                 for (name, suffix) in &d.names {
                     // `[NUM]` with `#define NUM 4` in this stage is `[4]` in both (the other
                     // stage, which declares the block too, may not define NUM).
+                    let written = suffix;
                     let resolved = resolve_sizes(source, suffix);
                     let suffix = &resolved;
                     let fail = |message: String| HomeworkError::Rewrite { line: d.line, message };
@@ -236,7 +237,7 @@ impl Interface {
                         };
                         if d.glsl_type != framework_type {
                             return Err(fail(format!(
-                                "{name} is a {framework_type} in the framework, declared {}{suffix} here",
+                                "{name} is a {framework_type} in the framework, declared {}{written} here",
                                 d.glsl_type
                             )));
                         }
@@ -255,7 +256,7 @@ impl Interface {
                             if let Some(field) = FRAMEWORK_UNIFORMS.iter().find(|f| f.name == name) {
                                 if field.glsl_type != d.glsl_type || !suffix.is_empty() {
                                     return Err(fail(format!(
-                                        "{name} is a {} in the framework, declared {}{suffix} here",
+                                        "{name} is a {} in the framework, declared {}{written} here",
                                         field.glsl_type, d.glsl_type
                                     )));
                                 }
