@@ -24,7 +24,7 @@ pub(super) trait LightMatrices {
         super::light::ObjectUniforms::default()
     }
     /// Draws of the page's animation whose uLightMVP did not follow what moved.
-    fn stale(&self) -> Vec<super::page::StaleMatrix> {
+    fn stale(&self) -> Vec<super::light::StaleMatrix> {
         Vec::new()
     }
     /// Makes `light_matrix` answer for the page's light `index` (as `lights` numbers them), as
@@ -64,7 +64,7 @@ impl LightMatrices for super::page::PageRun {
     fn uniforms(&self, fragment: &str) -> super::light::ObjectUniforms {
         self.draws().uniforms_for(fragment)
     }
-    fn stale(&self) -> Vec<super::page::StaleMatrix> {
+    fn stale(&self) -> Vec<super::light::StaleMatrix> {
         super::page::PageRun::stale(self).to_vec()
     }
     fn select(&mut self, index: usize, seconds: Option<f64>) -> Option<EngineLight> {

@@ -212,7 +212,7 @@ fn places(at: &[String], lang: Lang) -> String {
 }
 
 /// Where the page computes its light matrices, as a finding says it.
-fn computed_where(stale: &crate::homework::page::StaleMatrix, lang: Lang) -> String {
+fn computed_where(stale: &crate::homework::light::StaleMatrix, lang: Lang) -> String {
     if stale.computed_at.is_empty() {
         tr(lang, "your page never calls CalcLightMVP itself").to_string()
     } else if stale.computed_only_while_loading {

@@ -171,7 +171,7 @@ pub struct LightInputs<'a> {
     /// What the student's model matrix does instead of translate-then-scale, where it is wrong.
     pub model_matrix: Option<super::ModelMatrixError>,
     /// Draws of the page's animation whose uLightMVP for this light did not follow what moved.
-    pub stale: &'a [crate::homework::page::StaleMatrix],
+    pub stale: &'a [crate::homework::light::StaleMatrix],
 }
 
 /// The per-pixel inputs of a check, all of one view's size, rows top first.

@@ -86,23 +86,3 @@ pub struct LightMatrix {
     /// The line of the `return` that produced the matrix.
     pub return_line: usize,
 }
-
-/// A draw of the page's animation whose `uLightMVP` did not follow what moved: it matched its
-/// light's matrix times its own `uModelMatrix` on the first frames, and later matches only the
-/// light, or the object, as it was then.
-#[derive(Clone, Debug, PartialEq, serde::Serialize)]
-pub struct StaleMatrix {
-    /// Seconds of the page's animation.
-    pub time_s: f64,
-    /// `light`: the light moved and the draw kept its old matrix; `object`: the object moved;
-    /// `none`: no draw of the page's first frames holds this light's matrix at all (time 0).
-    pub moved: &'static str,
-    /// The page's light, as its `lights` are numbered.
-    pub light: usize,
-    /// The model file the draw drew, where known.
-    pub object: Option<String>,
-    /// Where the page itself calls CalcLightMVP (`src/materials/PhongMaterial.js:4`).
-    pub computed_at: Vec<String>,
-    /// It calls it only while it loads, never in a frame.
-    pub computed_only_while_loading: bool,
-}

@@ -37,7 +37,8 @@ pub use record::{FoundLight, PageDraws};
 use serde::Deserialize;
 
 use super::program::ShaderSource;
-pub use answer::{EngineLight, GlCall, LightMatrix, ScriptError, Sourced, StaleMatrix};
+pub use crate::homework::light::StaleMatrix;
+pub use answer::{EngineLight, GlCall, LightMatrix, ScriptError, Sourced};
 
 #[derive(Deserialize)]
 struct Failed {

@@ -5,8 +5,8 @@
 
 use serde::Deserialize;
 
-use super::answer::StaleMatrix;
 use super::record::PageDraws;
+use crate::homework::light::StaleMatrix;
 
 /// A draw whose uLightMVP did not follow what moved, as the driver found it.
 #[derive(Deserialize)]
