@@ -41,6 +41,16 @@ fn settle_check(h: &mut Harness<'_, ShadowlabApp>) {
     }
 }
 
+/// Types `path` into the path box, opens it and waits for its check, as a student does.
+fn open_and_check(h: &mut Harness<'_, ShadowlabApp>, path: &Path) {
+    h.get_by_label("file").click();
+    h.run_steps(1);
+    h.get_by_label("file").type_text(&path.display().to_string());
+    h.run_steps(1);
+    h.get_by_label("Open").click();
+    settle_check(h);
+}
+
 fn finding_ids(h: &Harness<'_, ShadowlabApp>) -> Vec<&'static str> {
     let homework = h.state().homework.as_ref().expect("a homework");
     homework.outcome.as_ref().expect("a check").report.findings.iter().map(|f| f.id).collect()
@@ -57,12 +67,7 @@ fn a_shader_typed_into_the_path_box_shows_its_findings_and_an_edit_is_checked_ag
     let shader = scratch.path().join("phongFragment.glsl");
     std::fs::write(&shader, example("phongFragment_nan_blocker.glsl")).expect("write");
     let mut h = harness();
-    h.get_by_label("file").click();
-    h.run_steps(1);
-    h.get_by_label("file").type_text(&shader.display().to_string());
-    h.run_steps(1);
-    h.get_by_label("Open").click();
-    settle_check(&mut h);
+    open_and_check(&mut h, &shader);
     assert!(h.state().error.is_none(), "{:?}", h.state().error);
     assert_eq!(finding_ids(&h), ["nan_blocker_depth"]);
     // The panel names the finding and links its lesson step.
@@ -173,12 +178,7 @@ fn a_homework_folder_is_checked_with_the_students_own_light_and_its_script_is_wa
         std::fs::write(path, example(name)).expect("write");
     }
     let mut h = harness();
-    h.get_by_label("file").click();
-    h.run_steps(1);
-    h.get_by_label("file").type_text(&folder.display().to_string());
-    h.run_steps(1);
-    h.get_by_label("Open").click();
-    settle_check(&mut h);
+    open_and_check(&mut h, &folder);
     assert!(h.state().error.is_none(), "{:?}", h.state().error);
     assert_eq!(finding_ids(&h), ["light_frustum_clips"]);
     h.get_by_label("alice");
@@ -265,12 +265,7 @@ fn each_light_of_the_page_is_checked_when_chosen_in_the_panel() {
         std::fs::write(to, text).expect("write");
     }
     let mut h = harness();
-    h.get_by_label("file").click();
-    h.run_steps(1);
-    h.get_by_label("file").type_text(&folder.display().to_string());
-    h.run_steps(1);
-    h.get_by_label("Open").click();
-    settle_check(&mut h);
+    open_and_check(&mut h, &folder);
     let checked_position = |h: &Harness<'_, ShadowlabApp>| {
         h.state().homework.as_ref().and_then(|hw| Some(hw.outcome.as_ref()?.report.light.as_ref()?.position))
     };

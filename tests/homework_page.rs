@@ -279,32 +279,12 @@ fn lights_in_arrays_indexed_by_light_are_each_checked() {
 /// framework's floor outside the frustum is named as unshadowed, not as a black band.
 #[test]
 fn a_lamp_with_a_map_of_distances_is_checked_as_the_page_draws_it() {
-    let lamp = "class PointLight {
-  constructor(lightIntensity, lightColor, lightPos, focalPoint, lightUp, hasShadowMap, gl) {
-    this.mesh = Mesh.cube(setTransform(0, 0, 0, 0.2, 0.2, 0.2, 0));
-    this.mat = new EmissiveMaterial(lightIntensity, lightColor);
-    this.lightPos = lightPos;
-    this.focalPoint = focalPoint;
-    this.lightUp = lightUp;
-    this.hasShadowMap = hasShadowMap;
-    this.fbo = new FBO(gl);
-  }
-
-  CalcLightMVP(translate, scale) {
-    const model = mat4.create();
-    const view = mat4.create();
-    const projection = mat4.create();
-    mat4.translate(model, model, translate);
-    mat4.scale(model, model, scale);
-    mat4.lookAt(view, this.lightPos, this.focalPoint, this.lightUp);
-    mat4.perspective(projection, Math.PI / 2, 1, 1, 300);
-    const mvp = mat4.create();
-    mat4.multiply(mvp, projection, view);
-    mat4.multiply(mvp, mvp, model);
-    return mvp;
-  }
-}
-";
+    // The correct example's light made a lamp: a class of its own with a 90-degree perspective.
+    let lamp = edit(
+        &edit(&read("assets/homework/DirectionalLight.js"), "class DirectionalLight {", "class PointLight {"),
+        "mat4.ortho(projection, -halfWidth, halfWidth, -halfWidth, halfWidth, 0.01, 400);",
+        "mat4.perspective(projection, Math.PI / 2, 1, 1, 300);",
+    );
     let engine = edit(
         &read("assets/homework/framework/src/engine.js"),
         "const directionLight = new DirectionalLight(5000, [1, 1, 1], lightPos,",
@@ -333,7 +313,7 @@ fn a_lamp_with_a_map_of_distances_is_checked_as_the_page_draws_it() {
             read("tests/data/homework/shadowFragment_lamp.glsl"),
         ),
         ("src/lights/DirectionalLight.js", read("assets/homework/DirectionalLight.js")),
-        ("src/lights/PointLight.js", lamp.to_string()),
+        ("src/lights/PointLight.js", lamp.clone()),
         ("src/materials/ShadowMaterial.js", shadow_material),
         ("src/materials/PhongMaterial.js", phong_material),
         ("src/engine.js", engine),
@@ -344,7 +324,7 @@ fn a_lamp_with_a_map_of_distances_is_checked_as_the_page_draws_it() {
     assert_eq!(light["error"], Value::Null, "{light:#}");
     assert_eq!(
         light["from"],
-        format!("homework1/src/lights/PointLight.js:{}", line_of(lamp, "mat4.perspective("))
+        format!("homework1/src/lights/PointLight.js:{}", line_of(&lamp, "mat4.perspective("))
     );
     assert_eq!(light["frustum"]["kind"], "perspective", "{:#}", light["frustum"]);
     assert_eq!(report["lights"][0]["kind"], "PointLight");
