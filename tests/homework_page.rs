@@ -194,9 +194,14 @@ fn each_light_of_a_page_with_several_is_listed_and_checked_on_its_own() {
         assert!(check["findings"].is_array(), "{check:#}");
     }
     assert!(lights[0].get("moved_at_s").is_none() && lights[2].get("moved_at_s").is_none());
-    for picture in
-        ["student_light1.png", "student_light2.png", "student_light1_t0.5s.png", "student_light1_t2.0s.png"]
-    {
+    for picture in [
+        "student_light1.png",
+        "student_light2.png",
+        "student_light1_t0.5s.png",
+        "student_light1_t2.0s.png",
+        "student_map.png",
+        "student_light1_map.png",
+    ] {
         assert!(scratch.path().join("out").join(picture).is_file(), "{picture} is missing");
     }
 }

@@ -213,6 +213,9 @@ pub fn run(args: HomeworkArgs) -> Result<(), CliError> {
         ("ground_truth.png".into(), png(&outcome.visibility_picture(true))?),
         ("difference.png".into(), png(&outcome.difference_picture())?),
     ];
+    if let Some(map) = outcome.map_picture() {
+        pictures.push(("student_map.png".into(), png(&map)?));
+    }
     for (name, picture) in light_pictures {
         pictures.push((name, png(&picture)?));
     }

@@ -2,7 +2,8 @@
 //! (every DirectionalLight, a PointLight whose class has a CalcLightMVP) on its own, as their
 //! renderer draws it (a pass per light, each with its own map), and each light again at the times
 //! of their animation where it had moved (an orbit, a light their code moves each frame). Findings
-//! go into the report's `lights`, pictures beside (`student_light1.png`, `student_light0_t1.0s.png`).
+//! go into the report's `lights`, pictures beside (`student_light1.png`, its map
+//! `student_light1_map.png`, `student_light0_t1.0s.png`).
 
 use super::CliError;
 use crate::homework::student_light::{PageLight, TimedCheck, student_light_of};
@@ -92,6 +93,9 @@ pub(super) fn check_each_light(
                     entry.findings = Some(ids(&outcome.report));
                     entry.light_width = outcome.report.light_width.clone();
                     pictures.push((format!("student_light{listed}.png"), outcome.student_picture()));
+                    if let Some(map) = outcome.map_picture() {
+                        pictures.push((format!("student_light{listed}_map.png"), map));
+                    }
                 }
             }
         }

@@ -353,6 +353,7 @@ impl CheckRun {
             shadowlab_visibility,
             ground_truth,
             positions,
+            map: lossless_map,
         }
     }
 }

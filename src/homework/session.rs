@@ -156,6 +156,8 @@ pub struct CheckOutcome {
     pub ground_truth: Vec<f32>,
     /// The world position under each pixel (None: no surface).
     pub positions: Vec<Option<glam::Vec3>>,
+    /// The student's light pass as their pack wrote it, kept without loss (None: not read back).
+    pub map: Option<super::images::PackedMap>,
 }
 
 /// The student's picture of a homework (`fragment`, with `shadow_fragment` for the light pass or
@@ -220,6 +222,32 @@ impl CheckOutcome {
 
     /// The student's picture over a map kept without loss (what the framework's 8-bit rounding
     /// hides shows here).
+    /// The student's shadow map as their light pass wrote it, as the light sees it (rows top
+    /// first): their packed depth unpacked (base 256), nearer darker, stretched over the depths
+    /// written; a texel never written (all four channels 0) is dark red.
+    pub fn map_picture(&self) -> Option<image::RgbaImage> {
+        let map = self.map.as_ref()?;
+        let depth = |t: &[f32; 4]| t[0] + t[1] / 256.0 + t[2] / 65536.0 + t[3] / 16_777_216.0;
+        let written = |t: &[f32; 4]| t.iter().any(|c| *c != 0.0);
+        let (lo, hi) = map
+            .texels
+            .iter()
+            .filter(|t| written(t))
+            .map(depth)
+            .filter(|d| d.is_finite())
+            .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), d| (lo.min(d), hi.max(d)));
+        let span = if hi > lo { hi - lo } else { 1.0 };
+        Some(image::RgbaImage::from_fn(map.size, map.size, |x, y| {
+            // The map's row 0 is the bottom of the light's view (WebGL's layout).
+            let t = &map.texels[((map.size - 1 - y) * map.size + x) as usize];
+            if !written(t) {
+                return image::Rgba([90, 0, 0, 255]);
+            }
+            let v = (255.0 * ((depth(t) - lo) / span).clamp(0.0, 1.0)).round() as u8;
+            image::Rgba([v, v, v, 255])
+        }))
+    }
+
     pub fn student_picture_lossless_map(&self) -> image::RgbaImage {
         student_picture(&self.student_lossless_map)
     }
