@@ -156,6 +156,15 @@ fn each_example_gets_exactly_its_findings_and_the_correct_one_none() {
             let image = image::open(out.join(picture)).unwrap_or_else(|e| panic!("{what}: {picture}: {e}"));
             assert_eq!((image.width(), image.height()), (480, 270), "{what}: {picture}");
         }
+        // The map their light pass wrote, a texel a pixel.
+        let map = image::open(out.join("student_map.png"))
+            .unwrap_or_else(|e| panic!("{what}: student_map.png: {e}"));
+        assert!(
+            map.width() == map.height() && map.width() >= 512,
+            "{what}: {}x{}",
+            map.width(),
+            map.height()
+        );
         let figure =
             |key: &str| report[key].as_f64().unwrap_or_else(|| panic!("{what}: {key} in {report:#}"));
         assert!(figure("shaded_pixels") > 50_000.0, "{what}");
