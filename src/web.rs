@@ -18,6 +18,12 @@ pub fn start() {
         else {
             return say(&document, "this page has no canvas named shadowlab_canvas");
         };
+        // The CJK font is served beside the wasm; index.html started fetching it with the wasm.
+        let font = served_cjk_font().await;
+        mark_body("data-cjk-font", if font.is_some() { "served" } else { "missing" });
+        if let Some(bytes) = font {
+            crate::diagrams::set_served_cjk_font(bytes);
+        }
         let runner = eframe::WebRunner::new();
         let started = runner
             .start(
@@ -77,6 +83,20 @@ fn web_options() -> eframe::WebOptions {
         },
         ..Default::default()
     }
+}
+
+/// The bytes of the CJK font index.html fetches (`window.shadowlabCjkFont`, a promise of an
+/// ArrayBuffer or null); None where it did not arrive.
+async fn served_cjk_font() -> Option<Vec<u8>> {
+    let window = web_sys::window()?;
+    let promise = js_sys::Reflect::get(&window, &"shadowlabCjkFont".into()).ok()?;
+    let promise = promise.dyn_into::<js_sys::Promise>().ok()?;
+    let buffer = wasm_bindgen_futures::JsFuture::from(promise).await.ok()?;
+    if buffer.is_null() || buffer.is_undefined() {
+        log::warn!("the CJK font did not arrive: Chinese text is drawn without its glyphs");
+        return None;
+    }
+    Some(js_sys::Uint8Array::new(&buffer).to_vec())
 }
 
 /// The page address's `backend=` value, if any.

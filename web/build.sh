@@ -46,6 +46,8 @@ wasm-bindgen --target web --no-typescript --out-dir "$dist" --out-name shadowlab
 cp web/index.html "$dist/index.html"
 # The framework's libraries a student's page runs with (their Worker loads them from here; kept out
 # of the wasm): the same files the desktop program includes.
+mkdir -p "$dist/fonts"
+cp assets/fonts/NotoSansCJKsc-Regular-subset.otf assets/fonts/OFL.txt "$dist/fonts/"
 mkdir -p "$dist/homework/lib"
 cp assets/homework/framework/lib/three.min.js assets/homework/framework/lib/three.LICENSE \
     assets/homework/framework/lib/gl-matrix-min.js "$dist/homework/lib/"

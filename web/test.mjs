@@ -133,7 +133,10 @@ const checks = [
       let changed = 0;
       for (let i = 0; i < 1280 * 48 * 4; i += 4) if (english.data[i] !== chinese.data[i]) changed++;
       expect(changed > 2000, `the top bar barely changed (${changed} pixels)`);
-      return `data-lang=zh, ${changed} pixels of the top bar changed`;
+      // The glyphs come from the font served beside the wasm, not built into it.
+      const font = (await body(page)).cjkFont;
+      expect(font === "served", `the Chinese font was ${font}, not served`);
+      return `data-lang=zh, data-cjk-font=${font}, ${changed} pixels of the top bar changed`;
     },
   },
   {

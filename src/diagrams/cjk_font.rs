@@ -29,8 +29,32 @@ pub const CJK_FONT_PATHS: [&str; 12] = [
 ];
 
 /// Noto Sans CJK SC cut down to shadowlab's own text (`assets/tools/subset_cjk_font.py`).
+#[cfg(not(target_arch = "wasm32"))]
 pub const BUILT_IN_CJK_FONT: &[u8] =
     include_bytes!(concat!(env!("CARGO_MANIFEST_DIR"), "/assets/fonts/NotoSansCJKsc-Regular-subset.otf"));
+
+/// In a page the same subset is served beside the wasm (`fonts/`), not built into it: index.html
+/// starts fetching it with the wasm, and the page hands it over before the app starts.
+#[cfg(target_arch = "wasm32")]
+static SERVED_CJK_FONT: OnceLock<Vec<u8>> = OnceLock::new();
+
+/// The page's copy of the subset, as fetched (set once, before the app starts).
+#[cfg(target_arch = "wasm32")]
+pub fn set_served_cjk_font(bytes: Vec<u8>) {
+    let _ = SERVED_CJK_FONT.set(bytes);
+}
+
+/// The subset's bytes: built in on the desktop; in a page, as served (empty where the fetch
+/// failed: Chinese text then has no glyphs, and nothing else changes).
+#[cfg(not(target_arch = "wasm32"))]
+fn built_in_bytes() -> &'static [u8] {
+    BUILT_IN_CJK_FONT
+}
+
+#[cfg(target_arch = "wasm32")]
+fn built_in_bytes() -> &'static [u8] {
+    SERVED_CJK_FONT.get().map_or(&[], Vec::as_slice)
+}
 
 /// A CJK font file and the face in it meant for Simplified Chinese (a `.ttc` such as Noto Sans
 /// CJK holds the Japanese, Korean and Chinese forms of the same characters as separate faces).
@@ -45,6 +69,11 @@ impl CjkFont {
     /// The font file's bytes.
     pub fn data(&self) -> &[u8] {
         (*self.bytes).as_ref()
+    }
+
+    /// There is a font: a page whose served copy did not arrive has none.
+    pub fn is_present(&self) -> bool {
+        !self.data().is_empty()
     }
 }
 
@@ -85,7 +114,7 @@ pub fn system_cjk_font() -> Option<&'static CjkFont> {
 /// The subset of Noto Sans CJK SC built into shadowlab.
 pub fn built_in_cjk_font() -> &'static CjkFont {
     static BUILT_IN: OnceLock<CjkFont> = OnceLock::new();
-    BUILT_IN.get_or_init(|| CjkFont { bytes: Arc::new(BUILT_IN_CJK_FONT), face_index: 0, built_in: true })
+    BUILT_IN.get_or_init(|| CjkFont { bytes: Arc::new(built_in_bytes()), face_index: 0, built_in: true })
 }
 
 /// Index of the face named "... SC" (Simplified Chinese), else of the first face; `None` when

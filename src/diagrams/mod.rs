@@ -23,9 +23,11 @@ mod tests;
 use crate::i18n::Lang;
 use crate::scene::Technique;
 pub use canvas::{Canvas, MAX_TEXT_GROWTH};
-pub use cjk_font::{
-    BUILT_IN_CJK_FONT, CJK_FONT_PATHS, CjkFont, FontBytes, built_in_cjk_font, cjk_font, system_cjk_font,
-};
+#[cfg(not(target_arch = "wasm32"))]
+pub use cjk_font::BUILT_IN_CJK_FONT;
+#[cfg(target_arch = "wasm32")]
+pub use cjk_font::set_served_cjk_font;
+pub use cjk_font::{CJK_FONT_PATHS, CjkFont, FontBytes, built_in_cjk_font, cjk_font, system_cjk_font};
 pub use shadow_views::VIEW_COLORS;
 pub use text::{TextMetrics, TextRenderer, TextStyle, is_cjk};
 

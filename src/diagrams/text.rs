@@ -142,8 +142,9 @@ impl TextRenderer {
         let builtin = [epaint_default_fonts::UBUNTU_LIGHT, epaint_default_fonts::HACK_REGULAR]
             .map(|bytes| (Arc::new(bytes) as FontBytes, 0));
         let cjk = cjk_font();
-        let cjk = (Arc::clone(&cjk.bytes), cjk.face_index);
-        match Self::from_faces(builtin.into_iter().chain([cjk]).collect()) {
+        // A page whose served copy did not arrive has none: its Chinese has no glyphs.
+        let cjk = cjk.is_present().then(|| (Arc::clone(&cjk.bytes), cjk.face_index));
+        match Self::from_faces(builtin.into_iter().chain(cjk).collect()) {
             Ok(renderer) => renderer,
             // The built-in fonts ship inside egui and always parse.
             Err(e) => panic!("the built-in UI fonts must load: {e}"),

@@ -310,6 +310,9 @@ fn install_cjk_font(ctx: &egui::Context) {
     // The same face the diagrams and slides fall back to: the system's (Simplified Chinese in a
     // collection), else the subset built in.
     let cjk = crate::diagrams::cjk_font();
+    if !cjk.is_present() {
+        return;
+    }
     let mut fonts = egui::FontDefinitions::default();
     let mut data = egui::FontData::from_static(cjk.data());
     data.index = cjk.face_index;
