@@ -293,7 +293,7 @@ fn a_lamp_with_a_map_of_distances_is_checked_as_the_page_draws_it() {
     let engine = edit(
         &read("assets/homework/framework/src/engine.js"),
         "const directionLight = new DirectionalLight(5000, [1, 1, 1], lightPos,",
-        "const directionLight = new PointLight(5000, [1, 1, 1], [0, 90, 50],",
+        "const directionLight = new PointLight(5000, [1, 1, 1], [0, 60, 40],",
     );
     let far = "uLightFarPlane: { type: '1f', value: 300 },";
     let shadow_material = edit(
@@ -351,6 +351,25 @@ fn a_lamp_with_a_map_of_distances_is_checked_as_the_page_draws_it() {
         "{said}"
     );
     assert_eq!(ids, ["light_frustum_clips"], "{:#}", report["findings"]);
+    // The same guard under the framework's own light, whose box leaves only the floor's x edges
+    // out (where nothing stands): sound, nothing to say.
+    let guarded = edit(
+        &read("assets/homework/phongFragment.glsl"),
+        "  visibility = PCSS(uShadowMap, vec4(shadowCoord, 1.0));",
+        "  if (shadowCoord.x < 0.0 || shadowCoord.x > 1.0 || shadowCoord.y < 0.0 || shadowCoord.y > 1.0) {
+    visibility = 1.0;
+  } else {
+    visibility = PCSS(uShadowMap, vec4(shadowCoord, 1.0));
+  }",
+    );
+    let files = [
+        ("src/shaders/phongShader/phongFragment.glsl", guarded),
+        ("src/lights/DirectionalLight.js", read("assets/homework/DirectionalLight.js")),
+        ("src/engine.js", read("assets/homework/framework/src/engine.js")),
+    ];
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let report = check_folder(scratch.path(), &files);
+    assert_eq!(report["findings"], serde_json::json!([]), "{:#}", report["findings"]);
 }
 
 /// The ids of a report's findings.

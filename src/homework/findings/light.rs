@@ -8,6 +8,10 @@ use std::collections::BTreeMap;
 
 /// `light_frustum_clips`: more than this share of an object's pixels lie outside the frustum.
 const CLIPPED_SHARE: f64 = 0.02;
+/// Where the shader takes what lies outside the map as lit, more than this share of the
+/// framework's floor outside the frustum is named: the framework's own light (±100 from
+/// (0, 80, 80)) leaves its x edges out, 10.5% of the floor, where nothing stands.
+const OUTSIDE_LIT_SHARE: f64 = 0.25;
 
 /// The objects' `uLightMVP` is not projection * view * translate * scale: the map and the lookups
 /// put the objects somewhere else.
@@ -86,7 +90,7 @@ fn framework_floor_clipped(j: &Judged<'_>, lang: Lang) -> Option<Found> {
     let unwritten_lit = super::source_lines::unwritten_texel_lit(j.e.fragment_source).is_some();
     let floor = super::framework_floor::coverage(j.e.light.clip_from_world, unwritten_lit)?;
     if let Some(line) = super::source_lines::outside_map_lit(j.e.fragment_source) {
-        return (floor.outside_share > CLIPPED_SHARE).then(|| floor_outside_lit(&floor, line, lang));
+        return (floor.outside_share > OUTSIDE_LIT_SHARE).then(|| floor_outside_lit(&floor, line, lang));
     }
     if floor.dark_share <= CLIPPED_SHARE {
         return None;
