@@ -144,13 +144,16 @@
     const isLights = (m, model, frame, index) =>
         vpsOf(frame, index).some((vp) => same(m, vp) || (model && same(m, times(vp, model))));
 
+    // The first frame the page drew in (the one its uniforms are read from); 0 before any draw.
+    const firstDrawnFrame = () => (record.draws.length ? Math.min(...record.draws.map((d) => d.frame)) : 0);
+
     // The draws of one frame whose uLightMVP no longer follows the page: a draw that matched a
     // light's matrix times its own uModelMatrix on the first frames, and now matches only the
     // light as it was (the light moved, its matrix was not computed again) or the object as it
     // was (the object moved). {kind: "light" | "object", light, request} each, once.
     function staleDraws(frame, lights) {
         const drawn = (f) => record.draws.filter((d) => d.frame === f);
-        const firstFrame = Math.min(...record.draws.map((d) => d.frame));
+        const firstFrame = firstDrawnFrame();
         const first = drawn(firstFrame);
         const ordinal = (list, d) => list.filter((o) => o.program === d.program && o.request === d.request).indexOf(d);
         const found = [];
@@ -188,7 +191,7 @@
         const lights = (out.checked === null ? [] : [[out.checked, light]])
             .concat(out.others.map((o) => [o.index, o.object]));
         if (lights.length < 2 || record.draws.length === 0) return;
-        const firstFrame = Math.min(...record.draws.map((d) => d.frame));
+        const firstFrame = firstDrawnFrame();
         const draws = record.draws.filter((d) => d.frame === firstFrame);
         const used = lights.map(([index]) =>
             vpsOf(firstFrame, index).length === 0 ||
@@ -226,7 +229,7 @@
         const models = (f) => stringify(record.draws.filter((d) => d.frame === f).map((d) => d.uniforms.uModelMatrix || null));
         // One frame more first: a page whose lights and models it leaves where they are is not
         // followed.
-        const firstFrame = record.draws.length ? Math.min(...record.draws.map((d) => d.frame)) : 0;
+        const firstFrame = firstDrawnFrame();
         record.state.recordDraws = true;
         let frames = await runFrames(input.frames + 1);
         record.state.recordDraws = false;

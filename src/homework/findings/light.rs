@@ -242,7 +242,7 @@ pub const LIGHT_NOT_DRAWN: FindingKind =
 fn light_not_drawn(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
     let none = j.e.light.stale.iter().find(|s| s.moved == "none")?;
     let computed = match none.computed_at.as_slice() {
-        [] => tr(lang, "your page never calls CalcLightMVP itself").to_string(),
+        [] => computed_where(none, lang),
         at => fill(lang, "your page calls CalcLightMVP at {}, for another light", &[&places(at, lang)]),
     };
     Some(Found::new(
