@@ -95,6 +95,8 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_unfilled_samples.glsl", vec![], &["search_radius_wrong"]),
         ("phongFragment_grid_search.glsl", vec![], &["search_radius_wrong", "no_contact_hardening"]),
         ("phongFragment_receiver_from_map.glsl", vec![], &["penumbra_estimate_wrong"]),
+        ("phongFragment_perspective_factor.glsl", vec![], &["penumbra_law_wrong"]),
+        ("phongFragment_divided_by_receiver.glsl", vec![], &["penumbra_law_wrong"]),
     ]
 }
 
@@ -423,6 +425,46 @@ fn each_pcss_step_that_parts_from_the_twin_is_named_with_its_quantity_and_line()
     // The correct solution: no step parts from the twin.
     let report = check(&example("phongFragment.glsl"), &[], &scratch.path().join("correct"));
     assert_eq!(finding_ids(&report), Vec::<String>::new(), "{report:#}");
+}
+
+/// A filter radius that scales with the depths beyond similar triangles is named by its law (the
+/// powers of the receiver's and the blocker's depth the light's half width it implies follows),
+/// by the line that divides, and by the light size the code sets against the one it behaves as;
+/// a blocker search under a name of the student's is named by it.
+#[test]
+fn a_filter_radius_off_similar_triangles_is_named_by_its_law_its_line_and_the_light_it_behaves_as() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let first = |name: &str| {
+        let report = check(&example(name), &[], &scratch.path().join(name));
+        assert!(
+            report["calls"].as_array().is_some_and(|c| c.iter().any(|f| f == "findBlocker")),
+            "{report:#}"
+        );
+        report["findings"][0].clone()
+    };
+    let figure = |f: &Value, name: &str| f["figures"][name].as_f64().unwrap_or(f64::NAN);
+    let said = |f: &Value| f["explanation"].as_str().unwrap_or_default().to_string();
+
+    // NEAR_PLANE / zReceiver on the orthographic light: the half width goes as 1 / d_r.
+    let near = first("phongFragment_perspective_factor.glsl");
+    assert_eq!((near["id"].as_str(), near["function"].as_str()), (Some("penumbra_law_wrong"), Some("PCSS")));
+    assert!((figure(&near, "receiver_depth_exponent") + 1.0).abs() < 0.05, "{near:#}");
+    assert!(figure(&near, "blocker_depth_exponent").abs() < 0.05, "{near:#}");
+    assert_eq!(figure(&near, "line"), 107.0, "{near:#}");
+    assert!(said(&near).contains("near / z_r of the NVIDIA sample"), "{near:#}");
+    // The light it behaves as against the 1 world unit its #define sets: 1 / d_r is 3-4 here.
+    assert_eq!(figure(&near, "light_size_line"), 32.0, "{near:#}");
+    assert!((2.0..6.0).contains(&figure(&near, "implied_light_width_world")), "{near:#}");
+    assert!(said(&near).contains("where your LIGHT_WORLD_SIZE on line 32 is 1."), "{near:#}");
+    assert!(!said(&near).contains("findBlocker"), "named as the student named it: {near:#}");
+
+    // (d_r - d_b) / d_r: the half width goes as d_b / d_r.
+    let receiver = first("phongFragment_divided_by_receiver.glsl");
+    assert_eq!(receiver["id"], "penumbra_law_wrong", "{receiver:#}");
+    assert!((figure(&receiver, "receiver_depth_exponent") + 1.0).abs() < 0.05, "{receiver:#}");
+    assert!((figure(&receiver, "blocker_depth_exponent") - 1.0).abs() < 0.05, "{receiver:#}");
+    assert_eq!(figure(&receiver, "line"), 99.0, "{receiver:#}");
+    assert!(said(&receiver).contains("instead of the blocker's"), "{receiver:#}");
 }
 
 /// A light whose box fits shadowlab's check scene but not the framework's own floor (±80 tall:

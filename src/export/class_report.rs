@@ -297,6 +297,10 @@ const DESCRIPTIONS: &[(&str, &str)] = &[
         "PCSS's filter radius collapses under blockers: the penumbra estimate misses the receiver's depth.",
     ),
     ("samples_not_around_receiver", "The filter's taps are not spread over a disk around the receiver."),
+    (
+        "penumbra_law_wrong",
+        "PCSS's filter radius scales with the depths beyond similar triangles (near / z_r on an orthographic light).",
+    ),
     ("no_penumbra", "PCSS draws hard shadows: the filter is under a texel wide."),
     ("no_contact_hardening", "Penumbrae do not widen with the blocker's distance as similar triangles say."),
     ("self_shadowing", "Lit surfaces shadow themselves: shadow acne, a bias too small."),

@@ -34,6 +34,28 @@ pub(super) const POSITION_FROM_LIGHT: &str = "vPositionFromLight";
 /// The function a texture read's uv goes through.
 pub(super) const TAP: &str = "shadowlab_tap";
 
+/// The student's own name for the recorded function `role` (one of `RECORDED_FUNCTIONS`): the
+/// function of that name where the shader defines one. A blocker search under a name of the
+/// student's (`averageBlockerDepth`) is recorded as `findBlocker`: the first function PCSS
+/// calls whose name says "blocker" and that returns a float (a search radius is not one).
+pub(crate) fn recorded_name<'s>(source: &'s str, toks: &[Token], role: &str) -> Option<&'s str> {
+    let bodies = super::lex::function_bodies(source, toks);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let returns_float =
+        |name_at: usize| (0..name_at).rev().find(|&j| !is_precision(text(j))).map(text) == Some("float");
+    if let Some(b) = bodies.iter().find(|b| b.name == role) {
+        return Some(b.name);
+    }
+    let pcss = bodies.iter().find(|b| b.name == "PCSS").filter(|_| role == "findBlocker")?;
+    (pcss.open..pcss.close).find_map(|k| {
+        let name = text(k);
+        let lower = name.to_ascii_lowercase();
+        let searches = lower.contains("blocker") && !lower.contains("radius") && !lower.contains("size");
+        let body = bodies.iter().find(|b| b.name == name && text(k + 1) == "(" && searches)?;
+        returns_float(body.name_at).then_some(body.name)
+    })
+}
+
 /// A recorded function's wrapper: the student's definition renamed to `student`, called with
 /// the same arguments; the result recorded as function `k` and returned. One line.
 pub(super) fn wrapper(name: &str, k: usize, student: &str, params: &str, args: &str) -> String {

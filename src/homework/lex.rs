@@ -193,3 +193,44 @@ pub(super) fn depth_in(source: &str, toks: &[Token], open: usize, at: usize) -> 
         _ => depth,
     })
 }
+
+/// A function defined at the top level: its name, the token of its name and of its body's `{`
+/// and `}`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct FunctionBody<'s> {
+    pub name: &'s str,
+    pub name_at: usize,
+    pub open: usize,
+    pub close: usize,
+}
+
+/// Every function defined at the top level, first in the file first.
+pub(crate) fn function_bodies<'s>(source: &'s str, toks: &[Token]) -> Vec<FunctionBody<'s>> {
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let mut out = Vec::new();
+    let mut depth = 0i32;
+    let mut i = 0;
+    while i < toks.len() {
+        match text(i) {
+            "{" => depth += 1,
+            "}" => depth -= 1,
+            name if depth == 0
+                && toks[i].kind == Kind::Ident
+                && text(i + 1) == "("
+                && !toks[i].in_directive =>
+            {
+                let open = (i + 1..toks.len()).find(|&k| text(k) == "{" || text(k) == ";");
+                if let Some(open) = open.filter(|&k| text(k) == "{") {
+                    let close = matching(source, toks, open, "{", "}");
+                    if close > open && text(close) == "}" {
+                        out.push(FunctionBody { name, name_at: i, open, close });
+                        i = close;
+                    }
+                }
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    out
+}

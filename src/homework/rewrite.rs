@@ -21,8 +21,8 @@
 //! its definition goes (naga orders a prototyped function wrongly).
 
 use super::instrument::{
-    POSITION_FROM_LIGHT, RECORDED_FUNCTIONS, STUDENT_MAIN, TAP, epilogue, recording_prelude, wrapper,
-    wrapper_parameters,
+    POSITION_FROM_LIGHT, RECORDED_FUNCTIONS, STUDENT_MAIN, TAP, epilogue, recorded_name, recording_prelude,
+    wrapper, wrapper_parameters,
 };
 use super::interface::{
     Binding, BindingKind, CLIP_Y_SIGN, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface,
@@ -261,7 +261,9 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
     let mut recorded = Vec::new();
     if stage == Stage::Fragment {
         for (k, name) in RECORDED_FUNCTIONS.iter().enumerate() {
-            let Some(body) = bodies.iter().find(|b| text(b.name_at) == *name) else { continue };
+            // Under the student's own name where theirs differs (`averageBlockerDepth`).
+            let Some(own) = recorded_name(source, &toks, name) else { continue };
+            let Some(body) = bodies.iter().find(|b| text(b.name_at) == own) else { continue };
             let returns_float =
                 (0..body.name_at).rev().find(|&j| !is_precision(text(j))).map(text) == Some("float");
             let Some((params, args)) =
@@ -269,11 +271,11 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
             else {
                 continue;
             };
-            let student = format!("shadowlab_student_{name}");
+            let student = format!("shadowlab_student_{own}");
             edits.replace(toks[body.name_at].start, toks[body.name_at].end, student.clone());
             used[body.name_at] = true;
             let after = toks[body.close].end;
-            edits.replace(after, after, format!(" {}", wrapper(name, k, &student, &params, &args)));
+            edits.replace(after, after, format!(" {}", wrapper(own, k, &student, &params, &args)));
             recorded.push(*name);
         }
     }

@@ -126,6 +126,10 @@ pub(super) const CLASS: &[(&str, &str)] = &[
         "PCSS 的滤波半径在遮挡物下塌缩：半影估计没有用接收点自己的深度。",
     ),
     (
+        "PCSS's filter radius scales with the depths beyond similar triangles (near / z_r on an orthographic light).",
+        "PCSS 的滤波半径随深度的变化超出了相似三角形（正交光源上多乘了 near / z_r）。",
+    ),
+    (
         "The filter's taps are not spread over a disk around the receiver.",
         "滤波的采样点没有分布在以接收点为中心的圆盘上。",
     ),

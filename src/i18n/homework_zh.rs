@@ -280,4 +280,29 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "你的页面从未用这盏光源的矩阵绘制：没有任何一次绘制的 uniform 里有它的 CalcLightMVP（{}）。它的阴影贴图是用另一盏光源的矩阵画的，或者根本没画，所以你的页面为它显示的阴影其实是另一盏光源的。请为每盏光源准备自己的材质（或 uniform），带上它自己的 uLightMVP 和自己的阴影贴图，两个 pass 都要。shadowlab 为这盏光源显示的，是假如它被画出来时你的着色器会给出的结果。",
     ),
     (" (the framework's)", "（框架自带的）"),
+    (
+        "PCSS's filter radius r does not follow similar triangles: the light's half width it implies under blockers, r d_b / (d_r - d_b), is no one light's. It goes from {:.1} to {:.1} texels (10th to 90th percentile) and follows d_r^{:.2} d_b^{:.2} (R^2 {:.2}; receivers' depths {:.3} to {:.3}), where a light's is the same everywhere.",
+        "PCSS 的滤波半径 r 不符合相似三角形：它在遮挡物下隐含的光源半宽 r d_b / (d_r - d_b) 不属于任何一盏光源。它从 {:.1} 变到 {:.1} 个纹素（第 10 到第 90 百分位），随 d_r^{:.2} d_b^{:.2} 变化（R^2 {:.2}；接收点深度 {:.3} 到 {:.3}），而一盏光源的半宽处处相同。",
+    ),
+    (
+        "It is divided by the receiver's depth as well: r = (w/2) (d_r - d_b) / (d_b d_r). That is the perspective light's near / z_r of the NVIDIA sample; an orthographic light's [0, 1] depth is a distance along the light, and its map's uv does not shrink with it.",
+        "它还多除了一次接收点深度：r = (w/2) (d_r - d_b) / (d_b d_r)。这是 NVIDIA 示例里透视光源的 near / z_r；正交光源的 [0, 1] 深度就是沿光线方向的距离，它的贴图 uv 不会随深度缩小。",
+    ),
+    (
+        "It is divided by the receiver's depth instead of the blocker's: r = (w/2) (d_r - d_b) / d_r, the right radius times d_b / d_r: right where a blocker touches its receiver, too narrow the higher the blocker.",
+        "它除的是接收点深度而不是遮挡物深度：r = (w/2) (d_r - d_b) / d_r，即正确半径乘以 d_b / d_r：遮挡物贴着接收点时正确，遮挡物越高就越窄。",
+    ),
+    (
+        "It is not divided by the blocker's depth: r = (w/2) (d_r - d_b).",
+        "它没有除以遮挡物深度：r = (w/2) (d_r - d_b)。",
+    ),
+    ("Line {} divides by the receiver's depth: `{}`.", "第 {} 行除以了接收点深度：`{}`。"),
+    (
+        "By similar triangles r = (w_light / 2) (d_r - d_b) / d_b, nothing more; on screen the penumbrae are not those of one light, wider or narrower with the receiver's distance.",
+        "按相似三角形 r = (w_light / 2) (d_r - d_b) / d_b，别无其他因子；屏幕上的半影不是同一盏光源投下的，会随接收点的距离变宽或变窄。",
+    ),
+    (
+        "The slabs' penumbrae are those of a light about {:.1} world units wide, where your {} on line {} is {}.",
+        "平板下的半影相当于一盏约 {:.1} 个世界单位宽的光源投下的，而你的 {}（第 {} 行）是 {}。",
+    ),
 ];

@@ -125,6 +125,13 @@ fn search_radius_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -
             &[&(low / texel), &(high / texel)],
         )
     };
+    let mut figures = figures;
+    let mut explanation = explanation;
+    if let Some((line, code)) = super::formula_lines::receiver_division(j.e.fragment_source, "findBlocker") {
+        figures.insert("line", line as f64);
+        explanation += " ";
+        explanation += &fill(lang, "Line {} divides by the receiver's depth: `{}`.", &[&line, &code]);
+    }
     // A radius that swings leaves the picture right where the penumbrae still follow similar
     // triangles: it does not show today.
     let shows = broken || j.e.light.width.is_some_and(|w| w.law_holds == Some(false));

@@ -12,11 +12,13 @@
 //! across real submissions, never for one file (tests/homework_check.rs holds the project's own
 //! example of each).
 
+mod formula_lines;
 mod framework_floor;
 mod functions;
 mod light;
 mod pcss_steps;
 mod penumbra;
+mod penumbra_law;
 mod round_trip;
 pub(crate) mod shadows;
 mod source_lines;
@@ -146,6 +148,7 @@ pub const FINDINGS: &[FindingKind] = &[
     pcss_steps::BLOCKER_DEPTH_WRONG,
     pcss_steps::PENUMBRA_ESTIMATE_WRONG,
     functions::SAMPLES_NOT_AROUND_RECEIVER,
+    penumbra_law::PENUMBRA_LAW_WRONG,
     shadows::SELF_SHADOWING,
     pcss_steps::UNPACK_LOSES_DEPTH,
     round_trip::ROUND_TRIP_ACNE,
@@ -325,9 +328,16 @@ pub fn white_map_change(student: &HomeworkImages, white: &HomeworkImages) -> Vec
 /// Run every finding over the evidence, in order.
 pub fn judge(evidence: &Evidence<'_>, lang: Lang) -> Vec<Finding> {
     let judged = Judged::new(evidence);
+    // The blocker search is named as the student named it (`averageBlockerDepth`).
+    let source = evidence.fragment_source;
+    let blocker_search = super::instrument::recorded_name(source, &super::lex::tokens(source), "findBlocker")
+        .filter(|name| *name != "findBlocker");
     let mut found: Vec<Finding> = Vec::new();
     for kind in FINDINGS {
-        if let Some(f) = (kind.judge)(&judged, &found, lang) {
+        if let Some(mut f) = (kind.judge)(&judged, &found, lang) {
+            if let Some(name) = blocker_search {
+                f.explanation = f.explanation.replace("findBlocker", name);
+            }
             found.push(Finding {
                 id: kind.id,
                 severity: if f.latent { Severity::Latent } else { Severity::Mistake },

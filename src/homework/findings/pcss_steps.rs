@@ -101,12 +101,23 @@ fn light_halves(j: &Judged<'_>, steps: &[Step]) -> Vec<f32> {
     steps_under_blockers(j, steps).iter().filter_map(|s| s.light_half_uv()).collect()
 }
 
+/// Under real blockers: (the receiver's depth, findBlocker's return, the light's half width
+/// (uv) the filter radius implies there, the filter radius (uv)), all from the student's own
+/// functions.
+pub(super) fn implied_light_halves(j: &Judged<'_>) -> Vec<(f32, f32, f32, f32)> {
+    let steps = steps(j);
+    steps_under_blockers(j, &steps)
+        .iter()
+        .filter_map(|s| Some((s.z_receiver, s.z_blocker, s.light_half_uv()?, s.filter_uv)))
+        .collect()
+}
+
 fn percentile(values: &mut [f32], p: f64) -> Option<f32> {
     values.sort_by(f32::total_cmp);
     values.get(((values.len().max(1) - 1) as f64 * p) as usize).copied()
 }
 
-fn judged(j: &Judged<'_>, earlier: &[super::Finding]) -> bool {
+pub(super) fn judged(j: &Judged<'_>, earlier: &[super::Finding]) -> bool {
     j.pcss() && !has(earlier, "shadows_missing") && !has(earlier, "light_model_matrix")
 }
 

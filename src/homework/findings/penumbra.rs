@@ -66,6 +66,7 @@ fn no_contact_hardening(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) 
         || has(earlier, "samples_not_around_receiver")
         || has(earlier, "blocker_depth_wrong")
         || has(earlier, "penumbra_estimate_wrong")
+        || has(earlier, "penumbra_law_wrong")
     {
         return None;
     }

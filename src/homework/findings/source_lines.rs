@@ -294,38 +294,17 @@ pub fn unpack_function(source: &str) -> Option<(String, usize)> {
     })
 }
 
-/// Every function defined at the top level: (name, token of its body's `{`, token of its `}`).
+/// Every function defined at the top level: (name, token of its body's `{`, token of its `}`),
+/// the student's blocker search under the recorded name `findBlocker` whatever they called it.
 fn function_bodies<'s>(
     source: &'s str,
     toks: &[crate::homework::lex::Token],
 ) -> Vec<(&'s str, usize, usize)> {
-    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
-    let mut out = Vec::new();
-    let mut depth = 0i32;
-    let mut i = 0;
-    while i < toks.len() {
-        match text(i) {
-            "{" => depth += 1,
-            "}" => depth -= 1,
-            name if depth == 0
-                && toks[i].kind == Kind::Ident
-                && text(i + 1) == "("
-                && !toks[i].in_directive =>
-            {
-                let open = (i + 1..toks.len()).find(|&k| text(k) == "{" || text(k) == ";");
-                if let Some(open) = open.filter(|&k| text(k) == "{") {
-                    let close = matching(source, toks, open, "{", "}");
-                    if close > open && text(close) == "}" {
-                        out.push((name, open, close));
-                        i = close;
-                    }
-                }
-            }
-            _ => {}
-        }
-        i += 1;
-    }
-    out
+    let blocker_search = crate::homework::instrument::recorded_name(source, toks, "findBlocker");
+    crate::homework::lex::function_bodies(source, toks)
+        .into_iter()
+        .map(|b| (if Some(b.name) == blocker_search { "findBlocker" } else { b.name }, b.open, b.close))
+        .collect()
 }
 
 /// A global sample array `function` reads (`poissonDisk[i]`) that nothing fills before it runs:
@@ -335,7 +314,12 @@ fn function_bodies<'s>(
 pub fn sample_array_read_unfilled(source: &str, function: &str) -> Option<(String, usize)> {
     let toks = tokens(source);
     let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
-    let bodies = function_bodies(source, &toks);
+    // Names as written: the calls up to `main` are found by them.
+    let bodies: Vec<(&str, usize, usize)> = crate::homework::lex::function_bodies(source, &toks)
+        .iter()
+        .map(|b| (b.name, b.open, b.close))
+        .collect();
+    let function = crate::homework::instrument::recorded_name(source, &toks, function).unwrap_or(function);
     let body = |name: &str| bodies.iter().find(|b| b.0 == name).map(|b| (b.1, b.2));
     // Global arrays: `TYPE NAME [` at the top level, outside every body.
     let inside_any = |k: usize| bodies.iter().any(|&(_, open, close)| (open..=close).contains(&k));

@@ -1,0 +1,97 @@
+//! Where in the student's fragment shader PCSS's formulas are written: the line that divides a
+//! radius by the receiver's depth, and the light size a `#define` sets in world units.
+
+use crate::homework::instrument::recorded_name;
+use crate::homework::lex::{Kind, function_bodies, tokens};
+
+const PCSS: &str = "PCSS";
+
+/// The first line, in `function` (a recorded function's name: `PCSS`, `findBlocker`) or a
+/// function it calls (PCSS: not the blocker search), that divides by the receiver's depth:
+/// `/ zReceiver`, `/ float(zReceiver)`, `/ coords.z` with `coords` a shadow coordinate.
+/// (line, the line's code.)
+pub fn receiver_division(source: &str, function: &str) -> Option<(usize, String)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let bodies = function_bodies(source, &toks);
+    let blocker_search = recorded_name(source, &toks, "findBlocker");
+    let own = recorded_name(source, &toks, function)?;
+    let top = bodies.iter().find(|b| b.name == own)?;
+    let called: Vec<_> = bodies
+        .iter()
+        .filter(|b| {
+            b.name == own
+                || ((b.name != "PCF" || function == PCSS)
+                    && (Some(b.name) != blocker_search || function != PCSS)
+                    && (top.open..top.close).any(|k| text(k) == b.name && text(k + 1) == "("))
+        })
+        .collect();
+    let receiver = |k: usize| {
+        let word = text(k).to_ascii_lowercase();
+        toks[k].kind == Kind::Ident
+            && (word.contains("receiver")
+                || matches!(word.as_str(), "zr" | "dr" | "z_r" | "d_r")
+                || (text(k + 1) == "." && text(k + 2) == "z" && word.contains("coord")))
+    };
+    called.iter().find_map(|b| {
+        (b.open..b.close).find_map(|k| {
+            if text(k) != "/" {
+                return None;
+            }
+            let mut at = k + 1;
+            while matches!(text(at), "(" | "float") {
+                at += 1;
+            }
+            // `/ (zReceiver - zBlocker)` is a gap, not the receiver's depth.
+            let gap = matches!(text(at + 1), "-" | "+")
+                || (text(at + 1) == "." && matches!(text(at + 4), "-" | "+"));
+            let alone = !gap;
+            (receiver(at) && alone).then(|| {
+                let line = toks[k].line;
+                (line, source.lines().nth(line - 1).unwrap_or("").trim().to_string())
+            })
+        })
+    })
+}
+
+/// A `#define` of the light's size in world units, by its name (`LIGHT_WORLD_SIZE 0.5`):
+/// (name, line, value).
+pub fn world_light_size(source: &str) -> Option<(String, usize, f32)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    (0..toks.len()).find_map(|k| {
+        let define = toks[k].kind == Kind::Directive && text(k).trim_start_matches('#').trim() == "define";
+        let name = text(k + 1).to_ascii_uppercase();
+        let sized = name.contains("LIGHT")
+            && name.contains("WORLD")
+            && (name.contains("SIZE") || name.contains("WIDTH"));
+        let value = text(k + 2).trim_end_matches(['f', 'F']).parse::<f32>().ok()?;
+        (define && sized && value > 0.0 && toks[k + 2].line == toks[k].line)
+            .then(|| (text(k + 1).to_string(), toks[k].line, value))
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_line_that_divides_by_the_receiver_is_found_and_a_gap_is_not_one() {
+        let source = "float findBlocker(float zReceiver) { return 1.0 / zReceiver; }\n\
+                      float radius(float ratio, float zReceiver) {\n  float g = 1.0 / (zReceiver - 0.5);\n  return ratio * 0.01 / zReceiver;\n}\n\
+                      float PCSS(vec4 coords) {\n  float zReceiver = coords.z;\n  float b = findBlocker(zReceiver);\n  return radius((zReceiver - b) / b, zReceiver);\n}\n";
+        let (line, code) = receiver_division(source, "PCSS").expect("the division");
+        assert_eq!((line, code.as_str()), (4, "return ratio * 0.01 / zReceiver;"));
+        let sound = source.replace("ratio * 0.01 / zReceiver", "ratio * 0.01");
+        assert_eq!(receiver_division(&sound, "PCSS"), None);
+        assert_eq!(receiver_division(source, "findBlocker").map(|(l, _)| l), Some(1));
+    }
+
+    #[test]
+    fn a_light_size_in_world_units_is_read_by_its_name() {
+        let source =
+            "#define LIGHT_WORLD_SIZE 0.5 // half\n#define LIGHT_SIZE_UV (LIGHT_WORLD_SIZE / 100.0)\n";
+        assert_eq!(world_light_size(source), Some(("LIGHT_WORLD_SIZE".to_string(), 1, 0.5)));
+        assert_eq!(world_light_size("#define LIGHT_WIDTH 5.0\n"), None);
+    }
+}
