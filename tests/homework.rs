@@ -304,6 +304,63 @@ fn the_frameworks_per_light_names_declared_as_arrays_read_the_light_checked() {
     );
 }
 
+/// A second light's names copied under a number (`uLightMVP1`, `uShadowMap1`,
+/// `vPositionFromLight1`): like an array's elements, each copy holds the light checked, so the
+/// rewrite reads it as the framework's one, declared once, on the same lines.
+#[test]
+fn the_frameworks_per_light_names_copied_under_a_number_read_the_light_checked() {
+    let vertex = data("phongVertex.glsl")
+        .replace("uniform mat4 uLightMVP;", "uniform mat4 uLightMVP; uniform mat4 uLightMVP1;")
+        .replace(
+            "varying highp vec4 vPositionFromLight;",
+            "varying highp vec4 vPositionFromLight; varying highp vec4 vPositionFromLight1;",
+        )
+        .replace(
+            "  vPositionFromLight = uLightMVP * vec4(aVertexPosition, 1.0);",
+            "  vPositionFromLight = uLightMVP * vec4(aVertexPosition, 1.0); vPositionFromLight1 = uLightMVP1 * vec4(aVertexPosition, 1.0);",
+        );
+    let fragment = data("phongFragment.glsl")
+        .replace("uniform sampler2D uShadowMap;", "uniform sampler2D uShadowMap; uniform sampler2D uShadowMap1;")
+        .replace("varying vec4 vPositionFromLight;", "varying vec4 vPositionFromLight; varying vec4 vPositionFromLight1;")
+        .replace(
+            "  visibility = PCSS(uShadowMap, vec4(shadowCoord, 1.0));",
+            "  visibility = PCSS(uShadowMap, vec4(shadowCoord, 1.0)) * texture2D(uShadowMap1, vPositionFromLight1.xy).r;",
+        );
+    let layout = Interface::gather(&[&vertex, &fragment]).expect("an interface");
+    let copies: Vec<(&str, &str)> =
+        layout.per_light_copies.iter().map(|(c, b)| (c.as_str(), b.as_str())).collect();
+    assert_eq!(
+        copies,
+        [
+            ("uLightMVP1", "uLightMVP"),
+            ("uShadowMap1", "uShadowMap"),
+            ("vPositionFromLight1", "vPositionFromLight")
+        ]
+    );
+    assert!(layout.extra_uniforms.is_empty() && layout.extra_varyings.is_empty(), "{layout:?}");
+    assert!(layout.extra_textures.is_empty(), "{layout:?}");
+    let v = translate("phongVertex.glsl", &vertex, Stage::Vertex, &layout).unwrap_or_else(|e| panic!("{e}"));
+    let f = translate("phongFragment.glsl", &fragment, Stage::Fragment, &layout)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_wgsl_valid("phongVertex.glsl", &v.wgsl);
+    assert_wgsl_valid("phongFragment.glsl", &f.wgsl);
+    let line = |r: &shadowlab::homework::Rewritten, n: usize| {
+        r.glsl.split('\n').nth(r.prelude_lines + n - 1).map(str::trim).map(String::from).unwrap_or_default()
+    };
+    assert_eq!(
+        line(&v.rewritten, 21),
+        "vPositionFromLight = uLightMVP * vec4(aVertexPosition, 1.0); vPositionFromLight = uLightMVP * vec4(aVertexPosition, 1.0);"
+    );
+    assert!(
+        line(&f.rewritten, 138)
+            .contains("(sampler2D(uShadowMap, uShadowMap_sampler), shadowlab_tap( vPositionFromLight.xy)"),
+        "{}",
+        line(&f.rewritten, 138)
+    );
+    assert_eq!(f.rewritten.glsl.matches("uniform texture2D uShadowMap;").count(), 1);
+    assert_eq!(f.rewritten.glsl.matches("in vec4 vPositionFromLight;").count(), 1);
+}
+
 /// A uniform of the student's own sized by a `#define` of one stage: the block both stages declare
 /// has the size written out (the other stage may not define the name).
 #[test]

@@ -95,6 +95,7 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_unfilled_samples.glsl", vec![], &["search_radius_wrong"]),
         ("phongFragment_grid_search.glsl", vec![], &["search_radius_wrong", "no_contact_hardening"]),
         ("phongFragment_receiver_from_map.glsl", vec![], &["penumbra_estimate_wrong"]),
+        ("phongFragment_shadow_floor.glsl", vec![], &["umbra_not_dark"]),
         ("phongFragment_perspective_factor.glsl", vec![], &["penumbra_law_wrong"]),
         ("phongFragment_divided_by_receiver.glsl", vec![], &["penumbra_law_wrong"]),
     ]
@@ -421,6 +422,12 @@ fn each_pcss_step_that_parts_from_the_twin_is_named_with_its_quantity_and_line()
     assert!((figure(&wide, "light_width_uv") - 5.0).abs() < 0.1, "{wide:#}");
     assert_eq!(figure(&wide, "light_line"), 28.0, "{wide:#}");
     assert!(said(&wide).contains("That is `LIGHT_WIDTH_UV` on line 28."), "{wide:#}");
+
+    // A blocked tap that counts 0.4: the umbra is that one number, and the #define that says so.
+    let floor = first("phongFragment_shadow_floor.glsl");
+    assert_eq!((floor["id"].as_str(), floor["function"].as_str()), (Some("umbra_not_dark"), Some("PCF")));
+    assert!((figure(&floor, "umbra_value") - 0.4).abs() < 0.01, "{floor:#}");
+    assert!(said(&floor).contains("That is `SHADOW_FLOOR` on line 33, in PCF."), "{floor:#}");
 
     // The correct solution: no step parts from the twin.
     let report = check(&example("phongFragment.glsl"), &[], &scratch.path().join("correct"));

@@ -92,12 +92,33 @@ pub struct Interface {
     /// checks one light at a time: every element holds the light checked, so the rewrite reads
     /// each as the framework's single one (`uLightMVP[l]` is `uLightMVP`).
     pub per_light: Vec<String>,
+    /// The framework's per-light names a student copied for another light under a number
+    /// (`uShadowMap1`, `uLightMVP1`, `vPositionFromLight1`): (the copy, the framework's name),
+    /// sorted. Like an array's elements, each copy holds the light checked: the rewrite reads it
+    /// as the framework's one.
+    pub per_light_copies: Vec<(String, String)>,
 }
 
 /// The framework's names that hold one light's data, which a page with several lights may turn
 /// into arrays indexed by light.
 pub const PER_LIGHT_NAMES: [&str; 5] =
     ["uLightMVP", "uLightPos", "uLightIntensity", "uShadowMap", "vPositionFromLight"];
+
+/// The type the framework gives a per-light name (`uShadowMap` a sampler2D, `uLightMVP` a mat4).
+fn per_light_type(name: &str) -> &'static str {
+    match name {
+        "uShadowMap" => "sampler2D",
+        "vPositionFromLight" => "vec4",
+        _ => FRAMEWORK_UNIFORMS.iter().find(|f| f.name == name).map_or("", |f| f.glsl_type),
+    }
+}
+
+/// The framework's per-light name `name` is a numbered copy of (`uShadowMap1` of `uShadowMap`).
+fn numbered_copy_of(name: &str) -> Option<&'static str> {
+    PER_LIGHT_NAMES.iter().copied().find(|base| {
+        name.strip_prefix(base).is_some_and(|n| !n.is_empty() && n.bytes().all(|b| b.is_ascii_digit()))
+    })
+}
 
 /// The types a student's own uniform may have (WGSL allows no `bool` in a uniform buffer).
 const BLOCK_TYPES: [&str; 13] = [
@@ -227,14 +248,15 @@ impl Interface {
                     let resolved = resolve_sizes(source, suffix);
                     let suffix = &resolved;
                     let fail = |message: String| HomeworkError::Rewrite { line: d.line, message };
+                    if let Some(base) = numbered_copy_of(name)
+                        && suffix.is_empty()
+                        && d.glsl_type == per_light_type(base)
+                    {
+                        out.per_light_copies.push((name.clone(), base.to_string()));
+                        continue;
+                    }
                     if !suffix.is_empty() && PER_LIGHT_NAMES.contains(&name.as_str()) {
-                        let framework_type = match name.as_str() {
-                            "uShadowMap" => "sampler2D",
-                            "vPositionFromLight" => "vec4",
-                            _ => {
-                                FRAMEWORK_UNIFORMS.iter().find(|f| f.name == name).map_or("", |f| f.glsl_type)
-                            }
-                        };
+                        let framework_type = per_light_type(name);
                         if d.glsl_type != framework_type {
                             return Err(fail(format!(
                                 "{name} is a {framework_type} in the framework, declared {}{written} here",
@@ -291,7 +313,15 @@ impl Interface {
         out.extra_textures.dedup();
         out.per_light.sort();
         out.per_light.dedup();
+        out.per_light_copies.sort();
+        out.per_light_copies.dedup();
         Ok(out)
+    }
+
+    /// The framework's name a numbered copy for another light stands for (`uShadowMap1`:
+    /// `uShadowMap`).
+    pub fn copied_from(&self, name: &str) -> Option<&str> {
+        self.per_light_copies.iter().find(|(copy, _)| copy == name).map(|(_, base)| base.as_str())
     }
 
     /// `name` is one of the framework's per-light names declared as an array by light.

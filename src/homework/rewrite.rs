@@ -26,8 +26,8 @@ use super::instrument::{
 };
 use super::interface::{
     Binding, BindingKind, CLIP_Y_SIGN, FRAMEWORK_BLOCK_BINDING, FRAMEWORK_UNIFORMS, Interface,
-    STUDENT_BLOCK_BINDING, attribute_location, declarations, is_glsl450_keyword, is_precision, resolve_sizes,
-    texture_call,
+    PER_LIGHT_NAMES, STUDENT_BLOCK_BINDING, attribute_location, declarations, is_glsl450_keyword,
+    is_precision, resolve_sizes, texture_call,
 };
 use super::lex::{Kind, Token, check_size, depth_in, matching, matching_open, tokens};
 use super::missing_return::{ends_with_return, zero_of};
@@ -104,9 +104,33 @@ struct Body {
     samplers: Vec<String>,
 }
 
+/// `source` with every numbered copy of a per-light name (`uShadowMap1`, see
+/// `Interface::per_light_copies`) written as the framework's (`uShadowMap`): each holds the light
+/// checked. Only names change, so no line moves.
+fn copies_as_framework(source: &str, layout: &Interface) -> String {
+    if layout.per_light_copies.is_empty() {
+        return source.to_string();
+    }
+    let mut out = String::with_capacity(source.len());
+    let mut at = 0;
+    for t in tokens(source) {
+        if t.kind == Kind::Ident
+            && let Some(base) = layout.copied_from(&source[t.start..t.end])
+        {
+            out.push_str(&source[at..t.start]);
+            out.push_str(base);
+            at = t.end;
+        }
+    }
+    out.push_str(&source[at..]);
+    out
+}
+
 /// Rewrite one stage of a student's WebGL1 shader to GLSL 450 against `layout` (see the module
 /// documentation for what changes and why the lines stay where they were).
 pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritten, HomeworkError> {
+    let copies_renamed = copies_as_framework(source, layout);
+    let source = copies_renamed.as_str();
     let toks = tokens(source);
     check_size(source, &toks)?;
     let text = |i: usize| &source[toks[i].start..toks[i].end];
@@ -156,10 +180,20 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
     own_attributes.sort();
     let mut attributes = Vec::new();
     let mut textures: Vec<String> = Vec::new();
+    // A numbered copy for another light (`uShadowMap1`) is the framework's name by now: declared
+    // once.
+    let mut per_light_declared: Vec<&str> = Vec::new();
     for d in &decls {
         let fail = |message: String| HomeworkError::Rewrite { line: d.line, message };
         let mut parts = Vec::new();
         for (name, suffix) in &d.names {
+            let name = name.as_str();
+            if PER_LIGHT_NAMES.contains(&name) && d.qualifier != "attribute" {
+                if per_light_declared.contains(&name) {
+                    continue;
+                }
+                per_light_declared.push(name);
+            }
             let ty = &d.glsl_type;
             // An array by light is declared as the framework's one (see `Interface::per_light`).
             let suffix = if layout.is_per_light(name) { "" } else { suffix.as_str() };
@@ -173,7 +207,7 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
                 }
                 ("attribute", Stage::Vertex) => {
                     let location = attribute_location(name, &own_attributes);
-                    attributes.push((name.clone(), location));
+                    attributes.push((name.to_string(), location));
                     parts.push(format!("layout(location = {location}) in {ty} {name}{suffix};"));
                 }
                 ("attribute", Stage::Fragment) => {
@@ -189,13 +223,13 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
                          layout(set = 0, binding = {}) uniform sampler {sampler};",
                         binding + 1
                     ));
-                    bindings.push(Binding { name: name.clone(), binding, kind: BindingKind::Texture });
+                    bindings.push(Binding { name: name.to_string(), binding, kind: BindingKind::Texture });
                     bindings.push(Binding {
                         name: sampler,
                         binding: binding + 1,
                         kind: BindingKind::Sampler(filter),
                     });
-                    textures.push(name.clone());
+                    textures.push(name.to_string());
                 }
                 (_, _) => {
                     let declared = format!("{ty}{}", resolve_sizes(source, suffix));

@@ -100,14 +100,27 @@ fn per_light_note(source: &super::HomeworkSource) -> Option<String> {
     for texts in
         [[&f.phong_vertex.text, &f.phong_fragment.text], [&f.shadow_vertex.text, &f.shadow_fragment.text]]
     {
-        names.extend(super::Interface::gather(&[texts[0], texts[1]]).ok()?.per_light);
+        let layout = super::Interface::gather(&[texts[0], texts[1]]).ok()?;
+        names.extend(layout.per_light.into_iter().map(|n| (n, None)));
+        names.extend(layout.per_light_copies.into_iter().map(|(copy, base)| (copy, Some(base))));
     }
     names.sort();
     names.dedup();
-    (!names.is_empty()).then(|| {
+    let arrays: Vec<&str> =
+        names.iter().filter(|(_, base)| base.is_none()).map(|(n, _)| n.as_str()).collect();
+    let copies: Vec<String> =
+        names.iter().filter_map(|(n, base)| Some(format!("{n} (of {})", base.as_ref()?))).collect();
+    let mut kinds = Vec::new();
+    if !arrays.is_empty() {
+        kinds.push(format!("{} are arrays by light", arrays.join(", ")));
+    }
+    if !copies.is_empty() {
+        kinds.push(format!("{} are copies for other lights", copies.join(", ")));
+    }
+    (!kinds.is_empty()).then(|| {
         format!(
-            "{} are arrays by light: each light is checked on its own, with every element holding it",
-            names.join(", ")
+            "{}: each light is checked on its own, with every element and copy holding it",
+            kinds.join("; ")
         )
     })
 }

@@ -305,4 +305,13 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "The slabs' penumbrae are those of a light about {:.1} world units wide, where your {} on line {} is {}.",
         "平板下的半影相当于一盏约 {:.1} 个世界单位宽的光源投下的，而你的 {}（第 {} 行）是 {}。",
     ),
+    (
+        "Where no point of the light reaches (the ground truth is 0), your visibility is {:.2} at {:.0}% of the points: a tap (or a point) that finds a blocker counts {:.2} there, not 0.",
+        "在光源任何一点都照不到的地方（真实结果为 0），你的可见度是 {:.2}（占这些点的 {:.0}%）：找到遮挡物的采样（或点）在那里算作 {:.2}，而不是 0。",
+    ),
+    ("That is `{}` on line {}, in {}.", "即 `{}`（第 {} 行，在 {} 中）。"),
+    (
+        "A shadow is where the light's direct light does not arrive: visibility 0. Light that still reaches a shadowed point (ambient) belongs in the shading, where it lights the umbra of every light alike.",
+        "阴影就是光源的直接光照不到的地方：可见度为 0。仍能照到阴影中点的光（环境光）应放在着色里，在那里它对每盏光源的本影一视同仁。",
+    ),
 ];

@@ -71,6 +71,41 @@ pub fn world_light_size(source: &str) -> Option<(String, usize, f32)> {
     })
 }
 
+/// A constant within 0.02 of `value` that a visibility function (useShadowMap, PCF, PCSS)
+/// uses: a `#define` it names, or a number it gives as a result (after `?`, `:`, `=`, `+=` or
+/// `return`), looked for in `first` (the function the shader's visibility comes from) first.
+/// (as written, line, the function.)
+pub fn blocked_value(
+    source: &str,
+    value: f32,
+    first: Option<&'static str>,
+) -> Option<(String, usize, &'static str)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let number = |i: usize| text(i).trim_end_matches(['f', 'F']).parse::<f32>().ok();
+    let near = |v: f32| (v - value).abs() <= 0.02;
+    let bodies = function_bodies(source, &toks);
+    let defines: Vec<(&str, usize)> = (0..toks.len())
+        .filter(|&k| toks[k].kind == Kind::Directive && text(k).trim_start_matches('#').trim() == "define")
+        .filter(|&k| toks[k + 2].line == toks[k].line && number(k + 2).is_some_and(near))
+        .map(|k| (text(k + 1), toks[k].line))
+        .collect();
+    let functions = ["useShadowMap", "PCF", "PCSS"];
+    first.into_iter().chain(functions.into_iter().filter(|f| Some(*f) != first)).find_map(|function| {
+        let body = bodies.iter().find(|b| b.name == function)?;
+        (body.open..body.close).find_map(|k| {
+            if let Some(&(name, line)) = defines.iter().find(|(name, _)| *name == text(k)) {
+                return Some((name.to_string(), line, function));
+            }
+            // A number given as a result (`? 1.0 : 0.6`, `= 0.6`, `return 0.6`), not compared.
+            let given = k > 0 && matches!(text(k - 1), "?" | ":" | "=" | "+=" | "return");
+            let literal =
+                given && toks[k].kind == Kind::Number && text(k).contains('.') && number(k).is_some_and(near);
+            literal.then(|| (text(k).to_string(), toks[k].line, function))
+        })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -93,5 +128,14 @@ mod tests {
             "#define LIGHT_WORLD_SIZE 0.5 // half\n#define LIGHT_SIZE_UV (LIGHT_WORLD_SIZE / 100.0)\n";
         assert_eq!(world_light_size(source), Some(("LIGHT_WORLD_SIZE".to_string(), 1, 0.5)));
         assert_eq!(world_light_size("#define LIGHT_WIDTH 5.0\n"), None);
+    }
+
+    #[test]
+    fn the_value_a_blocked_tap_counts_is_found_where_a_visibility_function_uses_it() {
+        let source = "#define SHADE 0.6\n#define OTHER 0.6\nfloat PCF(float z) {\n  return z > 0.5 ? 1.0 : SHADE;\n}\n";
+        assert_eq!(blocked_value(source, 0.61, None), Some(("SHADE".to_string(), 1, "PCF")));
+        let literal = "float useShadowMap(float z) {\n  return z > 0.5 ? 1.0 : 0.3;\n}\n";
+        assert_eq!(blocked_value(literal, 0.3, Some("PCF")), Some(("0.3".to_string(), 2, "useShadowMap")));
+        assert_eq!(blocked_value(literal, 0.5, None), None);
     }
 }

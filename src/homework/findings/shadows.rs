@@ -82,6 +82,9 @@ fn umbra_not_dark(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opt
     }
     let umbra = umbra_mean(j).filter(|m| *m > UMBRA_MEAN_LIMIT)?;
     let mut figures = BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]);
+    if let Some(found) = blocked_counts_as(j, &mut figures, lang) {
+        return Some(found);
+    }
     let mut explanation = fill(
         lang,
         "Where no point of the light reaches (the ground truth is 0), your visibility averages {:.2}. A filter that reaches far past the blocker does this: a light size in world units used as a size in uv (or texels).",
@@ -118,6 +121,49 @@ fn umbra_not_dark(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opt
         }
     }
     Some(Found::new(function, figures, explanation))
+}
+
+/// The umbra's visibility is one number at nearly every point of it (within this much)...
+const UMBRA_ONE_VALUE: f32 = 0.02;
+/// ...at this share of its points: what a blocked tap counts, not a filter's reach.
+const UMBRA_ONE_VALUE_SHARE: f64 = 0.8;
+
+/// Where the umbra's visibility is one number, a blocked point counts that much: named with the
+/// constant that says so where the shader has one.
+fn blocked_counts_as(j: &Judged<'_>, figures: &mut BTreeMap<&'static str, f64>, lang: Lang) -> Option<Found> {
+    let umbra: Vec<f32> = j
+        .finite
+        .iter()
+        .filter(|&&(i, _)| j.truth(i) <= UMBRA && j.e.facing[i].is_some_and(|c| c > UMBRA_FACING))
+        .map(|&(_, v)| v)
+        .collect();
+    let value = super::median(umbra.clone())?;
+    let at_value = umbra.iter().filter(|v| (*v - value).abs() <= UMBRA_ONE_VALUE).count();
+    let share = at_value as f64 / umbra.len().max(1) as f64;
+    if share < UMBRA_ONE_VALUE_SHARE || umbra.len() < 100 {
+        return None;
+    }
+    figures.insert("umbra_at_one_value_share", share);
+    figures.insert("umbra_value", f64::from(value));
+    let mut explanation = fill(
+        lang,
+        "Where no point of the light reaches (the ground truth is 0), your visibility is {:.2} at {:.0}% of the points: a tap (or a point) that finds a blocker counts {:.2} there, not 0.",
+        &[&value, &(100.0 * share), &value],
+    );
+    let visibility =
+        j.e.visibility_function.and_then(|k| crate::homework::RECORDED_FUNCTIONS.get(k.checked_sub(1)?));
+    let constant = super::formula_lines::blocked_value(j.e.fragment_source, value, visibility.copied());
+    if let Some((text, line, function)) = &constant {
+        figures.insert("blocked_value_line", *line as f64);
+        explanation += " ";
+        explanation += &fill(lang, "That is `{}` on line {}, in {}.", &[text, line, function]);
+    }
+    explanation += " ";
+    explanation += crate::i18n::tr(
+        lang,
+        "A shadow is where the light's direct light does not arrive: visibility 0. Light that still reaches a shadowed point (ambient) belongs in the shading, where it lights the umbra of every light alike.",
+    );
+    Some(Found::new(constant.map(|c| c.2), figures.clone(), explanation))
 }
 
 /// The lowest slab's shadow is gone while the higher ones are there: a bias so large that a
