@@ -329,11 +329,37 @@ fn stored_depth_ndc(view: ShadowViewGpu, uv: vec2<f32>) -> f32 {
     return depth;
 }
 
+// The centre of the texel a point-sampled tap at `uv` of `view` reads, in uv of `view`: on the
+// map, its texel's (the last texel holds uv = 1); past a cube face's edge, the centre of the
+// texel read on the neighbouring face (`map_tap`), seen from the light on this face's plane gone
+// on past its edge, up to about a texel from this face's own grid. Elsewhere past the edge (a
+// map that wraps), the texel the grid would have there.
+fn read_texel_centre_uv(view: ShadowViewGpu, uv: vec2<f32>) -> vec2<f32> {
+    let size = view.map_size_texels;
+    if !outside_map(uv) {
+        return (min(floor(uv * size), vec2<f32>(size - 1.0)) + 0.5) / size;
+    }
+    if !is_cube(view) {
+        return (floor(uv * size) + 0.5) / size;
+    }
+    let tap = map_tap(view, uv);
+    var lookup = tap.uv;
+    if clamp_outside() == 0u {
+        lookup = fract(lookup);
+    }
+    let centre = (clamp(floor(lookup * size), vec2<f32>(0.0), vec2<f32>(size - 1.0)) + 0.5) / size;
+    let there = cube_face_axes(tap.view.face);
+    let d = there[0] + there[2] * (2.0 * centre.x - 1.0) + there[1] * (1.0 - 2.0 * centre.y);
+    let here = cube_face_axes(view.face);
+    let ahead = dot(d, here[0]);
+    return vec2<f32>(0.5 + 0.5 * dot(d, here[2]) / ahead, 0.5 - 0.5 * dot(d, here[1]) / ahead);
+}
+
 // The depth a tap at `uv` compares the map's with: the receiver's, less the bias. With the
 // receiver-plane bias it is the receiver's plane at the centre of the texel the tap reads (where
-// that texel's depth was rendered), so a flat receiver never shadows itself however far the tap
-// lands from the pixel; a bilinear tap of the sampler (not `point_sampled`) uses the plane at the
-// tap itself.
+// that texel's depth was rendered, `read_texel_centre_uv`; across a cube's seam, on the
+// neighbouring face), so a flat receiver never shadows itself however far the tap lands from the
+// pixel; a bilinear tap of the sampler (not `point_sampled`) uses the plane at the tap itself.
 fn tap_reference_ndc(
     view: ShadowViewGpu,
     coord: ShadowCoord,
@@ -344,7 +370,7 @@ fn tap_reference_ndc(
     if bias_mode() == BIAS_RECEIVER_PLANE {
         var at = uv;
         if point_sampled {
-            at = (floor(uv * view.map_size_texels) + 0.5) / view.map_size_texels;
+            at = read_texel_centre_uv(view, uv);
         }
         return coord.depth_ndc + dot(coord.depth_gradient, at - coord.uv) - bias_ndc;
     }

@@ -128,6 +128,7 @@ fn each_light_space_formula_is_defined_once() {
         "fn texel_world_at",
         "fn texel_world_bound",
         "fn outside_frustum",
+        "fn read_texel_centre_uv",
         "fn receiver_bias_ndc",
         "fn blocker_search_radius_uv",
         "fn estimate_penumbra",

@@ -155,6 +155,28 @@ pub fn map_tap(view: &ShadowViewGpu, uv: Vec2) -> (ShadowViewGpu, Vec2) {
     (cube_face_view(view, face), cube_face_uv(face, d).clamp(Vec2::ZERO, Vec2::ONE))
 }
 
+/// The centre of the texel a point-sampled tap at `uv` of `view` reads, in uv of `view` (the
+/// shader's `read_texel_centre_uv`): on the map, its texel's (the last texel holds uv = 1); past a
+/// cube face's edge, the centre of the texel read on the neighbouring face, seen from the light
+/// on this face's plane gone on past its edge; elsewhere past the edge, the grid's texel there.
+pub fn read_texel_centre_uv(view: &ShadowViewGpu, params: &ShadowParamsGpu, uv: Vec2) -> Vec2 {
+    let size = view.map_size_texels;
+    if !outside_map(uv) {
+        return ((uv * size).floor().min(Vec2::splat(size - 1.0)) + 0.5) / size;
+    }
+    if !is_cube(view) {
+        return ((uv * size).floor() + 0.5) / size;
+    }
+    let (tap_view, tap_uv) = map_tap(view, uv);
+    let lookup = if params.clamp_outside == 0 { tap_uv - tap_uv.floor() } else { tap_uv };
+    let centre = ((lookup * size).floor().clamp(Vec2::ZERO, Vec2::splat(size - 1.0)) + 0.5) / size;
+    let [forward, up, right] = cube_face_axes(tap_view.face);
+    let d = forward + right * (2.0 * centre.x - 1.0) + up * (1.0 - 2.0 * centre.y);
+    let [forward, up, right] = cube_face_axes(view.face);
+    let ahead = d.dot(forward);
+    Vec2::new(0.5 + 0.5 * d.dot(right) / ahead, 0.5 - 0.5 * d.dot(up) / ahead)
+}
+
 /// The receiver has no map data (the shader's `no_map_data`): a cube face's neighbours hold what
 /// lies past its edge, so there only the depth range counts.
 pub fn no_map_data(view: &ShadowViewGpu, coord: &ShadowCoord) -> bool {
@@ -477,6 +499,83 @@ mod tests {
                 (project_to_light(&view, p + x * half).truncate() - uv).length() * view.map_size_texels;
             assert!((penumbra.filter_radius_texels / spanned - 1.0).abs() < 0.02, "tan {tan}");
         }
+    }
+
+    /// The lamp of the lamp scene over an endless flat floor and nothing else, at 256² faces,
+    /// under the receiver-plane bias: every tap of a floor point is lit, also the taps that
+    /// cross a seam onto the neighbouring face and read a texel there. Floor points along the
+    /// four seams of the bottom face, taps up to 3 texels away.
+    #[test]
+    fn taps_that_cross_a_cube_seam_under_the_receiver_plane_bias_see_no_false_shadow() {
+        use crate::shadow::{DepthImage, Twin};
+        let overrides: Vec<(String, String)> =
+            [("technique", "pcf"), ("bias_mode", "receiver_plane"), ("bias", "0.0001")]
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+                .to_vec();
+        let path = crate::shipped_path("assets/scenes/point_lamp.toml");
+        let mut scene = crate::scene::load_scene(&path, &overrides).expect("scene");
+        scene.lights[0].shadow_map_size = 256;
+        let (lights, views) = crate::shadow::frame_lights(&scene, 1.5, 0.0, 256);
+        let params = ShadowParamsGpu::new(&scene.shadow);
+        let lamp = scene.lights[0].position_at(0.0);
+        let size = 256usize;
+        // What the shadow pass stores for the floor (y = 0): the distance at each texel's centre.
+        let maps: Vec<DepthImage> = (0..6u32)
+            .map(|face| {
+                let view = &views[face as usize];
+                let [forward, up, right] = cube_face_axes(face);
+                let depth_ndc = (0..size * size)
+                    .map(|i| {
+                        let c = (Vec2::new((i % size) as f32, (i / size) as f32) + 0.5) / size as f32;
+                        let d = forward + right * (2.0 * c.x - 1.0) + up * (1.0 - 2.0 * c.y);
+                        if d.y >= 0.0 {
+                            return 1.0;
+                        }
+                        let distance = lamp.y / -d.y * d.length();
+                        depth_ndc_from_linear(view, distance)
+                    })
+                    .collect();
+                DepthImage { size: size as u32, depth_ndc }
+            })
+            .collect();
+        let (mut seam_taps, mut seam_shadowed, mut inner_taps, mut inner_shadowed) = (0, 0, 0, 0);
+        let h = lamp.y;
+        for k in 0..400 {
+            // Along the seams: at horizontal distance about h from the lamp's foot.
+            let along = (k as f32 / 400.0 * 2.0 - 1.0) * 0.9 * h;
+            let across = h * (1.0 + 0.04 * ((k * 7) % 11) as f32 / 10.0 - 0.02);
+            let side = [
+                Vec2::new(across, along),
+                Vec2::new(-across, along),
+                Vec2::new(along, across),
+                Vec2::new(along, -across),
+            ][k % 4];
+            let p = Vec3::new(lamp.x + side.x, 0.0, lamp.z + side.y);
+            let view = face_covering(&views[0], p);
+            let twin = Twin::cube(&lights[0], &view, &params, &maps);
+            let coord = twin.light_space_lookup(p, Vec3::Y);
+            let bias = twin.receiver_bias_ndc(&coord, 0.0);
+            for dy in -6..=6 {
+                for dx in -6..=6 {
+                    let uv = coord.uv + Vec2::new(dx as f32, dy as f32) * 0.5 / size as f32;
+                    let lit = twin.depth_test(&coord, uv, bias);
+                    if outside_map(uv) {
+                        seam_taps += 1;
+                        seam_shadowed += usize::from(lit < 1.0);
+                    } else {
+                        inner_taps += 1;
+                        inner_shadowed += usize::from(lit < 1.0);
+                    }
+                }
+            }
+        }
+        eprintln!(
+            "seam-crossing taps falsely shadowed: {seam_shadowed} of {seam_taps}; inside a face: \
+             {inner_shadowed} of {inner_taps}"
+        );
+        assert!(seam_taps > 10_000, "too few taps cross a seam: {seam_taps}");
+        assert_eq!(inner_shadowed, 0, "of {inner_taps} taps inside a face");
+        assert_eq!(seam_shadowed, 0, "of {seam_taps} taps across a seam");
     }
 
     #[test]

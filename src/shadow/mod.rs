@@ -23,7 +23,8 @@ pub use light_space::{
     blocker_search_radius_uv, cascade_holds, cube_face_axes, cube_face_uv, cube_face_view,
     depth_linear_from_ndc, depth_ndc_from_linear, face_covering, light_dir_to, light_space_lookup, map_tap,
     ndc_per_world, no_map_data, off_axis_sec, outside_depth, outside_frustum, outside_map, project_to_light,
-    receiver_bias_ndc, receiver_plane_gradient, rgba8_round_trip, texel_world_at, view_covering,
+    read_texel_centre_uv, receiver_bias_ndc, receiver_plane_gradient, rgba8_round_trip, texel_world_at,
+    view_covering,
 };
 
 /// One light's shadow map read back: NDC depth per texel, row-major, top row first (uv.y = 0).
@@ -314,8 +315,7 @@ impl<'a> Twin<'a> {
         point_sampled: bool,
     ) -> f32 {
         if self.params.bias_mode == BIAS_RECEIVER_PLANE {
-            let size = self.view.map_size_texels;
-            let at = if point_sampled { ((uv * size).floor() + Vec2::splat(0.5)) / size } else { uv };
+            let at = if point_sampled { read_texel_centre_uv(self.view, self.params, uv) } else { uv };
             return coord.depth_ndc + coord.depth_gradient.dot(at - coord.uv) - bias_ndc;
         }
         coord.depth_ndc - bias_ndc
