@@ -129,7 +129,7 @@ fn analysis_of(in: VertexOut, front_facing: bool, result: ShadowVisibility, coor
         return out;
     }
     let view = shadow_view_at(lights[frame.selected_light], in.world_position);
-    let penumbra_texels = result.penumbra.width_world / texel_world_at(view, coord.depth_linear);
+    let penumbra_texels = result.penumbra.width_world / texel_world_at(view, coord.depth_linear, coord.uv);
     out.shadow = vec4<f32>(result.visibility, result.search.radius_texels, penumbra_texels, f32(result.search.found));
     return out;
 }

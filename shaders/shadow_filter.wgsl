@@ -104,7 +104,8 @@ struct BlockerSearch {
 }
 
 // The blocker search's radius in uv: the cone from the receiver to the light's area, cut at
-// the near plane, times `search_radius_scale`.
+// the near plane, times `search_radius_scale`. On a cube face off its axis, times sec²(theta),
+// the disk around the region's ellipse in uv (`off_axis_sec`, shaders/shadow_lookup.wgsl).
 fn blocker_search_radius_uv(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord) -> f32 {
     let d_r = coord.depth_linear;
     var radius_world = 0.0;
@@ -113,7 +114,8 @@ fn blocker_search_radius_uv(light: LightGpu, view: ShadowViewGpu, coord: ShadowC
     } else {
         radius_world = 0.5 * light.light_width_world * (d_r - view.near) / d_r;
     }
-    return max(radius_world, 0.0) * params.search_radius_scale / view.frustum_width_world;
+    let sec = off_axis_sec(view, coord.uv);
+    return max(radius_world, 0.0) * params.search_radius_scale * sec * sec / view.frustum_width_world;
 }
 
 fn blocker_search_radius_texels(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord) -> f32 {
@@ -161,7 +163,8 @@ struct Penumbra {
 // PCSS step 2: penumbra by similar triangles [Fernando-2005].
 // Width model: w_p = w_light * (d_r - d_b) / d_b. Angular model: w_p = (d_r - d_b) * 2 tan(theta/2).
 // The filter radius is half the penumbra width, mapped to the map: orthographic / W,
-// perspective projected to the near plane first (* near / d_r) and then / W_near.
+// perspective projected to the near plane first (* near / d_r) and then / W_near; on a cube face
+// off its axis, times sec^1.5(theta), the disk of the width's ellipse in uv (`off_axis_sec`).
 fn estimate_penumbra(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord, d_blocker: f32) -> Penumbra {
     var out: Penumbra;
     let d_r = coord.depth_linear;
@@ -175,6 +178,8 @@ fn estimate_penumbra(light: LightGpu, view: ShadowViewGpu, coord: ShadowCoord, d
     if !is_orthographic(view) || params.ortho_near_factor == 1u {
         radius_uv = radius_uv * view.near / d_r;
     }
+    let sec = off_axis_sec(view, coord.uv);
+    radius_uv = radius_uv * sec * sqrt(sec);
     out.filter_radius_texels = max(radius_uv * view.map_size_texels, params.min_filter_radius_texels);
     return out;
 }

@@ -51,12 +51,47 @@ fn ndc_per_world(view: ShadowViewGpu, depth_linear: f32) -> f32 {
     return view.far * view.near / (depth_linear * depth_linear * (view.far - view.near));
 }
 
-// One texel's footprint on a surface facing the light at distance d, world units.
-fn texel_world_at(view: ShadowViewGpu, depth_linear: f32) -> f32 {
+// A cube face off its axis. The direction at angle theta from the face's axis lands at
+// |uv - 0.5| = 0.5 tan(theta) / tan_half_fov; a small angle delta (radians; delta = w / d for a
+// width w in world units across the ray at straight distance d) moves uv by
+// 0.5 sec²(theta) delta / tan_half_fov radially (away from the face's centre) and
+// 0.5 sec(theta) delta / tan_half_fov tangentially: the centre's uv per world unit,
+// 0.5 / (d tan_half_fov), times sec² and sec (at the middle of an edge 2 and 1.41, at a corner 3
+// and 1.73). A width becomes an ellipse in uv; the filters are disks, so each takes one radius:
+// the blocker search, a region to cover, the disk around the ellipse (sec²); a filter and a
+// texel's footprint, widths, the disk of the ellipse's area (sec^1.5), at most sec^0.5 off the
+// width along either axis (19% at the middle of an edge, 32% at a corner).
+// A spot light needs none of it: its light is a disk facing along its axis and its depths are
+// along that axis, so its similar triangles hold in planes parallel to the map, which the
+// projection takes to uv linearly, at any angle off the axis.
+// This returns sec(theta) for the direction that lands at `uv` of a cube face; 1 for any other view.
+fn off_axis_sec(view: ShadowViewGpu, uv: vec2<f32>) -> f32 {
+    if !is_cube(view) {
+        return 1.0;
+    }
+    let tan_theta = (2.0 * uv - vec2<f32>(1.0)) * view.tan_half_fov;
+    return sqrt(1.0 + dot(tan_theta, tan_theta));
+}
+
+// One texel's footprint at `uv`, world units, on a surface at `depth_linear`: orthographic, the
+// map's texel; a spot light, on a plane parallel to the map (2 d tan_half_fov / N); a cube face,
+// across the ray at straight distance d, the disk of the texel's area: 2 d tan_half_fov / N
+// divided by sec^1.5(theta) (`off_axis_sec`).
+fn texel_world_at(view: ShadowViewGpu, depth_linear: f32, uv: vec2<f32>) -> f32 {
     if is_orthographic(view) {
         return view.frustum_width_world / view.map_size_texels;
     }
-    return 2.0 * depth_linear * view.tan_half_fov / view.map_size_texels;
+    let sec = off_axis_sec(view, uv);
+    return 2.0 * depth_linear * view.tan_half_fov / (view.map_size_texels * sec * sqrt(sec));
+}
+
+// The largest footprint a texel has at `depth_linear`, world units: at the map's centre
+// (`texel_world_at` shrinks off a cube face's axis). The normal offset and the adaptive bias take
+// it: they have to cover a texel's depth error, footprint times the receiver's slope, and neither
+// follows the slope; off a face's axis, where a room's floor and walls meet the lamp at grazing
+// angles, the true footprint lets acne through.
+fn texel_world_bound(view: ShadowViewGpu, depth_linear: f32) -> f32 {
+    return texel_world_at(view, depth_linear, vec2<f32>(0.5));
 }
 
 fn light_dir_to(light: LightGpu, world_pos: vec3<f32>) -> vec3<f32> {
@@ -173,7 +208,7 @@ fn light_space_lookup(light: LightGpu, view: ShadowViewGpu, world_pos: vec3<f32>
     var p = world_pos;
     if params.normal_offset_texels > 0.0 {
         let d = depth_linear_from_ndc(view, project_to_light(view, world_pos).z);
-        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(view, d));
+        p = world_pos + normal * (params.normal_offset_texels * texel_world_bound(view, d));
     }
     let s = project_to_light(view, p);
     out.uv = s.xy;
@@ -201,7 +236,7 @@ fn tangents_of(n: vec3<f32>) -> array<vec3<f32>, 2> {
 // planes to planes, so this is exact for spot lights too. Edge-on to the light (the two projected
 // steps parallel) there is no such plane: 0, the constant bias alone.
 fn receiver_plane_gradient(view: ShadowViewGpu, p: vec3<f32>, n: vec3<f32>, s: vec3<f32>) -> vec2<f32> {
-    let step = texel_world_at(view, depth_linear_from_ndc(view, s.z));
+    let step = texel_world_at(view, depth_linear_from_ndc(view, s.z), s.xy);
     let t = tangents_of(n);
     let a = project_to_light(view, p + t[0] * step) - s;
     let b = project_to_light(view, p + t[1] * step) - s;
@@ -232,7 +267,7 @@ fn receiver_bias_ndc(view: ShadowViewGpu, coord: ShadowCoord, filter_radius_texe
             // units, grown with the filter; B = 1 - N.L; bias = c * max(A, A * B). As published,
             // max(A, A*B) is A wherever the light reaches (N.L >= 0, so B <= 1): texel-aware,
             // not slope-aware.
-            let a = (1.0 + ceil(filter_radius_texels)) * 0.5 * texel_world_at(view, coord.depth_linear);
+            let a = (1.0 + ceil(filter_radius_texels)) * 0.5 * texel_world_bound(view, coord.depth_linear);
             let b = 1.0 - coord.n_dot_l;
             let bias_world = params.adaptive_c * max(a, a * b);
             return bias_world * ndc_per_world(view, coord.depth_linear);
@@ -294,11 +329,37 @@ fn stored_depth_ndc(view: ShadowViewGpu, uv: vec2<f32>) -> f32 {
     return depth;
 }
 
+// The centre of the texel a point-sampled tap at `uv` of `view` reads, in uv of `view`: on the
+// map, its texel's (the last texel holds uv = 1); past a cube face's edge, the centre of the
+// texel read on the neighbouring face (`map_tap`), seen from the light on this face's plane gone
+// on past its edge, up to about a texel from this face's own grid. Elsewhere past the edge (a
+// map that wraps), the texel the grid would have there.
+fn read_texel_centre_uv(view: ShadowViewGpu, uv: vec2<f32>) -> vec2<f32> {
+    let size = view.map_size_texels;
+    if !outside_map(uv) {
+        return (min(floor(uv * size), vec2<f32>(size - 1.0)) + 0.5) / size;
+    }
+    if !is_cube(view) {
+        return (floor(uv * size) + 0.5) / size;
+    }
+    let tap = map_tap(view, uv);
+    var lookup = tap.uv;
+    if clamp_outside() == 0u {
+        lookup = fract(lookup);
+    }
+    let centre = (clamp(floor(lookup * size), vec2<f32>(0.0), vec2<f32>(size - 1.0)) + 0.5) / size;
+    let there = cube_face_axes(tap.view.face);
+    let d = there[0] + there[2] * (2.0 * centre.x - 1.0) + there[1] * (1.0 - 2.0 * centre.y);
+    let here = cube_face_axes(view.face);
+    let ahead = dot(d, here[0]);
+    return vec2<f32>(0.5 + 0.5 * dot(d, here[2]) / ahead, 0.5 - 0.5 * dot(d, here[1]) / ahead);
+}
+
 // The depth a tap at `uv` compares the map's with: the receiver's, less the bias. With the
 // receiver-plane bias it is the receiver's plane at the centre of the texel the tap reads (where
-// that texel's depth was rendered), so a flat receiver never shadows itself however far the tap
-// lands from the pixel; a bilinear tap of the sampler (not `point_sampled`) uses the plane at the
-// tap itself.
+// that texel's depth was rendered, `read_texel_centre_uv`; across a cube's seam, on the
+// neighbouring face), so a flat receiver never shadows itself however far the tap lands from the
+// pixel; a bilinear tap of the sampler (not `point_sampled`) uses the plane at the tap itself.
 fn tap_reference_ndc(
     view: ShadowViewGpu,
     coord: ShadowCoord,
@@ -309,7 +370,7 @@ fn tap_reference_ndc(
     if bias_mode() == BIAS_RECEIVER_PLANE {
         var at = uv;
         if point_sampled {
-            at = (floor(uv * view.map_size_texels) + 0.5) / view.map_size_texels;
+            at = read_texel_centre_uv(view, uv);
         }
         return coord.depth_ndc + dot(coord.depth_gradient, at - coord.uv) - bias_ndc;
     }

@@ -374,9 +374,18 @@ fn vsm_is_never_below_the_true_lit_fraction() {
 #[test]
 fn point_light_matches_twin_for_every_technique() {
     let (_ctx, mut renderer) = common::gpu();
-    let cases: [(&str, &[(&str, &str)]); 7] = [
+    let cases: [(&str, &[(&str, &str)]); 8] = [
         ("hard", &[("technique", "hard")]),
         ("pcf vogel", &[("technique", "pcf"), ("pcf_kernel", "vogel"), ("radius_texels", "6")]),
+        (
+            "pcf vogel receiver plane",
+            &[
+                ("technique", "pcf"),
+                ("radius_texels", "6"),
+                ("bias_mode", "receiver_plane"),
+                ("bias", "0.0001"),
+            ],
+        ),
         ("pcf grid", &[("technique", "pcf"), ("pcf_kernel", "grid"), ("radius_texels", "3")]),
         ("pcss", &[("technique", "pcss")]),
         (

@@ -343,6 +343,48 @@ fn a_spherical_lamps_penumbra_matches_the_ground_truth_and_similar_triangles() {
     }
 }
 
+/// The same lamp off to the side, so that the high slab's far edge throws its shadow 42° off the
+/// bottom face's axis, near the face's edge: there a width across the ray spans sec²(42°) = 1.8
+/// times the face centre's uv radially (across this edge), and the radii at the centre's scale
+/// gave a penumbra about half the truth's. The truth and PCSS against the similar triangles on
+/// the floor, w_light h / (H - h) / cos(42°) (the floor tilted 42° from the ray's normal plane),
+/// and PCSS against the truth, each within 25%.
+#[test]
+fn a_spherical_lamps_penumbra_near_a_faces_edge_matches_the_ground_truth() {
+    let settings = [
+        ("bias_mode", "receiver_plane"),
+        ("bias", "0.0001"),
+        ("rotate_per_pixel", "false"),
+        ("samples", "64"),
+        ("pcf_kernel", "vogel"),
+        ("reference_samples", "256"),
+    ];
+    let (_ctx, mut renderer) = common::gpu();
+    let (w_light, light_height, height) = (4.0f32, 40.0f32, 10.0f32);
+    // The high slab's far edge: x 3..9 at z = -8. The lamp above x = 6, so that the edge runs
+    // across the ray and the penumbra is measured along it, radially on the face.
+    let (x, z_edge) = (6.0f32, -8.0f32);
+    let theta = 42f32.to_radians();
+    let z_lamp = z_edge + (light_height - height) * theta.tan();
+    let mut scene = common::scene("contact", &settings);
+    let lamp = &mut scene.lights[0];
+    lamp.kind = shadowlab::scene::LightKind::Point;
+    lamp.position = glam::Vec3::new(x, light_height, z_lamp);
+    lamp.size = shadowlab::scene::LightSize::Width { width_world: w_light };
+    (lamp.near, lamp.far, lamp.shadow_map_size) = (20.0, 100.0, 2048);
+    let shadow_z = z_lamp - light_height * theta.tan();
+    let expected = w_light * height / (light_height - height) / theta.cos();
+    let pcss = measured_penumbra(&mut renderer, scene.clone(), x, shadow_z, false);
+    let truth = measured_penumbra(&mut renderer, scene, x, shadow_z, true);
+    eprintln!("lamp at 42°: formula {expected:.3}, ground truth {truth:.3}, PCSS {pcss:.3} (world units)");
+    for (what, measured, against) in
+        [("ground truth", truth, expected), ("PCSS", pcss, expected), ("PCSS against the truth", pcss, truth)]
+    {
+        let ratio = measured / against;
+        assert!((0.75..=1.25).contains(&ratio), "lamp at 42°: {what}: {measured:.3} vs {against:.3}");
+    }
+}
+
 /// Where a slab's far top edge (x, top, z) casts its shadow on the floor, seen from the light's
 /// centre.
 fn edge_shadow_on_floor(scene: &Scene, edge: glam::Vec3) -> glam::Vec3 {

@@ -149,7 +149,9 @@ pub fn inputs_from_scene(
                 shadow::Penumbra { width_world: 0.0, filter_radius_texels: params.min_filter_radius_texels };
             out.filter_radius_texels = shadow::filter_radius_texels(&params, Some(&no_blockers));
             out.search_radius_texels = if searches_blockers(shadow.technique) {
-                shadow::blocker_search_radius_uv(&light_gpu.light, &light_gpu.view, &params, d) * map
+                // On the light's axis: the centre of its map (of a cube's face).
+                let axis_uv = Vec2::splat(0.5);
+                shadow::blocker_search_radius_uv(&light_gpu.light, &light_gpu.view, &params, d, axis_uv) * map
             } else {
                 0.0
             };

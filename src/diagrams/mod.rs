@@ -395,10 +395,12 @@ fn bias_world(inputs: &DiagramInputs, d: f32) -> f32 {
     style::fin(style::fin(inputs.bias_ndc, 0.0) / ndc_per_world(inputs, d), 0.0)
 }
 
-/// World width of one shadow-map texel at linear depth `d` (the twin's `texel_world_at`).
+/// World width of one shadow-map texel at linear depth `d` on the light's axis (the twin's
+/// `texel_world_at` at the map's centre).
 fn texel_world(inputs: &DiagramInputs, d: f32) -> f32 {
     let (near, _) = planes(inputs);
-    crate::shadow::texel_world_at(&light_gpu(inputs).view, style::fin(d, near).abs())
+    let axis_uv = glam::Vec2::splat(0.5);
+    crate::shadow::texel_world_at(&light_gpu(inputs).view, style::fin(d, near).abs(), axis_uv)
 }
 
 /// NDC depth per world unit at linear depth `d` (constant for orthographic), within the planes.

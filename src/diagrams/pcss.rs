@@ -44,9 +44,12 @@ fn numbers(inp: &DiagramInputs) -> Numbers {
     let light = super::light_gpu(inp);
     let params = ShadowParamsGpu { search_radius_scale: 1.0, ..bytemuck::Zeroable::zeroed() };
     let (view, light) = (light.view, light.light);
-    let w_pen = shadow::estimate_penumbra(&light, &view, &params, d_r, d_b).width_world;
-    let w_search =
-        2.0 * shadow::blocker_search_radius_uv(&light, &view, &params, d_r) * view.frustum_width_world;
+    // Drawn along the light's axis: at the centre of its map.
+    let axis_uv = glam::Vec2::splat(0.5);
+    let w_pen = shadow::estimate_penumbra(&light, &view, &params, d_r, axis_uv, d_b).width_world;
+    let w_search = 2.0
+        * shadow::blocker_search_radius_uv(&light, &view, &params, d_r, axis_uv)
+        * view.frustum_width_world;
     let top_w = match theta {
         Some(t) => d_b * 2.0 * (t * 0.5).tan(),
         None => w_light,

@@ -48,12 +48,38 @@ pub fn ndc_per_world(view: &ShadowViewGpu, depth_linear: f32) -> f32 {
     view.far * view.near / (depth_linear * depth_linear * (view.far - view.near))
 }
 
-/// One texel's footprint on a surface facing the light at distance d, world units.
-pub fn texel_world_at(view: &ShadowViewGpu, depth_linear: f32) -> f32 {
+/// sec(theta) of the direction from the light that lands at `uv` of a cube face, theta its angle
+/// from the face's axis; 1 for any other view (the shader's `off_axis_sec`, where the derivation
+/// is). A width w (world units) across the ray at straight distance d spans
+/// 0.5 sec²(theta) w / (d tan_half_fov) uv radially and 0.5 sec(theta) w / (d tan_half_fov)
+/// tangentially: the blocker search takes sec² (the disk around that ellipse), a filter and a
+/// texel's footprint sec^1.5 (the disk of its area). A spot light's map needs neither (its disk
+/// light faces along its axis, and its depths are along the axis).
+pub fn off_axis_sec(view: &ShadowViewGpu, uv: Vec2) -> f32 {
+    if !is_cube(view) {
+        return 1.0;
+    }
+    let tan_theta = (2.0 * uv - Vec2::ONE) * view.tan_half_fov;
+    (1.0 + tan_theta.dot(tan_theta)).sqrt()
+}
+
+/// One texel's footprint at `uv`, world units, on a surface at `depth_linear`: orthographic, the
+/// map's texel; a spot light, on a plane parallel to the map (2 d tan_half_fov / N); a cube face,
+/// across the ray at straight distance d, the disk of the texel's area: 2 d tan_half_fov / N
+/// divided by sec^1.5(theta) ([`off_axis_sec`]).
+pub fn texel_world_at(view: &ShadowViewGpu, depth_linear: f32, uv: Vec2) -> f32 {
     if orthographic(view) {
         return view.frustum_width_world / view.map_size_texels;
     }
-    2.0 * depth_linear * view.tan_half_fov / view.map_size_texels
+    let sec = off_axis_sec(view, uv);
+    2.0 * depth_linear * view.tan_half_fov / (view.map_size_texels * sec * sec.sqrt())
+}
+
+/// The largest footprint a texel has at `depth_linear`, world units: at the map's centre
+/// ([`texel_world_at`] shrinks off a cube face's axis). The normal offset and the adaptive bias
+/// take it (the shader's `texel_world_bound` says why).
+pub fn texel_world_bound(view: &ShadowViewGpu, depth_linear: f32) -> f32 {
+    texel_world_at(view, depth_linear, Vec2::splat(0.5))
 }
 
 pub fn light_dir_to(light: &LightGpu, world_pos: Vec3) -> Vec3 {
@@ -129,6 +155,28 @@ pub fn map_tap(view: &ShadowViewGpu, uv: Vec2) -> (ShadowViewGpu, Vec2) {
     (cube_face_view(view, face), cube_face_uv(face, d).clamp(Vec2::ZERO, Vec2::ONE))
 }
 
+/// The centre of the texel a point-sampled tap at `uv` of `view` reads, in uv of `view` (the
+/// shader's `read_texel_centre_uv`): on the map, its texel's (the last texel holds uv = 1); past a
+/// cube face's edge, the centre of the texel read on the neighbouring face, seen from the light
+/// on this face's plane gone on past its edge; elsewhere past the edge, the grid's texel there.
+pub fn read_texel_centre_uv(view: &ShadowViewGpu, params: &ShadowParamsGpu, uv: Vec2) -> Vec2 {
+    let size = view.map_size_texels;
+    if !outside_map(uv) {
+        return ((uv * size).floor().min(Vec2::splat(size - 1.0)) + 0.5) / size;
+    }
+    if !is_cube(view) {
+        return ((uv * size).floor() + 0.5) / size;
+    }
+    let (tap_view, tap_uv) = map_tap(view, uv);
+    let lookup = if params.clamp_outside == 0 { tap_uv - tap_uv.floor() } else { tap_uv };
+    let centre = ((lookup * size).floor().clamp(Vec2::ZERO, Vec2::splat(size - 1.0)) + 0.5) / size;
+    let [forward, up, right] = cube_face_axes(tap_view.face);
+    let d = forward + right * (2.0 * centre.x - 1.0) + up * (1.0 - 2.0 * centre.y);
+    let [forward, up, right] = cube_face_axes(view.face);
+    let ahead = d.dot(forward);
+    Vec2::new(0.5 + 0.5 * d.dot(right) / ahead, 0.5 - 0.5 * d.dot(up) / ahead)
+}
+
 /// The receiver has no map data (the shader's `no_map_data`): a cube face's neighbours hold what
 /// lies past its edge, so there only the depth range counts.
 pub fn no_map_data(view: &ShadowViewGpu, coord: &ShadowCoord) -> bool {
@@ -173,7 +221,7 @@ fn tangents_of(n: Vec3) -> [Vec3; 2] {
 /// The receiver's plane (through p, normal n, projected at s) as NDC depth per uv of the map,
 /// from two points of the plane a texel from p; 0 edge-on to the light [Isidoro-2006].
 pub fn receiver_plane_gradient(view: &ShadowViewGpu, p: Vec3, n: Vec3, s: Vec3) -> Vec2 {
-    let step = texel_world_at(view, depth_linear_from_ndc(view, s.z));
+    let step = texel_world_at(view, depth_linear_from_ndc(view, s.z), s.truncate());
     let t = tangents_of(n);
     let a = project_to_light(view, p + t[0] * step) - s;
     let b = project_to_light(view, p + t[1] * step) - s;
@@ -215,7 +263,7 @@ pub fn light_space_lookup(
     let mut p = world_pos;
     if params.normal_offset_texels > 0.0 {
         let d = depth_linear_from_ndc(view, project_to_light(view, world_pos).z);
-        p = world_pos + normal * (params.normal_offset_texels * texel_world_at(view, d));
+        p = world_pos + normal * (params.normal_offset_texels * texel_world_bound(view, d));
     }
     let s = project_to_light(view, p);
     out.uv = Vec2::new(s.x, s.y);
@@ -242,7 +290,7 @@ pub fn receiver_bias_ndc(
         BIAS_SLOPE => (p.slope_bias * (1.0 - coord.n_dot_l)).max(p.bias),
         BIAS_RECEIVER_PLANE => p.bias,
         BIAS_ADAPTIVE => {
-            let a = (1.0 + filter_radius_texels.ceil()) * 0.5 * texel_world_at(view, coord.depth_linear);
+            let a = (1.0 + filter_radius_texels.ceil()) * 0.5 * texel_world_bound(view, coord.depth_linear);
             let b = 1.0 - coord.n_dot_l;
             let bias_world = p.adaptive_c * a.max(a * b);
             bias_world * ndc_per_world(view, coord.depth_linear)
@@ -252,12 +300,14 @@ pub fn receiver_bias_ndc(
 }
 
 /// PCSS step 1's region (the shader's `blocker_search_radius_uv`): the part of the map between
-/// the light's area and a receiver at `depth_linear`, in uv of the map.
+/// the light's area and a receiver at `depth_linear` that lands at `receiver_uv`, in uv of the
+/// map (on a cube face off its axis, times sec²(theta): [`off_axis_sec`]).
 pub fn blocker_search_radius_uv(
     light: &LightGpu,
     view: &ShadowViewGpu,
     params: &ShadowParamsGpu,
     depth_linear: f32,
+    receiver_uv: Vec2,
 ) -> f32 {
     let d_r = depth_linear;
     let radius_world = if light.size_model == SIZE_MODEL_ANGULAR {
@@ -265,7 +315,8 @@ pub fn blocker_search_radius_uv(
     } else {
         0.5 * light.light_width_world * (d_r - view.near) / d_r
     };
-    radius_world.max(0.0) * params.search_radius_scale / view.frustum_width_world
+    let sec = off_axis_sec(view, receiver_uv);
+    radius_world.max(0.0) * params.search_radius_scale * sec * sec / view.frustum_width_world
 }
 
 #[cfg(test)]
@@ -336,6 +387,195 @@ mod tests {
                 assert!((tap_uv - uv).length() < 1e-4, "from face {other}: {tap_uv} vs {uv}");
             }
         }
+    }
+
+    /// Where a world point lands on face `face` through the matrix the shadow pass draws it with
+    /// (not the lookup's own `cube_face_uv`), uv.
+    fn drawn_uv(light: &crate::scene::Light, face: u32, p: Vec3) -> Vec2 {
+        let clip = light.cube_face_clip_from_world(face as usize, 0.0) * p.extend(1.0);
+        let ndc = clip.truncate() / clip.w;
+        Vec2::new(ndc.x * 0.5 + 0.5, ndc.y * -0.5 + 0.5)
+    }
+
+    /// On a cube face at 0°, 30°, the middle of an edge (44.4°) and a corner (54.2°), the twin's
+    /// search radius, filter radius and texel footprint against the face's own projection of the
+    /// widths they stand for, across the ray radially (away from the face's centre) and
+    /// tangentially. The search covers the radial width (the larger), the filter and the texel
+    /// are the geometric mean of the two (the disk of the ellipse's area), each within 10%. The
+    /// face centre's scale, used everywhere before, is short by up to 3x at the corner.
+    #[test]
+    fn cube_face_radii_follow_the_faces_projection_off_its_axis() {
+        let scene = crate::scene::load_scene(&crate::shipped_path("assets/scenes/point_lamp.toml"), &[])
+            .expect("scene");
+        let (lights, views) = crate::shadow::frame_lights(&scene, 0.0, 0.0, 1024);
+        let mut light = lights[0];
+        // A small lamp, so that its cones are thin and the projection is near linear over them.
+        light.light_width_world = 0.02;
+        let params = ShadowParamsGpu { search_radius_scale: 1.0, ..bytemuck::Zeroable::zeroed() };
+        let lamp = scene.lights[0].position_at(0.0);
+        let face = 3u32; // -Y: the floor's face
+        let view = cube_face_view(&views[0], face);
+        let [forward, up, right] = cube_face_axes(face);
+        let (half_w, d, d_b) = (0.5 * light.light_width_world, 8.0f32, 6.0f32);
+        let n = view.near;
+        let size = view.map_size_texels;
+        for (name, lateral) in [
+            ("0°", Vec3::ZERO),
+            ("30°", right * 30f32.to_radians().tan()),
+            ("edge", right * 0.98),
+            ("corner", (right + up) * 0.98),
+        ] {
+            let ray = (forward + lateral).normalize();
+            let p = lamp + ray * d;
+            let uv = drawn_uv(&scene.lights[0], face, p);
+            let radial =
+                if lateral == Vec3::ZERO { right } else { (lateral - ray * lateral.dot(ray)).normalize() };
+            let tangential = ray.cross(radial);
+            let projected =
+                |offset: Vec3, at: Vec3| (drawn_uv(&scene.lights[0], face, at + offset) - uv).length();
+            // Search: the cone from the receiver to the lamp's edge, cut at distance `near` from
+            // the lamp, lands `half_w (d - n) / d` from the ray there.
+            let cut = |e: Vec3| {
+                let towards = lamp + e * half_w;
+                towards + (p - towards) * (n / d)
+            };
+            let search = [radial, tangential].map(|e| projected(cut(e) - lamp - ray * n, lamp + ray * n));
+            let ours = blocker_search_radius_uv(&light, &view, &params, d, uv);
+            let before = blocker_search_radius_uv(&light, &view, &params, d, Vec2::splat(0.5));
+            // Filter: half the penumbra's width across the ray at the receiver.
+            let penumbra = crate::shadow::estimate_penumbra(&light, &view, &params, d, uv, d_b);
+            let half_p = 0.5 * penumbra.width_world;
+            let filter = [radial, tangential].map(|e| projected(e * half_p, p) * size);
+            let filter_mean = (filter[0] * filter[1]).sqrt();
+            let filter_before =
+                crate::shadow::estimate_penumbra(&light, &view, &params, d, Vec2::splat(0.5), d_b);
+            // A texel's footprint: its world width projected back spans a texel (geometric mean).
+            let texel = texel_world_at(&view, d, uv);
+            let spans = [radial, tangential].map(|e| projected(e * texel, p) * size);
+            let texel_mean = (spans[0] * spans[1]).sqrt();
+            eprintln!(
+                "{name}: search {ours:.5} uv (centre's {before:.5}) vs radial {:.5}, tangential {:.5}; \
+                 filter {:.3} texels (centre's {:.3}) vs radial {:.3}, tangential {:.3}; \
+                 a texel_world_at spans {texel_mean:.3} texels",
+                search[0],
+                search[1],
+                penumbra.filter_radius_texels,
+                filter_before.filter_radius_texels,
+                filter[0],
+                filter[1]
+            );
+            let within = |what: &str, got: f32, want: f32| {
+                assert!((got / want - 1.0).abs() < 0.1, "{name}: {what} {got} vs {want}");
+            };
+            within("search radius against the radial width", ours, search[0]);
+            assert!(ours >= 0.97 * search[1], "{name}: the search must cover the tangential width too");
+            within("filter radius against the mean width", penumbra.filter_radius_texels, filter_mean);
+            within("texel footprint", texel_mean, 1.0);
+        }
+    }
+
+    /// A spot light's map needs no correction off its axis: a width in a plane parallel to the
+    /// map, at depth d along the axis, spans 0.5 w / (d tan_half_fov) uv anywhere on the map,
+    /// which is what the twin's filter radius uses.
+    #[test]
+    fn a_spot_lights_widths_parallel_to_its_map_span_the_same_uv_off_its_axis() {
+        let scene =
+            crate::scene::load_scene(&crate::shipped_path("assets/scenes/contact.toml"), &[]).expect("scene");
+        let spot = &scene.lights[0];
+        assert!(matches!(spot.kind, crate::scene::LightKind::Spot { .. }));
+        let gpu = crate::shadow::LightViewGpu::single(spot, 0.0, spot.shadow_map_size);
+        let (view, light) = (gpu.view, gpu.light);
+        let params = ShadowParamsGpu { search_radius_scale: 1.0, ..bytemuck::Zeroable::zeroed() };
+        let eye = spot.position_at(0.0);
+        let axis = spot.direction_at(0.0);
+        let x = axis.any_orthonormal_vector();
+        let (d, d_b) = (0.5 * (spot.near + spot.far), 0.4 * (spot.near + spot.far));
+        for tan in [0.0f32, 0.3, 0.6] {
+            let p = eye + (axis + x * tan * view.tan_half_fov) * d;
+            let uv = project_to_light(&view, p).truncate();
+            let penumbra = crate::shadow::estimate_penumbra(&light, &view, &params, d, uv, d_b);
+            let half = 0.5 * penumbra.width_world;
+            let spanned =
+                (project_to_light(&view, p + x * half).truncate() - uv).length() * view.map_size_texels;
+            assert!((penumbra.filter_radius_texels / spanned - 1.0).abs() < 0.02, "tan {tan}");
+        }
+    }
+
+    /// The lamp of the lamp scene over an endless flat floor and nothing else, at 256² faces,
+    /// under the receiver-plane bias: every tap of a floor point is lit, also the taps that
+    /// cross a seam onto the neighbouring face and read a texel there. Floor points along the
+    /// four seams of the bottom face, taps up to 3 texels away.
+    #[test]
+    fn taps_that_cross_a_cube_seam_under_the_receiver_plane_bias_see_no_false_shadow() {
+        use crate::shadow::{DepthImage, Twin};
+        let overrides: Vec<(String, String)> =
+            [("technique", "pcf"), ("bias_mode", "receiver_plane"), ("bias", "0.0001")]
+                .map(|(k, v)| (k.to_string(), v.to_string()))
+                .to_vec();
+        let path = crate::shipped_path("assets/scenes/point_lamp.toml");
+        let mut scene = crate::scene::load_scene(&path, &overrides).expect("scene");
+        scene.lights[0].shadow_map_size = 256;
+        let (lights, views) = crate::shadow::frame_lights(&scene, 1.5, 0.0, 256);
+        let params = ShadowParamsGpu::new(&scene.shadow);
+        let lamp = scene.lights[0].position_at(0.0);
+        let size = 256usize;
+        // What the shadow pass stores for the floor (y = 0): the distance at each texel's centre.
+        let maps: Vec<DepthImage> = (0..6u32)
+            .map(|face| {
+                let view = &views[face as usize];
+                let [forward, up, right] = cube_face_axes(face);
+                let depth_ndc = (0..size * size)
+                    .map(|i| {
+                        let c = (Vec2::new((i % size) as f32, (i / size) as f32) + 0.5) / size as f32;
+                        let d = forward + right * (2.0 * c.x - 1.0) + up * (1.0 - 2.0 * c.y);
+                        if d.y >= 0.0 {
+                            return 1.0;
+                        }
+                        let distance = lamp.y / -d.y * d.length();
+                        depth_ndc_from_linear(view, distance)
+                    })
+                    .collect();
+                DepthImage { size: size as u32, depth_ndc }
+            })
+            .collect();
+        let (mut seam_taps, mut seam_shadowed, mut inner_taps, mut inner_shadowed) = (0, 0, 0, 0);
+        let h = lamp.y;
+        for k in 0..400 {
+            // Along the seams: at horizontal distance about h from the lamp's foot.
+            let along = (k as f32 / 400.0 * 2.0 - 1.0) * 0.9 * h;
+            let across = h * (1.0 + 0.04 * ((k * 7) % 11) as f32 / 10.0 - 0.02);
+            let side = [
+                Vec2::new(across, along),
+                Vec2::new(-across, along),
+                Vec2::new(along, across),
+                Vec2::new(along, -across),
+            ][k % 4];
+            let p = Vec3::new(lamp.x + side.x, 0.0, lamp.z + side.y);
+            let view = face_covering(&views[0], p);
+            let twin = Twin::cube(&lights[0], &view, &params, &maps);
+            let coord = twin.light_space_lookup(p, Vec3::Y);
+            let bias = twin.receiver_bias_ndc(&coord, 0.0);
+            for dy in -6..=6 {
+                for dx in -6..=6 {
+                    let uv = coord.uv + Vec2::new(dx as f32, dy as f32) * 0.5 / size as f32;
+                    let lit = twin.depth_test(&coord, uv, bias);
+                    if outside_map(uv) {
+                        seam_taps += 1;
+                        seam_shadowed += usize::from(lit < 1.0);
+                    } else {
+                        inner_taps += 1;
+                        inner_shadowed += usize::from(lit < 1.0);
+                    }
+                }
+            }
+        }
+        eprintln!(
+            "seam-crossing taps falsely shadowed: {seam_shadowed} of {seam_taps}; inside a face: \
+             {inner_shadowed} of {inner_taps}"
+        );
+        assert!(seam_taps > 10_000, "too few taps cross a seam: {seam_taps}");
+        assert_eq!(inner_shadowed, 0, "of {inner_taps} taps inside a face");
+        assert_eq!(seam_shadowed, 0, "of {seam_taps} taps across a seam");
     }
 
     #[test]

@@ -22,8 +22,9 @@ use kernels::{filter_taps, kernel_offset};
 pub use light_space::{
     blocker_search_radius_uv, cascade_holds, cube_face_axes, cube_face_uv, cube_face_view,
     depth_linear_from_ndc, depth_ndc_from_linear, face_covering, light_dir_to, light_space_lookup, map_tap,
-    ndc_per_world, no_map_data, outside_depth, outside_frustum, outside_map, project_to_light,
-    receiver_bias_ndc, receiver_plane_gradient, rgba8_round_trip, texel_world_at, view_covering,
+    ndc_per_world, no_map_data, off_axis_sec, outside_depth, outside_frustum, outside_map, project_to_light,
+    read_texel_centre_uv, receiver_bias_ndc, receiver_plane_gradient, rgba8_round_trip, texel_world_at,
+    view_covering,
 };
 
 /// One light's shadow map read back: NDC depth per texel, row-major, top row first (uv.y = 0).
@@ -122,13 +123,15 @@ fn wgsl_fract(v: Vec2) -> Vec2 {
 }
 
 /// PCSS step 2 (the shader's `estimate_penumbra`): the penumbra's width on a receiver at
-/// `d_receiver` (world units from the light) behind blockers averaging `d_blocker`, by similar
-/// triangles [Fernando-2005], and the filter radius in map texels that covers it.
+/// `d_receiver` (world units from the light, landing at `receiver_uv`) behind blockers averaging
+/// `d_blocker`, by similar triangles [Fernando-2005], and the filter radius in map texels that
+/// covers it (on a cube face off its axis, times sec^1.5(theta): [`off_axis_sec`]).
 pub fn estimate_penumbra(
     light: &LightGpu,
     view: &ShadowViewGpu,
     params: &ShadowParamsGpu,
     d_receiver: f32,
+    receiver_uv: Vec2,
     d_blocker: f32,
 ) -> Penumbra {
     let gap = (d_receiver - d_blocker).max(0.0);
@@ -141,6 +144,8 @@ pub fn estimate_penumbra(
     if view.orthographic == 0 || params.ortho_near_factor == 1 {
         radius_uv = radius_uv * view.near / d_receiver;
     }
+    let sec = off_axis_sec(view, receiver_uv);
+    radius_uv *= sec * sec.sqrt();
     Penumbra {
         width_world,
         filter_radius_texels: (radius_uv * view.map_size_texels).max(params.min_filter_radius_texels),
@@ -310,8 +315,7 @@ impl<'a> Twin<'a> {
         point_sampled: bool,
     ) -> f32 {
         if self.params.bias_mode == BIAS_RECEIVER_PLANE {
-            let size = self.view.map_size_texels;
-            let at = if point_sampled { ((uv * size).floor() + Vec2::splat(0.5)) / size } else { uv };
+            let at = if point_sampled { read_texel_centre_uv(self.view, self.params, uv) } else { uv };
             return coord.depth_ndc + coord.depth_gradient.dot(at - coord.uv) - bias_ndc;
         }
         coord.depth_ndc - bias_ndc
@@ -361,7 +365,7 @@ impl<'a> Twin<'a> {
 
     /// The blocker search's radius in uv (the shader's `blocker_search_radius_uv`).
     pub fn blocker_search_radius_uv(&self, coord: &ShadowCoord) -> f32 {
-        blocker_search_radius_uv(self.light, self.view, self.params, coord.depth_linear)
+        blocker_search_radius_uv(self.light, self.view, self.params, coord.depth_linear, coord.uv)
     }
 
     pub fn search_blockers(&mut self, coord: &ShadowCoord, seed: u32) -> BlockerSearch {
@@ -398,7 +402,7 @@ impl<'a> Twin<'a> {
     }
 
     pub fn estimate_penumbra(&self, coord: &ShadowCoord, d_blocker: f32) -> Penumbra {
-        estimate_penumbra(self.light, self.view, self.params, coord.depth_linear, d_blocker)
+        estimate_penumbra(self.light, self.view, self.params, coord.depth_linear, coord.uv, d_blocker)
     }
 
     pub fn visibility_pcss(&mut self, coord: &ShadowCoord, seed: u32) -> ShadowVisibility {

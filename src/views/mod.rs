@@ -174,9 +174,11 @@ pub fn blocker_depth_at(
     }
     let position = glam::Vec3::from_slice(&analysis.position[i][..3]);
     let normal = glam::Vec3::from_slice(&analysis.normal[i][..3]);
-    let d_r =
-        crate::shadow::light_space_lookup(&light.light, &light.view, params, position, normal).depth_linear;
-    let w_p = analysis.shadow[i][2] * crate::shadow::texel_world_at(&light.view, d_r);
+    // The view that covers the point (a cube's face towards it), as the analysis pass read it.
+    let view = crate::shadow::face_covering(&light.view, position);
+    let coord = crate::shadow::light_space_lookup(&light.light, &view, params, position, normal);
+    let w_p = analysis.shadow[i][2] * crate::shadow::texel_world_at(&view, coord.depth_linear, coord.uv);
+    let d_r = coord.depth_linear;
     crate::shadow::blocker_depth_from_penumbra(&light.light, d_r, w_p)
 }
 
