@@ -324,6 +324,39 @@ impl Interface {
         self.per_light_copies.iter().find(|(copy, _)| copy == name).map(|(_, base)| base.as_str())
     }
 
+    /// `source` with every numbered copy of a per-light name (`uShadowMap1`, see
+    /// `per_light_copies`) written as the framework's (`uShadowMap`): each holds the light
+    /// checked. Only names change, so no line moves.
+    pub(super) fn copies_as_framework(&self, source: &str) -> String {
+        if self.per_light_copies.is_empty() {
+            return source.to_string();
+        }
+        let mut out = String::with_capacity(source.len());
+        let mut at = 0;
+        for t in tokens(source) {
+            if t.kind == Kind::Ident
+                && let Some(base) = self.copied_from(&source[t.start..t.end])
+            {
+                out.push_str(&source[at..t.start]);
+                out.push_str(base);
+                at = t.end;
+            }
+        }
+        out.push_str(&source[at..]);
+        out
+    }
+
+    /// The last token of a texture argument at `at`: the name, or the `]` of a per-light
+    /// array's index after it.
+    pub(super) fn per_light_index_end(&self, source: &str, toks: &[Token], at: usize) -> usize {
+        let text = |i: usize| &source[toks[i].start..toks[i].end];
+        if self.is_per_light(text(at)) && at + 1 < toks.len() && text(at + 1) == "[" {
+            super::lex::matching(source, toks, at + 1, "[", "]")
+        } else {
+            at
+        }
+    }
+
     /// `name` is one of the framework's per-light names declared as an array by light.
     pub fn is_per_light(&self, name: &str) -> bool {
         self.per_light.iter().any(|n| n == name)

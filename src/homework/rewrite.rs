@@ -104,32 +104,10 @@ struct Body {
     samplers: Vec<String>,
 }
 
-/// `source` with every numbered copy of a per-light name (`uShadowMap1`, see
-/// `Interface::per_light_copies`) written as the framework's (`uShadowMap`): each holds the light
-/// checked. Only names change, so no line moves.
-fn copies_as_framework(source: &str, layout: &Interface) -> String {
-    if layout.per_light_copies.is_empty() {
-        return source.to_string();
-    }
-    let mut out = String::with_capacity(source.len());
-    let mut at = 0;
-    for t in tokens(source) {
-        if t.kind == Kind::Ident
-            && let Some(base) = layout.copied_from(&source[t.start..t.end])
-        {
-            out.push_str(&source[at..t.start]);
-            out.push_str(base);
-            at = t.end;
-        }
-    }
-    out.push_str(&source[at..]);
-    out
-}
-
 /// Rewrite one stage of a student's WebGL1 shader to GLSL 450 against `layout` (see the module
 /// documentation for what changes and why the lines stay where they were).
 pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritten, HomeworkError> {
-    let copies_renamed = copies_as_framework(source, layout);
+    let copies_renamed = layout.copies_as_framework(source);
     let source = copies_renamed.as_str();
     let toks = tokens(source);
     check_size(source, &toks)?;
@@ -345,7 +323,7 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
         } else if let Some(call) = texture_call(word)
             && next(1) == Some("(")
             && toks.get(i + 2).is_some_and(|t| t.kind == Kind::Ident)
-            && let tex_last = per_light_index_end(source, &toks, layout, i + 2)
+            && let tex_last = layout.per_light_index_end(source, &toks, i + 2)
             && toks.get(tex_last + 1).is_some_and(|t| &source[t.start..t.end] == ",")
         {
             let tex = text(i + 2);
@@ -418,17 +396,6 @@ pub fn rewrite(source: &str, stage: Stage, layout: &Interface) -> Result<Rewritt
         recorded,
         has_main: main.is_some(),
     })
-}
-
-/// The last token of a texture argument at `at`: the name, or the `]` of a per-light array's
-/// index after it.
-fn per_light_index_end(source: &str, toks: &[Token], layout: &Interface, at: usize) -> usize {
-    let text = |i: usize| &source[toks[i].start..toks[i].end];
-    if layout.is_per_light(text(at)) && at + 1 < toks.len() && text(at + 1) == "[" {
-        matching(source, toks, at + 1, "[", "]")
-    } else {
-        at
-    }
 }
 
 /// The lines before the student's: the version, the uniform blocks, the colour output.
