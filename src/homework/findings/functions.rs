@@ -2,6 +2,7 @@
 //! `findBlocker` searched (its taps), what it returned against the twin's average blocker depth
 //! over the same disk of shadowlab's map, and where the filter read.
 
+use super::ids;
 use super::{FindingKind, Found, Judged, median};
 use crate::i18n::{Lang, fill};
 use crate::shadow::{DepthImage, ShadowViewGpu, project_to_light, receiver_plane_gradient};
@@ -64,7 +65,7 @@ pub struct TwinInputs<'a> {
 /// Where the lookups never meet the blockers, or the light puts the objects elsewhere, what a
 /// function reads says nothing of the function.
 fn lookups_broken(earlier: &[super::Finding]) -> bool {
-    super::has(earlier, "shadows_missing") || super::has(earlier, "light_model_matrix")
+    super::has(earlier, ids::SHADOWS_MISSING) || super::has(earlier, ids::LIGHT_MODEL_MATRIX)
 }
 
 pub(crate) fn texel_uv(j: &Judged<'_>) -> f32 {
@@ -73,7 +74,7 @@ pub(crate) fn texel_uv(j: &Judged<'_>) -> f32 {
 
 /// The search radius was NaN, infinite, zero, or swings with the receiver's depth.
 pub const SEARCH_RADIUS_WRONG: FindingKind =
-    FindingKind { id: "search_radius_wrong", lesson: "pcss", step: 2, judge: search_radius_wrong };
+    FindingKind { id: ids::SEARCH_RADIUS_WRONG, lesson: "pcss", step: 2, judge: search_radius_wrong };
 
 fn search_radius_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     if !j.pcss() || lookups_broken(earlier) {
@@ -151,8 +152,12 @@ fn search_radius_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -
 
 /// PCSS's filter reads at a uv that is not a number: its radius, the penumbra estimate, is
 /// infinite or NaN (a blocker depth of 0, returned where no blocker was found, divided by).
-pub const FILTER_RADIUS_NOT_FINITE: FindingKind =
-    FindingKind { id: "filter_radius_not_finite", lesson: "pcss", step: 3, judge: filter_radius_not_finite };
+pub const FILTER_RADIUS_NOT_FINITE: FindingKind = FindingKind {
+    id: ids::FILTER_RADIUS_NOT_FINITE,
+    lesson: "pcss",
+    step: 3,
+    judge: filter_radius_not_finite,
+};
 
 fn filter_radius_not_finite(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     if !j.pcss() || lookups_broken(earlier) {
@@ -186,7 +191,7 @@ fn filter_radius_not_finite(j: &Judged<'_>, earlier: &[super::Finding], lang: La
 /// to judge downstream; one whose radius only swings still searches a disk.
 pub(crate) fn search_broken(earlier: &[super::Finding]) -> bool {
     earlier.iter().any(|f| {
-        f.id == "search_radius_wrong"
+        f.id == ids::SEARCH_RADIUS_WRONG
             && (f.figures.get("not_finite_share").is_some_and(|s| *s > NOT_FINITE_SHARE)
                 || f.figures
                     .get("under_half_a_texel_share")
@@ -284,7 +289,7 @@ pub(crate) fn twin_searches(j: &Judged<'_>) -> Vec<(usize, TwinSearch)> {
 /// disk it returns the receiver's own depth, and where some of the disk is blocked its average is
 /// pulled towards the receiver's depth.
 pub const RECEIVER_COUNTS_AS_BLOCKER: FindingKind = FindingKind {
-    id: "receiver_counts_as_blocker",
+    id: ids::RECEIVER_COUNTS_AS_BLOCKER,
     lesson: "pcss",
     step: 4,
     judge: receiver_counts_as_blocker,
@@ -333,7 +338,7 @@ fn receiver_counts_as_blocker(j: &Judged<'_>, earlier: &[super::Finding], lang: 
 /// 255-step one (whichever the student's pack uses), a sound pack gives it back to within the
 /// depth a texel spans.
 pub const DEPTH_ROUND_TRIP_WRONG: FindingKind = FindingKind {
-    id: "depth_round_trip_wrong",
+    id: ids::DEPTH_ROUND_TRIP_WRONG,
     lesson: "hard-shadows",
     step: 3,
     judge: depth_round_trip_wrong,
@@ -441,7 +446,7 @@ fn holds_distance_to_light(j: &Judged<'_>, read: &[(usize, [f32; 2])]) -> bool {
 /// The filter's taps do not lie around the receiver: their mean is off it, or they lie on a line
 /// (offsets that accumulate: a random walk).
 pub const SAMPLES_NOT_AROUND_RECEIVER: FindingKind = FindingKind {
-    id: "samples_not_around_receiver",
+    id: ids::SAMPLES_NOT_AROUND_RECEIVER,
     lesson: "pcf",
     step: 3,
     judge: samples_not_around_receiver,

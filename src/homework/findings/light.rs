@@ -1,6 +1,7 @@
 //! Findings on the light the student built: a model matrix that does not place the objects, and
 //! a frustum that leaves out what the camera sees.
 
+use super::ids;
 use super::{FindingKind, Found, Judged};
 use crate::homework::ModelMatrixError;
 use crate::i18n::{Lang, fill, tr};
@@ -16,7 +17,7 @@ const OUTSIDE_LIT_SHARE: f64 = 0.25;
 /// The objects' `uLightMVP` is not projection * view * translate * scale: the map and the lookups
 /// put the objects somewhere else.
 pub const LIGHT_MODEL_MATRIX: FindingKind =
-    FindingKind { id: "light_model_matrix", lesson: "hard-shadows", step: 1, judge: light_model_matrix };
+    FindingKind { id: ids::LIGHT_MODEL_MATRIX, lesson: "hard-shadows", step: 1, judge: light_model_matrix };
 
 fn light_model_matrix(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
     let error = j.e.light.model_matrix?;
@@ -46,10 +47,10 @@ fn light_model_matrix(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Optio
 /// Surfaces the camera sees lie outside the student's light frustum (beside, before the near
 /// plane or beyond the far one): their lookups read outside the map.
 pub const LIGHT_FRUSTUM_CLIPS: FindingKind =
-    FindingKind { id: "light_frustum_clips", lesson: "hard-shadows", step: 4, judge: light_frustum_clips };
+    FindingKind { id: ids::LIGHT_FRUSTUM_CLIPS, lesson: "hard-shadows", step: 4, judge: light_frustum_clips };
 
 fn light_frustum_clips(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    if super::has(earlier, "light_model_matrix") {
+    if super::has(earlier, ids::LIGHT_MODEL_MATRIX) {
         return None;
     }
     let names = j.e.light.object_names;
@@ -164,10 +165,10 @@ fn floor_outside_lit(floor: &super::framework_floor::FloorCoverage, line: usize,
 /// follow: the shadows stay where they were. Read from the page's own draws (driver.js), at the
 /// times the check looks again.
 pub const LIGHT_MATRIX_STALE: FindingKind =
-    FindingKind { id: "light_matrix_stale", lesson: "multi-light", step: 4, judge: light_matrix_stale };
+    FindingKind { id: ids::LIGHT_MATRIX_STALE, lesson: "multi-light", step: 4, judge: light_matrix_stale };
 
 fn light_matrix_stale(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    if super::has(earlier, "light_not_drawn") {
+    if super::has(earlier, ids::LIGHT_NOT_DRAWN) {
         return None;
     }
     let moved = || j.e.light.stale.iter().filter(|s| s.moved != "none");
@@ -237,7 +238,7 @@ fn computed_where(stale: &crate::homework::light::StaleMatrix, lang: Lang) -> St
 /// A page with several lights never draws with this one's matrix: no uniform of any draw of its
 /// first frames holds it (the framework's materials compute uLightMVP for the first light only).
 pub const LIGHT_NOT_DRAWN: FindingKind =
-    FindingKind { id: "light_not_drawn", lesson: "multi-light", step: 1, judge: light_not_drawn };
+    FindingKind { id: ids::LIGHT_NOT_DRAWN, lesson: "multi-light", step: 1, judge: light_not_drawn };
 
 fn light_not_drawn(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
     let none = j.e.light.stale.iter().find(|s| s.moved == "none")?;

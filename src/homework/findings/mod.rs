@@ -15,6 +15,7 @@
 mod formula_lines;
 mod framework_floor;
 mod functions;
+mod ids;
 mod light;
 mod pcss_steps;
 mod penumbra;
@@ -358,7 +359,7 @@ pub fn findings(framework: &Evidence<'_>, lossless: &Evidence<'_>, lang: Lang) -
     let mut all = judge(framework, lang);
     let hidden: Vec<Finding> = judge(lossless, lang)
         .into_iter()
-        .filter(|f| !has(&all, f.id) && f.id != "depends_on_uncleared_map")
+        .filter(|f| !has(&all, f.id) && f.id != ids::DEPENDS_ON_UNCLEARED_MAP)
         .map(|mut f| {
             f.severity = Severity::Latent;
             f.explanation = format!(

@@ -5,6 +5,7 @@
 //! (theirs and the expected one) and, where the code shows it, the line.
 
 use super::functions::{FIND_BLOCKER, PCF, PCSS, texel_uv};
+use super::ids;
 use super::source_lines::{reads_map_in, return_of, sample_array_read_unfilled};
 use super::{FindingKind, Found, Judged, has, median};
 use crate::i18n::{Lang, fill};
@@ -118,16 +119,18 @@ fn percentile(values: &mut [f32], p: f64) -> Option<f32> {
 }
 
 pub(super) fn judged(j: &Judged<'_>, earlier: &[super::Finding]) -> bool {
-    j.pcss() && !has(earlier, "shadows_missing") && !has(earlier, "light_model_matrix")
+    j.pcss() && !has(earlier, ids::SHADOWS_MISSING) && !has(earlier, ids::LIGHT_MODEL_MATRIX)
 }
 
 /// findBlocker's search does not reach the light: every read on the receiver's own texel while
 /// the filter spreads, or a radius a fraction of the light's half width the filter behaves as.
 pub const SEARCH_MISSES_LIGHT: FindingKind =
-    FindingKind { id: "search_radius_wrong", lesson: "pcss", step: 2, judge: search_misses_light };
+    FindingKind { id: ids::SEARCH_RADIUS_WRONG, lesson: "pcss", step: 2, judge: search_misses_light };
 
 fn search_misses_light(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    if !judged(j, earlier) || has(earlier, "search_radius_wrong") || has(earlier, "filter_radius_not_finite")
+    if !judged(j, earlier)
+        || has(earlier, ids::SEARCH_RADIUS_WRONG)
+        || has(earlier, ids::FILTER_RADIUS_NOT_FINITE)
     {
         return None;
     }
@@ -206,19 +209,19 @@ fn search_misses_light(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -
 /// findBlocker returns a depth no blocker has where most of the disk it searched is blocked: a
 /// constant from an early return, a "no blocker" value where there are blockers.
 pub const BLOCKER_DEPTH_WRONG: FindingKind =
-    FindingKind { id: "blocker_depth_wrong", lesson: "pcss", step: 3, judge: blocker_depth_wrong };
+    FindingKind { id: ids::BLOCKER_DEPTH_WRONG, lesson: "pcss", step: 3, judge: blocker_depth_wrong };
 
 fn blocker_depth_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     if !judged(j, earlier)
         || super::functions::search_broken(earlier)
-        || has(earlier, "receiver_counts_as_blocker")
+        || has(earlier, ids::RECEIVER_COUNTS_AS_BLOCKER)
     {
         return None;
     }
     // A bias that loses the nearest blockers (peter panning) loses them here too: only gaps over it.
     let bias = earlier
         .iter()
-        .find(|f| f.id == "peter_panning")
+        .find(|f| f.id == ids::PETER_PANNING)
         .and_then(|f| f.figures.get("bias_under_depth"))
         .map_or(0.0, |b| *b as f32);
     let (mut compared, mut off) = (0usize, Vec::new());
@@ -279,13 +282,13 @@ fn blocker_depth_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -
 /// The filter radius PCSS hands on collapses where findBlocker found blockers well in front of
 /// the receiver: the penumbra estimate does not use the receiver's own depth.
 pub const PENUMBRA_ESTIMATE_WRONG: FindingKind =
-    FindingKind { id: "penumbra_estimate_wrong", lesson: "pcss", step: 5, judge: penumbra_estimate_wrong };
+    FindingKind { id: ids::PENUMBRA_ESTIMATE_WRONG, lesson: "pcss", step: 5, judge: penumbra_estimate_wrong };
 
 fn penumbra_estimate_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     if !judged(j, earlier)
         || super::functions::search_broken(earlier)
-        || has(earlier, "blocker_depth_wrong")
-        || has(earlier, "filter_radius_not_finite")
+        || has(earlier, ids::BLOCKER_DEPTH_WRONG)
+        || has(earlier, ids::FILTER_RADIUS_NOT_FINITE)
     {
         return None;
     }
@@ -381,12 +384,16 @@ const UMBRA_PIXELS: usize = 2000;
 
 /// The student's unpack loses depth the pack stored: findBlocker, reading a map that keeps every
 /// bit, returns the blockers' depth shifted where its whole disk is blocked.
-pub const UNPACK_LOSES_DEPTH: FindingKind =
-    FindingKind { id: "depth_round_trip_wrong", lesson: "hard-shadows", step: 3, judge: unpack_loses_depth };
+pub const UNPACK_LOSES_DEPTH: FindingKind = FindingKind {
+    id: ids::DEPTH_ROUND_TRIP_WRONG,
+    lesson: "hard-shadows",
+    step: 3,
+    judge: unpack_loses_depth,
+};
 
 fn unpack_loses_depth(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     if !judged(j, earlier)
-        || has(earlier, "depth_round_trip_wrong")
+        || has(earlier, ids::DEPTH_ROUND_TRIP_WRONG)
         || super::functions::search_broken(earlier)
     {
         return None;
@@ -447,7 +454,7 @@ fn unpack_loses_depth(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) ->
         &[&name, &at, &shift.abs(), &direction, &largest],
     );
     // Today's picture shows it where a receiver already finds itself.
-    let shows = has(earlier, "self_shadowing") || has(earlier, "receiver_counts_as_blocker");
+    let shows = has(earlier, ids::SELF_SHADOWING) || has(earlier, ids::RECEIVER_COUNTS_AS_BLOCKER);
     let explanation = if shows {
         explanation
     } else {

@@ -1,6 +1,7 @@
 //! Findings on a PCSS's penumbrae, from the slabs' shadows (`light_width`): as hard as a hard
 //! shadow, or not following similar triangles (no contact hardening).
 
+use super::ids;
 use super::{FindingKind, Found, Judged, SLAB_KEYS, has};
 use crate::i18n::{Lang, fill};
 use std::collections::BTreeMap;
@@ -10,14 +11,14 @@ fn penumbra_judged(j: &Judged<'_>, earlier: &[super::Finding]) -> bool {
     j.pcss()
         && !super::functions::search_broken(earlier)
         && ![
-            "visibility_out_of_range",
-            "visibility_scaled",
-            "shadows_missing",
-            "umbra_not_dark",
-            "light_model_matrix",
-            "peter_panning",
+            ids::VISIBILITY_OUT_OF_RANGE,
+            ids::VISIBILITY_SCALED,
+            ids::SHADOWS_MISSING,
+            ids::UMBRA_NOT_DARK,
+            ids::LIGHT_MODEL_MATRIX,
+            ids::PETER_PANNING,
             // Acne darkens the lit side of every slab's penumbra: its widths are the acne's.
-            "self_shadowing",
+            ids::SELF_SHADOWING,
         ]
         .iter()
         .any(|id| has(earlier, id))
@@ -26,7 +27,7 @@ fn penumbra_judged(j: &Judged<'_>, earlier: &[super::Finding]) -> bool {
 /// A PCSS whose penumbrae are under the resolution on every slab, the highest included: as hard
 /// as a hard shadow (a filter under a texel).
 pub const NO_PENUMBRA: FindingKind =
-    FindingKind { id: "no_penumbra", lesson: "pcss", step: 5, judge: no_penumbra };
+    FindingKind { id: ids::NO_PENUMBRA, lesson: "pcss", step: 5, judge: no_penumbra };
 
 fn no_penumbra(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     if !penumbra_judged(j, earlier) {
@@ -55,18 +56,18 @@ fn no_penumbra(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option
 /// The penumbrae do not widen with the gap as similar triangles say: constant widths (a PCF of
 /// one radius), widths that shrink, or noise.
 pub const NO_CONTACT_HARDENING: FindingKind =
-    FindingKind { id: "no_contact_hardening", lesson: "pcss", step: 1, judge: no_contact_hardening };
+    FindingKind { id: ids::NO_CONTACT_HARDENING, lesson: "pcss", step: 1, judge: no_contact_hardening };
 
 fn no_contact_hardening(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     // Taps on a line make penumbrae soft one way and hard the other: that finding says why; a
     // blocker depth that is no blocker's, or a filter radius that collapses, is why the widths do
     // not follow similar triangles, and those findings say so.
     if !penumbra_judged(j, earlier)
-        || has(earlier, "no_penumbra")
-        || has(earlier, "samples_not_around_receiver")
-        || has(earlier, "blocker_depth_wrong")
-        || has(earlier, "penumbra_estimate_wrong")
-        || has(earlier, "penumbra_law_wrong")
+        || has(earlier, ids::NO_PENUMBRA)
+        || has(earlier, ids::SAMPLES_NOT_AROUND_RECEIVER)
+        || has(earlier, ids::BLOCKER_DEPTH_WRONG)
+        || has(earlier, ids::PENUMBRA_ESTIMATE_WRONG)
+        || has(earlier, ids::PENUMBRA_LAW_WRONG)
     {
         return None;
     }

@@ -11,6 +11,7 @@
 //! changes only 1.5x over them. Radii held at a least or largest value are left out.
 
 use super::functions::texel_uv;
+use super::ids;
 use super::pcss_steps::{implied_light_halves, judged};
 use super::{FindingKind, Found, Judged, has};
 
@@ -39,7 +40,7 @@ const EXPONENT_NEAR: f64 = 0.3;
 /// PCSS's filter radius depends on the receiver's or the blocker's depth other than through
 /// (d_r - d_b) / d_b.
 pub const PENUMBRA_LAW_WRONG: FindingKind =
-    FindingKind { id: "penumbra_law_wrong", lesson: "pcss", step: 7, judge: penumbra_law_wrong };
+    FindingKind { id: ids::PENUMBRA_LAW_WRONG, lesson: "pcss", step: 7, judge: penumbra_law_wrong };
 
 /// h = C d_r^a d_b^b, least squares in logs.
 struct PowerFit {
@@ -106,11 +107,11 @@ fn orthographic(j: &Judged<'_>) -> bool {
 }
 
 fn penumbra_law_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    let explained = ["blocker_depth_wrong", "penumbra_estimate_wrong", "filter_radius_not_finite"];
+    let explained = [ids::BLOCKER_DEPTH_WRONG, ids::PENUMBRA_ESTIMATE_WRONG, ids::FILTER_RADIUS_NOT_FINITE];
     if !judged(j, earlier)
         || super::functions::search_broken(earlier)
         || explained.iter().any(|id| has(earlier, id))
-        || has(earlier, "samples_not_around_receiver")
+        || has(earlier, ids::SAMPLES_NOT_AROUND_RECEIVER)
         || !orthographic(j)
     {
         return None;

@@ -7,6 +7,7 @@
 //! light) shows nothing.
 
 use super::framework_floor::{FLOOR_MAX, FLOOR_MIN};
+use super::ids;
 use super::{FindingKind, Found, Judged};
 use crate::i18n::{Lang, fill};
 use glam::{Mat4, Vec2, Vec3, Vec3Swizzles, Vec4Swizzles};
@@ -82,11 +83,11 @@ fn acne_on_floor(clip_from_world: Mat4, bias: f64) -> Option<FloorAcne> {
 /// The far floor of the framework's scene acnes under the student's light: the framework's
 /// round trip reads it nearer than itself by more than the student's bias.
 pub const ROUND_TRIP_ACNE: FindingKind =
-    FindingKind { id: "round_trip_acne", lesson: "hard-shadows", step: 3, judge: round_trip_acne };
+    FindingKind { id: ids::ROUND_TRIP_ACNE, lesson: "hard-shadows", step: 3, judge: round_trip_acne };
 
 fn round_trip_acne(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    if super::has(earlier, "light_model_matrix")
-        || super::has(earlier, "depth_round_trip_wrong")
+    if super::has(earlier, ids::LIGHT_MODEL_MATRIX)
+        || super::has(earlier, ids::DEPTH_ROUND_TRIP_WRONG)
         || !packs_in_256(j)
     {
         return None;

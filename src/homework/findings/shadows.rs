@@ -1,6 +1,7 @@
 //! Findings on where the shadows are: missing, not dark, detached from their blockers, on lit
 //! surfaces (acne), or made by texels the framework never cleared.
 
+use super::ids;
 use super::{FindingKind, Found, Judged, LIT, UMBRA, has, mean};
 use crate::i18n::{Lang, fill};
 use std::collections::BTreeMap;
@@ -42,17 +43,17 @@ pub fn umbra_mean(j: &Judged<'_>) -> Option<f64> {
 }
 
 fn judged_on_numbers(earlier: &[super::Finding]) -> bool {
-    has(earlier, "visibility_out_of_range") || has(earlier, "visibility_scaled")
+    has(earlier, ids::VISIBILITY_OUT_OF_RANGE) || has(earlier, ids::VISIBILITY_SCALED)
 }
 
 /// Where the ground truth is in full shadow the student's is lit: the lookups never meet the
 /// blockers (coordinates in NDC, depths in other units, the wrong matrix).
 pub const SHADOWS_MISSING: FindingKind =
-    FindingKind { id: "shadows_missing", lesson: "hard-shadows", step: 2, judge: shadows_missing };
+    FindingKind { id: ids::SHADOWS_MISSING, lesson: "hard-shadows", step: 2, judge: shadows_missing };
 
 fn shadows_missing(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     let umbra = umbra_mean(j).filter(|m| *m > SHADOWS_MISSING_MEAN)?;
-    if has(earlier, "light_model_matrix") {
+    if has(earlier, ids::LIGHT_MODEL_MATRIX) {
         return None;
     }
     Some(Found::new(
@@ -69,13 +70,13 @@ fn shadows_missing(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Op
 /// Where no point of the light reaches, the student's visibility averages above
 /// `UMBRA_MEAN_LIMIT`: a filter reaching far past the blocker.
 pub const UMBRA_NOT_DARK: FindingKind =
-    FindingKind { id: "umbra_not_dark", lesson: "pcss", step: 6, judge: umbra_not_dark };
+    FindingKind { id: ids::UMBRA_NOT_DARK, lesson: "pcss", step: 6, judge: umbra_not_dark };
 
 fn umbra_not_dark(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     // A bias that takes a slab's shadow away lights the umbra near contact too: that finding's.
-    if has(earlier, "shadows_missing")
-        || has(earlier, "peter_panning")
-        || has(earlier, "light_model_matrix")
+    if has(earlier, ids::SHADOWS_MISSING)
+        || has(earlier, ids::PETER_PANNING)
+        || has(earlier, ids::LIGHT_MODEL_MATRIX)
         || judged_on_numbers(earlier)
     {
         return None;
@@ -169,13 +170,13 @@ fn blocked_counts_as(j: &Judged<'_>, figures: &mut BTreeMap<&'static str, f64>, 
 /// The lowest slab's shadow is gone while the higher ones are there: a bias so large that a
 /// blocker that close to a surface no longer shadows it.
 pub const PETER_PANNING: FindingKind =
-    FindingKind { id: "peter_panning", lesson: "bias", step: 2, judge: peter_panning };
+    FindingKind { id: ids::PETER_PANNING, lesson: "bias", step: 2, judge: peter_panning };
 
 fn peter_panning(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     // A slab outside a clipped frustum loses its shadow to the frustum, not to a bias.
-    if has(earlier, "shadows_missing")
-        || has(earlier, "light_model_matrix")
-        || has(earlier, "light_frustum_clips")
+    if has(earlier, ids::SHADOWS_MISSING)
+        || has(earlier, ids::LIGHT_MODEL_MATRIX)
+        || has(earlier, ids::LIGHT_FRUSTUM_CLIPS)
         || judged_on_numbers(earlier)
     {
         return None;
@@ -281,16 +282,16 @@ fn peter_panning(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opti
 /// Surfaces facing the light and fully lit in the ground truth are dark in the student's:
 /// acne, a surface shadowing itself.
 pub const SELF_SHADOWING: FindingKind =
-    FindingKind { id: "self_shadowing", lesson: "bias", step: 1, judge: self_shadowing };
+    FindingKind { id: ids::SELF_SHADOWING, lesson: "bias", step: 1, judge: self_shadowing };
 
 fn self_shadowing(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     // Acne darkens lit surfaces in a picture whose shadows are otherwise right; where the umbra
     // is wrong too, the whole lookup is, and the findings above say so. A lit area scaled down is
     // darkened everywhere, by the divisor: the scale's finding.
-    if has(earlier, "shadows_missing")
-        || has(earlier, "umbra_not_dark")
-        || has(earlier, "visibility_scaled")
-        || has(earlier, "light_model_matrix")
+    if has(earlier, ids::SHADOWS_MISSING)
+        || has(earlier, ids::UMBRA_NOT_DARK)
+        || has(earlier, ids::VISIBILITY_SCALED)
+        || has(earlier, ids::LIGHT_MODEL_MATRIX)
     {
         return None;
     }
@@ -341,7 +342,7 @@ pub fn uncleared_share(j: &Judged<'_>) -> f64 {
 /// More than `UNCLEARED_SHARE` of the picture changes when the map starts white: lookups land
 /// on texels the framework never cleared.
 pub const DEPENDS_ON_UNCLEARED_MAP: FindingKind = FindingKind {
-    id: "depends_on_uncleared_map",
+    id: ids::DEPENDS_ON_UNCLEARED_MAP,
     lesson: "hard-shadows",
     step: 3,
     judge: depends_on_uncleared_map,
@@ -350,9 +351,9 @@ pub const DEPENDS_ON_UNCLEARED_MAP: FindingKind = FindingKind {
 fn depends_on_uncleared_map(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     // Objects put elsewhere by the light's own model matrix, or outside its frustum, and radii
     // that are not numbers read texels nothing covers: those findings say why.
-    if has(earlier, "light_model_matrix")
-        || has(earlier, "light_frustum_clips")
-        || has(earlier, "filter_radius_not_finite")
+    if has(earlier, ids::LIGHT_MODEL_MATRIX)
+        || has(earlier, ids::LIGHT_FRUSTUM_CLIPS)
+        || has(earlier, ids::FILTER_RADIUS_NOT_FINITE)
         || super::functions::search_broken(earlier)
     {
         return None;

@@ -1,5 +1,6 @@
 //! Findings on the visibility as a number: NaN, outside [0, 1], or shadowlab's times a constant.
 
+use super::ids;
 use super::{FindingKind, Found, Judged, has, mean};
 use crate::i18n::{Lang, fill};
 use std::collections::BTreeMap;
@@ -29,7 +30,7 @@ fn percent(share: f64) -> f64 {
 /// findBlocker returned NaN (0 / 0 where it found no blocker): a mistake where the visibility is
 /// NaN there too, latent where PCSS catches it.
 pub const NAN_BLOCKER_DEPTH: FindingKind =
-    FindingKind { id: "nan_blocker_depth", lesson: "pcss", step: 3, judge: nan_blocker_depth };
+    FindingKind { id: ids::NAN_BLOCKER_DEPTH, lesson: "pcss", step: 3, judge: nan_blocker_depth };
 
 fn nan_blocker_depth(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
     let s = j.e.student;
@@ -71,11 +72,12 @@ fn nan_blocker_depth(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option
 /// The visibility is NaN or infinite on more than `NAN_SHARE` of the pixels (not explained by a
 /// NaN findBlocker, which names it).
 pub const NAN_VISIBILITY: FindingKind =
-    FindingKind { id: "nan_visibility", lesson: "pcss", step: 3, judge: nan_visibility };
+    FindingKind { id: ids::NAN_VISIBILITY, lesson: "pcss", step: 3, judge: nan_visibility };
 
 fn nan_visibility(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     let share = j.share(j.non_finite);
-    let named = earlier.iter().any(|f| f.id == "nan_blocker_depth" && f.severity == super::Severity::Mistake);
+    let named =
+        earlier.iter().any(|f| f.id == ids::NAN_BLOCKER_DEPTH && f.severity == super::Severity::Mistake);
     if share <= NAN_SHARE || named {
         return None;
     }
@@ -121,7 +123,7 @@ fn in_range(v: f32) -> bool {
 /// More than `OUT_OF_RANGE_SHARE` of the visibilities lie outside [0, 1]: a PCF sum of 0/1 tests
 /// divided by a count other than its taps, or not at all.
 pub const VISIBILITY_OUT_OF_RANGE: FindingKind =
-    FindingKind { id: "visibility_out_of_range", lesson: "pcf", step: 2, judge: visibility_out_of_range };
+    FindingKind { id: ids::VISIBILITY_OUT_OF_RANGE, lesson: "pcf", step: 2, judge: visibility_out_of_range };
 
 fn visibility_out_of_range(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Option<Found> {
     let out = j.finite.iter().filter(|&&(_, v)| !in_range(v)).count();
@@ -189,11 +191,11 @@ fn fit_scale(pairs: &[(f32, f32)]) -> Option<ScaleFit> {
 /// The visibility, inside [0, 1], is shadowlab's times a constant k off 1 by more than
 /// `SCALE_OFF`: a PCF sum divided twice, or by a count other than its taps.
 pub const VISIBILITY_SCALED: FindingKind =
-    FindingKind { id: "visibility_scaled", lesson: "pcf", step: 2, judge: visibility_scaled };
+    FindingKind { id: ids::VISIBILITY_SCALED, lesson: "pcf", step: 2, judge: visibility_scaled };
 
 fn visibility_scaled(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
     // A scale above 1 puts the lit area above 1: the range's finding speaks for it, alone.
-    if has(earlier, "visibility_out_of_range") {
+    if has(earlier, ids::VISIBILITY_OUT_OF_RANGE) {
         return None;
     }
     // Fitted where the comparison is sound: finite, no recorded function NaN, and no uncovered
