@@ -87,7 +87,9 @@ pub fn blocked_value(
     let bodies = function_bodies(source, &toks);
     let defines: Vec<(&str, usize)> = (0..toks.len())
         .filter(|&k| toks[k].kind == Kind::Directive && text(k).trim_start_matches('#').trim() == "define")
-        .filter(|&k| toks[k + 2].line == toks[k].line && number(k + 2).is_some_and(near))
+        .filter(|&k| {
+            toks.get(k + 2).is_some_and(|t| t.line == toks[k].line) && number(k + 2).is_some_and(near)
+        })
         .map(|k| (text(k + 1), toks[k].line))
         .collect();
     let functions = ["useShadowMap", "PCF", "PCSS"];
@@ -137,5 +139,8 @@ mod tests {
         let literal = "float useShadowMap(float z) {\n  return z > 0.5 ? 1.0 : 0.3;\n}\n";
         assert_eq!(blocked_value(literal, 0.3, Some("PCF")), Some(("0.3".to_string(), 2, "useShadowMap")));
         assert_eq!(blocked_value(literal, 0.5, None), None);
+        // A `#define` without a value as the shader's last tokens is no constant (and no panic).
+        assert_eq!(blocked_value("#define SHADE", 0.6, None), None);
+        assert_eq!(world_light_size("#define LIGHT_WORLD_SIZE"), None);
     }
 }
