@@ -77,6 +77,12 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_no_bias.glsl", shadow("shadowFragment_255.glsl"), &["self_shadowing"]),
         ("phongFragment_no_bias_hidden.glsl", vec![], &["round_trip_acne", "self_shadowing (latent)"]),
         ("phongFragment_bias_too_large.glsl", vec![], &["peter_panning"]),
+        // The framework's floor leaves the low box; the check scene, which shows the bias, does not.
+        (
+            "phongFragment_bias_too_large.glsl",
+            script("DirectionalLight_low.js"),
+            &["light_frustum_clips", "peter_panning"],
+        ),
         ("phongFragment_receiver_blocker.glsl", vec![], &["receiver_counts_as_blocker"]),
         (
             "phongFragment_red_only.glsl",
@@ -86,7 +92,9 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_search_radius.glsl", vec![], &["search_radius_wrong (latent)"]),
         ("phongFragment_random_walk.glsl", vec![], &["samples_not_around_receiver"]),
         ("phongFragment_least_filter.glsl", vec![], &[]),
-        ("phongFragment_constant_filter.glsl", vec![], &["no_contact_hardening"]),
+        ("phongFragment_constant_filter.glsl", vec![], &["filter_ignores_blocker"]),
+        ("phongFragment_penumbra_unused.glsl", vec![], &["filter_ignores_blocker"]),
+        ("phongFragment_filter_in_texels.glsl", vec![], &["search_and_filter_lights_differ"]),
         ("phongFragment_divided_twice.glsl", vec![], &["visibility_scaled"]),
         ("phongFragment_undivided.glsl", vec![], &["visibility_out_of_range"]),
         ("phongFragment_zero_blocker.glsl", vec![], &["filter_radius_not_finite"]),
@@ -472,6 +480,48 @@ fn a_filter_radius_off_similar_triangles_is_named_by_its_law_its_line_and_the_li
     assert!((figure(&receiver, "blocker_depth_exponent") - 1.0).abs() < 0.05, "{receiver:#}");
     assert_eq!(figure(&receiver, "line"), 99.0, "{receiver:#}");
     assert!(said(&receiver).contains("instead of the blocker's"), "{receiver:#}");
+}
+
+/// A filter radius that ignores the blocker is named with the penumbra the code computes and never
+/// reads; a filter that behaves as another light than the search looks for, with the two lines
+/// that turn one length into uv two ways; a blocker test's bias the wrong way round, with its line.
+#[test]
+fn a_filter_that_ignores_the_blocker_or_another_light_and_a_bias_the_wrong_way_are_named_by_line() {
+    let scratch = tempfile::tempdir().expect("a scratch folder");
+    let first = |name: &str| check(&example(name), &[], &scratch.path().join(name))["findings"][0].clone();
+    let figure = |f: &Value, name: &str| f["figures"][name].as_f64().unwrap_or(f64::NAN);
+    let said = |f: &Value| f["explanation"].as_str().unwrap_or_default().to_string();
+
+    // The search's radius (the receiver's depth alone) used to filter; the penumbra left unread.
+    let unused = first("phongFragment_penumbra_unused.glsl");
+    assert_eq!(
+        (unused["id"].as_str(), unused["function"].as_str()),
+        (Some("filter_ignores_blocker"), Some("PCSS"))
+    );
+    assert!(figure(&unused, "blocker_ratio_exponent").abs() < 0.1, "{unused:#}");
+    assert_eq!(figure(&unused, "line"), 98.0, "{unused:#}");
+    assert!(said(&unused).contains("computes `penumbraUV` from the blocker's depth"), "{unused:#}");
+    // One radius everywhere: said so, with no line to name.
+    let constant = first("phongFragment_constant_filter.glsl");
+    assert_eq!(constant["id"], "filter_ignores_blocker", "{constant:#}");
+    assert!(figure(&constant, "one_radius_share") > 0.9, "{constant:#}");
+    assert!(constant["figures"].get("line").is_none(), "{constant:#}");
+
+    // World units over the frustum's 200 for the search, over the map's 2048 texels for the filter.
+    let texels = first("phongFragment_filter_in_texels.glsl");
+    assert_eq!(texels["id"], "search_and_filter_lights_differ", "{texels:#}");
+    assert!((9.0..11.5).contains(&figure(&texels, "search_over_filter")), "{texels:#}");
+    assert_eq!((figure(&texels, "search_line"), figure(&texels, "line")), (73.0, 103.0), "{texels:#}");
+    assert!(
+        said(&texels).contains("`/ FRUSTUM_WIDTH`") && said(&texels).contains("`/ MAP_TEXELS`"),
+        "{texels:#}"
+    );
+
+    // `depth - BIAS < zReceiver`: the wrong way round, on the `#define`'s line.
+    let wrong_way = first("phongFragment_receiver_blocker.glsl");
+    assert_eq!(wrong_way["id"], "receiver_counts_as_blocker", "{wrong_way:#}");
+    assert_eq!(figure(&wrong_way, "bias_line"), 31.0, "{wrong_way:#}");
+    assert!(said(&wrong_way).contains("is the wrong way round"), "{wrong_way:#}");
 }
 
 /// A light whose box fits shadowlab's check scene but not the framework's own floor (±80 tall:

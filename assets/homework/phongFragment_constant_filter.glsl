@@ -4,7 +4,7 @@ precision mediump float;
 
 // Mistake: PCSS finds the blockers but filters with one radius whatever their depth (the light's
 // half width), so a penumbra does not narrow where the blocker meets the receiver. Expected
-// finding: no_contact_hardening.
+// finding: filter_ignores_blocker.
 uniform sampler2D uSampler;
 uniform vec3 uKd;
 uniform vec3 uKs;

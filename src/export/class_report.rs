@@ -301,6 +301,14 @@ const DESCRIPTIONS: &[(&str, &str)] = &[
         "penumbra_law_wrong",
         "PCSS's filter radius scales with the depths beyond similar triangles (near / z_r on an orthographic light).",
     ),
+    (
+        "filter_ignores_blocker",
+        "PCSS's filter radius does not use the blocker's depth: PCF with a radius of its own.",
+    ),
+    (
+        "search_and_filter_lights_differ",
+        "The blocker search and the filter behave as lights of different sizes (one length, two units).",
+    ),
     ("no_penumbra", "PCSS draws hard shadows: the filter is under a texel wide."),
     ("no_contact_hardening", "Penumbrae do not widen with the blocker's distance as similar triangles say."),
     ("self_shadowing", "Lit surfaces shadow themselves: shadow acne, a bias too small."),

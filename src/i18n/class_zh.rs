@@ -130,6 +130,14 @@ pub(super) const CLASS: &[(&str, &str)] = &[
         "PCSS 的滤波半径随深度的变化超出了相似三角形（正交光源上多乘了 near / z_r）。",
     ),
     (
+        "PCSS's filter radius does not use the blocker's depth: PCF with a radius of its own.",
+        "PCSS 的滤波半径没有用到遮挡物深度：等于用自定半径的 PCF。",
+    ),
+    (
+        "The blocker search and the filter behave as lights of different sizes (one length, two units).",
+        "遮挡物搜索和滤波相当于两盏大小不同的光源（同一个长度，两种单位）。",
+    ),
+    (
         "The filter's taps are not spread over a disk around the receiver.",
         "滤波的采样点没有分布在以接收点为中心的圆盘上。",
     ),

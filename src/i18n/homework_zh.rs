@@ -93,8 +93,8 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "在 PCSS 滤波的像素中，有 {:.1}% 的滤波半径不是一个数：遮挡物深度为 0 时，半影估计 (z_r - z_blocker) / z_blocker 是无穷大，采样会读到谁也没有选定的纹素。findBlocker 找不到遮挡物时，请返回一个 PCSS 能识别的值（-1，或者 1 并加以判断），并在估计半影之前直接返回完全受光。",
     ),
     (
-        "findBlocker counts the receiver as its own blocker: where nothing blocks the disk it searched, it returns the receiver's own depth at {:.0}% of the points, and where part of the disk is blocked its average lies {:.0}% of the way from the blockers' depth to the receiver's. Test blockers as nearer than the receiver by more than a bias (depth + bias < z_receiver): a bias the other way, or none, lets the receiver's own texels in, and the penumbra shrinks.",
-        "findBlocker 把接收点自己算成了遮挡物：在搜索的圆盘内没有任何遮挡的地方，它在 {:.0}% 的点上返回了接收点自己的深度；在圆盘被部分遮挡的地方，它的平均值从遮挡物的深度向接收点的深度偏移了 {:.0}%。判断遮挡物时，应要求它比接收点近出一个偏移量以上（depth + bias < z_receiver）：偏移方向反了或没有偏移，接收点自己的纹素就会被算进来，半影随之变窄。",
+        "Test blockers as nearer than the receiver by more than a bias (depth + bias < z_receiver): a bias the other way, or none, lets the receiver's own texels in, and the penumbra shrinks.",
+        "判断遮挡物时，应要求它比接收点近出一个偏移量以上（depth + bias < z_receiver）：偏移方向反了或没有偏移，接收点自己的纹素就会被算进来，半影随之变窄。",
     ),
     (
         "Depth does not come back from the map as it went in: even with every bit kept, the depth unpacked where a lit surface looks itself up differs from its own by {:.4} (typical) to {:.4} in [0, 1] depth, at {:.0}% of them. Your pack (shadowFragment.glsl) must take each channel's carry out of the one before (rgbaDepth -= rgbaDepth.gbaa * bitMask), in the same base as your unpack.",
@@ -313,5 +313,50 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
     (
         "A shadow is where the light's direct light does not arrive: visibility 0. Light that still reaches a shadowed point (ambient) belongs in the shading, where it lights the umbra of every light alike.",
         "阴影就是光源的直接光照不到的地方：可见度为 0。仍能照到阴影中点的光（环境光）应放在着色里，在那里它对每盏光源的本影一视同仁。",
+    ),
+    (
+        "PCSS filters with one radius whatever the blocker: {:.1} texels at {:.0}% of the points under blockers, where (d_r - d_b) / d_b goes from {:.2} to {:.2}.",
+        "无论遮挡物如何，PCSS 都用同一个半径滤波：{:.1} 个纹素，在遮挡物下 {:.0}% 的点上都是如此，而 (d_r - d_b) / d_b 从 {:.2} 变到 {:.2}。",
+    ),
+    (
+        "PCSS's filter radius does not follow the blocker: under blockers, where (d_r - d_b) / d_b goes from {:.2} to {:.2}, the radius goes as its power {:.2}, where similar triangles make it 1.",
+        "PCSS 的滤波半径不随遮挡物变化：在遮挡物下，(d_r - d_b) / d_b 从 {:.2} 变到 {:.2}，半径与它的 {:.2} 次方成正比，而相似三角形要求是 1 次方。",
+    ),
+    ("It follows the receiver's depth alone (R^2 {:.2}).", "它只随接收点深度变化（R^2 {:.2}）。"),
+    (
+        "Line {} computes `{}` from the blocker's depth, but nothing reads it: the filter is sized without it.",
+        "第 {} 行用遮挡物深度算出了 `{}`，但之后没有任何地方读取它：滤波半径与它无关。",
+    ),
+    (
+        "By similar triangles the filter radius is (w_light / 2) (d_r - d_b) / d_b: it is what makes a shadow hard where its blocker touches the receiver and soft where the blocker is high. Without it PCSS is PCF with a radius of its own.",
+        "按相似三角形，滤波半径是 (w_light / 2) (d_r - d_b) / d_b：正是它让阴影在遮挡物贴着接收面处变硬、在遮挡物高处变软。没有它，PCSS 就只是用自定半径的 PCF。",
+    ),
+    (
+        "findBlocker searches {:.1} texels around the receiver, a light's half width, but PCSS's filter behaves as a light {:.1} times narrower: its radius r = (w_light / 2) (d_r - d_b) / d_b, solved with findBlocker's own d_b, gives a half width of {:.1} texels. One light has one size in uv; the penumbrae come out {:.1} times narrower than the light the search looks for.",
+        "findBlocker 在接收点周围 {:.1} 个纹素内搜索，这是一盏光源的半宽；但 PCSS 的滤波相当于一盏窄 {:.1} 倍的光源：用 findBlocker 自己返回的 d_b 解 r = (w_light / 2) (d_r - d_b) / d_b，得到的半宽是 {:.1} 个纹素。一盏光源在 uv 中只有一个大小；半影比搜索所针对的光源窄了 {:.1} 倍。",
+    ),
+    (
+        "In world units: a light {:.1} wide for the search, {:.1} for the filter.",
+        "换成世界单位：搜索按 {:.1} 宽的光源，滤波按 {:.1} 宽的光源。",
+    ),
+    (
+        "Line {} turns the search's radius into uv with `/ {}`, line {} the filter's with `/ {}`: `{}`. Use the one that matches the unit the radius is in.",
+        "第 {} 行用 `/ {}` 把搜索半径换成 uv，第 {} 行却用 `/ {}` 换算滤波半径：`{}`。应按半径本身的单位选用换算。",
+    ),
+    (
+        "findBlocker counts the receiver as its own blocker: where nothing blocks the disk it searched, it returns the receiver's own depth at {:.0}% of the points, and where part of the disk is blocked its average lies {:.0}% of the way from the blockers' depth to the receiver's.",
+        "findBlocker 把接收点自己算成了遮挡物：在搜索的圆盘内没有任何遮挡的地方，它在 {:.0}% 的点上返回了接收点自己的深度；在圆盘被部分遮挡的地方，它的平均值从遮挡物的深度向接收点的深度偏移了 {:.0}%。",
+    ),
+    (
+        "It compares nothing: every tap it reads goes into the average, the receiver's own surface with the blockers. Count a tap only where its depth is nearer than the receiver's by more than a bias.",
+        "它没有做任何比较：读到的每个采样都计入平均值，接收点自己的表面和遮挡物混在一起。只有当采样深度比接收点近出一个偏移以上时才应计入。",
+    ),
+    (
+        "Its bias, `{}` on line {} ({:.4} in [0, 1] depth), is far under how much the receiver's own surface, sloped to the light, moves in depth across the disk it searches: {:.4} (median). The nearer part of that surface passes the test as a blocker. A bias that grows with the slope and the search radius, or each tap compared with the receiver plane's depth there, keeps it out.",
+        "它的偏移 `{}`（第 {} 行，[0, 1] 深度中为 {:.4}）远小于接收点自身表面（相对光源倾斜）在搜索圆盘内的深度变化：{:.4}（中位数）。这个表面中较近的部分就会作为遮挡物通过测试。让偏移随斜率和搜索半径增大，或者把每个采样与接收平面在该处的深度比较，就能把它排除。",
+    ),
+    (
+        "Its bias, `{}` on line {}, is the wrong way round: it lets texels up to {:.4} behind the receiver count as blockers, so the receiver's own texels always do. Test depth + bias < z_receiver.",
+        "它的偏移 `{}`（第 {} 行）方向反了：比接收点还远 {:.4} 以内的纹素也被算作遮挡物，于是接收点自己的纹素总会被算进来。应判断 depth + bias < z_receiver。",
     ),
 ];

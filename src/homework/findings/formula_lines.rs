@@ -108,6 +108,145 @@ pub fn blocked_value(
     })
 }
 
+/// Whether `function` (a recorded function's name) compares anything outside its loops'
+/// headers: `<`, `>` or `step(`. A blocker search without one averages every tap it reads.
+pub fn compares_in(source: &str, function: &str) -> Option<bool> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let own = recorded_name(source, &toks, function)?;
+    let body = function_bodies(source, &toks).into_iter().find(|b| b.name == own)?;
+    let mut k = body.open;
+    while k < body.close {
+        if text(k) == "for" && text(k + 1) == "(" {
+            k = crate::homework::lex::matching(source, &toks, k + 1, "(", ")");
+        } else if matches!(text(k), "<" | ">" | "step") {
+            return Some(true);
+        }
+        k += 1;
+    }
+    Some(false)
+}
+
+/// Whether the bias `bias` (as written) makes `function`'s blocker test stricter where a
+/// comparison reads it: added on the smaller side (`depth + BIAS < zR`) or taken from the larger
+/// (`zR - BIAS > depth`). False where it loosens the test (`depth - BIAS < zR`); None where no
+/// `<` or `>` in the function reads it.
+pub fn bias_tightens(source: &str, function: &str, bias: &str) -> Option<bool> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let own = recorded_name(source, &toks, function)?;
+    let body = function_bodies(source, &toks).into_iter().find(|b| b.name == own)?;
+    let ends = |t: &str| matches!(t, ";" | "{" | "}" | "?" | ":" | "," | "&" | "|");
+    (body.open..body.close).filter(|&k| matches!(text(k), "<" | ">") && text(k + 1) != text(k)).find_map(
+        |k| {
+            // Each operand: out to an unmatched bracket or the statement's end.
+            let operand = |step: isize| {
+                let (mut at, mut depth, mut out) = (k as isize + step, 0i32, Vec::new());
+                let skip_eq = step > 0 && text(k + 1) == "=";
+                if skip_eq {
+                    at += 1;
+                }
+                while at > body.open as isize && at < body.close as isize {
+                    let t = text(at as usize);
+                    let (opens, closes) = if step > 0 { ("(", ")") } else { (")", "(") };
+                    if t == opens {
+                        depth += 1;
+                    } else if t == closes {
+                        if depth == 0 {
+                            break;
+                        }
+                        depth -= 1;
+                    } else if depth == 0 && (ends(t) || matches!(t, "<" | ">")) {
+                        break;
+                    }
+                    out.push(at as usize);
+                    at += step;
+                }
+                out
+            };
+            let sign_of =
+                |tokens: &[usize]| tokens.iter().find(|&&i| text(i) == bias).map(|&i| text(i - 1) == "-");
+            let (left, right) = (operand(-1), operand(1));
+            let larger_is_right = text(k) == "<";
+            if let Some(minus) = sign_of(&left) {
+                return Some(if larger_is_right { !minus } else { minus });
+            }
+            sign_of(&right).map(|minus| if larger_is_right { minus } else { !minus })
+        },
+    )
+}
+
+/// In PCSS, a local computed from the blocker search's result that nothing reads afterwards
+/// (`float penumbra = (zR - zB) * W / zB;` with the filter then sized without it): (line, name).
+pub fn unused_from_blocker(source: &str) -> Option<(usize, String)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let bodies = function_bodies(source, &toks);
+    let search = recorded_name(source, &toks, "findBlocker")?;
+    let pcss = recorded_name(source, &toks, PCSS)?;
+    let body = bodies.iter().find(|b| b.name == pcss)?;
+    // `NAME = ...`, not `==`, `<=`, `!=` or `+=`.
+    let assigns = |k: usize| {
+        text(k) == "="
+            && text(k + 1) != "="
+            && !matches!(text(k - 1), "=" | "<" | ">" | "!" | "+" | "-" | "*" | "/")
+            && toks[k - 1].kind == Kind::Ident
+    };
+    let blocker = (body.open..body.close)
+        .find(|&k| text(k) == search && text(k + 1) == "(" && assigns(k - 1))
+        .map(|k| text(k - 2))?;
+    (body.open..body.close).filter(|&k| assigns(k) && text(k - 1) != blocker).find_map(|k| {
+        let name = text(k - 1);
+        let end = (k..body.close).find(|&e| text(e) == ";")?;
+        if !(k + 1..end).any(|e| text(e) == blocker) {
+            return None;
+        }
+        let read = (end..body.close).any(|e| text(e) == name && !assigns(e + 1));
+        (!read).then(|| (toks[k].line, name.to_string()))
+    })
+}
+
+/// The first line in `function` (a recorded function's name) that turns a length into uv by
+/// dividing by a uniform, a `#define` or a number of 2 or more (a map size, a frustum's width),
+/// not by a sample count: (line, the divisor as written, the line's code).
+pub fn uv_divisor(source: &str, function: &str) -> Option<(usize, String, String)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let bodies = function_bodies(source, &toks);
+    let own = recorded_name(source, &toks, function)?;
+    let body = bodies.iter().find(|b| b.name == own)?;
+    // A `#define NAME` or a `uniform [precision] TYPE NAME;`.
+    let named = |name: &str| {
+        (0..toks.len()).any(|k| {
+            let define =
+                toks[k].kind == Kind::Directive && text(k).trim_start_matches('#').trim() == "define";
+            (define && text(k + 1) == name)
+                || (text(k) == "uniform" && (k + 1..toks.len().min(k + 5)).any(|e| text(e) == name))
+        })
+    };
+    (body.open..body.close).find_map(|k| {
+        if text(k) != "/" {
+            return None;
+        }
+        let mut at = k + 1;
+        while matches!(text(at), "(" | "float") {
+            at += 1;
+        }
+        let divisor = text(at);
+        let lower = divisor.to_ascii_lowercase();
+        let counts = ["sample", "num", "count"].iter().any(|c| lower.contains(c));
+        let size = match toks.get(at)?.kind {
+            Kind::Number => divisor.trim_end_matches(['f', 'F']).parse::<f32>().is_ok_and(|v| v >= 2.0),
+            Kind::Ident => named(divisor),
+            _ => false,
+        };
+        (size && !counts && !matches!(text(at + 1), "-" | "+" | "*")).then(|| {
+            let line = toks[k].line;
+            (line, divisor.to_string(), source.lines().nth(line - 1).unwrap_or("").trim().to_string())
+        })
+    })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -142,5 +281,47 @@ mod tests {
         // A `#define` without a value as the shader's last tokens is no constant (and no panic).
         assert_eq!(blocked_value("#define SHADE", 0.6, None), None);
         assert_eq!(world_light_size("#define LIGHT_WORLD_SIZE"), None);
+    }
+
+    #[test]
+    fn a_penumbra_nothing_reads_and_the_divisors_that_make_uv_are_found() {
+        let source = "#define W 10.0\nuniform float uMapSize;\nuniform float uBox;\n\
+                      float findBlocker(vec2 uv, float zR) {\n  float r = W / uBox;\n  return r;\n}\n\
+                      float PCF(vec4 c, float f) {\n  float v = f / uMapSize;\n  return v / float(NUM_SAMPLES);\n}\n\
+                      float PCSS(vec4 coords) {\n  float zR = coords.z;\n  float zB = findBlocker(coords.xy, zR);\n  \
+                      float penumbra = (zR - zB) * W / zB;\n  float size = 0.01;\n  return PCF(coords, size);\n}\n";
+        assert_eq!(unused_from_blocker(source), Some((15, "penumbra".to_string())));
+        let used = source.replace("PCF(coords, size)", "PCF(coords, penumbra)");
+        assert_eq!(unused_from_blocker(&used), None);
+        let (line, divisor, _) = uv_divisor(source, "findBlocker").expect("the search's divisor");
+        assert_eq!((line, divisor.as_str()), (5, "uBox"));
+        let (line, divisor, _) = uv_divisor(source, "PCF").expect("the filter's divisor");
+        assert_eq!((line, divisor.as_str()), (9, "uMapSize"));
+        // A sample count and a depth are not what turns a length into uv.
+        assert_eq!(uv_divisor(source, "PCSS"), None);
+        // The loop's own `i < N` is no test of a depth.
+        let averages = "float findBlocker(vec2 uv, float zR) {\n  float s = 0.0;\n  for (int i = 0; i < 4; i++) { s += 1.0; }\n  return s / 4.0;\n}\n";
+        assert_eq!(compares_in(averages, "findBlocker"), Some(false));
+        let tests = averages.replace("s += 1.0;", "if (zR > 0.5) s += 1.0;");
+        assert_eq!(compares_in(&tests, "findBlocker"), Some(true));
+    }
+
+    #[test]
+    fn a_bias_that_tightens_the_blocker_test_is_told_from_one_that_loosens_it() {
+        let with = |test: &str| {
+            format!("float findBlocker(float d, float zR) {{\n  if ({test}) return 1.0;\n  return 0.0;\n}}\n")
+        };
+        for (test, tightens) in [
+            ("d + BIAS < zR", Some(true)),
+            ("d - BIAS < zR", Some(false)),
+            ("zR - BIAS >= d", Some(true)),
+            ("zR + BIAS > d", Some(false)),
+            ("d < zR - BIAS", Some(true)),
+            ("d <= (zR + BIAS)", Some(false)),
+            ("zR > d + BIAS", Some(true)),
+            ("d < zR", None),
+        ] {
+            assert_eq!(bias_tightens(&with(test), "findBlocker", "BIAS"), tightens, "{test}");
+        }
     }
 }

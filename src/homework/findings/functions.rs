@@ -32,14 +32,6 @@ const RADIUS_SPREAD: f32 = 1.4;
 const OFF_CENTRE: f32 = 0.6;
 /// The twin's blocker search is evaluated at most at this many pixels.
 const TWIN_PIXELS: usize = 4000;
-/// `receiver_counts_as_blocker`: where the twin finds no blocker within the student's search
-/// radius, findBlocker returns the receiver's own depth at more than this share...
-const FINDS_ITSELF_SHARE: f64 = 0.5;
-/// ...and where some of the disk is blocked, its average is pulled this far (median) from the
-/// blockers' towards the receiver's depth. A flat bias on a floor sloped to the light lets a wide
-/// search count some of the receiver's nearer texels (0.15 for 0.001 in depth); no bias at all
-/// 0.25 to 0.4, a bias the wrong way 0.4 and more.
-const PULL: f32 = 0.2;
 /// `samples_not_around_receiver`: the filter's taps stretch the same way at every pixel (the
 /// mean of their stretch over the pixels, 0 where each pixel's lies another way or none does, 1
 /// where all lie on lines of one direction) more than this. One pixel's taps on a line whose angle
@@ -64,7 +56,7 @@ pub struct TwinInputs<'a> {
 
 /// Where the lookups never meet the blockers, or the light puts the objects elsewhere, what a
 /// function reads says nothing of the function.
-fn lookups_broken(earlier: &[super::Finding]) -> bool {
+pub(super) fn lookups_broken(earlier: &[super::Finding]) -> bool {
     super::has(earlier, ids::SHADOWS_MISSING) || super::has(earlier, ids::LIGHT_MODEL_MATRIX)
 }
 
@@ -283,53 +275,6 @@ pub(crate) fn twin_searches(j: &Judged<'_>) -> Vec<(usize, TwinSearch)> {
             twin_search(twin, p, n, taps[i][FIND_BLOCKER].max_offset_uv).map(|s| (i, s))
         })
         .collect()
-}
-
-/// findBlocker counts the receiver itself as a blocker: where the twin finds none over the same
-/// disk it returns the receiver's own depth, and where some of the disk is blocked its average is
-/// pulled towards the receiver's depth.
-pub const RECEIVER_COUNTS_AS_BLOCKER: FindingKind = FindingKind {
-    id: ids::RECEIVER_COUNTS_AS_BLOCKER,
-    lesson: "pcss",
-    step: 4,
-    judge: receiver_counts_as_blocker,
-};
-
-fn receiver_counts_as_blocker(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    if !j.pcss() || search_broken(earlier) || lookups_broken(earlier) {
-        return None;
-    }
-    let (mut clear, mut found_itself) = (0usize, 0usize);
-    let mut pulls = Vec::new();
-    for (i, search) in j.twin() {
-        let returned = j.e.student.returned[*i][FIND_BLOCKER];
-        let receiver = j.receivers[*i].map_or(search.z_receiver, |r| r.depth);
-        if search.blocked == 0.0 {
-            clear += 1;
-            // A depth among the receiver's own texels (its plane across the disk, the packing's
-            // rounding): what the receiver counted as a blocker averages to.
-            found_itself += usize::from((returned - receiver).abs() <= search.receiver_spread + 0.002);
-        } else if (0.2..0.8).contains(&search.blocked) && search.z_receiver - search.z_blocker > 0.002 {
-            pulls.push((returned - search.z_blocker) / (search.z_receiver - search.z_blocker));
-        }
-    }
-    let itself = found_itself as f64 / clear.max(1) as f64;
-    let pull = median(pulls.clone())?;
-    (clear >= 50 && pulls.len() >= 20 && itself > FINDS_ITSELF_SHARE && pull > PULL).then(|| {
-        Found::new(
-            Some("findBlocker"),
-            BTreeMap::from([
-                ("returns_receiver_depth_share", itself),
-                ("pull_towards_receiver_median", f64::from(pull)),
-                ("pixels_compared", (clear + pulls.len()) as f64),
-            ]),
-            fill(
-                lang,
-                "findBlocker counts the receiver as its own blocker: where nothing blocks the disk it searched, it returns the receiver's own depth at {:.0}% of the points, and where part of the disk is blocked its average lies {:.0}% of the way from the blockers' depth to the receiver's. Test blockers as nearer than the receiver by more than a bias (depth + bias < z_receiver): a bias the other way, or none, lets the receiver's own texels in, and the penumbra shrinks.",
-                &[&(100.0 * itself), &(100.0 * pull)],
-            ),
-        )
-    })
 }
 
 /// The lossless map, read back and unpacked, does not hold the depths the light pass was given:

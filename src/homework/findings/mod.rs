@@ -12,6 +12,8 @@
 //! across real submissions, never for one file (tests/homework_check.rs holds the project's own
 //! example of each).
 
+mod blocker_test;
+mod filter_radius;
 mod formula_lines;
 mod framework_floor;
 mod functions;
@@ -145,11 +147,13 @@ pub const FINDINGS: &[FindingKind] = &[
     functions::SEARCH_RADIUS_WRONG,
     functions::FILTER_RADIUS_NOT_FINITE,
     pcss_steps::SEARCH_MISSES_LIGHT,
-    functions::RECEIVER_COUNTS_AS_BLOCKER,
+    blocker_test::RECEIVER_COUNTS_AS_BLOCKER,
     pcss_steps::BLOCKER_DEPTH_WRONG,
     pcss_steps::PENUMBRA_ESTIMATE_WRONG,
     functions::SAMPLES_NOT_AROUND_RECEIVER,
+    filter_radius::FILTER_IGNORES_BLOCKER,
     penumbra_law::PENUMBRA_LAW_WRONG,
+    filter_radius::SEARCH_AND_FILTER_LIGHTS_DIFFER,
     shadows::SELF_SHADOWING,
     pcss_steps::UNPACK_LOSES_DEPTH,
     round_trip::ROUND_TRIP_ACNE,

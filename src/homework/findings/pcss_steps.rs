@@ -113,6 +113,13 @@ pub(super) fn implied_light_halves(j: &Judged<'_>) -> Vec<(f32, f32, f32, f32)> 
         .collect()
 }
 
+/// Under real blockers: (findBlocker's farthest read (uv), the light's half width (uv) the
+/// filter radius implies there).
+pub(super) fn searched_light_halves(j: &Judged<'_>) -> Vec<(f32, f32)> {
+    let steps = steps(j);
+    steps_under_blockers(j, &steps).iter().filter_map(|s| Some((s.search_uv, s.light_half_uv()?))).collect()
+}
+
 fn percentile(values: &mut [f32], p: f64) -> Option<f32> {
     values.sort_by(f32::total_cmp);
     values.get(((values.len().max(1) - 1) as f64 * p) as usize).copied()

@@ -19,6 +19,9 @@ fn penumbra_judged(j: &Judged<'_>, earlier: &[super::Finding]) -> bool {
             ids::PETER_PANNING,
             // Acne darkens the lit side of every slab's penumbra: its widths are the acne's.
             ids::SELF_SHADOWING,
+            // A filter narrower than its own search's light: the cause of narrow penumbrae.
+            ids::SEARCH_AND_FILTER_LIGHTS_DIFFER,
+            ids::FILTER_IGNORES_BLOCKER,
         ]
         .iter()
         .any(|id| has(earlier, id))

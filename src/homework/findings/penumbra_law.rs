@@ -24,6 +24,8 @@ const PCSS: &str = "PCSS";
 
 /// At least this many points under blockers.
 const MIN_POINTS: usize = 100;
+/// A power is fitted to no fewer points than this (the values are the functions' own, exact).
+const MIN_FIT_POINTS: usize = 50;
 /// The receivers' (or the blockers') depths under blockers span at least this much, ln(p90 / p10)
 /// (about 10%; the check scene's slabs give 20%)...
 const MIN_LOG_SPREAD: f64 = 0.1;
@@ -45,13 +47,13 @@ pub const PENUMBRA_LAW_WRONG: FindingKind =
     FindingKind { id: ids::PENUMBRA_LAW_WRONG, lesson: "pcss", step: 7, judge: penumbra_law_wrong };
 
 /// h = C d_r^a d_b^b, least squares in logs.
-struct PowerFit {
-    a: f64,
-    b: f64,
-    r_squared: f64,
+pub(super) struct PowerFit {
+    pub a: f64,
+    pub b: f64,
+    pub r_squared: f64,
 }
 
-fn power_fit(points: &[(f32, f32, f32)]) -> Option<PowerFit> {
+pub(super) fn power_fit(points: &[(f32, f32, f32)]) -> Option<PowerFit> {
     let logs: Vec<[f64; 3]> = points
         .iter()
         .filter(|(r, b, h)| *r > 0.0 && *b > 0.0 && *h > 0.0)
@@ -65,7 +67,7 @@ fn power_fit(points: &[(f32, f32, f32)]) -> Option<PowerFit> {
     let (srr, sbb, srb) = (cov(0, 0, mr, mr), cov(1, 1, mb, mb), cov(0, 1, mr, mb));
     let (srh, sbh, shh) = (cov(0, 2, mr, mh), cov(1, 2, mb, mh), cov(2, 2, mh, mh));
     let det = srr * sbb - srb * srb;
-    if logs.len() < MIN_POINTS || det.abs() < 1e-12 * (srr * sbb).max(1e-30) || shh <= 0.0 {
+    if logs.len() < MIN_FIT_POINTS || det.abs() < 1e-12 * (srr * sbb).max(1e-30) || shh <= 0.0 {
         return None;
     }
     let a = (srh * sbb - sbh * srb) / det;
@@ -79,7 +81,7 @@ fn power_fit(points: &[(f32, f32, f32)]) -> Option<PowerFit> {
 /// so that a hard edge is still filtered) or a largest one is a choice, not a law. A bound shows
 /// as a share of the radii at one value: within 2% of the smallest (or the largest) radius at
 /// more than `AT_BOUND_SHARE` of the points. (receiver's depth, blocker's depth, half width.)
-fn unclamped(points: Vec<(f32, f32, f32, f32)>) -> Vec<(f32, f32, f32)> {
+pub(super) fn unclamped(points: Vec<(f32, f32, f32, f32)>) -> Vec<(f32, f32, f32)> {
     let radii = || points.iter().map(|p| p.3).filter(|r| r.is_finite());
     let (least, most) = (radii().fold(f32::INFINITY, f32::min), radii().fold(0.0, f32::max));
     let share =
@@ -95,7 +97,7 @@ fn unclamped(points: Vec<(f32, f32, f32, f32)>) -> Vec<(f32, f32, f32)> {
         .collect()
 }
 
-fn percentiles(mut values: Vec<f32>) -> (f32, f32) {
+pub(super) fn percentiles(mut values: Vec<f32>) -> (f32, f32) {
     values.sort_by(f32::total_cmp);
     let at = |p: f64| values[((values.len() - 1) as f64 * p) as usize];
     (at(0.1), at(0.9))
@@ -103,13 +105,18 @@ fn percentiles(mut values: Vec<f32>) -> (f32, f32) {
 
 /// The light is orthographic: its matrix keeps w = 1 (a perspective light's [0, 1] depth is not
 /// a distance, and its uv per world unit changes with it).
-fn orthographic(j: &Judged<'_>) -> bool {
+pub(super) fn orthographic(j: &Judged<'_>) -> bool {
     let w = j.e.light.clip_from_world.row(3);
     w.truncate().length() < 1e-6 * w.w.abs().max(1e-6)
 }
 
 fn penumbra_law_wrong(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    let explained = [ids::BLOCKER_DEPTH_WRONG, ids::PENUMBRA_ESTIMATE_WRONG, ids::FILTER_RADIUS_NOT_FINITE];
+    let explained = [
+        ids::BLOCKER_DEPTH_WRONG,
+        ids::PENUMBRA_ESTIMATE_WRONG,
+        ids::FILTER_RADIUS_NOT_FINITE,
+        ids::FILTER_IGNORES_BLOCKER,
+    ];
     if !judged(j, earlier)
         || super::functions::search_broken(earlier)
         || explained.iter().any(|id| has(earlier, id))

@@ -81,6 +81,10 @@ fn umbra_not_dark(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Opt
     {
         return None;
     }
+    // A filter radius that ignores the blocker reaches past a near one: that finding's cause.
+    if super::filter_radius::ignored_blocker(j).is_some() {
+        return None;
+    }
     let umbra = umbra_mean(j).filter(|m| *m > UMBRA_MEAN_LIMIT)?;
     let mut figures = BTreeMap::from([("umbra_mean", umbra), ("ground_truth_umbra_mean", 0.0)]);
     if let Some(found) = blocked_counts_as(j, &mut figures, lang) {
@@ -173,10 +177,13 @@ pub const PETER_PANNING: FindingKind =
     FindingKind { id: ids::PETER_PANNING, lesson: "bias", step: 2, judge: peter_panning };
 
 fn peter_panning(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
-    // A slab outside a clipped frustum loses its shadow to the frustum, not to a bias.
+    // A slab outside a clipped frustum loses its shadow to the frustum, not to a bias; a band of
+    // the framework's own floor outside it says nothing of the check scene, which fits.
+    let check_scene_clipped =
+        earlier.iter().any(|f| f.id == ids::LIGHT_FRUSTUM_CLIPS && f.figures.contains_key("clipped_share"));
     if has(earlier, ids::SHADOWS_MISSING)
         || has(earlier, ids::LIGHT_MODEL_MATRIX)
-        || has(earlier, ids::LIGHT_FRUSTUM_CLIPS)
+        || check_scene_clipped
         || judged_on_numbers(earlier)
     {
         return None;
