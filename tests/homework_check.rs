@@ -68,6 +68,7 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment.glsl", script("DirectionalLight_three.js"), &[]),
         ("phongFragment.glsl", script("DirectionalLight_no_model.js"), &["light_model_matrix"]),
         ("phongFragment.glsl", script("DirectionalLight_narrow.js"), &["light_frustum_clips"]),
+        ("phongFragment.glsl", script("DirectionalLight_identity_sum.js"), &["light_direction_off"]),
         ("phongFragment.glsl", script("DirectionalLight_low.js"), &["light_frustum_clips"]),
         ("phongFragment.glsl", shadow("shadowFragment_carry.glsl"), &["depth_round_trip_wrong"]),
         ("phongFragment_light_size_world.glsl", vec![], &["umbra_not_dark", "depends_on_uncleared_map"]),
@@ -516,6 +517,15 @@ fn a_filter_that_ignores_the_blocker_or_another_light_and_a_bias_the_wrong_way_a
         said(&texels).contains("`/ FRUSTUM_WIDTH`") && said(&texels).contains("`/ MAP_TEXELS`"),
         "{texels:#}"
     );
+
+    // A view summed into the identity: the map projects 22.5 degrees off the light's axis.
+    let script = example("DirectionalLight_identity_sum.js");
+    let args = ["--light-script", script.as_str()];
+    let skewed =
+        check(&example("phongFragment.glsl"), &args, &scratch.path().join("skewed"))["findings"][0].clone();
+    assert_eq!(skewed["id"], "light_direction_off", "{skewed:#}");
+    assert!((figure(&skewed, "angle_degrees") - 22.5).abs() < 0.5, "{skewed:#}");
+    assert!(said(&skewed).contains("(DirectionalLight_identity_sum.js:"), "{skewed:#}");
 
     // `depth - BIAS < zReceiver`: the wrong way round, on the `#define`'s line.
     let wrong_way = first("phongFragment_receiver_blocker.glsl");

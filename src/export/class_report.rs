@@ -269,6 +269,7 @@ const DESCRIPTIONS: &[(&str, &str)] = &[
     ),
     ("visibility_scaled", "The visibility is scaled by a constant: lit points do not reach 1."),
     ("light_model_matrix", "CalcLightMVP places the objects differently from the framework's model matrix."),
+    ("light_direction_off", "The light's map projects along another direction than the light looks."),
     ("light_frustum_clips", "The light's frustum leaves part of the scene outside the shadow map."),
     ("light_not_drawn", "The page never draws with this light's matrix: its shadows are another light's."),
     ("light_matrix_stale", "A light or an object moves, but the uLightMVP its draws get stays where it was."),

@@ -58,6 +58,8 @@ pub struct HomeworkLight {
     pub clip_from_world: Mat4,
     /// `uLightPos`, world units (also the shading's light direction: `normalize(uLightPos)`).
     pub position: Vec3,
+    /// Where the light looks (unit, world): from its position to its focal point.
+    pub look_direction: Vec3,
     /// `uLightIntensity`.
     pub intensity: Vec3,
     /// What the student's model matrix does instead of translate-then-scale, where it is wrong.
@@ -143,6 +145,7 @@ impl HomeworkLight {
                 .collect(),
             clip_from_world,
             position: light.position_at(t_s),
+            look_direction: light.direction_at(t_s),
             intensity: intensity_scale * light.intensity * light.color,
             model_matrix: None,
             stale: Vec::new(),

@@ -318,6 +318,8 @@ impl CheckRun {
                 object_names: &object_names,
                 map_size,
                 clip_from_world: self.light.clip_from_world,
+                look_direction: self.light.look_direction,
+                from: self.light.from.label(),
                 width: width.as_ref(),
                 model_matrix: self.light.model_matrix,
                 stale: &self.light.stale,

@@ -440,6 +440,7 @@ fn light_of_page(
         clip_from_object,
         clip_from_world,
         position,
+        look_direction: (focal_point - position).normalize_or_zero(),
         intensity: engine_intensity,
         model_matrix: model,
         stale,

@@ -154,4 +154,8 @@ pub(super) const CLASS: &[(&str, &str)] = &[
         "受光的表面遮挡了自己：阴影失真，偏移太小。",
     ),
     ("The picture depends on the texels the framework never clears.", "画面取决于框架从未清除的纹素。"),
+    (
+        "The light's map projects along another direction than the light looks.",
+        "光源的阴影贴图沿着与光源朝向不同的方向投影。",
+    ),
 ];

@@ -359,4 +359,8 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "Its bias, `{}` on line {}, is the wrong way round: it lets texels up to {:.4} behind the receiver count as blockers, so the receiver's own texels always do. Test depth + bias < z_receiver.",
         "它的偏移 `{}`（第 {} 行）方向反了：比接收点还远 {:.4} 以内的纹素也被算作遮挡物，于是接收点自己的纹素总会被算进来。应判断 depth + bias < z_receiver。",
     ),
+    (
+        "Your light's map projects the scene along ({:.2}, {:.2}, {:.2}), {:.1} degrees from where the light looks, from its position to its focal point: ({:.2}, {:.2}, {:.2}). Shadows fall along the first while the shading is lit along the second. A view matrix is a rotation and a translation, and yours ({}) is not: a product summed into a matrix that starts as mat4.create(), the identity, instead of zeros has the identity added, for one.",
+        "你的光源贴图沿 ({:.2}, {:.2}, {:.2}) 投影场景，与光源的朝向（从光源位置指向焦点）相差 {:.1} 度：({:.2}, {:.2}, {:.2})。阴影沿前者投下，着色却按后者照亮。视图矩阵应当是一个旋转加一个平移，而你的（{}）不是：例如把乘积累加进一个由 mat4.create() 创建的矩阵（它是单位矩阵而不是零矩阵），结果就多加了一个单位矩阵。",
+    ),
 ];

@@ -6,6 +6,7 @@ pub const NAN_VISIBILITY: &str = "nan_visibility";
 pub const VISIBILITY_OUT_OF_RANGE: &str = "visibility_out_of_range";
 pub const VISIBILITY_SCALED: &str = "visibility_scaled";
 pub const LIGHT_MODEL_MATRIX: &str = "light_model_matrix";
+pub const LIGHT_DIRECTION_OFF: &str = "light_direction_off";
 pub const LIGHT_FRUSTUM_CLIPS: &str = "light_frustum_clips";
 pub const LIGHT_NOT_DRAWN: &str = "light_not_drawn";
 pub const LIGHT_MATRIX_STALE: &str = "light_matrix_stale";

@@ -44,6 +44,50 @@ fn light_model_matrix(j: &Judged<'_>, _: &[super::Finding], lang: Lang) -> Optio
     ))
 }
 
+/// An orthographic map whose projection direction (the one along which its x and y stay put)
+/// is this far from where the light looks is off: every rigid view gives 0 (0.00 degrees on
+/// every light of both development sets).
+const DIRECTION_OFF_DEGREES: f32 = 2.0;
+
+/// The map projects the scene along another direction than the light looks: the shadows fall
+/// one way while the shading is lit from another.
+pub const LIGHT_DIRECTION_OFF: FindingKind =
+    FindingKind { id: ids::LIGHT_DIRECTION_OFF, lesson: "hard-shadows", step: 1, judge: light_direction_off };
+
+fn light_direction_off(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if super::has(earlier, ids::LIGHT_MODEL_MATRIX) {
+        return None;
+    }
+    let m = j.e.light.clip_from_world;
+    let w = m.row(3);
+    if w.truncate().length() > 1e-6 * w.w.abs().max(1e-6) {
+        return None;
+    }
+    let look = j.e.light.look_direction;
+    let along = m.row(0).truncate().cross(m.row(1).truncate()).normalize_or_zero();
+    let along = if along.dot(look) < 0.0 { -along } else { along };
+    if along == glam::Vec3::ZERO || look == glam::Vec3::ZERO {
+        return None;
+    }
+    let degrees = along.dot(look).clamp(-1.0, 1.0).acos().to_degrees();
+    if degrees < DIRECTION_OFF_DEGREES {
+        return None;
+    }
+    let mut figures = BTreeMap::from([("angle_degrees", f64::from(degrees))]);
+    for (key, v) in [("along_x", along.x), ("along_y", along.y), ("along_z", along.z)] {
+        figures.insert(key, f64::from(v));
+    }
+    Some(Found::new(
+        Some("CalcLightMVP"),
+        figures,
+        fill(
+            lang,
+            "Your light's map projects the scene along ({:.2}, {:.2}, {:.2}), {:.1} degrees from where the light looks, from its position to its focal point: ({:.2}, {:.2}, {:.2}). Shadows fall along the first while the shading is lit along the second. A view matrix is a rotation and a translation, and yours ({}) is not: a product summed into a matrix that starts as mat4.create(), the identity, instead of zeros has the identity added, for one.",
+            &[&along.x, &along.y, &along.z, &degrees, &look.x, &look.y, &look.z, &j.e.light.from],
+        ),
+    ))
+}
+
 /// Surfaces the camera sees lie outside the student's light frustum (beside, before the near
 /// plane or beyond the far one): their lookups read outside the map.
 pub const LIGHT_FRUSTUM_CLIPS: FindingKind =

@@ -137,6 +137,7 @@ pub const FINDINGS: &[FindingKind] = &[
     visibility::VISIBILITY_OUT_OF_RANGE,
     visibility::VISIBILITY_SCALED,
     light::LIGHT_MODEL_MATRIX,
+    light::LIGHT_DIRECTION_OFF,
     light::LIGHT_FRUSTUM_CLIPS,
     light::LIGHT_NOT_DRAWN,
     light::LIGHT_MATRIX_STALE,
@@ -174,6 +175,10 @@ pub struct LightInputs<'a> {
     /// The matrix an object at the origin gets (GL clip from world): the framework's floor
     /// under it.
     pub clip_from_world: Mat4,
+    /// Where the light looks (unit, world: from its position to its focal point), and the
+    /// script's line that made its matrix (`DirectionalLight.js:37`, or `framework`).
+    pub look_direction: Vec3,
+    pub from: String,
     /// The slabs' penumbrae and the light width they say.
     pub width: Option<&'a LightWidthFit>,
     /// What the student's model matrix does instead of translate-then-scale, where it is wrong.
