@@ -356,8 +356,8 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "它的偏移 `{}`（第 {} 行，[0, 1] 深度中为 {:.4}）远小于接收点自身表面（相对光源倾斜）在搜索圆盘内的深度变化：{:.4}（中位数）。这个表面中较近的部分就会作为遮挡物通过测试。让偏移随斜率和搜索半径增大，或者把每个采样与接收平面在该处的深度比较，就能把它排除。",
     ),
     (
-        "Its bias, `{}` on line {}, is the wrong way round: it lets texels up to {:.4} behind the receiver count as blockers, so the receiver's own texels always do. Test depth + bias < z_receiver.",
-        "它的偏移 `{}`（第 {} 行）方向反了：比接收点还远 {:.4} 以内的纹素也被算作遮挡物，于是接收点自己的纹素总会被算进来。应判断 depth + bias < z_receiver。",
+        "Its bias, `{}` (line {}), is the wrong way round in line {}'s test, `{}`: it lets texels up to {:.4} behind the receiver count as blockers, so the receiver's own texels always do. Test depth + bias < z_receiver.",
+        "它的偏移 `{}`（第 {} 行）在第 {} 行的测试 `{}` 中方向反了：比接收点还远 {:.4} 以内的纹素也被算作遮挡物，于是接收点自己的纹素总会被算进来。应判断 depth + bias < z_receiver。",
     ),
     (
         "Your light's map projects the scene along ({:.2}, {:.2}, {:.2}), {:.1} degrees from where the light looks, from its position to its focal point: ({:.2}, {:.2}, {:.2}). Shadows fall along the first while the shading is lit along the second. A view matrix is a rotation and a translation, and yours ({}) is not: a product summed into a matrix that starts as mat4.create(), the identity, instead of zeros has the identity added, for one.",

@@ -73,15 +73,18 @@ fn receiver_counts_as_blocker(j: &Judged<'_>, earlier: &[super::Finding], lang: 
             lang,
             "It compares nothing: every tap it reads goes into the average, the receiver's own surface with the blockers. Count a tap only where its depth is nearer than the receiver's by more than a bias.",
         );
-    } else if let Some(c) = bias
-        .as_ref()
-        .filter(|c| super::formula_lines::bias_tightens(source, FIND_BLOCKER_NAME, &c.text) == Some(false))
-    {
+    } else if let Some((c, (_, test_line))) = bias.as_ref().and_then(|c| {
+        super::formula_lines::bias_tightens(source, FIND_BLOCKER_NAME, &c.text)
+            .filter(|(tightens, _)| !tightens)
+            .map(|t| (c, t))
+    }) {
         figures.insert("bias_line", c.line as f64);
+        figures.insert("test_line", test_line as f64);
+        let code = source.lines().nth(test_line - 1).unwrap_or("").trim();
         explanation += &fill(
             lang,
-            "Its bias, `{}` on line {}, is the wrong way round: it lets texels up to {:.4} behind the receiver count as blockers, so the receiver's own texels always do. Test depth + bias < z_receiver.",
-            &[&c.text, &c.line, &c.value],
+            "Its bias, `{}` (line {}), is the wrong way round in line {}'s test, `{}`: it lets texels up to {:.4} behind the receiver count as blockers, so the receiver's own texels always do. Test depth + bias < z_receiver.",
+            &[&c.text, &c.line, &test_line, &code, &c.value],
         );
     } else if let Some(c) = bias.filter(|c| c.value < 0.5 * f64::from(spread)) {
         figures.insert("bias_line", c.line as f64);

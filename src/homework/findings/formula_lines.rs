@@ -130,8 +130,8 @@ pub fn compares_in(source: &str, function: &str) -> Option<bool> {
 /// Whether the bias `bias` (as written) makes `function`'s blocker test stricter where a
 /// comparison reads it: added on the smaller side (`depth + BIAS < zR`) or taken from the larger
 /// (`zR - BIAS > depth`). False where it loosens the test (`depth - BIAS < zR`); None where no
-/// `<` or `>` in the function reads it.
-pub fn bias_tightens(source: &str, function: &str, bias: &str) -> Option<bool> {
+/// `<` or `>` in the function reads it. (tightens, the test's line.)
+pub fn bias_tightens(source: &str, function: &str, bias: &str) -> Option<(bool, usize)> {
     let toks = tokens(source);
     let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
     let own = recorded_name(source, &toks, function)?;
@@ -168,10 +168,11 @@ pub fn bias_tightens(source: &str, function: &str, bias: &str) -> Option<bool> {
                 |tokens: &[usize]| tokens.iter().find(|&&i| text(i) == bias).map(|&i| text(i - 1) == "-");
             let (left, right) = (operand(-1), operand(1));
             let larger_is_right = text(k) == "<";
+            let line = toks[k].line;
             if let Some(minus) = sign_of(&left) {
-                return Some(if larger_is_right { !minus } else { minus });
+                return Some((if larger_is_right { !minus } else { minus }, line));
             }
-            sign_of(&right).map(|minus| if larger_is_right { minus } else { !minus })
+            sign_of(&right).map(|minus| (if larger_is_right { minus } else { !minus }, line))
         },
     )
 }
@@ -321,7 +322,7 @@ mod tests {
             ("zR > d + BIAS", Some(true)),
             ("d < zR", None),
         ] {
-            assert_eq!(bias_tightens(&with(test), "findBlocker", "BIAS"), tightens, "{test}");
+            assert_eq!(bias_tightens(&with(test), "findBlocker", "BIAS").map(|t| t.0), tightens, "{test}");
         }
     }
 }

@@ -71,6 +71,7 @@ fn no_contact_hardening(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) 
         || has(earlier, ids::BLOCKER_DEPTH_WRONG)
         || has(earlier, ids::PENUMBRA_ESTIMATE_WRONG)
         || has(earlier, ids::PENUMBRA_LAW_WRONG)
+        || has(earlier, ids::RECEIVER_COUNTS_AS_BLOCKER)
     {
         return None;
     }
