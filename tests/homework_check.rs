@@ -95,6 +95,7 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_least_filter.glsl", vec![], &[]),
         ("phongFragment_constant_filter.glsl", vec![], &["filter_ignores_blocker"]),
         ("phongFragment_penumbra_unused.glsl", vec![], &["filter_ignores_blocker"]),
+        ("phongFragment_partial_search.glsl", vec![], &["search_radius_wrong (latent)"]),
         ("phongFragment_filter_in_texels.glsl", vec![], &["search_and_filter_lights_differ"]),
         ("phongFragment_divided_twice.glsl", vec![], &["visibility_scaled"]),
         ("phongFragment_undivided.glsl", vec![], &["visibility_out_of_range"]),
@@ -517,6 +518,18 @@ fn a_filter_that_ignores_the_blocker_or_another_light_and_a_bias_the_wrong_way_a
         said(&texels).contains("`/ FRUSTUM_WIDTH`") && said(&texels).contains("`/ MAP_TEXELS`"),
         "{texels:#}"
     );
+
+    // The first 8 of 32 samples: (8 / 32)^0.75 of the search's radius, on the loop's line.
+    let part = first("phongFragment_partial_search.glsl");
+    assert_eq!(
+        (part["id"].as_str(), part["severity"].as_str()),
+        (Some("search_radius_wrong"), Some("latent"))
+    );
+    assert_eq!(
+        (figure(&part, "line"), figure(&part, "samples_read"), figure(&part, "samples_in_disk")),
+        (69.0, 8.0, 32.0)
+    );
+    assert!(said(&part).contains("reach 35% of its radius"), "{part:#}");
 
     // A view summed into the identity: the map projects 22.5 degrees off the light's axis.
     let script = example("DirectionalLight_identity_sum.js");

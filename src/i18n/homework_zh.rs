@@ -363,4 +363,12 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "Your light's map projects the scene along ({:.2}, {:.2}, {:.2}), {:.1} degrees from where the light looks, from its position to its focal point: ({:.2}, {:.2}, {:.2}). Shadows fall along the first while the shading is lit along the second. A view matrix is a rotation and a translation, and yours ({}) is not: a product summed into a matrix that starts as mat4.create(), the identity, instead of zeros has the identity added, for one.",
         "你的光源贴图沿 ({:.2}, {:.2}, {:.2}) 投影场景，与光源的朝向（从光源位置指向焦点）相差 {:.1} 度：({:.2}, {:.2}, {:.2})。阴影沿前者投下，着色却按后者照亮。视图矩阵应当是一个旋转加一个平移，而你的（{}）不是：例如把乘积累加进一个由 mat4.create() 创建的矩阵（它是单位矩阵而不是零矩阵），结果就多加了一个单位矩阵。",
     ),
+    (
+        "Hidden today by this scene: the blockers that shape each penumbra lie within the part it reads; a wider light or a higher blocker shows it:",
+        "在这个场景里暂时看不出来：决定各个半影的遮挡物都落在它读到的那部分之内；更宽的光源或更高的遮挡物就会暴露它：",
+    ),
+    (
+        "findBlocker's loop on line {} reads only the first {} of the {} samples in `{}`. The disk orders them from the centre out, so those reach {:.0}% of its radius: the search reads {:.1} texels around the receiver, where the light its filter behaves as is {:.1} texels wide (half). Loop over every sample the disk holds (BLOCKER_SEARCH_NUM_SAMPLES, and a disk of that many).",
+        "findBlocker 第 {} 行的循环只读取了前 {} 个采样（共 {} 个，在 `{}` 中）。圆盘中的采样由中心向外排列，所以这些采样只达到半径的 {:.0}%：搜索只读取了接收点周围 {:.1} 个纹素，而它的滤波所对应的光源半宽是 {:.1} 个纹素。应遍历圆盘中的所有采样（BLOCKER_SEARCH_NUM_SAMPLES，并让圆盘有同样多的采样）。",
+    ),
 ];

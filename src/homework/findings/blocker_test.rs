@@ -103,3 +103,55 @@ fn receiver_counts_as_blocker(j: &Judged<'_>, earlier: &[super::Finding], lang: 
     }
     Some(Found::new(Some(FIND_BLOCKER_NAME), figures, explanation))
 }
+
+/// findBlocker's loop reads only the first of the samples its disk holds: the framework's disk
+/// orders them from the centre out (sample i at ((i + 1) / n)^0.75 of the radius), so the search
+/// reaches a fraction of its radius. Confirmed where the search reaches under this share of the
+/// light's half width the student's own filter implies.
+const PART_OF_LIGHT: f32 = 0.6;
+
+pub const SEARCH_READS_PART_OF_DISK: FindingKind =
+    FindingKind { id: ids::SEARCH_RADIUS_WRONG, lesson: "pcss", step: 2, judge: search_reads_part_of_disk };
+
+fn search_reads_part_of_disk(j: &Judged<'_>, earlier: &[super::Finding], lang: Lang) -> Option<Found> {
+    if !j.pcss()
+        || search_broken(earlier)
+        || lookups_broken(earlier)
+        || super::has(earlier, ids::SEARCH_RADIUS_WRONG)
+    {
+        return None;
+    }
+    let (line, array, read, size) =
+        super::formula_lines::partial_sample_loop(j.e.fragment_source, FIND_BLOCKER_NAME)?;
+    let texel = super::functions::texel_uv(j);
+    let points = super::pcss_steps::searched_light_halves(j);
+    if points.len() < 50 {
+        return None;
+    }
+    let search = median(points.iter().map(|p| p.0).collect())?;
+    let light = median(points.iter().map(|p| p.1).collect())?;
+    if search >= PART_OF_LIGHT * light {
+        return None;
+    }
+    let reach = (read as f32 / size as f32).powf(0.75);
+    let figures = BTreeMap::from([
+        ("line", line as f64),
+        ("samples_read", read as f64),
+        ("samples_in_disk", size as f64),
+        ("search_radius_texels_median", f64::from(search / texel)),
+        ("light_half_width_texels_median", f64::from(light / texel)),
+    ]);
+    let explanation = format!(
+        "{} {}",
+        tr(
+            lang,
+            "Hidden today by this scene: the blockers that shape each penumbra lie within the part it reads; a wider light or a higher blocker shows it:"
+        ),
+        fill(
+            lang,
+            "findBlocker's loop on line {} reads only the first {} of the {} samples in `{}`. The disk orders them from the centre out, so those reach {:.0}% of its radius: the search reads {:.1} texels around the receiver, where the light its filter behaves as is {:.1} texels wide (half). Loop over every sample the disk holds (BLOCKER_SEARCH_NUM_SAMPLES, and a disk of that many).",
+            &[&line, &read, &size, &array, &(100.0 * reach), &(search / texel), &(light / texel)],
+        ),
+    );
+    Some(Found { latent: true, ..Found::new(Some(FIND_BLOCKER_NAME), figures, explanation) })
+}

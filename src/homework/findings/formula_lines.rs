@@ -177,6 +177,70 @@ pub fn bias_tightens(source: &str, function: &str, bias: &str) -> Option<(bool, 
     )
 }
 
+/// `#define NAME value` with a number, or with another such name, resolved: name -> value.
+fn numeric_defines(
+    source: &str,
+    toks: &[crate::homework::lex::Token],
+) -> std::collections::HashMap<String, f64> {
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let mut raw: Vec<(String, String)> = Vec::new();
+    for k in 0..toks.len() {
+        let define = toks[k].kind == Kind::Directive && text(k).trim_start_matches('#').trim() == "define";
+        let single = toks.get(k + 3).is_none_or(|n| n.line != toks[k].line);
+        if define && single && toks.get(k + 2).is_some_and(|t| t.line == toks[k].line) {
+            raw.push((text(k + 1).to_string(), text(k + 2).trim_end_matches(['f', 'F']).to_string()));
+        }
+    }
+    let mut values = std::collections::HashMap::new();
+    // A chain resolves in as many rounds as it is long.
+    for _ in 0..4 {
+        for (name, value) in &raw {
+            let v = value.parse::<f64>().ok().or_else(|| values.get(value).copied());
+            if let Some(v) = v {
+                values.insert(name.clone(), v);
+            }
+        }
+    }
+    values
+}
+
+/// A loop in `function` (a recorded function's name) that reads the first `n` elements of a
+/// sample array declared with more (`for (int i = 0; i < 10; i++) ... poissonDisk[i]` with
+/// `vec2 poissonDisk[NUM_SAMPLES]`, 100): (the loop's line, the array's name, n, its size).
+pub fn partial_sample_loop(source: &str, function: &str) -> Option<(usize, String, usize, usize)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let defines = numeric_defines(source, &toks);
+    let value = |i: usize| {
+        text(i).trim_end_matches(['f', 'F']).parse::<f64>().ok().or_else(|| defines.get(text(i)).copied())
+    };
+    let own = recorded_name(source, &toks, function)?;
+    let body = function_bodies(source, &toks).into_iter().find(|b| b.name == own)?;
+    // Arrays declared outside every function: `vec2 NAME[SIZE];`.
+    let sizes: Vec<(&str, usize)> = (1..toks.len())
+        .filter(|&k| matches!(text(k - 1), "vec2" | "vec3") && text(k + 1) == "[" && text(k + 3) == "]")
+        .filter_map(|k| Some((text(k), value(k + 2)? as usize)))
+        .collect();
+    (body.open..body.close).find_map(|k| {
+        // `for ( int i = 0 ; i < BOUND ;`
+        if !(text(k) == "for" && text(k + 1) == "(" && text(k + 7) == text(k + 3) && text(k + 8) == "<") {
+            return None;
+        }
+        let (index, bound) = (text(k + 3), value(k + 9)? as usize);
+        let close = crate::homework::lex::matching(source, &toks, k + 1, "(", ")");
+        let end = if text(close + 1) == "{" {
+            crate::homework::lex::matching(source, &toks, close + 1, "{", "}")
+        } else {
+            close + 1
+        };
+        (close..end).find_map(|e| {
+            let &(array, size) = sizes.iter().find(|(name, _)| *name == text(e))?;
+            (text(e + 1) == "[" && text(e + 2) == index && text(e + 3) == "]" && bound < size)
+                .then(|| (toks[k].line, array.to_string(), bound, size))
+        })
+    })
+}
+
 /// In PCSS, a local computed from the blocker search's result that nothing reads afterwards
 /// (`float penumbra = (zR - zB) * W / zB;` with the filter then sized without it): (line, name).
 pub fn unused_from_blocker(source: &str) -> Option<(usize, String)> {
@@ -305,6 +369,15 @@ mod tests {
         assert_eq!(compares_in(averages, "findBlocker"), Some(false));
         let tests = averages.replace("s += 1.0;", "if (zR > 0.5) s += 1.0;");
         assert_eq!(compares_in(&tests, "findBlocker"), Some(true));
+    }
+
+    #[test]
+    fn a_loop_over_the_first_of_the_samples_is_found_with_its_counts() {
+        let source = "#define NUM_SAMPLES 100\n#define SEARCH NUM_SAMPLES\nvec2 poissonDisk[NUM_SAMPLES];\n\
+                      float findBlocker(vec2 uv) {\n  float s = 0.0;\n  for (int i = 0; i < 10; i++) {\n    s += poissonDisk[i].x;\n  }\n  return s;\n}\n";
+        assert_eq!(partial_sample_loop(source, "findBlocker"), Some((6, "poissonDisk".to_string(), 10, 100)));
+        let whole = source.replace("i < 10;", "i < SEARCH;");
+        assert_eq!(partial_sample_loop(&whole, "findBlocker"), None);
     }
 
     #[test]

@@ -148,6 +148,7 @@ pub const FINDINGS: &[FindingKind] = &[
     functions::SEARCH_RADIUS_WRONG,
     functions::FILTER_RADIUS_NOT_FINITE,
     pcss_steps::SEARCH_MISSES_LIGHT,
+    blocker_test::SEARCH_READS_PART_OF_DISK,
     blocker_test::RECEIVER_COUNTS_AS_BLOCKER,
     pcss_steps::BLOCKER_DEPTH_WRONG,
     pcss_steps::PENUMBRA_ESTIMATE_WRONG,
