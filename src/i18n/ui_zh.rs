@@ -166,6 +166,8 @@ pub(super) const UI: &[(&str, &str)] = &[
     ("cube face", "立方体面"),
     ("{} of {} · texel {} world", "第 {} 个（共 {} 个）· 纹素 {} 世界单位"),
     ("sharper cascades miss it at uv", "更清晰的级联未覆盖，其 uv"),
+    ("depth along the view axis", "沿视线方向的深度"),
+    ("{} world · in the slice {}", "{} 世界单位 · 位于分段 {}"),
     ("cascade split λ (0 uniform, 1 logarithmic)", "级联划分 λ（0 均匀，1 对数）"),
     ("cascades reach (world units)", "级联覆盖距离（世界单位）"),
     ("cascade selection", "级联选择"),
