@@ -45,7 +45,9 @@ fn noise_seed_at(frag: vec4<f32>) -> u32 {
 }
 
 // The shadow view of `light` that covers a point: a point light's cube face towards it, a sun's
-// sharpest cascade that holds it (else its last), or the light's one view.
+// cascade (else its last), or the light's one view. The cascade, by the light's selection
+// [Microsoft-CSM]: by map, the sharpest whose map holds the point; by interval, the first whose
+// slice ends beyond the point's depth along the camera's view axis (world units).
 fn shadow_view_at(light: LightGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
     let first = shadow_views[light.first_view];
     if is_cube(first) {
@@ -53,8 +55,10 @@ fn shadow_view_at(light: LightGpu, world_pos: vec3<f32>) -> ShadowViewGpu {
     }
     let last = light.first_view + max(light.view_count, 1u) - 1u;
     for (var i = light.first_view; i < last; i++) {
-        if cascade_holds(shadow_views[i], world_pos) {
-            return shadow_views[i];
+        let view = shadow_views[i];
+        if select(cascade_holds(view, world_pos), in_cascade_slice(view, world_pos),
+                  light.cascade_selection == CASCADE_BY_INTERVAL) {
+            return view;
         }
     }
     return shadow_views[last];

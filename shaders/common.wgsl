@@ -31,6 +31,8 @@ const TECHNIQUE_VSM: u32 = 4u;
 const TECHNIQUE_VSSM: u32 = 5u;
 const SIZE_MODEL_WIDTH: u32 = 0u;
 const SIZE_MODEL_ANGULAR: u32 = 1u;
+const CASCADE_BY_MAP: u32 = 0u;       // the sharpest cascade whose map holds the point
+const CASCADE_BY_INTERVAL: u32 = 1u;  // the cascade whose slice holds its depth along the view axis
 
 struct FrameGpu {
     clip_from_world: mat4x4<f32>,
@@ -53,8 +55,8 @@ struct LightGpu {
     tan_half_angle: f32,          // angular model: tan(angular_diameter / 2)
     first_view: u32,              // its shadow views: first_view .. first_view + view_count
     view_count: u32,
+    cascade_selection: u32,       // a sun's cascades: CASCADE_BY_*
     _pad0: u32,
-    _pad1: u32,
 }
 
 // One depth map a light renders: its projection and where it lies in the shadow-map array.
@@ -73,6 +75,11 @@ struct ShadowViewGpu {
     light: u32,                   // the light that owns it
     cube: u32,                    // 1: a cube face (stores distance; projects with the face's axes)
     face: u32,                    // 0..6: +X, -X, +Y, -Y, +Z, -Z; the faces lie in layers layer - face ..
+    view_axis_world: vec4<f32>,   // a cascade: the camera's view axis as a plane (xyz . p + w = depth, world)
+    split_near_world: f32,        // a cascade: its slice along that axis, world units
+    split_far_world: f32,
+    _pad0: u32,
+    _pad1: u32,
 }
 
 struct ShadowParamsGpu {

@@ -153,6 +153,13 @@ fn cascade_holds(view: ShadowViewGpu, world_pos: vec3<f32>) -> bool {
     return all(uv >= vec2<f32>(border)) && all(uv <= vec2<f32>(1.0 - border));
 }
 
+// A cascade's slice holds a point nearer than its far split along the camera's view axis (the
+// nearer slices were tried first): depth = axis . p + w, world units.
+fn in_cascade_slice(view: ShadowViewGpu, world_pos: vec3<f32>) -> bool {
+    let depth_world = dot(view.view_axis_world.xyz, world_pos) + view.view_axis_world.w;
+    return depth_world < view.split_far_world;
+}
+
 // Where direction d from the light lands on face `face`'s map (uv; behind the face: outside).
 fn cube_face_uv(face: u32, d: vec3<f32>) -> vec2<f32> {
     let axes = cube_face_axes(face);

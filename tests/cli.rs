@@ -855,6 +855,27 @@ fn probe_of_a_cascaded_sun_says_which_cascade_and_why() {
     assert!(width(cascade) > 2.0 * width(&near["lights"][0]["cascade"]), "farther cascades cover more");
     let texel = cascade["texel_world"].as_f64().expect("texel");
     assert!((texel - width(cascade) / 1024.0).abs() < 1e-6);
+    assert!(cascade.get("view_depth_world").is_none(), "by map: {cascade:#}");
+    // By interval the crate reads the cascade whose slice holds its depth along the view axis,
+    // though a sharper map may hold it: the probe gives the depth and the slice, no misses.
+    let run = shadowlab(&[
+        "probe",
+        "--scene",
+        &scene,
+        "--pixel",
+        "478,228",
+        "--no-reference",
+        "--set",
+        "light.0.cascade_selection=interval",
+    ]);
+    assert_eq!(run.code, Some(0), "{run}");
+    let json: Value = serde_json::from_str(&run.stdout).expect("JSON");
+    let cascade = &json["lights"][0]["cascade"];
+    let depth = cascade["view_depth_world"].as_f64().expect("depth");
+    let slice: Vec<f64> = (0..2).map(|i| cascade["slice_world"][i].as_f64().expect("slice")).collect();
+    assert!(slice[0] <= depth && depth < slice[1], "{cascade:#}");
+    assert_eq!(cascade["uv_in_sharper"], serde_json::json!([]));
+    assert!(cascade["index"].as_u64().expect("index") > index, "the crate lies past its map's slice");
 }
 
 #[test]
@@ -1350,7 +1371,7 @@ fn bench_soak_needs_the_window_and_a_sensible_length() {
     assert_bad_input(&run, &["--soak", "--window"]);
     // A lesson step that does not exist is named before any window opens.
     let run = shadowlab(&["bench", "--app", "--window", "--soak", "60", "--soak-lesson", "more-maps:9"]);
-    assert_bad_input(&run, &["--soak-lesson more-maps:9", "6 steps"]);
+    assert_bad_input(&run, &["--soak-lesson more-maps:9", "7 steps"]);
     let run = shadowlab(&["bench", "--app", "--window", "--soak", "60", "--soak-lesson", "more-maps"]);
     assert_bad_input(&run, &["--soak-lesson more-maps", "LESSON:STEP"]);
     let run = shadowlab(&["bench", "--app", "--window", "--soak", "1"]);

@@ -476,6 +476,46 @@ fn cascades_match_twin_for_every_technique() {
     assert_eq!(cascades.len(), 4, "pixels per cascade: {cascades:?}");
 }
 
+/// A sun's four cascades chosen by interval (the slice that holds a pixel's depth along the
+/// camera's view axis): the GPU and the twin pick the same cascade at every pixel. PCSS's search
+/// radius in texels scales with the cascade's width, so a pixel where the two picked different
+/// cascades fails its radius check in `compare_scene`; every cascade is read somewhere.
+#[test]
+fn cascades_by_interval_match_twin() {
+    let (_ctx, mut renderer) = common::gpu();
+    let by_interval = ("light.0.cascade_selection", "interval");
+    let cases: [(&str, &[(&str, &str)]); 3] = [
+        ("hard", &[("technique", "hard"), by_interval]),
+        ("pcf vogel", &[("technique", "pcf"), ("pcf_kernel", "vogel"), ("radius_texels", "3"), by_interval]),
+        ("pcss", &[("technique", "pcss"), ("light.0.angular_diameter_deg", "2"), by_interval]),
+    ];
+    for (name, overrides) in cases {
+        let scene = common::scene("sun_avenue", overrides);
+        let a = compare_scene(&mut renderer, &scene, 1e-3);
+        eprintln!(
+            "by interval {name}: {}/{} within 1e-3, max diff {:.4}; {} shadowed, {} partial",
+            a.within, a.compared, a.max_diff, a.shadowed, a.partial
+        );
+        assert!(a.compared > 1500, "{name}: too few surface pixels ({})", a.compared);
+        assert!(a.shadowed * 50 > a.compared, "{name}: under 2% of pixels are in shadow");
+        assert!(
+            a.within * 1000 >= a.compared * 995,
+            "by interval {name}: only {}/{} agree",
+            a.within,
+            a.compared
+        );
+    }
+    let scene = common::scene("sun_avenue", &[by_interval]);
+    let frame = renderer.render(&scene, &common::analysis_request((240, 136), 0)).expect("render");
+    let analysis = renderer.read_analysis().expect("analysis");
+    let mut cascades = std::collections::BTreeMap::new();
+    for i in (0..analysis.position.len()).filter(|&i| analysis.hit(i)) {
+        let view = frame.view_covering(0, Vec3::from_slice(&analysis.position[i][..3])).expect("view");
+        *cascades.entry(view).or_insert(0usize) += 1;
+    }
+    assert_eq!(cascades.len(), 4, "pixels per cascade: {cascades:?}");
+}
+
 /// VSSM on the GPU and in the twin: the moments over the search region, the blocker depth
 /// estimated from them, the penumbra and the VSM filter; a spot light with a width and a sun
 /// with an angle.

@@ -193,6 +193,8 @@ fn shadow_views(
             one_map_width_world: 0.0,
             lambda: 0.0,
             probe_cascade: None,
+            selection: Default::default(),
+            read_world: Vec::new(),
         };
     };
     if light.stores_distance() {
@@ -210,17 +212,29 @@ fn shadow_views(
             one_map_width_world,
             lambda: light.cascades.lambda,
             probe_cascade: probe.map(|_| 0),
+            selection: light.cascades.selection,
+            read_world: vec![Some([scene.camera.near, scene.camera.far])],
         };
     }
     let fits = shadow::cascades::fit_cascades(light, &scene.camera, picture_aspect, time_s);
     let mut splits_world: Vec<f32> = fits.iter().map(|f| f.split_world.0).collect();
     splits_world.extend(fits.last().map(|f| f.split_world.1));
+    // Where each is read: the renderer's own views and its choice of cascade, along the axis.
+    let (lights, views) = shadow::frame_lights(scene, picture_aspect, time_s, light.shadow_map_size);
+    let (from, to) =
+        (splits_world.first().copied().unwrap_or(0.0), splits_world.last().copied().unwrap_or(0.0));
+    let read_world = lights
+        .get(light_index)
+        .map(|l| super::cascade_reads::read_along_view_axis(l, &views, &scene.camera, from, to))
+        .unwrap_or_default();
     ShadowViewsPlot::Cascades {
         splits_world,
         widths_world: fits.iter().map(|f| f.width_world).collect(),
         one_map_width_world,
         lambda: light.cascades.lambda,
         probe_cascade: probe.and_then(|l| l.cascade.as_ref()).map(|c| c.index),
+        selection: light.cascades.selection,
+        read_world,
     }
 }
 

@@ -5,6 +5,7 @@
 
 mod acne_bias;
 mod canvas;
+pub mod cascade_reads;
 mod chebyshev;
 mod cjk_font;
 pub mod live;
@@ -191,13 +192,17 @@ pub struct DiagramInputs {
 pub enum ShadowViewsPlot {
     /// A sun's cascades (one for a light with one map): where each slice of the camera's view
     /// begins and ends along its axis (`count + 1` values), each cascade's map width, the width
-    /// of one map over the scene, the split's lambda, and the cascade the probe read.
+    /// of one map over the scene, the split's lambda, and the cascade the probe read. How a pixel
+    /// picks its cascade, and the depths along the axis over which each is read under that
+    /// selection (`cascade_reads`; None: never read on the axis).
     Cascades {
         splits_world: Vec<f32>,
         widths_world: Vec<f32>,
         one_map_width_world: f32,
         lambda: f32,
         probe_cascade: Option<usize>,
+        selection: crate::scene::CascadeSelection,
+        read_world: Vec<Option<[f32; 2]>>,
     },
     /// A point light's cube from above, and the face the probe read (`CUBE_FACES` order).
     Cube { lamp_xz: [f32; 2], probe_face: Option<usize> },
@@ -335,6 +340,13 @@ impl Default for DiagramInputs {
                 one_map_width_world: 220.0,
                 lambda: 0.7,
                 probe_cascade: Some(1),
+                selection: crate::scene::CascadeSelection::ByMap,
+                read_world: vec![
+                    Some([0.3, 26.0]),
+                    Some([26.0, 61.0]),
+                    Some([61.0, 120.0]),
+                    Some([120.0, 160.0]),
+                ],
             },
         }
     }

@@ -8,6 +8,7 @@ use super::canvas::Canvas;
 use super::style::{Anchor, FS_LABEL, FS_SMALL, Style, Swatch, col, fin, num, pal};
 use super::widgets::Column;
 use super::{DiagramInputs, ShadowViewsPlot};
+use crate::scene::CascadeSelection;
 
 /// Drawing area: x, y, w, h.
 const AREA: [f32; 4] = [20.0, 56.0, 620.0, 446.0];
@@ -32,8 +33,15 @@ pub fn draw(c: &mut Canvas, inp: &DiagramInputs) {
 }
 
 fn cascades(c: &mut Canvas, inp: &DiagramInputs) {
-    let ShadowViewsPlot::Cascades { splits_world, widths_world, one_map_width_world, lambda, probe_cascade } =
-        &inp.shadow_views
+    let ShadowViewsPlot::Cascades {
+        splits_world,
+        widths_world,
+        one_map_width_world,
+        lambda,
+        probe_cascade,
+        selection,
+        read_world,
+    } = &inp.shadow_views
     else {
         return;
     };
@@ -44,12 +52,15 @@ fn cascades(c: &mut Canvas, inp: &DiagramInputs) {
     let (x0, x1, mid) = (AREA[0] + 70.0, AREA[0] + AREA[2] - 20.0, AREA[1] + AREA[3] * 0.45);
     let x = |d: f32| x0 + (fin(d, 0.0).clamp(0.0, far) / far) * (x1 - x0);
     let half = |d: f32| 170.0 * fin(d, 0.0).clamp(0.0, far) / far;
-    for i in 0..n {
-        let (a, b) = (splits_world[i], splits_world[i + 1]);
+    // Filled: where each cascade is read along the axis, which is what the cascade-index view
+    // colours; by interval that is its slice, by map it runs on to where its map stops holding.
+    let read = |i: usize| read_world.get(i).copied().flatten();
+    for (i, colour) in VIEW_COLORS.iter().enumerate().take(n) {
+        let Some([a, b]) = read(i) else { continue };
         let poly =
             [[x(a), mid - half(a)], [x(b), mid - half(b)], [x(b), mid + half(b)], [x(a), mid + half(a)]];
         let probed = *probe_cascade == Some(i);
-        c.polygon(&poly, col(VIEW_COLORS[i], if probed { 0.75 } else { 0.4 }));
+        c.polygon(&poly, col(*colour, if probed { 0.75 } else { 0.4 }));
         c.line(poly[1], poly[2], col(pal::INK, 1.0), if probed { 3.0 } else { 1.5 });
         let label = format!("{}", i + 1);
         c.text(
@@ -59,6 +70,10 @@ fn cascades(c: &mut Canvas, inp: &DiagramInputs) {
             Style::em(FS_LABEL, pal::INK),
         );
     }
+    // Dashed: the splits between the slices (their depths are in the text column).
+    for &s in splits_world.iter().take(n).skip(1) {
+        c.dashed([x(s), mid - half(s)], [x(s), mid + half(s)], col(pal::INK, 1.0), 1.5, 4.0);
+    }
     c.line([x0, mid - 0.0], [x1, mid - half(far)], col(pal::MUTED, 1.0), 1.5);
     c.line([x0, mid], [x1, mid + half(far)], col(pal::MUTED, 1.0), 1.5);
     c.dashed([x0, mid], [x1, mid], col(pal::MUTED, 1.0), 1.0, 5.0);
@@ -66,23 +81,36 @@ fn cascades(c: &mut Canvas, inp: &DiagramInputs) {
     let t = c.fill("camera's view axis · 0 .. {} world", &[&num(far)]);
     c.label(&t, [AREA[0] + 8.0, AREA[1] + AREA[3] - 8.0], Anchor::BottomLeft, FS_SMALL);
 
-    let mut text = Column::new(COLUMN_X, 64.0);
-    text.bottom = 536.0;
     let one_texel = fin(*one_map_width_world, 0.0).abs() / map;
     let mut items: Vec<(Swatch, String)> = Vec::new();
     for i in 0..n {
         let texel = fin(widths_world[i], 0.0).abs() / map;
-        let range = format!("{}–{}", num(splits_world[i]), num(splits_world[i + 1]));
-        let line = c.fill("{}: {} · texel {}", &[&(i + 1), &range, &num(texel)]);
+        let reads = read(i).map_or_else(|| "–".to_string(), |[a, b]| format!("{}–{}", num(a), num(b)));
+        let line = c.fill("{}: read {} · texel {}", &[&(i + 1), &reads, &num(texel)]);
         items.push((Swatch::Fill(VIEW_COLORS[i], 0.6), line));
     }
+    let splits: Vec<String> = splits_world.iter().take(n).skip(1).map(|s| num(*s)).collect();
     let refs: Vec<(Swatch, &str)> = items.iter().map(|(s, t)| (*s, t.as_str())).collect();
     let b = c.legend(&refs, [COLUMN_X, 64.0], Anchor::TopLeft);
-    text.y = b[1] + b[3] + 16.0;
+    // Below the legend; a second column (grown text) starts there too, clear of the legend.
+    let mut text = Column::new(COLUMN_X, b[1] + b[3] + 16.0);
+    text.bottom = 536.0;
     text.line(c, "(world units)");
     if n > 1 {
+        let t = c.fill("splits (dashed): {}", &[&splits.join(" · ")]);
+        text.line(c, &t);
         let t = c.fill("{} cascades, split with λ = {}", &[&n, &num(*lambda)]);
         text.line(c, &t);
+        match selection {
+            CascadeSelection::ByMap => {
+                text.line(c, "picked by map: the sharpest map");
+                text.line(c, "holding it, read past the split");
+            }
+            CascadeSelection::ByInterval => {
+                text.line(c, "picked by interval: the slice");
+                text.line(c, "holding its depth, to the split");
+            }
+        }
         let t = c.fill("one map over the scene: texel {}", &[&num(one_texel)]);
         text.line(c, &t);
         let sharpest = fin(widths_world[0], 0.0).abs() / map;

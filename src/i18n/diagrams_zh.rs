@@ -130,7 +130,12 @@ pub(super) const DIAGRAMS: &[(&str, &str)] = &[
     // A light's shadow views.
     ("A light's shadow maps: a sun's cascades, a lamp's cube", "一个光源的阴影贴图：太阳的级联、灯的立方体"),
     ("camera's view axis · 0 .. {} world", "相机视线方向 · 0 .. {} 世界单位"),
-    ("{}: {} · texel {}", "{}：{} · 纹素 {}"),
+    ("{}: read {} · texel {}", "{}：读取 {} · 纹素 {}"),
+    ("splits (dashed): {}", "分割处（虚线）：{}"),
+    ("picked by map: the sharpest map", "按贴图选择：能包含像素的"),
+    ("holding it, read past the split", "最清晰的贴图，读到分割处以外"),
+    ("picked by interval: the slice", "按区间选择：包含像素深度的"),
+    ("holding its depth, to the split", "那一段，读到分割处为止"),
     ("(world units)", "（世界单位）"),
     ("{} cascades, split with λ = {}", "{} 个级联，划分 λ = {}"),
     ("one map over the scene: texel {}", "整个场景一张贴图：纹素 {}"),

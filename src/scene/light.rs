@@ -59,11 +59,52 @@ pub struct Cascades {
     pub lambda: f32,
     /// Where the last cascade ends along the camera's view axis, world units (at most its far plane).
     pub distance_world: f32,
+    /// How a pixel picks its cascade.
+    pub selection: CascadeSelection,
 }
 
 impl Default for Cascades {
     fn default() -> Self {
-        Self { count: 1, lambda: 0.5, distance_world: f32::INFINITY }
+        Self { count: 1, lambda: 0.5, distance_world: f32::INFINITY, selection: CascadeSelection::ByMap }
+    }
+}
+
+/// How a pixel picks one of a sun's cascades, the two schemes [Microsoft-CSM] compares.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum CascadeSelection {
+    /// The sharpest cascade whose map holds the point a few texels inside its edge. Each map
+    /// covers its slice's bounding sphere, so a cascade is read well past the end of its slice.
+    #[default]
+    ByMap,
+    /// The cascade whose slice holds the point's depth along the camera's view axis: the index
+    /// changes exactly at the split distances.
+    ByInterval,
+}
+
+impl CascadeSelection {
+    pub const ALL: &'static [CascadeSelection] = &[CascadeSelection::ByMap, CascadeSelection::ByInterval];
+
+    /// The name scene files, lesson steps and `--set` write (`cascade_selection = "interval"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            CascadeSelection::ByMap => "map",
+            CascadeSelection::ByInterval => "interval",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.iter().copied().find(|s| s.name() == name)
+    }
+
+    /// What the inspector's combo box shows, in `lang`.
+    pub fn label(self, lang: crate::i18n::Lang) -> &'static str {
+        crate::i18n::tr(
+            lang,
+            match self {
+                CascadeSelection::ByMap => "by map (the sharpest map that holds the pixel)",
+                CascadeSelection::ByInterval => "by interval (view depth against the splits)",
+            },
+        )
     }
 }
 

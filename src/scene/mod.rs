@@ -16,7 +16,8 @@ pub use camera::{Camera, Projection};
 pub(crate) use file::describe_toml_error;
 pub use file::{Override, SceneError, SceneSource, load_scene, parse_scene_str};
 pub use light::{
-    CUBE_FACES, Cascades, Light, LightKind, LightSize, MAX_CASCADES, cube_face_of, safe_up as safe_up_for,
+    CUBE_FACES, CascadeSelection, Cascades, Light, LightKind, LightSize, MAX_CASCADES, cube_face_of,
+    safe_up as safe_up_for,
 };
 pub use mesh::{Material, Mesh, MeshError, MeshPart, TextureImage, Vertex};
 pub use settings::{

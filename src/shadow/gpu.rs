@@ -5,7 +5,8 @@
 
 use super::cascades::fit_cascades;
 use crate::scene::{
-    BiasMode, DepthStorage, Kernel, Light, LightKind, LightSize, Scene, ShadowSettings, Technique,
+    BiasMode, CascadeSelection, DepthStorage, Kernel, Light, LightKind, LightSize, Scene, ShadowSettings,
+    Technique,
 };
 use bytemuck::{Pod, Zeroable};
 use glam::{Mat4, Vec3};
@@ -30,13 +31,17 @@ pub const KERNEL_GRID: u32 = 3;
 pub const KERNEL_HARDWARE: u32 = 4;
 pub const SIZE_MODEL_WIDTH: u32 = 0;
 pub const SIZE_MODEL_ANGULAR: u32 = 1;
+/// How a pixel picks a sun's cascade (`CascadeSelection`): the sharpest map that holds it, or the
+/// slice that holds its depth along the camera's view axis.
+pub const CASCADE_BY_MAP: u32 = 0;
+pub const CASCADE_BY_INTERVAL: u32 = 1;
 /// Shadow views of all lights together (a light owns one or more), the size of the shaders' array.
 pub const MAX_SHADOW_VIEWS: usize = 24;
 
 /// Map texels between a point and its cascade's edge for the cascade to hold it (`cascade_holds`).
 pub const CASCADE_BORDER_TEXELS: u32 = 4;
 /// Every shared constant by its WGSL name, for the test that holds shaders/common.wgsl to them.
-pub const SHARED_CONSTANTS: [(&str, u32); 23] = [
+pub const SHARED_CONSTANTS: [(&str, u32); 25] = [
     ("MAX_LIGHTS", crate::scene::MAX_LIGHTS as u32),
     ("CASCADE_BORDER_TEXELS", CASCADE_BORDER_TEXELS),
     ("MAX_SHADOW_VIEWS", MAX_SHADOW_VIEWS as u32),
@@ -60,6 +65,8 @@ pub const SHARED_CONSTANTS: [(&str, u32); 23] = [
     ("KERNEL_HARDWARE", KERNEL_HARDWARE),
     ("SIZE_MODEL_WIDTH", SIZE_MODEL_WIDTH),
     ("SIZE_MODEL_ANGULAR", SIZE_MODEL_ANGULAR),
+    ("CASCADE_BY_MAP", CASCADE_BY_MAP),
+    ("CASCADE_BY_INTERVAL", CASCADE_BY_INTERVAL),
 ];
 
 pub fn technique_id(t: Technique) -> u32 {
@@ -127,7 +134,9 @@ pub struct LightGpu {
     /// Its shadow views are the frame's `first_view .. first_view + view_count`.
     pub first_view: u32,
     pub view_count: u32,
-    pub _pad: [u32; 2],
+    /// A sun's cascades: CASCADE_BY_MAP or CASCADE_BY_INTERVAL (0 for the other lights).
+    pub cascade_selection: u32,
+    pub _pad: u32,
 }
 
 /// One depth map a light renders: where from and how it projects (`clip_from_world`, near and
@@ -161,6 +170,14 @@ pub struct ShadowViewGpu {
     /// Which of its light's views: a cube's face (0..6, `CUBE_FACES`) or a sun's cascade (0
     /// sharpest); they lie in layers `layer - face ..`.
     pub face: u32,
+    /// A cascade: the camera's view axis as a plane, xyz its unit direction and w = -xyz . eye,
+    /// so that xyz . p + w is a point's depth along the axis, world units (zero for other views).
+    pub view_axis_world: [f32; 4],
+    /// A cascade: where its slice of the camera's view begins and ends along that axis, world
+    /// units (the split distances; zero for other views).
+    pub split_near_world: f32,
+    pub split_far_world: f32,
+    pub _pad: [u32; 2],
 }
 
 /// A light and one of its shadow views: what one lookup reads (the twin of a pixel, a view of the
@@ -198,8 +215,8 @@ pub struct ShadowParamsGpu {
 }
 
 const _: () = assert!(std::mem::size_of::<LightGpu>() == 80);
-const _: () = assert!(std::mem::size_of::<ShadowViewGpu>() == 128);
-const _: () = assert!(std::mem::size_of::<LightViewGpu>() == 208);
+const _: () = assert!(std::mem::size_of::<ShadowViewGpu>() == 160);
+const _: () = assert!(std::mem::size_of::<LightViewGpu>() == 240);
 const _: () = assert!(std::mem::size_of::<ShadowParamsGpu>() == 80);
 
 impl ShadowParamsGpu {
@@ -266,6 +283,7 @@ pub fn frame_lights(
             }
         } else if light.cascades.is_cascaded() && light.is_orthographic() {
             // A sun's cascades, sharpest first; `face` numbers them.
+            let view_axis_world = view_axis_plane(&scene.camera);
             for (i, fit) in fit_cascades(light, &scene.camera, aspect, t_s).into_iter().enumerate() {
                 let layer = views.len() as u32;
                 let view = ShadowViewGpu::new(light, fit.clip_from_world, layer, atlas_size);
@@ -273,6 +291,9 @@ pub fn frame_lights(
                     light: index as u32,
                     frustum_width_world: fit.width_world,
                     face: i as u32,
+                    view_axis_world,
+                    split_near_world: fit.split_world.0,
+                    split_far_world: fit.split_world.1,
                     ..view
                 });
             }
@@ -286,6 +307,12 @@ pub fn frame_lights(
         frame_lights.push(LightGpu::new(light, position, direction, first_view, count));
     }
     (frame_lights, views)
+}
+
+/// The camera's view axis as a plane (`ShadowViewGpu::view_axis_world`): the view space's z row
+/// negated, since the camera looks down -z, so that it gives the depth `slice_corners` cuts at.
+fn view_axis_plane(camera: &crate::scene::Camera) -> [f32; 4] {
+    (-camera.view_from_world().row(2)).to_array()
 }
 
 /// How many shadow views (maps) a light of this kind renders (`frame_lights` makes them).
@@ -322,7 +349,11 @@ impl LightGpu {
             tan_half_angle,
             first_view,
             view_count,
-            _pad: [0; 2],
+            cascade_selection: match light.cascades.selection {
+                CascadeSelection::ByMap => CASCADE_BY_MAP,
+                CascadeSelection::ByInterval => CASCADE_BY_INTERVAL,
+            },
+            _pad: 0,
         }
     }
 }
@@ -351,6 +382,10 @@ impl ShadowViewGpu {
             light: 0,
             cube: u32::from(light.stores_distance()),
             face: 0,
+            view_axis_world: [0.0; 4],
+            split_near_world: 0.0,
+            split_far_world: 0.0,
+            _pad: [0; 2],
         }
     }
 

@@ -3,8 +3,8 @@
 //! every other part of shadowlab (probe, views, overlays, diagrams) calls rather than copies.
 
 use super::{
-    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, CASCADE_BORDER_TEXELS, LightGpu,
-    SIZE_MODEL_ANGULAR, ShadowCoord, ShadowParamsGpu, ShadowViewGpu,
+    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, CASCADE_BORDER_TEXELS,
+    CASCADE_BY_INTERVAL, LightGpu, SIZE_MODEL_ANGULAR, ShadowCoord, ShadowParamsGpu, ShadowViewGpu,
 };
 use crate::scene::{CUBE_FACES, cube_face_of};
 use glam::{Vec2, Vec3, Vec4};
@@ -111,8 +111,10 @@ pub fn face_covering(view: &ShadowViewGpu, world_pos: Vec3) -> ShadowViewGpu {
 }
 
 /// Index into `views` of the view of `light` that a lookup at `world_pos` reads (the camera
-/// pass's `shadow_view_at`): a cube's face towards the point; a sun's sharpest cascade that holds
-/// it (`cascade_holds`), else its last; else the light's one view.
+/// pass's `shadow_view_at`): a cube's face towards the point; a sun's cascade, else its last;
+/// else the light's one view. The cascade by the light's selection [Microsoft-CSM]: the sharpest
+/// whose map holds the point (`cascade_holds`), or the first whose slice holds its depth along
+/// the camera's view axis (`in_cascade_slice`).
 pub fn view_covering(light: &LightGpu, views: &[ShadowViewGpu], world_pos: Vec3) -> usize {
     let first = light.first_view as usize;
     let Some(view) = views.get(first) else { return first };
@@ -121,7 +123,23 @@ pub fn view_covering(light: &LightGpu, views: &[ShadowViewGpu], world_pos: Vec3)
         return first + (face_covering(view, world_pos).face - view.face) as usize;
     }
     let last = first + (light.view_count.max(1) as usize - 1);
-    (first..last).find(|&i| views.get(i).is_some_and(|v| cascade_holds(v, world_pos))).unwrap_or(last)
+    let picks = |v: &ShadowViewGpu| match light.cascade_selection {
+        CASCADE_BY_INTERVAL => in_cascade_slice(v, world_pos),
+        _ => cascade_holds(v, world_pos),
+    };
+    (first..last).find(|&i| views.get(i).is_some_and(picks)).unwrap_or(last)
+}
+
+/// A point's depth along the camera's view axis that a cascade was cut along, world units
+/// (`ShadowViewGpu::view_axis_world`).
+pub fn view_axis_depth(view: &ShadowViewGpu, world_pos: Vec3) -> f32 {
+    Vec4::from(view.view_axis_world).dot(world_pos.extend(1.0))
+}
+
+/// A cascade's slice holds a point nearer than its far split along the camera's view axis (the
+/// nearer slices were tried first; the shader's `in_cascade_slice`).
+pub fn in_cascade_slice(view: &ShadowViewGpu, world_pos: Vec3) -> bool {
+    view_axis_depth(view, world_pos) < view.split_far_world
 }
 
 /// A cascade holds a point when it lands on its map at least `CASCADE_BORDER_TEXELS` inside the

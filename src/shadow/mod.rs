@@ -13,18 +13,18 @@ mod vsm;
 use crate::scene::Kernel;
 use glam::{Vec2, Vec3};
 pub use gpu::{
-    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, CASCADE_BORDER_TEXELS, DEPTH_RGBA8,
-    LightGpu, LightViewGpu, SIZE_MODEL_ANGULAR, ShadowParamsGpu, ShadowViewGpu, TECHNIQUE_HARD,
-    TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS, TECHNIQUE_VSM, TECHNIQUE_VSSM, frame_lights,
-    kernel_from_id, views_needed,
+    BIAS_ADAPTIVE, BIAS_CONSTANT, BIAS_RECEIVER_PLANE, BIAS_SLOPE, CASCADE_BORDER_TEXELS,
+    CASCADE_BY_INTERVAL, CASCADE_BY_MAP, DEPTH_RGBA8, LightGpu, LightViewGpu, SIZE_MODEL_ANGULAR,
+    ShadowParamsGpu, ShadowViewGpu, TECHNIQUE_HARD, TECHNIQUE_NONE, TECHNIQUE_PCF, TECHNIQUE_PCSS,
+    TECHNIQUE_VSM, TECHNIQUE_VSSM, frame_lights, kernel_from_id, views_needed,
 };
 use kernels::{filter_taps, kernel_offset};
 pub use light_space::{
     blocker_search_radius_uv, cascade_holds, cube_face_axes, cube_face_uv, cube_face_view,
-    depth_linear_from_ndc, depth_ndc_from_linear, face_covering, light_dir_to, light_space_lookup, map_tap,
-    ndc_per_world, no_map_data, off_axis_sec, outside_depth, outside_frustum, outside_map, project_to_light,
-    read_texel_centre_uv, receiver_bias_ndc, receiver_plane_gradient, rgba8_round_trip, texel_world_at,
-    view_covering,
+    depth_linear_from_ndc, depth_ndc_from_linear, face_covering, in_cascade_slice, light_dir_to,
+    light_space_lookup, map_tap, ndc_per_world, no_map_data, off_axis_sec, outside_depth, outside_frustum,
+    outside_map, project_to_light, read_texel_centre_uv, receiver_bias_ndc, receiver_plane_gradient,
+    rgba8_round_trip, texel_world_at, view_axis_depth, view_covering,
 };
 
 /// One light's shadow map read back: NDC depth per texel, row-major, top row first (uv.y = 0).

@@ -6,7 +6,9 @@ use super::{AbSplit, AppState};
 use crate::i18n::Lang;
 use crate::i18n::tr as translate;
 use crate::scene::parameters::{self as params, Control, Field, Parameter};
-use crate::scene::{BiasMode, DepthStorage, Kernel, LightKind, LightSize, Projection, Technique};
+use crate::scene::{
+    BiasMode, CascadeSelection, DepthStorage, Kernel, LightKind, LightSize, Projection, Technique,
+};
 use crate::views::overlays::Overlay;
 use egui::{Response, Slider, Ui};
 
@@ -39,13 +41,16 @@ pub fn control_label(key: &str) -> Option<&'static str> {
 }
 
 /// `value` of scene key `key` as the inspector shows it in `lang`: a technique, bias mode,
-/// kernel or depth storage by its label in the combo box, anything else as it is.
+/// kernel, depth storage or cascade selection by its label in the combo box, anything else as it is.
 pub fn value_label<'a>(key: &str, value: &'a str, lang: Lang) -> &'a str {
     let label = match key {
         "technique" => Technique::from_name(value).map(|v| v.label(lang)),
         "bias_mode" => BiasMode::from_name(value).map(|v| v.label(lang)),
         "pcf_kernel" => Kernel::from_name(value).map(|v| v.label(lang)),
         "depth_storage" => DepthStorage::from_name(value).map(|v| v.label(lang)),
+        k if k.starts_with("light.") && k.ends_with(".cascade_selection") => {
+            CascadeSelection::from_name(value).map(|v| v.label(lang))
+        }
         _ => None,
     };
     label.unwrap_or(value)
@@ -283,6 +288,9 @@ fn lights(state: &mut AppState, ui: &mut Ui) -> bool {
             if cascades.is_cascaded() {
                 changed |=
                     number(lang, ui, &params::LIGHT_CASCADE_LAMBDA, &mut cascades.lambda, 0.0).changed();
+                let row = &params::LIGHT_CASCADE_SELECTION;
+                let (all, label) = (CascadeSelection::ALL, CascadeSelection::label);
+                changed |= combo(lang, ui, tr(row.label), &mut cascades.selection, all, label, Some(row.key));
             }
         }
         LightKind::Spot { fov_deg } => {

@@ -55,6 +55,11 @@ pub(super) fn probe_values(state: &mut AppState, ui: &mut Ui) {
                     &[&(c.index + 1), &c.count, &format!("{:.3}", c.texel_world)],
                 ),
             );
+            if let (Some(depth), Some([near, far])) = (c.view_depth_world, c.slice_world) {
+                let slice = format!("{near:.1}–{far:.1}");
+                let t = fill(lang, "{} world · in the slice {}", &[&format!("{depth:.2}"), &slice]);
+                row(tr("depth along the view axis"), t);
+            }
             if !c.uv_in_sharper.is_empty() {
                 let misses: Vec<String> =
                     c.uv_in_sharper.iter().map(|uv| format!("({:.2}, {:.2})", uv[0], uv[1])).collect();

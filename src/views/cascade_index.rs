@@ -106,7 +106,7 @@ pub fn cascade_index_image(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::shadow::frame_lights;
+    use crate::shadow::{frame_lights, view_axis_depth};
 
     const ASPECT: f32 = 16.0 / 9.0;
     const ATLAS_TEXELS: u32 = 1024;
@@ -147,6 +147,51 @@ mod tests {
         assert!(
             legend.ends_with("orange: cascade 1, sky blue: cascade 2, green: cascade 3, yellow: cascade 4")
         );
+    }
+
+    /// By interval, the index along the avenue's ground steps exactly where the point's depth
+    /// along the camera's view axis passes a split: it counts the splits nearer than the point.
+    /// By map, the same ground reads each cascade well past its slice's end (the map covers its
+    /// slice's bounding sphere): cascade 1 out to about twice its split.
+    #[test]
+    fn by_interval_the_index_steps_at_the_splits_and_by_map_it_runs_past_them() {
+        let load = |selection: &str| {
+            let overrides = [("light.0.cascade_selection".to_string(), selection.to_string())];
+            let path = crate::shipped_path("assets/scenes/sun_avenue.toml");
+            crate::scene::load_scene(&path, &overrides).expect("scene")
+        };
+        // Every 5 cm of the ground down the middle of the avenue, 0.5 to 150 units ahead.
+        let ground: Vec<Vec3> = (10..3000).map(|k| Vec3::new(0.0, 0.0, 6.0 - 0.05 * k as f32)).collect();
+        for selection in ["interval", "map"] {
+            let (lights, views) = frame_lights(&load(selection), ASPECT, 0.0, ATLAS_TEXELS);
+            let sun = &lights[0];
+            let cascades = &views[sun.first_view as usize..][..sun.view_count as usize];
+            let a = row_at(&ground, sun);
+            let seen: Vec<usize> =
+                indices(&a, sun, &views).into_iter().map(|i| i.expect("a surface")).collect();
+            let depth: Vec<f32> = ground.iter().map(|&p| view_axis_depth(&cascades[0], p)).collect();
+            // The depth of the last point that reads cascade i, world units.
+            let last_read = |i: usize| {
+                seen.iter().zip(&depth).filter(|(s, _)| **s == i).map(|(_, d)| *d).fold(f32::NAN, f32::max)
+            };
+            if selection == "interval" {
+                for (k, (&index, &d)) in seen.iter().zip(&depth).enumerate() {
+                    let nearer = cascades[..3].iter().filter(|v| v.split_far_world <= d).count();
+                    assert_eq!(index, nearer, "point {k} at depth {d}: {seen:?}");
+                }
+                for (i, v) in cascades[..3].iter().enumerate() {
+                    let step = last_read(i);
+                    assert!(step < v.split_far_world && step > v.split_far_world - 0.06, "{i}: {step}");
+                }
+            } else {
+                // Cascade 1 ends at 13.1 and is read to about twice that; cascade 2 likewise.
+                let (split_1, split_2) = (cascades[0].split_far_world, cascades[1].split_far_world);
+                assert!((split_1 - 13.1).abs() < 0.1 && (split_2 - 28.9).abs() < 0.1, "{split_1} {split_2}");
+                assert!(last_read(0) > 1.5 * split_1, "cascade 1 read to {}", last_read(0));
+                assert!(last_read(1) > 1.5 * split_2, "cascade 2 read to {}", last_read(1));
+                assert!(seen.windows(2).all(|w| w[0] <= w[1]), "{seen:?}");
+            }
+        }
     }
 
     /// Around the lamp each direction reads its own face, counted from the light's first view

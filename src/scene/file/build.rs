@@ -330,6 +330,7 @@ fn build_cascades(l: &LightFile, key: &dyn Fn(&str) -> String) -> Result<Cascade
         (l.cascades.is_some(), "cascades"),
         (l.cascade_lambda.is_some(), "cascade_lambda"),
         (l.cascade_distance.is_some(), "cascade_distance"),
+        (l.cascade_selection.is_some(), "cascade_selection"),
     ];
     if l.kind != LightKindName::Directional {
         if let Some((_, name)) = given.iter().find(|(g, _)| *g) {
@@ -355,7 +356,18 @@ fn build_cascades(l: &LightFile, key: &dyn Fn(&str) -> String) -> Result<Cascade
         Some(v) => real(&parameters::LIGHT_CASCADE_DISTANCE, &key("cascade_distance"), v)?,
         None => defaults.distance_world,
     };
-    Ok(Cascades { count, lambda, distance_world })
+    let selection = match &l.cascade_selection {
+        Some(name) => CascadeSelection::from_name(name).ok_or_else(|| {
+            let names: Vec<&str> = CascadeSelection::ALL.iter().map(|s| s.name()).collect();
+            BuildError::Invalid(format!(
+                "`{}` = \"{name}\" is not one of {}",
+                key("cascade_selection"),
+                names.join(", ")
+            ))
+        })?,
+        None => defaults.selection,
+    };
+    Ok(Cascades { count, lambda, distance_world, selection })
 }
 
 fn resolve_mesh(

@@ -7,7 +7,7 @@
 
 mod build;
 
-use super::light::{Cascades, Light, LightKind, LightSize};
+use super::light::{CascadeSelection, Cascades, Light, LightKind, LightSize};
 use super::mesh::{self, Mesh, MeshError};
 use super::settings::ShadowSettings;
 use super::{Camera, MAX_LIGHTS, Object, Projection, Scene};
@@ -132,6 +132,8 @@ struct LightFile {
     cascades: Option<u32>,
     cascade_lambda: Option<f32>,
     cascade_distance: Option<f32>,
+    /// `CascadeSelection::name`: "map" or "interval".
+    cascade_selection: Option<String>,
 }
 
 fn default_ambient() -> [f32; 3] {

@@ -330,6 +330,14 @@ pub static LIGHT_CASCADE_LAMBDA: Parameter = Parameter {
     control: Control::Slider { lo: 0.0, hi: 1.0, log: false },
     ..LIGHT_ROW
 };
+pub static LIGHT_CASCADE_SELECTION: Parameter = Parameter {
+    key: "light.N.cascade_selection",
+    label: "cascade selection",
+    unit: "",
+    values: Values::Name,
+    control: Control::Combo,
+    ..LIGHT_ROW
+};
 /// Not in the inspector (its default, the camera's far plane, is no number a slider holds):
 /// scene files and `--set` only.
 pub static LIGHT_CASCADE_DISTANCE: Parameter = Parameter {
@@ -352,7 +360,7 @@ pub static CAMERA_FOV: Parameter = Parameter {
 };
 
 /// The light's and the camera's keys, in the inspector's order.
-pub static LIGHT_AND_CAMERA: [&Parameter; 15] = [
+pub static LIGHT_AND_CAMERA: [&Parameter; 16] = [
     &LIGHT_POSITION,
     &LIGHT_TARGET,
     &LIGHT_SHADOW_MAP_SIZE,
@@ -366,6 +374,7 @@ pub static LIGHT_AND_CAMERA: [&Parameter; 15] = [
     &LIGHT_ORBIT,
     &LIGHT_CASCADES,
     &LIGHT_CASCADE_LAMBDA,
+    &LIGHT_CASCADE_SELECTION,
     &LIGHT_CASCADE_DISTANCE,
     &CAMERA_FOV,
 ];

@@ -34,7 +34,7 @@ fn point(c: f32) -> String {
     format!("[{}, {}, {}]", float(c), float(c), float(c))
 }
 
-/// The names a `[shadow]` choice takes.
+/// The names a `[shadow]` choice (or a light's cascade selection) takes.
 fn names(row: &Parameter) -> Vec<&'static str> {
     let mut settings = ShadowSettings::default();
     match row.field.map(|field| field(&mut settings)) {
@@ -42,6 +42,9 @@ fn names(row: &Parameter) -> Vec<&'static str> {
         Some(Field::BiasMode(_)) => BiasMode::ALL.iter().map(|b| b.name()).collect(),
         Some(Field::Kernel(_)) => Kernel::ALL.iter().map(|k| k.name()).collect(),
         Some(Field::DepthStorage(_)) => DepthStorage::ALL.iter().map(|d| d.name()).collect(),
+        None if row.key == LIGHT_CASCADE_SELECTION.key => {
+            crate::scene::CascadeSelection::ALL.iter().map(|s| s.name()).collect()
+        }
         _ => Vec::new(),
     }
 }
