@@ -96,6 +96,7 @@ fn example_cases() -> Vec<(&'static str, Vec<String>, &'static [&'static str])> 
         ("phongFragment_constant_filter.glsl", vec![], &["filter_ignores_blocker"]),
         ("phongFragment_penumbra_unused.glsl", vec![], &["filter_ignores_blocker"]),
         ("phongFragment_partial_search.glsl", vec![], &["search_radius_wrong (latent)"]),
+        ("phongFragment_count_radius.glsl", vec![], &["receiver_counts_as_blocker"]),
         ("phongFragment_filter_in_texels.glsl", vec![], &["search_and_filter_lights_differ"]),
         ("phongFragment_divided_twice.glsl", vec![], &["visibility_scaled"]),
         ("phongFragment_undivided.glsl", vec![], &["visibility_out_of_range"]),
@@ -539,6 +540,12 @@ fn a_filter_that_ignores_the_blocker_or_another_light_and_a_bias_the_wrong_way_a
     assert_eq!(skewed["id"], "light_direction_off", "{skewed:#}");
     assert!((figure(&skewed, "angle_degrees") - 22.5).abs() < 0.5, "{skewed:#}");
     assert!(said(&skewed).contains("(DirectionalLight_identity_sum.js:"), "{skewed:#}");
+
+    // A flat bias under the slope across a disk sized by a sample count: both lines.
+    let wide = first("phongFragment_count_radius.glsl");
+    assert_eq!(wide["id"], "receiver_counts_as_blocker", "{wide:#}");
+    assert_eq!((figure(&wide, "bias_line"), figure(&wide, "radius_line")), (32.0, 71.0), "{wide:#}");
+    assert!(figure(&wide, "receiver_spread_depth_median") > 2.0 * figure(&wide, "bias_depth"), "{wide:#}");
 
     // `depth - BIAS < zReceiver`: the wrong way round, on the `#define`'s line.
     let wrong_way = first("phongFragment_receiver_blocker.glsl");

@@ -371,4 +371,8 @@ pub(super) const HOMEWORK: &[(&str, &str)] = &[
         "findBlocker's loop on line {} reads only the first {} of the {} samples in `{}`. The disk orders them from the centre out, so those reach {:.0}% of its radius: the search reads {:.1} texels around the receiver, where the light its filter behaves as is {:.1} texels wide (half). Loop over every sample the disk holds (BLOCKER_SEARCH_NUM_SAMPLES, and a disk of that many).",
         "findBlocker 第 {} 行的循环只读取了前 {} 个采样（共 {} 个，在 `{}` 中）。圆盘中的采样由中心向外排列，所以这些采样只达到半径的 {:.0}%：搜索只读取了接收点周围 {:.1} 个纹素，而它的滤波所对应的光源半宽是 {:.1} 个纹素。应遍历圆盘中的所有采样（BLOCKER_SEARCH_NUM_SAMPLES，并让圆盘有同样多的采样）。",
     ),
+    (
+        "The disk is that wide because line {} sizes it with `{}`, a sample count ({}), as if it were a radius in texels.",
+        "圆盘之所以这么宽，是因为第 {} 行用 `{}` 来确定它的大小：这是一个采样数（{}），却被当成了以纹素为单位的半径。",
+    ),
 ];

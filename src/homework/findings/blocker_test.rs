@@ -95,6 +95,16 @@ fn receiver_counts_as_blocker(j: &Judged<'_>, earlier: &[super::Finding], lang: 
             "Its bias, `{}` on line {} ({:.4} in [0, 1] depth), is far under how much the receiver's own surface, sloped to the light, moves in depth across the disk it searches: {:.4} (median). The nearer part of that surface passes the test as a blocker. A bias that grows with the slope and the search radius, or each tap compared with the receiver plane's depth there, keeps it out.",
             &[&c.text, &c.line, &c.value, &spread],
         );
+        // A disk that wide because a sample count sizes it.
+        if let Some((line, name, count)) = super::formula_lines::count_as_radius(source, FIND_BLOCKER_NAME) {
+            figures.insert("radius_line", line as f64);
+            explanation += " ";
+            explanation += &fill(
+                lang,
+                "The disk is that wide because line {} sizes it with `{}`, a sample count ({}), as if it were a radius in texels.",
+                &[&line, &name, &count],
+            );
+        }
     } else {
         explanation += tr(
             lang,

@@ -241,6 +241,34 @@ pub fn partial_sample_loop(source: &str, function: &str) -> Option<(usize, Strin
     })
 }
 
+/// A sample count multiplying a tap's offset in `function` (a recorded function's name):
+/// `poissonDisk[i] * float(BLOCKER_SEARCH_NUM_SAMPLES) / ...`, a count used as a radius.
+/// (line, the count's name, its value.)
+pub fn count_as_radius(source: &str, function: &str) -> Option<(usize, String, f64)> {
+    let toks = tokens(source);
+    let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
+    let defines = numeric_defines(source, &toks);
+    let own = recorded_name(source, &toks, function)?;
+    let body = function_bodies(source, &toks).into_iter().find(|b| b.name == own)?;
+    (body.open..body.close).find_map(|k| {
+        if text(k) != "*" {
+            return None;
+        }
+        let mut at = k + 1;
+        while matches!(text(at), "(" | "float") {
+            at += 1;
+        }
+        let name = text(at);
+        let count = name.to_ascii_uppercase().contains("SAMPLES");
+        // On a line that offsets a tap: an array read by index (`poissonDisk[i]`).
+        let line = toks[k].line;
+        let offsets = (body.open..body.close).any(|e| {
+            toks[e].line == line && text(e + 1) == "[" && text(e + 3) == "]" && toks[e].kind == Kind::Ident
+        });
+        (count && offsets).then(|| Some((line, name.to_string(), *defines.get(name)?))).flatten()
+    })
+}
+
 /// In PCSS, a local computed from the blocker search's result that nothing reads afterwards
 /// (`float penumbra = (zR - zB) * W / zB;` with the filter then sized without it): (line, name).
 pub fn unused_from_blocker(source: &str) -> Option<(usize, String)> {
@@ -378,6 +406,15 @@ mod tests {
         assert_eq!(partial_sample_loop(source, "findBlocker"), Some((6, "poissonDisk".to_string(), 10, 100)));
         let whole = source.replace("i < 10;", "i < SEARCH;");
         assert_eq!(partial_sample_loop(&whole, "findBlocker"), None);
+    }
+
+    #[test]
+    fn a_sample_count_that_sizes_a_tap_offset_is_found() {
+        let source = "#define NUM_SAMPLES 80\n#define SEARCH_SAMPLES NUM_SAMPLES\nvec2 poissonDisk[NUM_SAMPLES];\n\
+                      float findBlocker(vec2 uv) {\n  float s = 0.0;\n  for (int i = 0; i < NUM_SAMPLES; i++) {\n    \
+                      s += texture2D(m, uv + poissonDisk[i] * float(SEARCH_SAMPLES) / 2048.0).r;\n  }\n  return s / float(NUM_SAMPLES);\n}\n";
+        assert_eq!(count_as_radius(source, "findBlocker"), Some((7, "SEARCH_SAMPLES".to_string(), 80.0)));
+        assert_eq!(count_as_radius(&source.replace("float(SEARCH_SAMPLES)", "20.0"), "findBlocker"), None);
     }
 
     #[test]
