@@ -2,9 +2,24 @@
 //! radius by the receiver's depth, and the light size a `#define` sets in world units.
 
 use crate::homework::instrument::recorded_name;
-use crate::homework::lex::{Kind, function_bodies, tokens};
+use crate::homework::lex::{FunctionBody, Kind, Token, function_bodies, tokens};
 
 const PCSS: &str = "PCSS";
+
+/// The body of the function recorded as `role` (`PCSS`, `findBlocker`), under the student's name.
+fn recorded_body<'s>(source: &'s str, toks: &[Token], role: &str) -> Option<FunctionBody<'s>> {
+    let own = recorded_name(source, toks, role)?;
+    function_bodies(source, toks).into_iter().find(|b| b.name == own)
+}
+
+/// The first token of the operand after the operator at `k`, past brackets and `float(` casts.
+fn operand_start(source: &str, toks: &[Token], k: usize) -> usize {
+    let mut at = k + 1;
+    while toks.get(at).is_some_and(|t| matches!(&source[t.start..t.end], "(" | "float")) {
+        at += 1;
+    }
+    at
+}
 
 /// The first line, in `function` (a recorded function's name: `PCSS`, `findBlocker`) or a
 /// function it calls (PCSS: not the blocker search), that divides by the receiver's depth:
@@ -38,10 +53,7 @@ pub fn receiver_division(source: &str, function: &str) -> Option<(usize, String)
             if text(k) != "/" {
                 return None;
             }
-            let mut at = k + 1;
-            while matches!(text(at), "(" | "float") {
-                at += 1;
-            }
+            let at = operand_start(source, &toks, k);
             // `/ (zReceiver - zBlocker)` is a gap, not the receiver's depth.
             let gap = matches!(text(at + 1), "-" | "+")
                 || (text(at + 1) == "." && matches!(text(at + 4), "-" | "+"));
@@ -113,8 +125,7 @@ pub fn blocked_value(
 pub fn compares_in(source: &str, function: &str) -> Option<bool> {
     let toks = tokens(source);
     let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
-    let own = recorded_name(source, &toks, function)?;
-    let body = function_bodies(source, &toks).into_iter().find(|b| b.name == own)?;
+    let body = recorded_body(source, &toks, function)?;
     let mut k = body.open;
     while k < body.close {
         if text(k) == "for" && text(k + 1) == "(" {
@@ -134,8 +145,7 @@ pub fn compares_in(source: &str, function: &str) -> Option<bool> {
 pub fn bias_tightens(source: &str, function: &str, bias: &str) -> Option<(bool, usize)> {
     let toks = tokens(source);
     let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
-    let own = recorded_name(source, &toks, function)?;
-    let body = function_bodies(source, &toks).into_iter().find(|b| b.name == own)?;
+    let body = recorded_body(source, &toks, function)?;
     let ends = |t: &str| matches!(t, ";" | "{" | "}" | "?" | ":" | "," | "&" | "|");
     (body.open..body.close).filter(|&k| matches!(text(k), "<" | ">") && text(k + 1) != text(k)).find_map(
         |k| {
@@ -178,10 +188,7 @@ pub fn bias_tightens(source: &str, function: &str, bias: &str) -> Option<(bool, 
 }
 
 /// `#define NAME value` with a number, or with another such name, resolved: name -> value.
-fn numeric_defines(
-    source: &str,
-    toks: &[crate::homework::lex::Token],
-) -> std::collections::HashMap<String, f64> {
+fn numeric_defines(source: &str, toks: &[Token]) -> std::collections::HashMap<String, f64> {
     let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
     let mut raw: Vec<(String, String)> = Vec::new();
     for k in 0..toks.len() {
@@ -214,8 +221,7 @@ pub fn partial_sample_loop(source: &str, function: &str) -> Option<(usize, Strin
     let value = |i: usize| {
         text(i).trim_end_matches(['f', 'F']).parse::<f64>().ok().or_else(|| defines.get(text(i)).copied())
     };
-    let own = recorded_name(source, &toks, function)?;
-    let body = function_bodies(source, &toks).into_iter().find(|b| b.name == own)?;
+    let body = recorded_body(source, &toks, function)?;
     // Arrays declared outside every function: `vec2 NAME[SIZE];`.
     let sizes: Vec<(&str, usize)> = (1..toks.len())
         .filter(|&k| matches!(text(k - 1), "vec2" | "vec3") && text(k + 1) == "[" && text(k + 3) == "]")
@@ -248,16 +254,12 @@ pub fn count_as_radius(source: &str, function: &str) -> Option<(usize, String, f
     let toks = tokens(source);
     let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
     let defines = numeric_defines(source, &toks);
-    let own = recorded_name(source, &toks, function)?;
-    let body = function_bodies(source, &toks).into_iter().find(|b| b.name == own)?;
+    let body = recorded_body(source, &toks, function)?;
     (body.open..body.close).find_map(|k| {
         if text(k) != "*" {
             return None;
         }
-        let mut at = k + 1;
-        while matches!(text(at), "(" | "float") {
-            at += 1;
-        }
+        let at = operand_start(source, &toks, k);
         let name = text(at);
         let count = name.to_ascii_uppercase().contains("SAMPLES");
         // On a line that offsets a tap: an array read by index (`poissonDisk[i]`).
@@ -305,9 +307,7 @@ pub fn unused_from_blocker(source: &str) -> Option<(usize, String)> {
 pub fn uv_divisor(source: &str, function: &str) -> Option<(usize, String, String)> {
     let toks = tokens(source);
     let text = |i: usize| toks.get(i).map_or("", |t| &source[t.start..t.end]);
-    let bodies = function_bodies(source, &toks);
-    let own = recorded_name(source, &toks, function)?;
-    let body = bodies.iter().find(|b| b.name == own)?;
+    let body = recorded_body(source, &toks, function)?;
     // A `#define NAME` or a `uniform [precision] TYPE NAME;`.
     let named = |name: &str| {
         (0..toks.len()).any(|k| {
@@ -321,10 +321,7 @@ pub fn uv_divisor(source: &str, function: &str) -> Option<(usize, String, String
         if text(k) != "/" {
             return None;
         }
-        let mut at = k + 1;
-        while matches!(text(at), "(" | "float") {
-            at += 1;
-        }
+        let at = operand_start(source, &toks, k);
         let divisor = text(at);
         let lower = divisor.to_ascii_lowercase();
         let counts = ["sample", "num", "count"].iter().any(|c| lower.contains(c));
